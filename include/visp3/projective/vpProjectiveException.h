@@ -1,0 +1,44 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+/*!
+  \file vpProjectiveException.h
+  \brief Error raised by every class of the visp_projective plugin.
+*/
+
+#ifndef _vpProjectiveException_h_
+#define _vpProjectiveException_h_
+
+#include <string>
+
+#include <visp3/core/vpException.h>
+
+/*!
+  \class vpProjectiveException
+  \ingroup group_projective
+  \brief Error raised by the visp_projective classes when an input is invalid or degenerate.
+
+  It derives from vpException, so existing ViSP applications that catch vpException also catch it. The code tells the
+  kind of problem; the message says what was wrong and what to do.
+*/
+class VISP_EXPORT vpProjectiveException : public vpException
+{
+public:
+  //! Kinds of error.
+  enum errorProjectiveCodeEnum {
+    notEnoughPointsError = 100, //!< Fewer points or matches than the estimator needs.
+    degenerateConfigurationError, //!< Coplanar, collinear or repeated points, or another critical configuration.
+    nonFiniteValueError,          //!< An input contains NaN or infinity.
+    dimensionError,               //!< Sizes of matrices or vectors do not match.
+    notInitializedError,          //!< A method was called before the data it needs was set.
+    invalidValueError,            //!< A value is out of its domain (zero trial motion, negative gain, ...).
+    pointAtInfinityError,         //!< A point cannot be projected: it lies on a camera's focal plane or behind it.
+    fileError,                    //!< A model file is missing, truncated, corrupted or of another version.
+    estimationFailedError         //!< An estimator did not converge to a usable result.
+  };
+
+  vpProjectiveException(int code, const std::string &message) : vpException(code, message) {}
+};
+
+#endif

@@ -1,0 +1,74 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+/*!
+  \file vpProjectiveRotation.h
+  \brief Projective rotations (p-rotations): the one-parameter Lie subgroup of a revolute joint.
+*/
+
+#ifndef _vpProjectiveRotation_h_
+#define _vpProjectiveRotation_h_
+
+#include <Eigen/Core>
+
+#include <visp3/core/vpMatrix.h>
+
+/*!
+  \class vpProjectiveRotation
+  \ingroup group_projective
+  \brief A p-rotation \f$ H_R(\theta) = \exp(\theta \hat H_R) \f$: a rotation about a fixed axis seen in the
+  projective frame of a weakly calibrated rig (Ruf & Horaud, section 5.1, eqs. (18)-(27)).
+
+  The generator \f$ \hat H_R \f$ (4x4) is \f$ H_{PE}^{-1} \hat T_R H_{PE} \f$, \f$ \hat T_R \in se(3) \f$ a unit-speed
+  rotational twist. Equivalently \f$ \hat H_R = k_2 h_1^T - k_1 h_2^T \f$ with \f$ h_i^T k_j = \delta_{ij} \f$ (27).
+  It satisfies \f$ \hat H_R^3 = -\hat H_R \f$ and has rank 2, which gives
+  - the exponential, Rodrigues' form (26): \f$ \exp(\theta \hat H_R) = I + \sin\theta\, \hat H_R + (1 - \cos\theta)
+    \hat H_R^2 \f$;
+  - the logarithm (25) of a normalised p-rotation \f$ H \f$ with angle \f$ \theta \in (0, \pi) \f$ from (21):
+    \f$ \hat H_R = (H - H^{-1}) / (2 \sin\theta) \f$;
+  - the derivative \f$ \frac{d}{d\theta} \exp(\theta \hat H_R) = \hat H_R \exp(\theta \hat H_R) \f$;
+  - the inverse \f$ \exp(\theta \hat H_R)^{-1} = \exp(-\theta \hat H_R) \f$.
+
+  The generator is unique although the Jordan decomposition of \f$ H_R \f$ is not.
+*/
+class VISP_EXPORT vpProjectiveRotation
+{
+public:
+  //! Zero generator (no motion); set one with the constructor or log().
+  vpProjectiveRotation();
+  /*!
+    Takes a generator (4x4). \exception vpProjectiveException if it is not finite, not 4x4, or violates
+    \f$ \hat H^3 = -\hat H \f$ by more than \e tolerance relative to \f$ \|\hat H\| \f$.
+  */
+  explicit vpProjectiveRotation(const vpMatrix &Hhat, double tolerance = 1e-6);
+  explicit vpProjectiveRotation(const Eigen::Matrix4d &Hhat, double tolerance = 1e-6);
+
+  /*!
+    Logarithm (25) of a p-rotation: the generator \f$ \hat H_R \f$ and angle \f$ \theta \in (0, \pi) \f$ with
+    \f$ H \simeq \exp(\theta \hat H_R) \f$. \e H may have any scale: it is normalised first (12).
+    If \e amount is non-zero (a signed trial angle read by the joint encoder) the generator's sign is chosen so that
+    \f$ H = \exp(\mathrm{amount}\, \hat H_R) \f$ up to the noise in \e H; \e theta still receives the image angle.
+    \exception vpProjectiveException if H is singular, not finite, or its angle is too close to 0 or \f$ \pi \f$ for
+    the logarithm to be defined.
+  */
+  static vpProjectiveRotation log(const Eigen::Matrix4d &H, double &theta, double amount = 0.0);
+  static vpProjectiveRotation log(const vpMatrix &H, double &theta, double amount = 0.0);
+
+  //! Rodrigues' form (26), \f$ \exp(\theta \hat H_R) \f$ (4x4).
+  Eigen::Matrix4d exp(double theta) const { return exp(m_Hhat, theta); }
+  //! Rodrigues' form (26) for any generator with \f$ \hat H^3 = -\hat H \f$.
+  static Eigen::Matrix4d exp(const Eigen::Matrix4d &Hhat, double theta);
+
+  //! The generator \f$ \hat H_R \f$ (4x4).
+  const Eigen::Matrix4d &generator() const { return m_Hhat; }
+  vpMatrix getGenerator() const;
+
+  //! \f$ \|\hat H^3 + \hat H\|_F / \|\hat H\|_F \f$: zero for an exact p-rotation generator.
+  static double generatorResidual(const Eigen::Matrix4d &Hhat);
+
+private:
+  Eigen::Matrix4d m_Hhat;
+};
+
+#endif

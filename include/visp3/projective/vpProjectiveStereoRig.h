@@ -1,0 +1,133 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+/*!
+  \file vpProjectiveStereoRig.h
+  \brief Weakly calibrated stereo rig: fundamental matrix, canonical camera pair, projective triangulation.
+*/
+
+#ifndef _vpProjectiveStereoRig_h_
+#define _vpProjectiveStereoRig_h_
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpMatrix.h>
+
+/*!
+  \class vpProjectiveStereoRig
+  \ingroup group_projective
+  \brief A stereo rig known only through its epipolar geometry (Ruf & Horaud, ICCV'99, section 2).
+
+  Pixels are \f$ m = (u, v, 1)^T \f$ in the left image and \f$ m' = (u', v', 1)^T \f$ in the right one, with
+  \f$ u \f$ = vpImagePoint::get_u() (column) and \f$ v \f$ = vpImagePoint::get_v() (row). The fundamental matrix
+  \f$ F \f$ (3x3) satisfies \f$ m'^T F m = 0 \f$.
+
+  \f$ F \f$ fixes one projective frame \f$ \mathcal{P} \f$ through the canonical camera pair (3)
+  \f[ P = [I \,|\, 0], \qquad P' = [\, [e']_\times F + e' a^T \,|\, e' \,] \f]
+  with \f$ F \f$ scaled to unit Frobenius norm, the right epipole \f$ e' \f$ (\f$ e'^T F = 0 \f$) of unit norm, both
+  with their largest-magnitude entry positive, and \f$ a = e' \f$, which keeps the left 3x3 block of \f$ P' \f$
+  invertible. Any \f$ F \f$ proportional to another gives the same frame, so models acquired with this rig stay valid.
+
+  A projective point \f$ M \f$ is a homogeneous 4-vector of unit norm with \f$ m \simeq P M \f$, \f$ m' \simeq P' M
+  \f$. Its last coordinate may be zero inside the workspace: it is never divided by.
+
+  \code
+  vpProjectiveStereoRig rig;
+  rig.estimate(left, right);                      // >= 8 matches: RANSAC, then Ceres on the geometric error
+  vpColVector M = rig.triangulate(ipLeft, ipRight); // 4x1, unit norm
+  vpImagePoint l, r;
+  rig.project(M, l, r);
+  \endcode
+*/
+class VISP_EXPORT vpProjectiveStereoRig
+{
+public:
+  typedef Eigen::Matrix<double, 3, 4> Projection;
+
+  vpProjectiveStereoRig();
+
+  /*!
+    Estimates \f$ F \f$ from pixel matches: OpenCV's RANSAC on Hartley-normalised points selects the inliers, then
+    Ceres minimises the geometric (Sampson-free, gold standard) reprojection error of the inliers over \f$ F \f$ and
+    their projective points. Needs at least 8 matches in general position.
+    \param left, right : matched image points, left[i] seen as right[i].
+    \param inlierThreshold : maximum distance in pixels of an inlier to its epipolar line.
+    \exception vpProjectiveException when there are fewer than 8 matches, the sizes differ, a coordinate is not
+    finite, or the matches are degenerate (for instance all on one line).
+  */
+  void estimate(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right,
+                double inlierThreshold = 1.0);
+
+  /*!
+    Sets \f$ F \f$ (3x3, rank 2, pixel coordinates, \f$ m'^T F m = 0 \f$) and the frame it defines. A rank-3 input is
+    projected on the closest rank-2 matrix.
+  */
+  void setFundamentalMatrix(const vpMatrix &F);
+
+  //! \f$ F \f$ of unit Frobenius norm (3x3).
+  vpMatrix getFundamentalMatrix() const;
+  //! \f$ P = [I | 0] \f$ (3x4).
+  vpMatrix getLeftProjection() const;
+  //! \f$ P' = [[e']_\times F + e' e'^T | e'] \f$ (3x4).
+  vpMatrix getRightProjection() const;
+  //! Left epipole \f$ e \f$, \f$ F e = 0 \f$, unit norm (3x1, homogeneous pixels).
+  vpColVector getLeftEpipole() const;
+  //! Right epipole \f$ e' \f$, \f$ e'^T F = 0 \f$, unit norm (3x1, homogeneous pixels).
+  vpColVector getRightEpipole() const;
+
+  //! Inliers kept by the last estimate(): inliers[i] tells whether match i was used.
+  const std::vector<bool> &getInliers() const { return m_inliers; }
+  //! RMS distance in pixels of the inliers to their refined reprojections after estimate().
+  double getEstimationResidual() const { return m_residual; }
+
+  /*!
+    Projective reconstruction of one match, eq. (3): linear (DLT on conditioned equations), then refined by
+    Gauss-Newton on the reprojection error in both images.
+    \return \f$ M \f$ (4x1), unit norm.
+    \exception vpProjectiveException if the rig has no \f$ F \f$ or a coordinate is not finite.
+  */
+  vpColVector triangulate(const vpImagePoint &ipLeft, const vpImagePoint &ipRight) const;
+
+  /*!
+    Projects \f$ M \f$ (4x1, any scale and sign) into both images: \f$ m \simeq P M \f$, \f$ m' \simeq P' M \f$.
+    \exception vpProjectiveException if \f$ M \f$ is not 4x1 or not finite, or lies on a camera's focal plane.
+  */
+  void project(const vpColVector &M, vpImagePoint &ipLeft, vpImagePoint &ipRight) const;
+
+  //! True once \f$ F \f$ is known (estimate() or setFundamentalMatrix()).
+  bool isInitialized() const { return m_initialized; }
+
+  /*! \name Eigen access for hot paths (no allocation) */
+  //@{
+  const Projection &leftProjection() const { return m_P; }
+  const Projection &rightProjection() const { return m_Pp; }
+  const Eigen::Matrix3d &fundamentalMatrix() const { return m_F; }
+  /*!
+    Triangulates \f$ (u, v) \f$, \f$ (u', v') \f$ into the unit-norm 4-vector \f$ M \f$ (linear, then Gauss-Newton).
+  */
+  Eigen::Vector4d triangulate(const Eigen::Vector2d &left, const Eigen::Vector2d &right) const;
+  /*!
+    Writes \f$ s = (u, v, u', v') \f$ of \f$ M \f$; returns false when \f$ M \f$ is on a camera's focal plane.
+  */
+  bool project(const Eigen::Vector4d &M, Eigen::Vector4d &s) const;
+  //@}
+
+private:
+  void checkInitialized(const char *where) const;
+
+  Eigen::Matrix3d m_F;
+  Projection m_P;
+  Projection m_Pp;
+  Eigen::Vector3d m_e;
+  Eigen::Vector3d m_ep;
+  std::vector<bool> m_inliers;
+  double m_residual;
+  bool m_initialized;
+};
+
+#endif

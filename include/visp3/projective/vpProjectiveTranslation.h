@@ -1,0 +1,67 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+/*!
+  \file vpProjectiveTranslation.h
+  \brief Projective translations (p-translations): the one-parameter Lie subgroup of a prismatic joint.
+*/
+
+#ifndef _vpProjectiveTranslation_h_
+#define _vpProjectiveTranslation_h_
+
+#include <Eigen/Core>
+
+#include <visp3/core/vpMatrix.h>
+
+/*!
+  \class vpProjectiveTranslation
+  \ingroup group_projective
+  \brief A p-translation \f$ H_T(\tau) = \exp(\tau \hat H_T) = I + \tau \hat H_T \f$: a translation along a fixed
+  direction seen in the projective frame of a weakly calibrated rig (Ruf & Horaud, section 5.2, eqs. (28)-(31)).
+
+  The generator \f$ \hat H_T = k_3 h_4^T \f$ (4x4, rank 1) is the product of the direction's vanishing point
+  \f$ k_3 \f$ and the plane at infinity \f$ h_4^T \f$ (30). It is \f$ H_{PE}^{-1} \hat T_T H_{PE} \f$ with
+  \f$ \hat T_T \in se(3) \f$ a translation of unit speed (metres per unit of \f$ \tau \f$), and it is nilpotent:
+  \f$ \hat H_T^2 = 0 \f$, so
+  - the exponential is exact at first order (31): \f$ \exp(\tau \hat H_T) = I + \tau \hat H_T \f$;
+  - the logarithm of a normalised p-translation \f$ H_T \f$ of encoder-measured length \f$ \tau \f$ is
+    \f$ \hat H_T = (H_T - I) / \tau \f$;
+  - the derivative is \f$ \frac{d}{d\tau} \exp(\tau \hat H_T) = \hat H_T \f$, and the inverse is \f$ I - \tau \hat H_T \f$.
+*/
+class VISP_EXPORT vpProjectiveTranslation
+{
+public:
+  //! Zero generator (no motion).
+  vpProjectiveTranslation();
+  /*!
+    Takes a generator (4x4). \exception vpProjectiveException if it is not finite, not 4x4, or violates
+    \f$ \hat H^2 = 0 \f$ by more than \e tolerance relative to \f$ \|\hat H\|^2 \f$.
+  */
+  explicit vpProjectiveTranslation(const vpMatrix &Hhat, double tolerance = 1e-6);
+  explicit vpProjectiveTranslation(const Eigen::Matrix4d &Hhat, double tolerance = 1e-6);
+
+  /*!
+    Logarithm of a p-translation of length \e tau (31): \f$ \hat H_T = (H_T - I)/\tau \f$ after normalising \e H (12).
+    The result is projected on the closest rank-1 matrix so that \f$ \hat H_T^2 = 0 \f$ holds up to the noise of H.
+    \exception vpProjectiveException if tau is zero or not finite, or H is singular or not finite.
+  */
+  static vpProjectiveTranslation log(const Eigen::Matrix4d &H, double tau);
+  static vpProjectiveTranslation log(const vpMatrix &H, double tau);
+
+  //! \f$ I + \tau \hat H_T \f$ (31).
+  Eigen::Matrix4d exp(double tau) const { return exp(m_Hhat, tau); }
+  static Eigen::Matrix4d exp(const Eigen::Matrix4d &Hhat, double tau);
+
+  //! The generator \f$ \hat H_T \f$ (4x4).
+  const Eigen::Matrix4d &generator() const { return m_Hhat; }
+  vpMatrix getGenerator() const;
+
+  //! \f$ \|\hat H^2\|_F / \|\hat H\|_F^2 \f$: zero for an exact p-translation generator.
+  static double generatorResidual(const Eigen::Matrix4d &Hhat);
+
+private:
+  Eigen::Matrix4d m_Hhat;
+};
+
+#endif

@@ -1,0 +1,32 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+#include "vpProjectiveInternal.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+
+namespace vpProjectiveInternal
+{
+Eigen::Matrix4d whitening(const std::vector<Eigen::Vector4d> &points)
+{
+  Eigen::Matrix4d C = Eigen::Matrix4d::Zero();
+  for (const Eigen::Vector4d &M : points) {
+    const Eigen::Vector4d u = M.normalized();
+    C += u * u.transpose();
+  }
+  C /= static_cast<double>(points.size());
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eig(C);
+  // Eigenvalues of degenerate sets are floored so that T stays invertible; the caller detects degeneracy itself.
+  const Eigen::Vector4d lambda = eig.eigenvalues().cwiseMax(1e-12 * eig.eigenvalues().maxCoeff());
+  return eig.eigenvectors() * lambda.cwiseSqrt().cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
+}
+
+Eigen::Matrix<double, 4, 3> sphereTangentBasis(const Eigen::Vector4d &M)
+{
+  Eigen::HouseholderQR<Eigen::Vector4d> qr(M);
+  const Eigen::Matrix4d Q = qr.householderQ();
+  return Q.rightCols<3>();
+}
+} // namespace vpProjectiveInternal

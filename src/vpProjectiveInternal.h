@@ -1,0 +1,152 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+/*
+  Private helpers shared by the plugin's sources: conversions between ViSP and Eigen types that validate sizes and
+  finiteness on the way in, and the small linear-algebra pieces every class needs. Not installed.
+*/
+
+#ifndef _vpProjectiveInternal_h_
+#define _vpProjectiveInternal_h_
+
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SVD>
+
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpMatrix.h>
+#include <visp3/projective/vpProjectiveException.h>
+
+namespace vpProjectiveInternal
+{
+//! Throws a vpProjectiveException with code and a message built from \e where and \e what.
+[[noreturn]] inline void fail(int code, const std::string &where, const std::string &what)
+{
+  throw vpProjectiveException(code, where + ": " + what);
+}
+
+inline void requireFinite(double x, const std::string &where, const std::string &what)
+{
+  if (!std::isfinite(x)) {
+    fail(vpProjectiveException::nonFiniteValueError, where, what + " is not finite (NaN or infinity)");
+  }
+}
+
+//! A vpMatrix of exactly R x C finite entries, as an Eigen fixed-size matrix.
+template <int R, int C> Eigen::Matrix<double, R, C> toEigen(const vpMatrix &A, const std::string &where,
+                                                               const std::string &what)
+{
+  if (A.getRows() != static_cast<unsigned int>(R) || A.getCols() != static_cast<unsigned int>(C)) {
+    std::ostringstream os;
+    os << what << " must be " << R << "x" << C << ", got " << A.getRows() << "x" << A.getCols();
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  Eigen::Matrix<double, R, C> E;
+  for (int i = 0; i < R; ++i) {
+    for (int j = 0; j < C; ++j) {
+      requireFinite(A[i][j], where, what);
+      E(i, j) = A[i][j];
+    }
+  }
+  return E;
+}
+
+//! A vpColVector of exactly N finite entries, as an Eigen fixed-size vector.
+template <int N> Eigen::Matrix<double, N, 1> toEigen(const vpColVector &v, const std::string &where,
+                                                     const std::string &what)
+{
+  if (v.getRows() != static_cast<unsigned int>(N)) {
+    std::ostringstream os;
+    os << what << " must have " << N << " entries, got " << v.getRows();
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  Eigen::Matrix<double, N, 1> E;
+  for (int i = 0; i < N; ++i) {
+    requireFinite(v[i], where, what);
+    E(i) = v[i];
+  }
+  return E;
+}
+
+//! Pixel (u, v) of a vpImagePoint (u = column j, v = row i), checked finite.
+inline Eigen::Vector2d toEigen(const vpImagePoint &ip, const std::string &where, const std::string &what)
+{
+  requireFinite(ip.get_u(), where, what);
+  requireFinite(ip.get_v(), where, what);
+  return Eigen::Vector2d(ip.get_u(), ip.get_v());
+}
+
+template <typename Derived> vpMatrix toVisp(const Eigen::MatrixBase<Derived> &E)
+{
+  vpMatrix A(static_cast<unsigned int>(E.rows()), static_cast<unsigned int>(E.cols()));
+  for (int i = 0; i < E.rows(); ++i) {
+    for (int j = 0; j < E.cols(); ++j) {
+      A[i][j] = E(i, j);
+    }
+  }
+  return A;
+}
+
+template <typename Derived> vpColVector toVispVector(const Eigen::MatrixBase<Derived> &E)
+{
+  vpColVector v(static_cast<unsigned int>(E.size()));
+  for (int i = 0; i < E.size(); ++i) {
+    v[i] = E(i);
+  }
+  return v;
+}
+
+inline Eigen::Matrix3d skew(const Eigen::Vector3d &w)
+{
+  Eigen::Matrix3d S;
+  S << 0, -w(2), w(1), w(2), 0, -w(0), -w(1), w(0), 0;
+  return S;
+}
+
+//! Flips the sign of \e x so that its entry of largest magnitude is positive: a canonical sign for a direction.
+template <typename Derived> void canonicalSign(Eigen::MatrixBase<Derived> &x)
+{
+  Eigen::Index r = 0, c = 0;
+  x.cwiseAbs().maxCoeff(&r, &c);
+  if (x(r, c) < 0) {
+    x = -x;
+  }
+}
+
+//! Hartley's isotropic normalisation of pixels: centroid to 0, mean distance to sqrt(2). Returns the 3x3 similarity.
+inline Eigen::Matrix3d hartleyNormalization(const std::vector<Eigen::Vector2d> &points)
+{
+  Eigen::Vector2d c = Eigen::Vector2d::Zero();
+  for (const Eigen::Vector2d &p : points) {
+    c += p;
+  }
+  c /= static_cast<double>(points.size());
+  double meanDistance = 0.0;
+  for (const Eigen::Vector2d &p : points) {
+    meanDistance += (p - c).norm();
+  }
+  meanDistance /= static_cast<double>(points.size());
+  const double s = meanDistance > 0.0 ? std::sqrt(2.0) / meanDistance : 1.0;
+  Eigen::Matrix3d T;
+  T << s, 0, -s * c(0), 0, s, -s * c(1), 0, 0, 1;
+  return T;
+}
+
+/*!
+  Whitening of homogeneous 4-vectors without dividing by any coordinate: with each point scaled to unit norm and
+  signed canonically, T = (sum M M^T / n)^(-1/2), so that the points T M are spread isotropically over the sphere.
+*/
+Eigen::Matrix4d whitening(const std::vector<Eigen::Vector4d> &points);
+
+//! Orthonormal basis (4x3) of the tangent space of the unit sphere at the unit vector M.
+Eigen::Matrix<double, 4, 3> sphereTangentBasis(const Eigen::Vector4d &M);
+
+} // namespace vpProjectiveInternal
+
+#endif

@@ -1,0 +1,128 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+#include <visp3/projective/vpProjectiveRotation.h>
+
+#include <cmath>
+#include <complex>
+#include <sstream>
+
+#include <Eigen/Dense>
+
+#include <visp3/projective/vpProjectiveDisplacement.h>
+
+#include "vpProjectiveInternal.h"
+
+using namespace vpProjectiveInternal;
+
+namespace
+{
+const char *const kClass = "vpProjectiveRotation";
+
+void checkGenerator(const Eigen::Matrix4d &Hhat, double tolerance, const std::string &where)
+{
+  if (!Hhat.allFinite()) {
+    fail(vpProjectiveException::nonFiniteValueError, where, "the generator has a NaN or infinite entry");
+  }
+  if (!(tolerance >= 0.0)) {
+    fail(vpProjectiveException::invalidValueError, where, "the tolerance must be non-negative");
+  }
+  const double residual = vpProjectiveRotation::generatorResidual(Hhat);
+  if (Hhat.norm() > 0.0 && residual > tolerance) {
+    std::ostringstream os;
+    os << "not a p-rotation generator: |Hhat^3 + Hhat| / |Hhat| = " << residual << " exceeds " << tolerance
+       << " (eq. (26) needs Hhat^3 = -Hhat)";
+    fail(vpProjectiveException::invalidValueError, where, os.str());
+  }
+}
+
+/*
+  Closest exact generator to an algebraic estimate: in the eigenbasis of Hhat, the conjugate pair nearest to +-i is
+  set to exactly +-i and the two remaining eigenvalues to 0, so that Hhat^3 = -Hhat and rank 2 hold exactly.
+*/
+Eigen::Matrix4d projectOnGenerators(const Eigen::Matrix4d &Hhat)
+{
+  Eigen::EigenSolver<Eigen::Matrix4d> eig(Hhat);
+  const Eigen::Vector4cd lambda = eig.eigenvalues();
+  const Eigen::Matrix4cd V = eig.eigenvectors();
+  int best = 0;
+  for (int k = 1; k < 4; ++k) {
+    if (lambda(k).imag() > lambda(best).imag()) {
+      best = k;
+    }
+  }
+  int partner = -1;
+  double partnerDistance = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    const double d = std::abs(lambda(k) - std::conj(lambda(best)));
+    if (k != best && (partner < 0 || d < partnerDistance)) {
+      partner = k;
+      partnerDistance = d;
+    }
+  }
+  Eigen::Vector4cd projected = Eigen::Vector4cd::Zero();
+  projected(best) = std::complex<double>(0.0, 1.0);
+  projected(partner) = std::complex<double>(0.0, -1.0);
+  const Eigen::Matrix4cd X = V * projected.asDiagonal() * V.inverse();
+  return X.real();
+}
+} // namespace
+
+vpProjectiveRotation::vpProjectiveRotation() : m_Hhat(Eigen::Matrix4d::Zero()) {}
+
+vpProjectiveRotation::vpProjectiveRotation(const Eigen::Matrix4d &Hhat, double tolerance) : m_Hhat(Hhat)
+{
+  checkGenerator(Hhat, tolerance, std::string(kClass) + "()");
+}
+
+vpProjectiveRotation::vpProjectiveRotation(const vpMatrix &Hhat, double tolerance)
+  : vpProjectiveRotation(toEigen<4, 4>(Hhat, std::string(kClass) + "()", "Hhat"), tolerance)
+{
+}
+
+double vpProjectiveRotation::generatorResidual(const Eigen::Matrix4d &Hhat)
+{
+  const double n = Hhat.norm();
+  if (n == 0.0) {
+    return 0.0;
+  }
+  return (Hhat * Hhat * Hhat + Hhat).norm() / n;
+}
+
+Eigen::Matrix4d vpProjectiveRotation::exp(const Eigen::Matrix4d &Hhat, double theta)
+{
+  return Eigen::Matrix4d::Identity() + std::sin(theta) * Hhat + (1.0 - std::cos(theta)) * (Hhat * Hhat);
+}
+
+vpProjectiveRotation vpProjectiveRotation::log(const Eigen::Matrix4d &H, double &theta, double amount)
+{
+  const std::string where = std::string(kClass) + "::log()";
+  if (!std::isfinite(amount)) {
+    fail(vpProjectiveException::nonFiniteValueError, where, "the trial amount is not finite");
+  }
+  const vpProjectiveDisplacement D(H); // normalises (12), rejects singular or non-finite H
+  theta = D.getRotationAngle();
+  const double s = std::sin(theta);
+  if (!(s > 1e-6)) {
+    std::ostringstream os;
+    os << "the rotation angle " << theta
+       << " rad is too close to 0 or pi for the logarithm (25); use a trial motion between a few degrees and 170 deg";
+    fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
+  }
+  const Eigen::Matrix4d &Hn = D.matrix();
+  Eigen::Matrix4d Hhat = projectOnGenerators((Hn - Hn.inverse()) / (2.0 * s));
+  if (amount < 0.0) {
+    Hhat = -Hhat; // exp(theta G) = exp((-theta)(-G)): the encoder fixes the sign
+  }
+  vpProjectiveRotation R;
+  R.m_Hhat = Hhat;
+  return R;
+}
+
+vpProjectiveRotation vpProjectiveRotation::log(const vpMatrix &H, double &theta, double amount)
+{
+  return log(toEigen<4, 4>(H, std::string(kClass) + "::log()", "H"), theta, amount);
+}
+
+vpMatrix vpProjectiveRotation::getGenerator() const { return toVisp(m_Hhat); }

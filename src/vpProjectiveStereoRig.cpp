@@ -1,0 +1,391 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+#include <visp3/projective/vpProjectiveStereoRig.h>
+
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Dense>
+#include <ceres/ceres.h>
+#include <opencv2/calib3d.hpp>
+
+#include "vpProjectiveInternal.h"
+
+using namespace vpProjectiveInternal;
+
+namespace
+{
+const char *const kClass = "vpProjectiveStereoRig";
+
+/*
+  Reprojection error of one match in Hartley-normalised image coordinates, weighted back to pixels: the left camera
+  is [I | 0], the right camera P' is the 3x4 parameter block, the point M is a unit 4-vector.
+*/
+struct StereoReprojectionError {
+  StereoReprojectionError(const Eigen::Vector2d &left, const Eigen::Vector2d &right, double leftScale,
+                          double rightScale)
+    : m_left(left), m_right(right), m_leftScale(leftScale), m_rightScale(rightScale)
+  {
+  }
+
+  template <typename T> bool operator()(const T *const Pp, const T *const M, T *residual) const
+  {
+    // Left camera [I | 0].
+    residual[0] = (M[0] / M[2] - T(m_left(0))) / T(m_leftScale);
+    residual[1] = (M[1] / M[2] - T(m_left(1))) / T(m_leftScale);
+    // Right camera, Pp stored row-major.
+    T m[3];
+    for (int r = 0; r < 3; ++r) {
+      m[r] = Pp[4 * r] * M[0] + Pp[4 * r + 1] * M[1] + Pp[4 * r + 2] * M[2] + Pp[4 * r + 3] * M[3];
+    }
+    residual[2] = (m[0] / m[2] - T(m_right(0))) / T(m_rightScale);
+    residual[3] = (m[1] / m[2] - T(m_right(1))) / T(m_rightScale);
+    return true;
+  }
+
+  Eigen::Vector2d m_left, m_right;
+  double m_leftScale, m_rightScale;
+};
+
+Eigen::Vector2d dehomogenize(const Eigen::Vector3d &m) { return m.head<2>() / m(2); }
+
+// Canonical camera pair of a unit, canonically signed F: P' = [[e']_x F + e' e'^T | e'].
+vpProjectiveStereoRig::Projection canonicalRightProjection(const Eigen::Matrix3d &F, const Eigen::Vector3d &ep)
+{
+  vpProjectiveStereoRig::Projection Pp;
+  Pp.leftCols<3>() = skew(ep) * F + ep * ep.transpose();
+  Pp.col(3) = ep;
+  return Pp;
+}
+
+// Linear triangulation on column-equilibrated equations (no coordinate of M is divided by).
+Eigen::Vector4d triangulateLinear(const vpProjectiveStereoRig::Projection &P, const vpProjectiveStereoRig::Projection &Pp,
+                                  const Eigen::Vector2d &m, const Eigen::Vector2d &mp)
+{
+  Eigen::Matrix4d A;
+  A.row(0) = m(0) * P.row(2) - P.row(0);
+  A.row(1) = m(1) * P.row(2) - P.row(1);
+  A.row(2) = mp(0) * Pp.row(2) - Pp.row(0);
+  A.row(3) = mp(1) * Pp.row(2) - Pp.row(1);
+  for (int i = 0; i < 4; ++i) {
+    const double n = A.row(i).norm();
+    if (n > 0.0) {
+      A.row(i) /= n;
+    }
+  }
+  Eigen::Vector4d colScale;
+  for (int j = 0; j < 4; ++j) {
+    const double n = A.col(j).norm();
+    colScale(j) = n > 0.0 ? 1.0 / n : 1.0;
+  }
+  const Eigen::Matrix4d As = A * colScale.asDiagonal();
+  Eigen::JacobiSVD<Eigen::Matrix4d> svd(As, Eigen::ComputeFullV);
+  Eigen::Vector4d M = colScale.asDiagonal() * svd.matrixV().col(3);
+  return M.normalized();
+}
+
+// Stacked pixel projections (u, v, u', v') of M and their Jacobian with respect to M (4x4), eq. (45).
+bool projectWithJacobian(const vpProjectiveStereoRig::Projection &P, const vpProjectiveStereoRig::Projection &Pp,
+                         const Eigen::Vector4d &M, Eigen::Vector4d &s, Eigen::Matrix4d &J)
+{
+  const Eigen::Vector3d m = P * M;
+  const Eigen::Vector3d mp = Pp * M;
+  if (m(2) == 0.0 || mp(2) == 0.0) {
+    return false;
+  }
+  s << m(0) / m(2), m(1) / m(2), mp(0) / mp(2), mp(1) / mp(2);
+  Eigen::Matrix<double, 2, 3> Jc, Jcp;
+  Jc << 1.0 / m(2), 0.0, -m(0) / (m(2) * m(2)), 0.0, 1.0 / m(2), -m(1) / (m(2) * m(2));
+  Jcp << 1.0 / mp(2), 0.0, -mp(0) / (mp(2) * mp(2)), 0.0, 1.0 / mp(2), -mp(1) / (mp(2) * mp(2));
+  J.topRows<2>() = Jc * P;
+  J.bottomRows<2>() = Jcp * Pp;
+  return true;
+}
+} // namespace
+
+vpProjectiveStereoRig::vpProjectiveStereoRig()
+  : m_F(Eigen::Matrix3d::Zero()), m_P(Projection::Zero()), m_Pp(Projection::Zero()), m_e(Eigen::Vector3d::Zero()),
+    m_ep(Eigen::Vector3d::Zero()), m_inliers(), m_residual(0.0), m_initialized(false)
+{
+}
+
+void vpProjectiveStereoRig::checkInitialized(const char *where) const
+{
+  if (!m_initialized) {
+    fail(vpProjectiveException::notInitializedError, std::string(kClass) + "::" + where,
+         "the rig has no fundamental matrix yet; call estimate() with >= 8 matches or setFundamentalMatrix() first");
+  }
+}
+
+void vpProjectiveStereoRig::setFundamentalMatrix(const vpMatrix &F)
+{
+  const std::string where = std::string(kClass) + "::setFundamentalMatrix()";
+  const Eigen::Matrix3d Fin = toEigen<3, 3>(F, where, "F");
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(Fin, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Vector3d sigma = svd.singularValues();
+  if (!(sigma(0) > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, where, "F is the zero matrix");
+  }
+  if (sigma(1) < 1e-12 * sigma(0)) {
+    fail(vpProjectiveException::degenerateConfigurationError, where,
+         "F has rank 1; a fundamental matrix has rank 2 (check the matches it was computed from)");
+  }
+  // Closest rank-2 matrix, then unit Frobenius norm and a canonical sign: proportional inputs give the same frame.
+  Eigen::Matrix3d F2 = svd.matrixU() * Eigen::Vector3d(sigma(0), sigma(1), 0.0).asDiagonal() * svd.matrixV().transpose();
+  F2 /= F2.norm();
+  canonicalSign(F2);
+  Eigen::Vector3d e = svd.matrixV().col(2);
+  Eigen::Vector3d ep = svd.matrixU().col(2);
+  canonicalSign(e);
+  canonicalSign(ep);
+
+  m_F = F2;
+  m_e = e.normalized();
+  m_ep = ep.normalized();
+  m_P.setZero();
+  m_P.leftCols<3>().setIdentity();
+  m_Pp = canonicalRightProjection(m_F, m_ep);
+  m_initialized = true;
+}
+
+void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right,
+                                     double inlierThreshold)
+{
+  const std::string where = std::string(kClass) + "::estimate()";
+  if (left.size() != right.size()) {
+    std::ostringstream os;
+    os << "got " << left.size() << " left points but " << right.size() << " right points; pass matched pairs";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  if (left.size() < 8) {
+    std::ostringstream os;
+    os << "needs at least 8 matches to estimate the fundamental matrix, got " << left.size();
+    fail(vpProjectiveException::notEnoughPointsError, where, os.str());
+  }
+  requireFinite(inlierThreshold, where, "the inlier threshold");
+  if (!(inlierThreshold > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, where, "the inlier threshold must be positive (pixels)");
+  }
+  const size_t n = left.size();
+  std::vector<Eigen::Vector2d> l(n), r(n);
+  std::vector<cv::Point2d> cvl(n), cvr(n);
+  for (size_t i = 0; i < n; ++i) {
+    l[i] = toEigen(left[i], where, "a left image point");
+    r[i] = toEigen(right[i], where, "a right image point");
+    cvl[i] = cv::Point2d(l[i](0), l[i](1));
+    cvr[i] = cv::Point2d(r[i](0), r[i](1));
+  }
+
+  // Degeneracy: the normalised 8-point system must have a one-dimensional null space.
+  const Eigen::Matrix3d T = hartleyNormalization(l);
+  const Eigen::Matrix3d Tp = hartleyNormalization(r);
+  Eigen::MatrixXd A(n, 9);
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d m = T * l[i].homogeneous();
+    const Eigen::Vector3d mp = Tp * r[i].homogeneous();
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) {
+        A(static_cast<Eigen::Index>(i), 3 * a + b) = mp(a) * m(b);
+      }
+    }
+  }
+  Eigen::JacobiSVD<Eigen::MatrixXd> svdA(A);
+  const Eigen::VectorXd sA = svdA.singularValues();
+  if (sA(7) < 1e-8 * sA(0)) {
+    fail(vpProjectiveException::degenerateConfigurationError, where,
+         "the matches do not determine the epipolar geometry (points collinear, coincident, or all on one plane "
+         "seen without parallax); use matches spread over a 3D scene");
+  }
+
+  // Robust initial estimate.
+  std::vector<uchar> mask;
+  const int method = n > 8 ? cv::FM_RANSAC : cv::FM_8POINT;
+  cv::Mat Fcv = cv::findFundamentalMat(cvl, cvr, method, inlierThreshold, 0.999, mask);
+  if (Fcv.empty() || Fcv.rows != 3 || Fcv.cols != 3) {
+    fail(vpProjectiveException::estimationFailedError, where,
+         "OpenCV's robust estimator found no fundamental matrix; check that the matches are correct");
+  }
+  Eigen::Matrix3d F0;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      F0(i, j) = Fcv.at<double>(i, j);
+    }
+  }
+  if (mask.size() != n) {
+    mask.assign(n, 1);
+  }
+  std::vector<size_t> inliers;
+  for (size_t i = 0; i < n; ++i) {
+    if (mask[i]) {
+      inliers.push_back(i);
+    }
+  }
+  if (inliers.size() < 8) {
+    std::ostringstream os;
+    os << "only " << inliers.size() << " of " << n << " matches agree with one epipolar geometry (8 needed)";
+    fail(vpProjectiveException::estimationFailedError, where, os.str());
+  }
+
+  // Gold-standard refinement in normalised coordinates: P = [I|0] fixed, P' and the points free.
+  const Eigen::Matrix3d Fn0 = Tp.inverse().transpose() * F0 * T.inverse();
+  Eigen::JacobiSVD<Eigen::Matrix3d> svdF(Fn0, Eigen::ComputeFullU);
+  const Eigen::Vector3d epn = svdF.matrixU().col(2);
+  Projection Ppn = canonicalRightProjection(Fn0 / Fn0.norm(), epn);
+  Projection Pn = Projection::Zero();
+  Pn.leftCols<3>().setIdentity();
+
+  Eigen::Matrix<double, 3, 4, Eigen::RowMajor> PpRowMajor = Ppn;
+  std::vector<Eigen::Vector4d> points(inliers.size());
+  ceres::Problem problem;
+  for (size_t k = 0; k < inliers.size(); ++k) {
+    const size_t i = inliers[k];
+    const Eigen::Vector2d mn = dehomogenize(T * l[i].homogeneous());
+    const Eigen::Vector2d mpn = dehomogenize(Tp * r[i].homogeneous());
+    points[k] = triangulateLinear(Pn, Ppn, mn, mpn);
+    auto *cost = new ceres::AutoDiffCostFunction<StereoReprojectionError, 4, 12, 4>(
+        new StereoReprojectionError(mn, mpn, T(0, 0), Tp(0, 0)));
+    problem.AddResidualBlock(cost, nullptr, PpRowMajor.data(), points[k].data());
+    problem.SetManifold(points[k].data(), new ceres::SphereManifold<4>());
+  }
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_SCHUR;
+  options.max_num_iterations = 100;
+  options.function_tolerance = 1e-12;
+  options.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+
+  const Projection PpRefined = PpRowMajor;
+  const Eigen::Vector3d epRefined = PpRefined.col(3);
+  Eigen::Matrix3d Fn = skew(epRefined) * PpRefined.leftCols<3>();
+  Eigen::Matrix3d F = Tp.transpose() * Fn * T;
+  if (!F.allFinite() || F.norm() == 0.0) {
+    F = F0; // the refinement diverged: keep the robust estimate
+  }
+  setFundamentalMatrix(toVisp(F));
+
+  // Residual of the inliers against the refined geometry, in pixels.
+  double sum = 0.0;
+  m_inliers.assign(n, false);
+  for (size_t i : inliers) {
+    m_inliers[i] = true;
+    const Eigen::Vector4d M = triangulate(l[i], r[i]);
+    Eigen::Vector4d s;
+    if (project(M, s)) {
+      sum += (s.head<2>() - l[i]).squaredNorm() + (s.tail<2>() - r[i]).squaredNorm();
+    }
+  }
+  m_residual = std::sqrt(sum / (2.0 * static_cast<double>(inliers.size())));
+}
+
+vpMatrix vpProjectiveStereoRig::getFundamentalMatrix() const
+{
+  checkInitialized("getFundamentalMatrix()");
+  return toVisp(m_F);
+}
+
+vpMatrix vpProjectiveStereoRig::getLeftProjection() const
+{
+  checkInitialized("getLeftProjection()");
+  return toVisp(m_P);
+}
+
+vpMatrix vpProjectiveStereoRig::getRightProjection() const
+{
+  checkInitialized("getRightProjection()");
+  return toVisp(m_Pp);
+}
+
+vpColVector vpProjectiveStereoRig::getLeftEpipole() const
+{
+  checkInitialized("getLeftEpipole()");
+  return toVispVector(m_e);
+}
+
+vpColVector vpProjectiveStereoRig::getRightEpipole() const
+{
+  checkInitialized("getRightEpipole()");
+  return toVispVector(m_ep);
+}
+
+Eigen::Vector4d vpProjectiveStereoRig::triangulate(const Eigen::Vector2d &left, const Eigen::Vector2d &right) const
+{
+  Eigen::Vector4d M = triangulateLinear(m_P, m_Pp, left, right);
+  Eigen::Vector4d obs;
+  obs << left, right;
+  // Gauss-Newton on the unit sphere, minimising the pixel reprojection error in both images.
+  Eigen::Vector4d s;
+  Eigen::Matrix4d J;
+  if (!projectWithJacobian(m_P, m_Pp, M, s, J)) {
+    return M;
+  }
+  double cost = (s - obs).squaredNorm();
+  for (int iter = 0; iter < 10 && cost > 0.0; ++iter) {
+    const Eigen::Matrix<double, 4, 3> B = sphereTangentBasis(M);
+    const Eigen::Matrix<double, 4, 3> JB = J * B;
+    const Eigen::Vector3d delta = (JB.transpose() * JB).ldlt().solve(-JB.transpose() * (s - obs));
+    if (!delta.allFinite()) {
+      break;
+    }
+    const Eigen::Vector4d Mnew = (M + B * delta).normalized();
+    Eigen::Vector4d sNew;
+    Eigen::Matrix4d Jnew;
+    if (!projectWithJacobian(m_P, m_Pp, Mnew, sNew, Jnew)) {
+      break;
+    }
+    const double costNew = (sNew - obs).squaredNorm();
+    if (!(costNew < cost)) {
+      break;
+    }
+    const bool converged = cost - costNew < 1e-14 * (1.0 + cost);
+    M = Mnew;
+    s = sNew;
+    J = Jnew;
+    cost = costNew;
+    if (converged) {
+      break;
+    }
+  }
+  return M;
+}
+
+vpColVector vpProjectiveStereoRig::triangulate(const vpImagePoint &ipLeft, const vpImagePoint &ipRight) const
+{
+  const std::string where = std::string(kClass) + "::triangulate()";
+  checkInitialized("triangulate()");
+  const Eigen::Vector2d l = toEigen(ipLeft, where, "the left image point");
+  const Eigen::Vector2d r = toEigen(ipRight, where, "the right image point");
+  return toVispVector(triangulate(l, r));
+}
+
+bool vpProjectiveStereoRig::project(const Eigen::Vector4d &M, Eigen::Vector4d &s) const
+{
+  const Eigen::Vector3d m = m_P * M;
+  const Eigen::Vector3d mp = m_Pp * M;
+  // A point on a camera's focal plane has no finite image.
+  const double eps = 1e-12 * M.norm();
+  if (!(std::abs(m(2)) > eps * m_P.norm()) || !(std::abs(mp(2)) > eps * m_Pp.norm())) {
+    return false;
+  }
+  s << m(0) / m(2), m(1) / m(2), mp(0) / mp(2), mp(1) / mp(2);
+  return s.allFinite();
+}
+
+void vpProjectiveStereoRig::project(const vpColVector &M, vpImagePoint &ipLeft, vpImagePoint &ipRight) const
+{
+  const std::string where = std::string(kClass) + "::project()";
+  checkInitialized("project()");
+  const Eigen::Vector4d Me = toEigen<4>(M, where, "the projective point M");
+  if (Me.norm() == 0.0) {
+    fail(vpProjectiveException::invalidValueError, where, "M is the zero vector, which is no projective point");
+  }
+  Eigen::Vector4d s;
+  if (!project(Me, s)) {
+    fail(vpProjectiveException::pointAtInfinityError, where,
+         "M lies on the focal plane of a camera and has no finite image");
+  }
+  ipLeft.set_uv(s(0), s(1));
+  ipRight.set_uv(s(2), s(3));
+}

@@ -1,0 +1,89 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+#include <visp3/projective/vpProjectiveTranslation.h>
+
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Dense>
+
+#include <visp3/projective/vpProjectiveDisplacement.h>
+
+#include "vpProjectiveInternal.h"
+
+using namespace vpProjectiveInternal;
+
+namespace
+{
+const char *const kClass = "vpProjectiveTranslation";
+}
+
+vpProjectiveTranslation::vpProjectiveTranslation() : m_Hhat(Eigen::Matrix4d::Zero()) {}
+
+vpProjectiveTranslation::vpProjectiveTranslation(const Eigen::Matrix4d &Hhat, double tolerance) : m_Hhat(Hhat)
+{
+  const std::string where = std::string(kClass) + "()";
+  if (!Hhat.allFinite()) {
+    fail(vpProjectiveException::nonFiniteValueError, where, "the generator has a NaN or infinite entry");
+  }
+  if (!(tolerance >= 0.0)) {
+    fail(vpProjectiveException::invalidValueError, where, "the tolerance must be non-negative");
+  }
+  const double residual = generatorResidual(Hhat);
+  if (residual > tolerance) {
+    std::ostringstream os;
+    os << "not a p-translation generator: |Hhat^2| / |Hhat|^2 = " << residual << " exceeds " << tolerance
+       << " (eq. (31) needs Hhat^2 = 0)";
+    fail(vpProjectiveException::invalidValueError, where, os.str());
+  }
+}
+
+vpProjectiveTranslation::vpProjectiveTranslation(const vpMatrix &Hhat, double tolerance)
+  : vpProjectiveTranslation(toEigen<4, 4>(Hhat, std::string(kClass) + "()", "Hhat"), tolerance)
+{
+}
+
+double vpProjectiveTranslation::generatorResidual(const Eigen::Matrix4d &Hhat)
+{
+  const double n2 = Hhat.squaredNorm();
+  if (n2 == 0.0) {
+    return 0.0;
+  }
+  return (Hhat * Hhat).norm() / n2;
+}
+
+Eigen::Matrix4d vpProjectiveTranslation::exp(const Eigen::Matrix4d &Hhat, double tau)
+{
+  return Eigen::Matrix4d::Identity() + tau * Hhat;
+}
+
+vpProjectiveTranslation vpProjectiveTranslation::log(const Eigen::Matrix4d &H, double tau)
+{
+  const std::string where = std::string(kClass) + "::log()";
+  if (!std::isfinite(tau)) {
+    fail(vpProjectiveException::nonFiniteValueError, where, "the trial length tau is not finite");
+  }
+  if (tau == 0.0) {
+    fail(vpProjectiveException::invalidValueError, where,
+         "the trial length tau is zero; a prismatic joint must move to reveal its generator");
+  }
+  const vpProjectiveDisplacement D(H);
+  const Eigen::Matrix4d A = (D.matrix() - Eigen::Matrix4d::Identity()) / tau;
+  // Closest rank-1 matrix sigma u v^T, then u made orthogonal to v so that Hhat^2 = (v^T u) sigma u v^T = 0.
+  Eigen::JacobiSVD<Eigen::Matrix4d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Vector4d v = svd.matrixV().col(0);
+  Eigen::Vector4d u = svd.matrixU().col(0);
+  u -= v.dot(u) * v;
+  vpProjectiveTranslation T;
+  T.m_Hhat = svd.singularValues()(0) * u * v.transpose();
+  return T;
+}
+
+vpProjectiveTranslation vpProjectiveTranslation::log(const vpMatrix &H, double tau)
+{
+  return log(toEigen<4, 4>(H, std::string(kClass) + "::log()", "H"), tau);
+}
+
+vpMatrix vpProjectiveTranslation::getGenerator() const { return toVisp(m_Hhat); }
