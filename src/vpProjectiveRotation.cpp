@@ -37,11 +37,9 @@ void checkGenerator(const Eigen::Matrix4d &Hhat, double tolerance, const std::st
   }
 }
 
-/*
-  Closest exact generator to an algebraic estimate: in the eigenbasis of Hhat, the conjugate pair nearest to +-i is
-  set to exactly +-i and the two remaining eigenvalues to 0, so that Hhat^3 = -Hhat and rank 2 hold exactly.
-*/
-Eigen::Matrix4d projectOnGenerators(const Eigen::Matrix4d &Hhat)
+} // namespace
+
+Eigen::Matrix4d vpProjectiveRotation::project(const Eigen::Matrix4d &Hhat)
 {
   Eigen::EigenSolver<Eigen::Matrix4d> eig(Hhat);
   const Eigen::Vector4cd lambda = eig.eigenvalues();
@@ -67,7 +65,6 @@ Eigen::Matrix4d projectOnGenerators(const Eigen::Matrix4d &Hhat)
   const Eigen::Matrix4cd X = V * projected.asDiagonal() * V.inverse();
   return X.real();
 }
-} // namespace
 
 vpProjectiveRotation::vpProjectiveRotation() : m_Hhat(Eigen::Matrix4d::Zero()) {}
 
@@ -111,7 +108,7 @@ vpProjectiveRotation vpProjectiveRotation::log(const Eigen::Matrix4d &H, double 
     fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
   }
   const Eigen::Matrix4d &Hn = D.matrix();
-  Eigen::Matrix4d Hhat = projectOnGenerators((Hn - Hn.inverse()) / (2.0 * s));
+  Eigen::Matrix4d Hhat = project((Hn - Hn.inverse()) / (2.0 * s));
   if (amount < 0.0) {
     Hhat = -Hhat; // exp(theta G) = exp((-theta)(-G)): the encoder fixes the sign
   }

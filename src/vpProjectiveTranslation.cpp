@@ -70,15 +70,19 @@ vpProjectiveTranslation vpProjectiveTranslation::log(const Eigen::Matrix4d &H, d
          "the trial length tau is zero; a prismatic joint must move to reveal its generator");
   }
   const vpProjectiveDisplacement D(H);
-  const Eigen::Matrix4d A = (D.matrix() - Eigen::Matrix4d::Identity()) / tau;
+  vpProjectiveTranslation T;
+  T.m_Hhat = project((D.matrix() - Eigen::Matrix4d::Identity()) / tau);
+  return T;
+}
+
+Eigen::Matrix4d vpProjectiveTranslation::project(const Eigen::Matrix4d &Hhat)
+{
   // Closest rank-1 matrix sigma u v^T, then u made orthogonal to v so that Hhat^2 = (v^T u) sigma u v^T = 0.
-  Eigen::JacobiSVD<Eigen::Matrix4d> svd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::JacobiSVD<Eigen::Matrix4d> svd(Hhat, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::Vector4d v = svd.matrixV().col(0);
   Eigen::Vector4d u = svd.matrixU().col(0);
   u -= v.dot(u) * v;
-  vpProjectiveTranslation T;
-  T.m_Hhat = svd.singularValues()(0) * u * v.transpose();
-  return T;
+  return svd.singularValues()(0) * u * v.transpose();
 }
 
 vpProjectiveTranslation vpProjectiveTranslation::log(const vpMatrix &H, double tau)

@@ -64,6 +64,13 @@ public:
   const Eigen::Matrix4d &generator() const { return m_Hhat; }
   vpMatrix getGenerator() const;
 
+  /*!
+    Closest exact generator to an approximate one (for instance an average of noisy logarithms): in the eigenbasis of
+    \e Hhat, the conjugate pair of eigenvalues nearest to \f$ \pm i \f$ is set to exactly \f$ \pm i \f$ and the
+    two others to 0, so that \f$ \hat H^3 = -\hat H \f$ and rank 2 hold exactly. An exact generator is unchanged.
+  */
+  static Eigen::Matrix4d project(const Eigen::Matrix4d &Hhat);
+
   //! \f$ \|\hat H^3 + \hat H\|_F / \|\hat H\|_F \f$: zero for an exact p-rotation generator.
   static double generatorResidual(const Eigen::Matrix4d &Hhat);
 

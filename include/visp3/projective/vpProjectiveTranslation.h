@@ -57,6 +57,12 @@ public:
   const Eigen::Matrix4d &generator() const { return m_Hhat; }
   vpMatrix getGenerator() const;
 
+  /*!
+    Closest exact generator to an approximate one: the best rank-1 approximation \f$ \sigma u v^T \f$ with \f$ u \f$
+    made orthogonal to \f$ v \f$, so that \f$ \hat H^2 = 0 \f$ holds exactly. An exact generator is unchanged.
+  */
+  static Eigen::Matrix4d project(const Eigen::Matrix4d &Hhat);
+
   //! \f$ \|\hat H^2\|_F / \|\hat H\|_F^2 \f$: zero for an exact p-translation generator.
   static double generatorResidual(const Eigen::Matrix4d &Hhat);
 
