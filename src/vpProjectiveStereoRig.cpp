@@ -61,7 +61,7 @@ vpProjectiveStereoRig::Projection canonicalRightProjection(const Eigen::Matrix3d
 }
 
 // Linear triangulation on column-equilibrated equations (no coordinate of M is divided by).
-Eigen::Vector4d triangulateLinear(const vpProjectiveStereoRig::Projection &P, const vpProjectiveStereoRig::Projection &Pp,
+Eigen::Vector4d linearTriangulation(const vpProjectiveStereoRig::Projection &P, const vpProjectiveStereoRig::Projection &Pp,
                                   const Eigen::Vector2d &m, const Eigen::Vector2d &mp)
 {
   Eigen::Matrix4d A;
@@ -243,7 +243,7 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
     const size_t i = inliers[k];
     const Eigen::Vector2d mn = dehomogenize(T * l[i].homogeneous());
     const Eigen::Vector2d mpn = dehomogenize(Tp * r[i].homogeneous());
-    points[k] = triangulateLinear(Pn, Ppn, mn, mpn);
+    points[k] = linearTriangulation(Pn, Ppn, mn, mpn);
     auto *cost = new ceres::AutoDiffCostFunction<StereoReprojectionError, 4, 12, 4>(
         new StereoReprojectionError(mn, mpn, T(0, 0), Tp(0, 0)));
     problem.AddResidualBlock(cost, nullptr, PpRowMajor.data(), points[k].data());
@@ -310,9 +310,15 @@ vpColVector vpProjectiveStereoRig::getRightEpipole() const
   return toVispVector(m_ep);
 }
 
+Eigen::Vector4d vpProjectiveStereoRig::triangulateLinear(const Eigen::Vector2d &left,
+                                                         const Eigen::Vector2d &right) const
+{
+  return linearTriangulation(m_P, m_Pp, left, right);
+}
+
 Eigen::Vector4d vpProjectiveStereoRig::triangulate(const Eigen::Vector2d &left, const Eigen::Vector2d &right) const
 {
-  Eigen::Vector4d M = triangulateLinear(m_P, m_Pp, left, right);
+  Eigen::Vector4d M = linearTriangulation(m_P, m_Pp, left, right);
   Eigen::Vector4d obs;
   obs << left, right;
   // Gauss-Newton on the unit sphere, minimising the pixel reprojection error in both images.

@@ -112,6 +112,11 @@ public:
   */
   Eigen::Vector4d triangulate(const Eigen::Vector2d &left, const Eigen::Vector2d &right) const;
   /*!
+    Linear triangulation only (no refinement): accurate enough where \f$ M \f$ only serves to evaluate a Jacobian,
+    and several times cheaper.
+  */
+  Eigen::Vector4d triangulateLinear(const Eigen::Vector2d &left, const Eigen::Vector2d &right) const;
+  /*!
     Writes \f$ s = (u, v, u', v') \f$ of \f$ M \f$; returns false when \f$ M \f$ is on a camera's focal plane.
   */
   bool project(const Eigen::Vector4d &M, Eigen::Vector4d &s) const;

@@ -1,0 +1,102 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+/*!
+  \file vpFeatureStereoPoint.h
+  \brief A point seen by both cameras of a stereo rig, as a ViSP visual feature.
+*/
+
+#ifndef _vpFeatureStereoPoint_h_
+#define _vpFeatureStereoPoint_h_
+
+#include <Eigen/Core>
+
+#include <visp3/core/vpColor.h>
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpRGBa.h>
+#include <visp3/visual_features/vpBasicFeature.h>
+
+class vpProjectiveStereoRig;
+
+/*!
+  \class vpFeatureStereoPoint
+  \ingroup group_projective
+  \brief Non-metric stereo point feature \f$ s = (u, v, u', v') \f$: the pixel coordinates of one point in the left
+  and in the right image (Ruf & Horaud, section 6).
+
+  Unlike vpFeaturePoint, it needs no intrinsics and no depth. Its interaction matrix is taken with respect to the
+  velocity \f$ \dot M \f$ of the projective point \f$ M \f$ (4x1) of the rig's frame, eq. (45):
+  \f[ \dot s = L_s \dot M, \qquad L_s = \begin{bmatrix} J_C(P M)\, P \\ J_C(P' M)\, P' \end{bmatrix} \quad (4 \times 4), \f]
+  with \f$ M \f$ triangulated from \f$ s \f$. Multiplied by the point Jacobian \f$ J_H(q, M) \f$ of
+  vpProjectiveRobot it gives the joint-space image Jacobian (46); vpServoProjective does exactly that.
+
+  \code
+  vpFeatureStereoPoint s, s_star;
+  s_star.buildFrom(ipLeftDesired, ipRightDesired);
+  s.buildFrom(ipLeft, ipRight);   // updated at every iteration of the loop
+  vpColVector e = s.error(s_star); // s - s*
+  \endcode
+*/
+class VISP_EXPORT vpFeatureStereoPoint : public vpBasicFeature
+{
+public:
+  vpFeatureStereoPoint();
+
+  void init();
+  /*!
+    Sets \f$ s \f$ from the pixels of the point in the left and right images.
+    \exception vpProjectiveException if a coordinate is not finite.
+  */
+  void buildFrom(const vpImagePoint &ipLeft, const vpImagePoint &ipRight);
+  //! Sets \f$ s = (u, v, u', v') \f$ directly.
+  void buildFrom(double u, double v, double up, double vp);
+
+  vpImagePoint getLeft() const;
+  vpImagePoint getRight() const;
+  double get_u() const { return s[0]; }
+  double get_v() const { return s[1]; }
+  double get_up() const { return s[2]; }
+  double get_vp() const { return s[3]; }
+  //! \f$ s \f$ as an Eigen vector (no allocation).
+  Eigen::Vector4d getFeature() const { return Eigen::Vector4d(s[0], s[1], s[2], s[3]); }
+
+  /*!
+    The rig used by interaction() to triangulate \f$ M \f$ and form \f$ L_s \f$. The feature keeps a reference: the
+    rig must outlive it.
+  */
+  void setStereoRig(const vpProjectiveStereoRig &rig) { m_rig = &rig; }
+
+  /*!
+    \f$ s - s^* \f$ for the selected rows.
+    \exception vpProjectiveException if s_star is not a vpFeatureStereoPoint.
+  */
+  vpColVector error(const vpBasicFeature &s_star, unsigned int select = FEATURE_ALL);
+  /*!
+    \f$ L_s = \partial s / \partial M \f$ (rows selected, 4 columns), eq. (45).
+    \exception vpProjectiveException if no rig was set or the point is on a camera's focal plane.
+  */
+  vpMatrix interaction(unsigned int select = FEATURE_ALL);
+  void print(unsigned int select = FEATURE_ALL) const;
+  vpFeatureStereoPoint *duplicate() const;
+
+  //! Draws the left image point (the camera parameters are not needed: \f$ s \f$ is in pixels).
+  void display(const vpCameraParameters &cam, const vpImage<unsigned char> &I, const vpColor &color = vpColor::green,
+               unsigned int thickness = 1) const;
+  void display(const vpCameraParameters &cam, const vpImage<vpRGBa> &I, const vpColor &color = vpColor::green,
+               unsigned int thickness = 1) const;
+  //! Draws the point in the left image \e Ileft and in the right image \e Iright.
+  void display(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
+               const vpColor &color = vpColor::green, unsigned int thickness = 1) const;
+
+  static unsigned int selectU() { return FEATURE_LINE[0]; }
+  static unsigned int selectV() { return FEATURE_LINE[1]; }
+  static unsigned int selectUp() { return FEATURE_LINE[2]; }
+  static unsigned int selectVp() { return FEATURE_LINE[3]; }
+
+private:
+  const vpProjectiveStereoRig *m_rig;
+};
+
+#endif

@@ -1,0 +1,148 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+#include <visp3/projective/vpFeatureStereoPoint.h>
+
+#include <iostream>
+
+#include <visp3/core/vpDisplay.h>
+#include <visp3/projective/vpProjectiveStereoRig.h>
+
+#include "vpProjectiveInternal.h"
+
+using namespace vpProjectiveInternal;
+
+namespace
+{
+const char *const kClass = "vpFeatureStereoPoint";
+const char *const kNames[4] = {"u", "v", "u'", "v'"};
+} // namespace
+
+vpFeatureStereoPoint::vpFeatureStereoPoint() : m_rig(nullptr) { init(); }
+
+void vpFeatureStereoPoint::init()
+{
+  dim_s = 4;
+  nbParameters = 4;
+  s.resize(dim_s);
+  if (flags == nullptr) {
+    flags = new bool[nbParameters];
+  }
+  for (unsigned int i = 0; i < nbParameters; ++i) {
+    flags[i] = false;
+  }
+}
+
+void vpFeatureStereoPoint::buildFrom(double u, double v, double up, double vp)
+{
+  const std::string where = std::string(kClass) + "::buildFrom()";
+  const double values[4] = {u, v, up, vp};
+  for (unsigned int i = 0; i < 4; ++i) {
+    requireFinite(values[i], where, std::string("the coordinate ") + kNames[i]);
+  }
+  for (unsigned int i = 0; i < 4; ++i) {
+    s[i] = values[i];
+    flags[i] = true;
+  }
+}
+
+void vpFeatureStereoPoint::buildFrom(const vpImagePoint &ipLeft, const vpImagePoint &ipRight)
+{
+  buildFrom(ipLeft.get_u(), ipLeft.get_v(), ipRight.get_u(), ipRight.get_v());
+}
+
+vpImagePoint vpFeatureStereoPoint::getLeft() const
+{
+  vpImagePoint ip;
+  ip.set_uv(s[0], s[1]);
+  return ip;
+}
+
+vpImagePoint vpFeatureStereoPoint::getRight() const
+{
+  vpImagePoint ip;
+  ip.set_uv(s[2], s[3]);
+  return ip;
+}
+
+vpColVector vpFeatureStereoPoint::error(const vpBasicFeature &s_star, unsigned int select)
+{
+  const vpFeatureStereoPoint *desired = dynamic_cast<const vpFeatureStereoPoint *>(&s_star);
+  if (desired == nullptr) {
+    fail(vpProjectiveException::invalidValueError, std::string(kClass) + "::error()",
+         "the desired feature is not a vpFeatureStereoPoint");
+  }
+  vpColVector e(getDimension(select));
+  unsigned int row = 0;
+  for (unsigned int i = 0; i < 4; ++i) {
+    if (FEATURE_LINE[i] & select) {
+      e[row++] = s[i] - desired->s[i];
+    }
+  }
+  return e;
+}
+
+vpMatrix vpFeatureStereoPoint::interaction(unsigned int select)
+{
+  const std::string where = std::string(kClass) + "::interaction()";
+  if (m_rig == nullptr || !m_rig->isInitialized()) {
+    fail(vpProjectiveException::notInitializedError, where,
+         "the interaction matrix needs the weakly calibrated rig; call setStereoRig() first");
+  }
+  const Eigen::Vector4d M = m_rig->triangulate(Eigen::Vector2d(s[0], s[1]), Eigen::Vector2d(s[2], s[3]));
+  const vpProjectiveStereoRig::Projection *P[2] = {&m_rig->leftProjection(), &m_rig->rightProjection()};
+  Eigen::Matrix4d L;
+  for (int c = 0; c < 2; ++c) {
+    const Eigen::Vector3d m = *P[c] * M;
+    if (!(std::abs(m(2)) > 1e-12 * P[c]->norm())) {
+      fail(vpProjectiveException::pointAtInfinityError, where, "the point lies on a camera's focal plane");
+    }
+    // J_C(m) P, eq. (45)
+    L.row(2 * c) = (P[c]->row(0) - (m(0) / m(2)) * P[c]->row(2)) / m(2);
+    L.row(2 * c + 1) = (P[c]->row(1) - (m(1) / m(2)) * P[c]->row(2)) / m(2);
+  }
+  vpMatrix Ls(getDimension(select), 4);
+  unsigned int row = 0;
+  for (unsigned int i = 0; i < 4; ++i) {
+    if (FEATURE_LINE[i] & select) {
+      for (unsigned int j = 0; j < 4; ++j) {
+        Ls[row][j] = L(i, j);
+      }
+      ++row;
+    }
+  }
+  return Ls;
+}
+
+void vpFeatureStereoPoint::print(unsigned int select) const
+{
+  std::cout << "StereoPoint:";
+  for (unsigned int i = 0; i < 4; ++i) {
+    if (FEATURE_LINE[i] & select) {
+      std::cout << " " << kNames[i] << "=" << s[i];
+    }
+  }
+  std::cout << std::endl;
+}
+
+vpFeatureStereoPoint *vpFeatureStereoPoint::duplicate() const { return new vpFeatureStereoPoint(*this); }
+
+void vpFeatureStereoPoint::display(const vpCameraParameters &, const vpImage<unsigned char> &I, const vpColor &color,
+                                   unsigned int thickness) const
+{
+  vpDisplay::displayCross(I, getLeft(), 10, color, thickness);
+}
+
+void vpFeatureStereoPoint::display(const vpCameraParameters &, const vpImage<vpRGBa> &I, const vpColor &color,
+                                   unsigned int thickness) const
+{
+  vpDisplay::displayCross(I, getLeft(), 10, color, thickness);
+}
+
+void vpFeatureStereoPoint::display(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
+                                   const vpColor &color, unsigned int thickness) const
+{
+  vpDisplay::displayCross(Ileft, getLeft(), 10, color, thickness);
+  vpDisplay::displayCross(Iright, getRight(), 10, color, thickness);
+}
