@@ -187,7 +187,7 @@ Eigen::Matrix3d metricConic(const std::vector<Eigen::Matrix3d> &blocks)
 } // namespace
 
 vpProjectiveRobot::vpProjectiveRobot()
-  : m_types(), m_rig(), m_zeroImages(), m_trials(), m_G(Eigen::Matrix4d::Identity()),
+  : m_types(), m_mounting(EYE_TO_HAND), m_rig(), m_zeroImages(), m_trials(), m_G(Eigen::Matrix4d::Identity()),
     m_Ginv(Eigen::Matrix4d::Identity()), m_axis(), m_point(), m_Hhat(), m_M0(), m_residual(0.0),
     m_algebraicResidual(0.0), m_calibrated(false)
 {
@@ -599,7 +599,8 @@ Eigen::Matrix4d vpProjectiveRobot::jointExp(unsigned int i, double q) const
 Eigen::Matrix4d vpProjectiveRobot::displacement(const JointVector &q) const
 {
   Eigen::Matrix4d H = Eigen::Matrix4d::Identity();
-  for (unsigned int i = 0; i < m_types.size(); ++i) {
+  for (unsigned int k = 0; k < m_types.size(); ++k) {
+    const unsigned int i = chainJoint(k);
     H = H * jointExp(i, q(i));
   }
   return H;
@@ -611,9 +612,10 @@ void vpProjectiveRobot::jointMotions(const JointVector &q, Eigen::Matrix4d *Hhat
   Eigen::Matrix4d A = Eigen::Matrix4d::Identity();
   Eigen::Matrix4d Ainv = Eigen::Matrix4d::Identity();
   for (unsigned int k = 0; k < m_types.size(); ++k) {
-    HhatKq[k] = A * m_Hhat[k] * Ainv;
-    A = A * jointExp(k, q(k));
-    Ainv = jointExp(k, -q(k)) * Ainv;
+    const unsigned int i = chainJoint(k);
+    HhatKq[i] = A * m_Hhat[i] * Ainv;
+    A = A * jointExp(i, q(i));
+    Ainv = jointExp(i, -q(i)) * Ainv;
   }
 }
 
@@ -915,6 +917,7 @@ void vpProjectiveRobot::saveModel(const std::string &filename) const
   os.precision(17);
   os << kModelMagic << '\n';
   os << "version " << kModelVersion << '\n';
+  os << "mounting " << (m_mounting == EYE_TO_HAND ? "eye-to-hand" : "eye-in-hand") << '\n';
   os << "joints " << m_types.size();
   for (vpJointType t : m_types) {
     os << ' ' << (t == REVOLUTE ? 'R' : 'P');
@@ -980,6 +983,11 @@ void vpProjectiveRobot::loadModel(const std::string &filename)
     reader.bad("it has format version " + std::to_string(version) + ", this build reads version " +
                std::to_string(kModelVersion));
   }
+  std::string mounting;
+  reader.next("mounting") >> mounting;
+  if (mounting != "eye-to-hand" && mounting != "eye-in-hand") {
+    reader.bad("the rig mounting is neither eye-to-hand nor eye-in-hand");
+  }
   std::istringstream jointsLine = reader.next("joints");
   size_t n = 0;
   if (!(jointsLine >> n) || n == 0 || n > maxJoints) {
@@ -1031,6 +1039,7 @@ void vpProjectiveRobot::loadModel(const std::string &filename)
     reader.bad(std::string("its fundamental matrix is invalid: ") + e.getStringMessage());
   }
   m_types = types;
+  m_mounting = mounting == "eye-to-hand" ? EYE_TO_HAND : EYE_IN_HAND;
   m_rig = rig;
   m_zeroImages.clear();
   m_trials.clear();

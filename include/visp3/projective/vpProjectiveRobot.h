@@ -70,6 +70,17 @@ public:
   //! Joint kinds.
   enum vpJointType { REVOLUTE, PRISMATIC };
 
+  /*!
+    Where the rig is. The joints keep the robot's own numbering (0 at the robot base) in both cases; only the order
+    of the product of exponentials (34) changes, since the base of the chain is the end that holds the rig.
+  */
+  enum vpRigMounting {
+    EYE_TO_HAND, //!< Rig fixed in the workspace, markers on the last link: \f$ H(q) = \exp(q_0 \hat H_0) \cdots
+                 //!< \exp(q_{n-1} \hat H_{n-1}) \f$.
+    EYE_IN_HAND  //!< Rig on the last link, markers static: the hand is the base, \f$ H(q) = \exp(q_{n-1}
+                 //!< \hat H_{n-1}) \cdots \exp(q_0 \hat H_0) \f$.
+  };
+
   //! Largest number of joints: fixed-size storage keeps the control loop free of allocations.
   static const unsigned int maxJoints = 16;
 
@@ -86,6 +97,9 @@ public:
 
   unsigned int getNumberOfJoints() const { return static_cast<unsigned int>(m_types.size()); }
   vpJointType getJointType(unsigned int i) const;
+  //! Sets where the rig is mounted (default EYE_TO_HAND); the acquisition is the same in both cases.
+  void setRigMounting(vpRigMounting mounting) { m_mounting = mounting; }
+  vpRigMounting getRigMounting() const { return m_mounting; }
 
   /*! \name Acquisition */
   //@{
@@ -181,7 +195,7 @@ public:
   Eigen::Matrix4d jointExp(unsigned int i, double q) const;
   //! \f$ H(q) \f$, eq. (34).
   Eigen::Matrix4d displacement(const JointVector &q) const;
-  //! \f$ \hat H_{k,q} \f$ for every joint, eq. (39).
+  //! \f$ \hat H_{k,q} \f$ for every joint k (in joint numbering), eq. (39).
   void jointMotions(const JointVector &q, Eigen::Matrix4d *HhatKq) const;
   //! \f$ J_H(q, M) \f$ from precomputed jointMotions().
   void pointJacobian(const Eigen::Matrix4d *HhatKq, const Eigen::Vector4d &M, PointJacobian &JH) const;
@@ -203,7 +217,14 @@ private:
   double predictionResidual(const std::vector<Eigen::Matrix4d> &Hhat, const std::vector<Eigen::Vector4d> &M0) const;
   void setModelFromTwists();
 
+  //! Joint index at position k of the product of exponentials, base of the chain (the rig's end) first.
+  unsigned int chainJoint(unsigned int k) const
+  {
+    return m_mounting == EYE_TO_HAND ? k : static_cast<unsigned int>(m_types.size()) - 1 - k;
+  }
+
   std::vector<vpJointType> m_types;
+  vpRigMounting m_mounting;
   vpProjectiveStereoRig m_rig;
   std::vector<Eigen::Vector4d> m_zeroImages; // (u, v, u', v') of each marker at q = 0
   std::vector<vpTrial> m_trials;
