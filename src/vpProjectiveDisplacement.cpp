@@ -251,6 +251,7 @@ vpProjectiveDisplacement vpProjectiveDisplacement::estimate(const vpProjectiveSt
   options.max_num_iterations = 100;
   options.function_tolerance = 1e-12;
   options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
   const Eigen::Matrix4d Hrefined = H;

@@ -482,6 +482,7 @@ void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Matrix4d> &Hhat)
   options.gradient_tolerance = 1e-14;
   options.parameter_tolerance = 1e-12;
   options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
 
@@ -821,6 +822,7 @@ vpColVector vpProjectiveRobot::inverseKinematics(const std::vector<vpImagePoint>
   options.gradient_tolerance = 1e-16;
   options.parameter_tolerance = 1e-14;
   options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
   if (!summary.IsSolutionUsable()) {

@@ -199,19 +199,13 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
          "seen without parallax); use matches spread over a 3D scene");
   }
 
-  // Robust initial estimate.
+  // Robust selection of the inliers.
   std::vector<uchar> mask;
   const int method = n > 8 ? cv::FM_RANSAC : cv::FM_8POINT;
   cv::Mat Fcv = cv::findFundamentalMat(cvl, cvr, method, inlierThreshold, 0.999, mask);
   if (Fcv.empty() || Fcv.rows != 3 || Fcv.cols != 3) {
     fail(vpProjectiveException::estimationFailedError, where,
          "OpenCV's robust estimator found no fundamental matrix; check that the matches are correct");
-  }
-  Eigen::Matrix3d F0;
-  for (int i = 0; i < 3; ++i) {
-    for (int j = 0; j < 3; ++j) {
-      F0(i, j) = Fcv.at<double>(i, j);
-    }
   }
   if (mask.size() != n) {
     mask.assign(n, 1);
@@ -228,15 +222,28 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
     fail(vpProjectiveException::estimationFailedError, where, os.str());
   }
 
-  // Gold-standard refinement in normalised coordinates: P = [I|0] fixed, P' and the points free.
-  const Eigen::Matrix3d Fn0 = Tp.inverse().transpose() * F0 * T.inverse();
-  Eigen::JacobiSVD<Eigen::Matrix3d> svdF(Fn0, Eigen::ComputeFullU);
+  // Linear refit on all inliers (normalised 8-point, rank 2 enforced): RANSAC's F comes from a minimal sample.
+  Eigen::MatrixXd Ain(inliers.size(), 9);
+  for (size_t k = 0; k < inliers.size(); ++k) {
+    Ain.row(static_cast<Eigen::Index>(k)) = A.row(static_cast<Eigen::Index>(inliers[k]));
+  }
+  Eigen::JacobiSVD<Eigen::MatrixXd> svdIn(Ain, Eigen::ComputeFullV);
+  Eigen::Matrix3d Fn0;
+  for (int a = 0; a < 3; ++a) {
+    Fn0.row(a) = svdIn.matrixV().col(8).segment<3>(3 * a).transpose();
+  }
+  Eigen::JacobiSVD<Eigen::Matrix3d> svdF(Fn0, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Fn0 = svdF.matrixU() * Eigen::Vector3d(svdF.singularValues()(0), svdF.singularValues()(1), 0.0).asDiagonal() *
+        svdF.matrixV().transpose();
+
+  // Gold-standard refinement in normalised coordinates: P = [I|0] fixed, P' (scale fixed on the unit sphere; the
+  // remaining 3-dof gauge P' + e' a^T is left to Levenberg-Marquardt's damping) and the points free.
   const Eigen::Vector3d epn = svdF.matrixU().col(2);
   Projection Ppn = canonicalRightProjection(Fn0 / Fn0.norm(), epn);
   Projection Pn = Projection::Zero();
   Pn.leftCols<3>().setIdentity();
 
-  Eigen::Matrix<double, 3, 4, Eigen::RowMajor> PpRowMajor = Ppn;
+  Eigen::Matrix<double, 3, 4, Eigen::RowMajor> PpRowMajor = Ppn / Ppn.norm();
   std::vector<Eigen::Vector4d> points(inliers.size());
   ceres::Problem problem;
   for (size_t k = 0; k < inliers.size(); ++k) {
@@ -249,11 +256,13 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
     problem.AddResidualBlock(cost, nullptr, PpRowMajor.data(), points[k].data());
     problem.SetManifold(points[k].data(), new ceres::SphereManifold<4>());
   }
+  problem.SetManifold(PpRowMajor.data(), new ceres::SphereManifold<12>());
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_SCHUR;
   options.max_num_iterations = 100;
   options.function_tolerance = 1e-12;
   options.num_threads = 1;
+  options.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
 
@@ -261,8 +270,8 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
   const Eigen::Vector3d epRefined = PpRefined.col(3);
   Eigen::Matrix3d Fn = skew(epRefined) * PpRefined.leftCols<3>();
   Eigen::Matrix3d F = Tp.transpose() * Fn * T;
-  if (!F.allFinite() || F.norm() == 0.0) {
-    F = F0; // the refinement diverged: keep the robust estimate
+  if (!F.allFinite() || F.norm() == 0.0 || summary.final_cost > summary.initial_cost) {
+    F = Tp.transpose() * Fn0 * T; // the refinement failed: keep the linear estimate on the inliers
   }
   setFundamentalMatrix(toVisp(F));
 
