@@ -1,0 +1,606 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+/*!
+  \file vpSimulatorStereoRig.cpp
+  \brief Metric stereo rig simulator: projections, noise, ground-truth fundamental matrix and H_PE.
+*/
+
+#include <visp3/projective/vpSimulatorStereoRig.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <Eigen/Dense>
+
+#include <visp3/core/vpRotationMatrix.h>
+#include <visp3/core/vpThetaUVector.h>
+#include <visp3/core/vpTranslationVector.h>
+
+#include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpProjectiveStereoRig.h>
+
+namespace
+{
+typedef Eigen::Matrix<double, 3, 4> Matrix34d;
+
+bool isFinite(double x)
+{
+  return std::isfinite(x);
+}
+
+bool isFinite(const vpArray2D<double> &A)
+{
+  for (unsigned int i = 0; i < A.getRows(); ++i) {
+    for (unsigned int j = 0; j < A.getCols(); ++j) {
+      if (!std::isfinite(A[i][j])) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+template <int R, int C> Eigen::Matrix<double, R, C> toEigen(const vpArray2D<double> &A)
+{
+  Eigen::Matrix<double, R, C> E;
+  for (int i = 0; i < R; ++i) {
+    for (int j = 0; j < C; ++j) {
+      E(i, j) = A[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)];
+    }
+  }
+  return E;
+}
+
+template <typename Derived> vpMatrix toVisp(const Eigen::MatrixBase<Derived> &E)
+{
+  vpMatrix A(static_cast<unsigned int>(E.rows()), static_cast<unsigned int>(E.cols()));
+  for (int i = 0; i < E.rows(); ++i) {
+    for (int j = 0; j < E.cols(); ++j) {
+      A[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)] = E(i, j);
+    }
+  }
+  return A;
+}
+
+Eigen::Matrix3d intrinsics(const vpCameraParameters &cam)
+{
+  Eigen::Matrix3d K;
+  K << cam.get_px(), 0.0, cam.get_u0(), 0.0, cam.get_py(), cam.get_v0(), 0.0, 0.0, 1.0;
+  return K;
+}
+
+Eigen::Matrix3d skew(const Eigen::Vector3d &t)
+{
+  Eigen::Matrix3d S;
+  S << 0.0, -t(2), t(1), t(2), 0.0, -t(0), -t(1), t(0), 0.0;
+  return S;
+}
+
+void checkCamera(const vpCameraParameters &cam, const char *which)
+{
+  if (cam.get_projModel() != vpCameraParameters::perspectiveProjWithoutDistortion) {
+    std::ostringstream os;
+    os << "vpSimulatorStereoRig: the " << which
+       << " camera has a distortion model; the simulator images ideal pinhole cameras: initialise it with "
+          "vpCameraParameters::initPersProjWithoutDistortion()";
+    throw vpProjectiveException(vpProjectiveException::invalidValueError, os.str());
+  }
+  if (!isFinite(cam.get_px()) || !isFinite(cam.get_py()) || !isFinite(cam.get_u0()) || !isFinite(cam.get_v0())) {
+    std::ostringstream os;
+    os << "vpSimulatorStereoRig: the " << which << " camera's intrinsics are not finite; give finite px, py, u0, v0";
+    throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
+  }
+  if (cam.get_px() <= 0.0 || cam.get_py() <= 0.0) {
+    std::ostringstream os;
+    os << "vpSimulatorStereoRig: the " << which << " camera has px = " << cam.get_px() << ", py = " << cam.get_py()
+       << "; focal lengths in pixels must be positive";
+    throw vpProjectiveException(vpProjectiveException::invalidValueError, os.str());
+  }
+}
+
+void checkPose(const vpHomogeneousMatrix &M, const char *name)
+{
+  if (!isFinite(M)) {
+    std::ostringstream os;
+    os << "vpSimulatorStereoRig: " << name << " contains NaN or infinity; give a finite rigid transformation";
+    throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
+  }
+  if (!M.isAnHomogeneousMatrix(1e-6)) {
+    std::ostringstream os;
+    os << "vpSimulatorStereoRig: " << name
+       << " is not a rigid transformation (its rotation part is not orthonormal with determinant 1, or its last row "
+          "is not [0 0 0 1])";
+    throw vpProjectiveException(vpProjectiveException::invalidValueError, os.str());
+  }
+}
+
+void checkVector3(const vpColVector &v, const char *where, const char *name)
+{
+  if (v.getRows() != 3) {
+    std::ostringstream os;
+    os << where << ": " << name << " must be a 3x1 vector, got " << v.getRows() << "x" << v.getCols();
+    throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
+  }
+  if (!isFinite(v)) {
+    std::ostringstream os;
+    os << where << ": " << name << " contains NaN or infinity";
+    throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
+  }
+}
+
+//! A world point (3x1, or 4x1 homogeneous with a non-zero last entry) as Euclidean coordinates.
+Eigen::Vector3d worldPoint(const vpColVector &wX, const char *where)
+{
+  if (wX.getRows() != 3 && wX.getRows() != 4) {
+    std::ostringstream os;
+    os << where << ": a world point must be 3x1 or 4x1 (homogeneous), got " << wX.getRows() << "x" << wX.getCols();
+    throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
+  }
+  if (!isFinite(wX)) {
+    std::ostringstream os;
+    os << where << ": the world point contains NaN or infinity";
+    throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
+  }
+  Eigen::Vector3d X(wX[0], wX[1], wX[2]);
+  if (wX.getRows() == 4) {
+    const double w = wX[3];
+    if (std::fabs(w) <= 1e-12 * std::max(1.0, X.norm())) {
+      std::ostringstream os;
+      os << where << ": the homogeneous world point has a zero last entry (a point at infinity); the simulator "
+         << "images finite points only: give (X, Y, Z, 1)";
+      throw vpProjectiveException(vpProjectiveException::pointAtInfinityError, os.str());
+    }
+    X /= w;
+  }
+  return X;
+}
+} // namespace
+
+vpSimulatorStereoRig::vpSimulatorStereoRig(const vpCameraParameters &camLeft, const vpCameraParameters &camRight,
+                                           const vpHomogeneousMatrix &rMl, const vpHomogeneousMatrix &wMl,
+                                           unsigned int width, unsigned int height)
+    : m_camLeft(camLeft), m_camRight(camRight), m_rMl(rMl), m_wMl(wMl), m_lMw(), m_width(width), m_height(height)
+{
+  checkCamera(camLeft, "left");
+  checkCamera(camRight, "right");
+  checkPose(rMl, "rMl");
+  checkPose(wMl, "wMl");
+  if (width == 0 || height == 0) {
+    throw vpProjectiveException(vpProjectiveException::invalidValueError,
+                                "vpSimulatorStereoRig: the image size is zero; give the width and height in pixels");
+  }
+  if (rMl.getTranslationVector().frobeniusNorm() < 1e-9) {
+    throw vpProjectiveException(vpProjectiveException::degenerateConfigurationError,
+                                "vpSimulatorStereoRig: the two camera centres coincide (rMl has no translation); a "
+                                "stereo rig needs a non-zero baseline");
+  }
+  m_lMw = wMl.inverse();
+}
+
+vpCameraParameters vpSimulatorStereoRig::paperCameraParameters()
+{
+  // 12.5 mm lens, 1/3 inch CCD of 4.8 x 3.6 mm imaged on 640 x 480 pixels: 7.5 um square pixels.
+  const double focal = 12.5e-3;
+  const double pixel = 4.8e-3 / 640.0;
+  vpCameraParameters cam;
+  cam.initPersProjWithoutDistortion(focal / pixel, focal / pixel, 320.0, 240.0);
+  return cam;
+}
+
+vpSimulatorStereoRig vpSimulatorStereoRig::vergingRig(const vpColVector &fixation, double distance, double baseline,
+                                                      const vpCameraParameters &cam, unsigned int width,
+                                                      unsigned int height)
+{
+  const char *where = "vpSimulatorStereoRig::vergingRig()";
+  checkVector3(fixation, where, "the fixation point");
+  if (!isFinite(distance) || !isFinite(baseline)) {
+    throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
+                                std::string(where) + ": the distance or the baseline is not finite");
+  }
+  if (distance <= 0.0 || baseline <= 0.0) {
+    std::ostringstream os;
+    os << where << ": distance = " << distance << " m and baseline = " << baseline
+       << " m must both be positive (the fixation point lies in front of the rig)";
+    throw vpProjectiveException(vpProjectiveException::invalidValueError, os.str());
+  }
+  const Eigen::Vector3d wF(fixation[0], fixation[1], fixation[2]);
+  const Eigen::Vector3d wMid = wF - Eigen::Vector3d(0.0, 0.0, distance);
+  const Eigen::Vector3d wY(0.0, 1.0, 0.0);
+
+  // Camera frame of a camera centred at wC looking at wF, with its y axis along the world's +Y.
+  auto lookAt = [&](const Eigen::Vector3d &wC) {
+    const Eigen::Vector3d z = (wF - wC).normalized();
+    const Eigen::Vector3d x = wY.cross(z).normalized();
+    const Eigen::Vector3d y = z.cross(x);
+    vpHomogeneousMatrix wMc;
+    for (unsigned int i = 0; i < 3; ++i) {
+      wMc[i][0] = x(i);
+      wMc[i][1] = y(i);
+      wMc[i][2] = z(i);
+      wMc[i][3] = wC(i);
+    }
+    return wMc;
+  };
+  const vpHomogeneousMatrix wMl = lookAt(wMid - Eigen::Vector3d(0.5 * baseline, 0.0, 0.0));
+  const vpHomogeneousMatrix wMr = lookAt(wMid + Eigen::Vector3d(0.5 * baseline, 0.0, 0.0));
+  return vpSimulatorStereoRig(cam, cam, wMr.inverse() * wMl, wMl, width, height);
+}
+
+vpSimulatorStereoRig vpSimulatorStereoRig::paperRig(const vpColVector &fixation, double distance)
+{
+  return vergingRig(fixation, distance, 0.20, paperCameraParameters(), 640, 480);
+}
+
+vpMatrix vpSimulatorStereoRig::getLeftMetricProjection() const
+{
+  Matrix34d P = Matrix34d::Zero();
+  P.leftCols<3>() = intrinsics(m_camLeft);
+  return toVisp(P);
+}
+
+vpMatrix vpSimulatorStereoRig::getRightMetricProjection() const
+{
+  const Eigen::Matrix4d rMl = toEigen<4, 4>(m_rMl);
+  const Matrix34d P = intrinsics(m_camRight) * rMl.topRows<3>();
+  return toVisp(P);
+}
+
+vpMatrix vpSimulatorStereoRig::getFundamentalMatrix() const
+{
+  const Eigen::Matrix4d rMl = toEigen<4, 4>(m_rMl);
+  const Eigen::Matrix3d R = rMl.topLeftCorner<3, 3>();
+  const Eigen::Vector3d t = rMl.topRightCorner<3, 1>();
+  const Eigen::Matrix3d F =
+      intrinsics(m_camRight).inverse().transpose() * skew(t) * R * intrinsics(m_camLeft).inverse();
+  return toVisp(F / F.norm());
+}
+
+vpMatrix vpSimulatorStereoRig::getProjectiveToEuclidean(const vpProjectiveStereoRig &rig) const
+{
+  double residual = 0.0;
+  return getProjectiveToEuclidean(rig, residual);
+}
+
+double vpSimulatorStereoRig::getMaxProjectiveToEuclideanResidual() const
+{
+  return 0.02 * std::hypot(static_cast<double>(m_width), static_cast<double>(m_height));
+}
+
+std::vector<Eigen::Vector4d> vpSimulatorStereoRig::samplePoints() const
+{
+  // Depth (left camera) where the optical axes come closest: the vergence distance of a verging rig.
+  const Eigen::Matrix4d rMl = toEigen<4, 4>(m_rMl);
+  const Eigen::Matrix3d R = rMl.topLeftCorner<3, 3>();
+  const Eigen::Vector3d t = rMl.topRightCorner<3, 1>();
+  const double baseline = t.norm();
+  const Eigen::Vector3d zl(0.0, 0.0, 1.0);
+  const Eigen::Vector3d cr = -R.transpose() * t; // right centre, left coordinates
+  const Eigen::Vector3d zr = R.transpose() * zl; // right optical axis, left coordinates
+  const double b = zl.dot(zr);
+  const double denom = 1.0 - b * b;
+  double d0 = 10.0 * baseline;
+  if (denom > 1e-8) {
+    const double depth = (zl.dot(cr) - b * zr.dot(cr)) / denom;
+    if (depth > baseline && depth < 100.0 * baseline) {
+      d0 = depth;
+    }
+  }
+  const Eigen::Matrix3d Kinv = intrinsics(m_camLeft).inverse();
+  const Eigen::Matrix3d Kp = intrinsics(m_camRight);
+  const double depths[5] = {0.6, 0.8, 1.0, 1.25, 1.6};
+  std::vector<Eigen::Vector4d> inView, inFront;
+  for (int i = 0; i < 7; ++i) {
+    for (int j = 0; j < 7; ++j) {
+      const Eigen::Vector3d m(m_width * (0.1 + 0.8 * i / 6.0), m_height * (0.1 + 0.8 * j / 6.0), 1.0);
+      for (int k = 0; k < 5; ++k) {
+        const Eigen::Vector3d lX = depths[k] * d0 * (Kinv * m);
+        const Eigen::Vector3d rX = R * lX + t;
+        if (rX(2) <= 0.05 * d0) {
+          continue;
+        }
+        const Eigen::Vector3d mp = Kp * rX / rX(2);
+        const Eigen::Vector4d N(lX(0), lX(1), lX(2), 1.0);
+        inFront.push_back(N);
+        if (mp(0) >= 0.0 && mp(0) <= m_width - 1.0 && mp(1) >= 0.0 && mp(1) <= m_height - 1.0) {
+          inView.push_back(N);
+        }
+      }
+    }
+  }
+  return (inView.size() >= 20) ? inView : inFront;
+}
+
+vpMatrix vpSimulatorStereoRig::getProjectiveToEuclidean(const vpProjectiveStereoRig &rig, double &residual) const
+{
+  const char *where = "vpSimulatorStereoRig::getProjectiveToEuclidean()";
+  if (!rig.isInitialized()) {
+    throw vpProjectiveException(vpProjectiveException::notInitializedError,
+                                std::string(where) + ": the projective rig has no fundamental matrix yet; call its "
+                                                     "estimate() or setFundamentalMatrix() first");
+  }
+  const Matrix34d P = toEigen<3, 4>(rig.getLeftProjection());
+  const Matrix34d Pp = toEigen<3, 4>(rig.getRightProjection());
+  if (!P.allFinite() || !Pp.allFinite()) {
+    throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
+                                std::string(where) + ": the projective rig's camera matrices contain NaN or infinity");
+  }
+
+  // G = H^-1 maps metric points N (homogeneous left-camera coordinates) to projective ones M. The left cameras are
+  // matched exactly, P G = K[I|0]: G = P^+ K[I|0] + n g^T with n the centre of P (P n = 0) and g a free 4-vector.
+  // The right camera then images N at pi(B N + e' (g^T N)), B = P' P^+ K[I|0], e' = P' n, which must be the metric
+  // image pi(K'[R'|t'] N): two equations per point, linear in g. They are solved over sample points N filling the
+  // rig's common field of view, weighted so that the residual is in pixels (a few reweighting passes). With this
+  // rig's F the solution is exact; with an estimated F it is the H_PE that best reproduces the right image.
+  const Eigen::Matrix<double, 4, 3> Pplus = P.transpose() * (P * P.transpose()).inverse();
+  // Null vector of P by cofactors: n_i = (-1)^i det(P without column i).
+  Eigen::Vector4d n;
+  for (int i = 0; i < 4; ++i) {
+    Eigen::Matrix3d Pi;
+    for (int c = 0, cc = 0; c < 4; ++c) {
+      if (c != i) {
+        Pi.col(cc++) = P.col(c);
+      }
+    }
+    n(i) = ((i % 2 == 0) ? 1.0 : -1.0) * Pi.determinant();
+  }
+  if (!(n.norm() > 0.0)) {
+    throw vpProjectiveException(vpProjectiveException::degenerateConfigurationError,
+                                std::string(where) + ": the projective rig's left camera matrix is not of rank 3");
+  }
+  n.normalize();
+  Matrix34d Pm = Matrix34d::Zero();
+  Pm.leftCols<3>() = intrinsics(m_camLeft);
+  const Matrix34d Pmp = intrinsics(m_camRight) * toEigen<4, 4>(m_rMl).topRows<3>();
+  const Matrix34d B = Pp * Pplus * Pm;
+  const Eigen::Vector3d e = Pp * n;
+
+  const std::vector<Eigen::Vector4d> samples = samplePoints();
+  std::vector<Eigen::Vector2d> target(samples.size());
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const Eigen::Vector3d mp = Pmp * samples[k];
+    target[k] = mp.head<2>() / mp(2);
+  }
+  Eigen::Vector4d g = Eigen::Vector4d::Zero();
+  std::vector<double> weight(samples.size(), 1.0);
+  for (int pass = 0; pass < 4; ++pass) {
+    // Columns scaled to unit norm before the normal equations: the system is small (4 unknowns) and well posed.
+    Eigen::Matrix4d AtA = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d Atb = Eigen::Vector4d::Zero();
+    std::vector<Eigen::RowVector4d> rows;
+    std::vector<double> rhs;
+    rows.reserve(2 * samples.size());
+    rhs.reserve(2 * samples.size());
+    for (size_t k = 0; k < samples.size(); ++k) {
+      const Eigen::Vector3d BN = B * samples[k];
+      for (int c = 0; c < 2; ++c) {
+        rows.push_back(weight[k] * (e(c) - target[k](c) * e(2)) * samples[k].transpose());
+        rhs.push_back(-weight[k] * (BN(c) - target[k](c) * BN(2)));
+      }
+    }
+    Eigen::Vector4d colNorm = Eigen::Vector4d::Zero();
+    for (size_t r = 0; r < rows.size(); ++r) {
+      colNorm += rows[r].transpose().cwiseAbs2();
+    }
+    colNorm = colNorm.cwiseSqrt();
+    for (int c = 0; c < 4; ++c) {
+      if (!(colNorm(c) > 0.0)) {
+        colNorm(c) = 1.0;
+      }
+    }
+    for (size_t r = 0; r < rows.size(); ++r) {
+      const Eigen::Vector4d a = rows[r].transpose().cwiseQuotient(colNorm);
+      AtA += a * a.transpose();
+      Atb += a * rhs[r];
+    }
+    g = (AtA.inverse() * Atb).cwiseQuotient(colNorm);
+    for (size_t k = 0; k < samples.size(); ++k) {
+      const double x3 = (B * samples[k])(2) + e(2) * g.dot(samples[k]);
+      weight[k] = (std::fabs(x3) > 0.0) ? 1.0 / std::fabs(x3) : 1.0;
+    }
+  }
+
+  // Residual: RMS distance in pixels between the right images of the sample points through the projective frame and
+  // through the metric camera (the left images agree exactly).
+  double sum2 = 0.0;
+  for (size_t k = 0; k < samples.size(); ++k) {
+    const Eigen::Vector3d x = B * samples[k] + e * g.dot(samples[k]);
+    sum2 += (x.head<2>() / x(2) - target[k]).squaredNorm();
+  }
+  residual = samples.empty() ? std::numeric_limits<double>::infinity() : std::sqrt(sum2 / samples.size());
+
+  const Eigen::Matrix4d G = Pplus * Pm + n * g.transpose();
+  const double detG = G.determinant();
+  if (!(residual <= getMaxProjectiveToEuclideanResidual()) || !std::isfinite(detG) || detG == 0.0) {
+    const Eigen::Matrix3d Fs = toEigen<3, 3>(getFundamentalMatrix());
+    Eigen::Matrix3d Fr = toEigen<3, 3>(rig.getFundamentalMatrix());
+    Fr /= Fr.norm();
+    const double dF = std::min((Fs - Fr).norm(), (Fs + Fr).norm());
+    std::ostringstream os;
+    os << where << ": the projective rig's frame is not one of this simulated rig: the best homography maps its right "
+       << "camera onto the metric one with an RMS error of " << residual << " px > "
+       << getMaxProjectiveToEuclideanResidual() << " px (distance between the unit-norm fundamental matrices " << dF
+       << "). Give the rig this simulator's getFundamentalMatrix() or one estimated from its images";
+    throw vpProjectiveException(vpProjectiveException::invalidValueError, os.str());
+  }
+  // P H^-1 = K[I|0] exactly: s = 1 > 0, so that K[I|0] H M and P M have the same sign. Scale: |det H| = 1.
+  Eigen::Matrix4d H = G.inverse();
+  H /= std::pow(std::fabs(H.determinant()), 0.25);
+  return toVisp(H);
+}
+
+vpMatrix vpSimulatorStereoRig::toCameraFrame(const vpMatrix &wT) const
+{
+  if (wT.getRows() != 4 || wT.getCols() != 4) {
+    std::ostringstream os;
+    os << "vpSimulatorStereoRig::toCameraFrame(): the displacement must be 4x4, got " << wT.getRows() << "x"
+       << wT.getCols();
+    throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
+  }
+  if (!isFinite(wT)) {
+    throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
+                                "vpSimulatorStereoRig::toCameraFrame(): the displacement contains NaN or infinity");
+  }
+  const Eigen::Matrix4d lT = toEigen<4, 4>(m_lMw) * toEigen<4, 4>(wT) * toEigen<4, 4>(m_wMl);
+  return toVisp(lT);
+}
+
+bool vpSimulatorStereoRig::imageOf(const vpColVector &wX, vpImagePoint &ipLeft, vpImagePoint &ipRight, double margin,
+                                   double minDepth) const
+{
+  const Eigen::Vector3d X = worldPoint(wX, "vpSimulatorStereoRig::project()");
+  const Eigen::Matrix4d lMw = toEigen<4, 4>(m_lMw);
+  const Eigen::Matrix4d rMl = toEigen<4, 4>(m_rMl);
+  const Eigen::Vector3d lX = lMw.topLeftCorner<3, 3>() * X + lMw.topRightCorner<3, 1>();
+  const Eigen::Vector3d rX = rMl.topLeftCorner<3, 3>() * lX + rMl.topRightCorner<3, 1>();
+
+  bool visible = true;
+  const vpCameraParameters *cams[2] = {&m_camLeft, &m_camRight};
+  const Eigen::Vector3d *points[2] = {&lX, &rX};
+  vpImagePoint *ips[2] = {&ipLeft, &ipRight};
+  for (int k = 0; k < 2; ++k) {
+    const Eigen::Vector3d &cX = *points[k];
+    if (cX(2) <= minDepth) {
+      visible = false;
+    }
+    if (std::fabs(cX(2)) <= 1e-12) {
+      continue; // On the focal plane: no image; the image point is left unchanged.
+    }
+    const double u = cams[k]->get_u0() + cams[k]->get_px() * cX(0) / cX(2);
+    const double v = cams[k]->get_v0() + cams[k]->get_py() * cX(1) / cX(2);
+    ips[k]->set_uv(u, v);
+    if (u < margin || v < margin || u > m_width - 1.0 - margin || v > m_height - 1.0 - margin) {
+      visible = false;
+    }
+  }
+  return visible;
+}
+
+bool vpSimulatorStereoRig::project(const vpColVector &wX, vpImagePoint &ipLeft, vpImagePoint &ipRight) const
+{
+  return imageOf(wX, ipLeft, ipRight, 0.0, 0.0);
+}
+
+bool vpSimulatorStereoRig::project(const vpColVector &wX, vpImagePoint &ipLeft, vpImagePoint &ipRight, double sigma,
+                                   vpGaussRand &noise) const
+{
+  if (!isFinite(sigma) || sigma < 0.0) {
+    std::ostringstream os;
+    os << "vpSimulatorStereoRig::project(): the noise standard deviation sigma = " << sigma
+       << " px must be finite and non-negative";
+    throw vpProjectiveException(vpProjectiveException::invalidValueError, os.str());
+  }
+  const bool visible = imageOf(wX, ipLeft, ipRight, 0.0, 0.0);
+  if (sigma > 0.0) {
+    // Only the generator's random stream is used: sigma is the one given here.
+    noise.setSigmaMean(1.0, 0.0);
+    const double du = sigma * noise();
+    const double dv = sigma * noise();
+    const double dup = sigma * noise();
+    const double dvp = sigma * noise();
+    ipLeft.set_uv(ipLeft.get_u() + du, ipLeft.get_v() + dv);
+    ipRight.set_uv(ipRight.get_u() + dup, ipRight.get_v() + dvp);
+  }
+  return visible;
+}
+
+bool vpSimulatorStereoRig::project(const std::vector<vpColVector> &wX, std::vector<vpImagePoint> &left,
+                                   std::vector<vpImagePoint> &right, double sigma, vpGaussRand &noise) const
+{
+  left.assign(wX.size(), vpImagePoint());
+  right.assign(wX.size(), vpImagePoint());
+  bool all = true;
+  for (size_t k = 0; k < wX.size(); ++k) {
+    all = project(wX[k], left[k], right[k], sigma, noise) && all;
+  }
+  return all;
+}
+
+bool vpSimulatorStereoRig::isVisible(const vpColVector &wX, double margin, double minDepth) const
+{
+  if (!isFinite(margin) || !isFinite(minDepth)) {
+    throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
+                                "vpSimulatorStereoRig::isVisible(): the margin or the minimal depth is not finite");
+  }
+  vpImagePoint ipLeft, ipRight;
+  return imageOf(wX, ipLeft, ipRight, margin, minDepth);
+}
+
+std::vector<vpColVector> vpSimulatorStereoRig::transform(const vpHomogeneousMatrix &wT,
+                                                         const std::vector<vpColVector> &wX)
+{
+  if (!isFinite(wT)) {
+    throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
+                                "vpSimulatorStereoRig::transform(): the displacement contains NaN or infinity");
+  }
+  std::vector<vpColVector> out;
+  out.reserve(wX.size());
+  for (size_t k = 0; k < wX.size(); ++k) {
+    const vpColVector &X = wX[k];
+    if (X.getRows() != 3 && X.getRows() != 4) {
+      std::ostringstream os;
+      os << "vpSimulatorStereoRig::transform(): point " << k << " must be 3x1 or 4x1 (homogeneous), got " << X.getRows()
+         << "x" << X.getCols();
+      throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
+    }
+    if (!isFinite(X)) {
+      std::ostringstream os;
+      os << "vpSimulatorStereoRig::transform(): point " << k << " contains NaN or infinity";
+      throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
+    }
+    const double w = (X.getRows() == 4) ? X[3] : 1.0;
+    vpColVector Y(X.getRows());
+    for (unsigned int i = 0; i < 3; ++i) {
+      Y[i] = wT[i][0] * X[0] + wT[i][1] * X[1] + wT[i][2] * X[2] + wT[i][3] * w;
+    }
+    if (X.getRows() == 4) {
+      Y[3] = w;
+    }
+    out.push_back(Y);
+  }
+  return out;
+}
+
+vpHomogeneousMatrix vpSimulatorStereoRig::rotationAbout(const vpColVector &point, const vpColVector &axis, double theta)
+{
+  const char *where = "vpSimulatorStereoRig::rotationAbout()";
+  checkVector3(point, where, "the point on the axis");
+  checkVector3(axis, where, "the axis direction");
+  if (!isFinite(theta)) {
+    throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
+                                std::string(where) + ": the angle is not finite");
+  }
+  const double n = axis.frobeniusNorm();
+  if (n < 1e-12) {
+    throw vpProjectiveException(vpProjectiveException::invalidValueError,
+                                std::string(where) + ": the axis direction is zero; give a non-zero 3x1 direction");
+  }
+  const vpThetaUVector tu(theta * axis[0] / n, theta * axis[1] / n, theta * axis[2] / n);
+  const vpRotationMatrix R(tu);
+  const vpTranslationVector p(point[0], point[1], point[2]);
+  const vpTranslationVector t = p - R * p;
+  return vpHomogeneousMatrix(t, R);
+}
+
+vpHomogeneousMatrix vpSimulatorStereoRig::translationAlong(const vpColVector &direction, double tau)
+{
+  const char *where = "vpSimulatorStereoRig::translationAlong()";
+  checkVector3(direction, where, "the direction");
+  if (!isFinite(tau)) {
+    throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
+                                std::string(where) + ": the translation length is not finite");
+  }
+  const double n = direction.frobeniusNorm();
+  if (n < 1e-12) {
+    throw vpProjectiveException(vpProjectiveException::invalidValueError,
+                                std::string(where) + ": the direction is zero; give a non-zero 3x1 direction");
+  }
+  vpHomogeneousMatrix T;
+  for (unsigned int i = 0; i < 3; ++i) {
+    T[i][3] = tau * direction[i] / n;
+  }
+  return T;
+}
