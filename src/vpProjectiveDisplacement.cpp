@@ -76,16 +76,19 @@ void checkGeneralPosition(const std::vector<Eigen::Vector4d> &M, const std::stri
     U.col(static_cast<Eigen::Index>(j)) = M[j] / norm;
   }
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(U);
-  if (svd.singularValues()(3) < 1e-9 * svd.singularValues()(0)) {
+  if (svd.singularValues()(3) < 1e-10 * svd.singularValues()(0)) {
     fail(vpProjectiveException::degenerateConfigurationError, where,
          std::string("the points of ") + which + " are coplanar; a 3D homography needs points spanning 3D space");
   }
   if (n == 5) {
+    // Whitened first: the points of a small object are nearly parallel 4-vectors in the rig's frame, so an absolute
+    // threshold on raw determinants would reject valid sets. Whitening preserves coplanarity.
+    const Eigen::Matrix4d T = whitening(M);
     for (size_t skip = 0; skip < 5; ++skip) {
       Eigen::Matrix4d S;
       for (size_t j = 0, c = 0; j < 5; ++j) {
         if (j != skip) {
-          S.col(static_cast<Eigen::Index>(c++)) = U.col(static_cast<Eigen::Index>(j));
+          S.col(static_cast<Eigen::Index>(c++)) = (T * U.col(static_cast<Eigen::Index>(j))).normalized();
         }
       }
       if (std::abs(S.determinant()) < 1e-9) {

@@ -51,6 +51,32 @@ struct StereoReprojectionError {
 
 Eigen::Vector2d dehomogenize(const Eigen::Vector3d &m) { return m.head<2>() / m(2); }
 
+// Normalised 8-point estimate on the rows \e inliers of the design matrix A, with rank 2 enforced.
+Eigen::Matrix3d linearFundamental(const Eigen::MatrixXd &A, const std::vector<size_t> &inliers)
+{
+  Eigen::MatrixXd Ain(inliers.size(), 9);
+  for (size_t k = 0; k < inliers.size(); ++k) {
+    Ain.row(static_cast<Eigen::Index>(k)) = A.row(static_cast<Eigen::Index>(inliers[k]));
+  }
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Ain, Eigen::ComputeFullV);
+  Eigen::Matrix3d F;
+  for (int a = 0; a < 3; ++a) {
+    F.row(a) = svd.matrixV().col(8).segment<3>(3 * a).transpose();
+  }
+  Eigen::JacobiSVD<Eigen::Matrix3d> svdF(F, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  return svdF.matrixU() * Eigen::Vector3d(svdF.singularValues()(0), svdF.singularValues()(1), 0.0).asDiagonal() *
+         svdF.matrixV().transpose();
+}
+
+// Larger of the distances (pixels) of m' to the epipolar line F m and of m to F^T m'.
+double epipolarDistance(const Eigen::Matrix3d &F, const Eigen::Vector2d &m, const Eigen::Vector2d &mp)
+{
+  const Eigen::Vector3d lp = F * m.homogeneous();
+  const Eigen::Vector3d l = F.transpose() * mp.homogeneous();
+  const double algebraic = std::abs(mp.homogeneous().dot(lp));
+  return std::max(algebraic / lp.head<2>().norm(), algebraic / l.head<2>().norm());
+}
+
 // Canonical camera pair of a unit, canonically signed F: P' = [[e']_x F + e' e'^T | e'].
 vpProjectiveStereoRig::Projection canonicalRightProjection(const Eigen::Matrix3d &F, const Eigen::Vector3d &ep)
 {
@@ -199,42 +225,51 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
          "seen without parallax); use matches spread over a 3D scene");
   }
 
-  // Robust selection of the inliers.
-  std::vector<uchar> mask;
-  const int method = n > 8 ? cv::FM_RANSAC : cv::FM_8POINT;
-  cv::Mat Fcv = cv::findFundamentalMat(cvl, cvr, method, inlierThreshold, 0.999, mask);
-  if (Fcv.empty() || Fcv.rows != 3 || Fcv.cols != 3) {
-    fail(vpProjectiveException::estimationFailedError, where,
-         "OpenCV's robust estimator found no fundamental matrix; check that the matches are correct");
-  }
-  if (mask.size() != n) {
-    mask.assign(n, 1);
-  }
+  // Robust selection of the inliers: OpenCV's RANSAC needs 15 matches (it silently switches to LMedS below that),
+  // so fewer matches are all kept and screened by the consensus loop below.
   std::vector<size_t> inliers;
-  for (size_t i = 0; i < n; ++i) {
-    if (mask[i]) {
+  if (n >= 15) {
+    std::vector<uchar> mask;
+    cv::Mat Fcv = cv::findFundamentalMat(cvl, cvr, cv::FM_RANSAC, inlierThreshold, 0.999, mask);
+    if (Fcv.empty() || mask.size() != n) {
+      fail(vpProjectiveException::estimationFailedError, where,
+           "OpenCV's robust estimator found no fundamental matrix; check that the matches are correct");
+    }
+    for (size_t i = 0; i < n; ++i) {
+      if (mask[i]) {
+        inliers.push_back(i);
+      }
+    }
+  } else {
+    for (size_t i = 0; i < n; ++i) {
       inliers.push_back(i);
     }
   }
-  if (inliers.size() < 8) {
-    std::ostringstream os;
-    os << "only " << inliers.size() << " of " << n << " matches agree with one epipolar geometry (8 needed)";
-    fail(vpProjectiveException::estimationFailedError, where, os.str());
-  }
 
-  // Linear refit on all inliers (normalised 8-point, rank 2 enforced): RANSAC's F comes from a minimal sample.
-  Eigen::MatrixXd Ain(inliers.size(), 9);
-  for (size_t k = 0; k < inliers.size(); ++k) {
-    Ain.row(static_cast<Eigen::Index>(k)) = A.row(static_cast<Eigen::Index>(inliers[k]));
+  // Consensus loop: refit linearly on all inliers (RANSAC's F comes from a minimal sample), then reclassify every
+  // match by its distance to the epipolar lines of that fit, until the inlier set is stable.
+  Eigen::Matrix3d Fn0 = Eigen::Matrix3d::Zero();
+  for (int round = 0; round < 5; ++round) {
+    if (inliers.size() < 8) {
+      std::ostringstream os;
+      os << "only " << inliers.size() << " of " << n
+         << " matches agree with one epipolar geometry (8 needed); check the matches or raise the inlier threshold";
+      fail(vpProjectiveException::estimationFailedError, where, os.str());
+    }
+    Fn0 = linearFundamental(A, inliers);
+    const Eigen::Matrix3d F = Tp.transpose() * Fn0 * T;
+    std::vector<size_t> consensus;
+    for (size_t i = 0; i < n; ++i) {
+      if (epipolarDistance(F, l[i], r[i]) <= inlierThreshold) {
+        consensus.push_back(i);
+      }
+    }
+    if (consensus == inliers) {
+      break;
+    }
+    inliers = consensus;
   }
-  Eigen::JacobiSVD<Eigen::MatrixXd> svdIn(Ain, Eigen::ComputeFullV);
-  Eigen::Matrix3d Fn0;
-  for (int a = 0; a < 3; ++a) {
-    Fn0.row(a) = svdIn.matrixV().col(8).segment<3>(3 * a).transpose();
-  }
-  Eigen::JacobiSVD<Eigen::Matrix3d> svdF(Fn0, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  Fn0 = svdF.matrixU() * Eigen::Vector3d(svdF.singularValues()(0), svdF.singularValues()(1), 0.0).asDiagonal() *
-        svdF.matrixV().transpose();
+  Eigen::JacobiSVD<Eigen::Matrix3d> svdF(Fn0, Eigen::ComputeFullU);
 
   // Gold-standard refinement in normalised coordinates: P = [I|0] fixed, P' (scale fixed on the unit sphere; the
   // remaining 3-dof gauge P' + e' a^T is left to Levenberg-Marquardt's damping) and the points free.
@@ -275,7 +310,13 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
   }
   setFundamentalMatrix(toVisp(F));
 
-  // Residual of the inliers against the refined geometry, in pixels.
+  // Inliers of the refined geometry, and their residual in pixels.
+  inliers.clear();
+  for (size_t i = 0; i < n; ++i) {
+    if (epipolarDistance(m_F, l[i], r[i]) <= inlierThreshold) {
+      inliers.push_back(i);
+    }
+  }
   double sum = 0.0;
   m_inliers.assign(n, false);
   for (size_t i : inliers) {
@@ -286,7 +327,7 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
       sum += (s.head<2>() - l[i]).squaredNorm() + (s.tail<2>() - r[i]).squaredNorm();
     }
   }
-  m_residual = std::sqrt(sum / (2.0 * static_cast<double>(inliers.size())));
+  m_residual = inliers.empty() ? 0.0 : std::sqrt(sum / (2.0 * static_cast<double>(inliers.size())));
 }
 
 vpMatrix vpProjectiveStereoRig::getFundamentalMatrix() const

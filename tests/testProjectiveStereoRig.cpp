@@ -1,0 +1,648 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+/*
+  Tests of vpProjectiveStereoRig, the weakly calibrated rig (Ruf & Horaud, section 2), against the metric simulator:
+  - estimate(): exact epipolar geometry from noise-free matches; under 0.5 px noise an accuracy near the first-order
+    prediction; robustness to 20 % wrong matches;
+  - the canonical frame: P = [I|0], P' independent of the scale and sign of F, epipoles, F ~ [e']_x P'(:, 0:3);
+  - triangulate() / project(): round trips, agreement with the true projective points H_PE^-1 N, optimality of the
+    refined triangulation, invariance to the scale of M, points on a focal plane;
+  - every degenerate or invalid input throws a vpProjectiveException with a meaningful code and message.
+
+  Bounds. Noise-free quantities are exact up to rounding: pixel coordinates of a few hundred, a frame conditioned by
+  Hartley normalisation, hence 1e-8 relative (or 1e-8 px) leaves several orders of magnitude of margin while any
+  modelling error (wrong P', wrong sign, wrong epipole) gives errors of order 1. The noisy bounds are derived in the
+  tests from the standard first-order results for least-squares estimators (residual and prediction error of a fit
+  with p parameters on n measurements), and were checked against measurements over all the seeds used.
+*/
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpProjectiveStereoRig.h>
+#include <visp3/projective/vpSimulatorStereoRig.h>
+
+#include "vpProjectiveTestTools.h"
+
+using namespace vpProjectiveTest;
+
+namespace
+{
+const double kSigma = 0.5; // pixel noise of the noisy tests (px)
+
+// Matches of n random points around the fixation point (a 24 cm cube, 1 m away: they fill most of both images).
+void randomMatches(const Scene &scene, vpUniRand &rng, size_t n, double sigma, vpGaussRand &noise,
+                   std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right,
+                   std::vector<vpColVector> *points = nullptr)
+{
+  const std::vector<vpColVector> wX = randomVisiblePoints(scene.sim, rng, Scene::fixation(), 0.12, n);
+  scene.sim.project(wX, left, right, sigma, noise);
+  if (points) {
+    *points = wX;
+  }
+}
+
+Eigen::Matrix3d trueF(const Scene &scene)
+{
+  return toEigen<3, 3>(scene.sim.getFundamentalMatrix());
+}
+
+// |m'^T F m| / (|m'| |F| |m|), the largest over the matches.
+double maxAlgebraicEpipolarResidual(const Eigen::Matrix3d &F, const std::vector<vpImagePoint> &left,
+                                    const std::vector<vpImagePoint> &right)
+{
+  double worst = 0.0;
+  for (size_t i = 0; i < left.size(); ++i) {
+    const Eigen::Vector3d m = pixel(left[i]), mp = pixel(right[i]);
+    worst = std::max(worst, std::abs(mp.dot(F * m)) / (mp.norm() * F.norm() * m.norm()));
+  }
+  return worst;
+}
+
+// Linear triangulation (DLT on row-normalised equations), the reference the refined triangulation must beat.
+Eigen::Vector4d triangulateDLT(const Eigen::Matrix<double, 3, 4> &P, const Eigen::Matrix<double, 3, 4> &Pp,
+                               const vpImagePoint &l, const vpImagePoint &r)
+{
+  Eigen::Matrix4d A;
+  A.row(0) = l.get_u() * P.row(2) - P.row(0);
+  A.row(1) = l.get_v() * P.row(2) - P.row(1);
+  A.row(2) = r.get_u() * Pp.row(2) - Pp.row(0);
+  A.row(3) = r.get_v() * Pp.row(2) - Pp.row(1);
+  for (int i = 0; i < 4; ++i) {
+    A.row(i).normalize();
+  }
+  Eigen::JacobiSVD<Eigen::Matrix4d> svd(A, Eigen::ComputeFullV);
+  return svd.matrixV().col(3);
+}
+
+// Reprojection error (px, both images together) of M against a match.
+double reprojectionError(const vpProjectiveStereoRig &rig, const Eigen::Vector4d &M, const vpImagePoint &l,
+                         const vpImagePoint &r)
+{
+  vpImagePoint pl, pr;
+  rig.project(toVispVector(M), pl, pr);
+  return std::sqrt(std::pow(pixelDistance(pl, l), 2) + std::pow(pixelDistance(pr, r), 2));
+}
+
+// Sampson's first-order approximation of the smallest reprojection error of a match consistent with F.
+double sampsonError(const Eigen::Matrix3d &F, const vpImagePoint &l, const vpImagePoint &r)
+{
+  const Eigen::Vector3d m = pixel(l), mp = pixel(r);
+  const Eigen::Vector3d Fm = F * m, Ftmp = F.transpose() * mp;
+  return std::abs(mp.dot(Fm)) / std::sqrt(Fm.head<2>().squaredNorm() + Ftmp.head<2>().squaredNorm());
+}
+} // namespace
+
+// ---------------------------------------------------------------------------------------------------------------
+// estimate()
+// ---------------------------------------------------------------------------------------------------------------
+
+TEST(vpProjectiveStereoRig, EstimateNoiseFreeIsExact)
+{
+  const Scene scene;
+  for (unsigned int seed = 1; seed <= 5; ++seed) {
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    vpUniRand rng(seed);
+    vpGaussRand noise(1.0, 0.0, static_cast<long>(seed));
+    std::vector<vpImagePoint> left, right;
+    randomMatches(scene, rng, 8 + 4 * seed, 0.0, noise, left, right);
+
+    vpProjectiveStereoRig rig;
+    ASSERT_FALSE(rig.isInitialized());
+    rig.estimate(left, right);
+    ASSERT_TRUE(rig.isInitialized());
+    const Eigen::Matrix3d F = toEigen<3, 3>(rig.getFundamentalMatrix());
+
+    // Epipolar constraint on the matches used and on fresh points.
+    EXPECT_LT(maxAlgebraicEpipolarResidual(F, left, right), 1e-8);
+    std::vector<vpImagePoint> freshLeft, freshRight;
+    randomMatches(scene, rng, 50, 0.0, noise, freshLeft, freshRight);
+    EXPECT_LT(maxAlgebraicEpipolarResidual(F, freshLeft, freshRight), 1e-8);
+    EXPECT_LT(rmsEpipolarDistance(F, freshLeft, freshRight), 1e-6);
+
+    // Proportional to the true F, unit norm, rank 2.
+    EXPECT_LT(relativeErrorUpToScale(F, trueF(scene)), 1e-6);
+    EXPECT_NEAR(F.norm(), 1.0, 1e-12);
+    EXPECT_LT(std::abs(F.determinant()), 1e-12);
+
+    EXPECT_LT(rig.getEstimationResidual(), 1e-6);
+    // (Which matches are flagged is tested in EstimateInliersAgreeWithReturnedF.)
+    ASSERT_EQ(rig.getInliers().size(), left.size());
+    EXPECT_GE(std::count(rig.getInliers().begin(), rig.getInliers().end(), true), 8);
+  }
+}
+
+/*
+  Noise sigma = 0.5 px on each coordinate, n = 50 matches (no wrong match), 20 seeds. First-order least squares:
+  - residual: the gold-standard fit has 4n measurements and 3n + 7 parameters, so the expected sum of squared
+    reprojection errors is (n - 7) sigma^2; getEstimationResidual() divides it by 2n (RMS distance per image point),
+    hence residual ~ sigma sqrt((n - 7) / (2n)) = 0.328 px. One seed's sum is chi-square with 43 dof (relative
+    std sqrt(2/43) = 0.22, i.e. 0.11 on the RMS): each seed must be within +-35 % (3 std), their mean within +-10 %.
+  - prediction: the epipolar distance of a noisy match has variance ~ 2 sigma^2 (noise in both images, the two
+    cameras have the same scale); the 7 parameters fitted on n constraints leave on fresh noise-free points a mean
+    squared epipolar distance of ~ (7/n) 2 sigma^2, RMS sigma sqrt(14/n) = 0.26 px. Bounds: the mean over seeds below
+    1.5x that (0.40 px), every seed below 3x (0.79 px).
+  Measured (20 seeds): residual mean 0.327 px, fresh RMS epipolar distance mean 0.28 px, max 0.42 px.
+  The inlier threshold is 5 px (7 std of the epipolar distance): there are no wrong matches here, and this test is
+  about accuracy; the inlier selection at a tight threshold is tested separately below.
+*/
+TEST(vpProjectiveStereoRig, EstimateNoisyReachesNoiseFloor)
+{
+  const Scene scene;
+  const size_t n = 50;
+  const double expectedResidual = kSigma * std::sqrt((n - 7.0) / (2.0 * n));
+  const double expectedPrediction = kSigma * std::sqrt(14.0 / n);
+  const int seeds = 20;
+  double sumResidual = 0.0, sumPrediction = 0.0, maxPrediction = 0.0, maxResidualDev = 0.0;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    vpUniRand rng(static_cast<uint64_t>(100 + seed));
+    vpGaussRand noise(1.0, 0.0, 100 + seed);
+    std::vector<vpImagePoint> left, right, freshLeft, freshRight;
+    randomMatches(scene, rng, n, kSigma, noise, left, right);
+    randomMatches(scene, rng, 200, 0.0, noise, freshLeft, freshRight);
+
+    vpProjectiveStereoRig rig;
+    rig.estimate(left, right, 5.0);
+    const Eigen::Matrix3d F = toEigen<3, 3>(rig.getFundamentalMatrix());
+    const double prediction = rmsEpipolarDistance(F, freshLeft, freshRight);
+    const double residual = rig.getEstimationResidual();
+    EXPECT_LT(prediction, 3.0 * expectedPrediction);
+    EXPECT_NEAR(residual / expectedResidual, 1.0, 0.35);
+    sumResidual += residual;
+    sumPrediction += prediction;
+    maxPrediction = std::max(maxPrediction, prediction);
+    maxResidualDev = std::max(maxResidualDev, std::abs(residual / expectedResidual - 1.0));
+  }
+  const double meanResidual = sumResidual / seeds, meanPrediction = sumPrediction / seeds;
+  std::cout << "[ stats    ] F, sigma " << kSigma << " px, n " << n << ": residual mean " << meanResidual
+            << " px (expected " << expectedResidual << "), max relative deviation " << maxResidualDev
+            << "; fresh RMS epipolar distance mean " << meanPrediction << " px, max " << maxPrediction
+            << " (first order " << expectedPrediction << ")" << std::endl;
+  EXPECT_NEAR(meanResidual / expectedResidual, 1.0, 0.10);
+  EXPECT_LT(meanPrediction, 1.5 * expectedPrediction);
+}
+
+/*
+  The same data with an inlier threshold of 100 px: every match is an inlier, so the result must be as accurate as
+  above (same per-seed bounds). A loose threshold must not let the refinement stop far from the optimum.
+*/
+TEST(vpProjectiveStereoRig, EstimateLooseThresholdStaysAccurate)
+{
+  const Scene scene;
+  const size_t n = 50;
+  const double expectedResidual = kSigma * std::sqrt((n - 7.0) / (2.0 * n));
+  const double expectedPrediction = kSigma * std::sqrt(14.0 / n);
+  for (int seed = 1; seed <= 20; ++seed) {
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    vpUniRand rng(static_cast<uint64_t>(100 + seed));
+    vpGaussRand noise(1.0, 0.0, 100 + seed);
+    std::vector<vpImagePoint> left, right, freshLeft, freshRight;
+    randomMatches(scene, rng, n, kSigma, noise, left, right);
+    randomMatches(scene, rng, 200, 0.0, noise, freshLeft, freshRight);
+
+    vpProjectiveStereoRig rig;
+    rig.estimate(left, right, 100.0);
+    EXPECT_LT(rmsEpipolarDistance(rig.fundamentalMatrix(), freshLeft, freshRight), 3.0 * expectedPrediction);
+    EXPECT_NEAR(rig.getEstimationResidual() / expectedResidual, 1.0, 0.35);
+  }
+}
+
+/*
+  The inlier flags agree with the returned F and the documented meaning of the threshold ("maximum distance in pixels
+  of an inlier to its epipolar line"): with the textbook threshold 3 sigma sqrt(2) = 2.1 px (3 std of the epipolar
+  distance of a noisy match), no match lying within 0.75 of the threshold of both its epipolar lines under the
+  returned F may be flagged an outlier (such a match was silently left out of the estimate).
+*/
+TEST(vpProjectiveStereoRig, EstimateInliersAgreeWithReturnedF)
+{
+  const Scene scene;
+  const size_t n = 50;
+  const double threshold = 3.0 * std::sqrt(2.0) * kSigma;
+  for (int seed = 1; seed <= 20; ++seed) {
+    SCOPED_TRACE(::testing::Message() << "seed " << seed);
+    vpUniRand rng(static_cast<uint64_t>(100 + seed));
+    vpGaussRand noise(1.0, 0.0, 100 + seed);
+    std::vector<vpImagePoint> left, right;
+    randomMatches(scene, rng, n, kSigma, noise, left, right);
+    vpProjectiveStereoRig rig;
+    rig.estimate(left, right, threshold);
+    for (size_t i = 0; i < n; ++i) {
+      const double d = epipolarDistances(rig.fundamentalMatrix(), left[i], right[i]).maxCoeff();
+      if (d < 0.75 * threshold) {
+        EXPECT_TRUE(rig.getInliers()[i]) << "match " << i << " at " << d << " px from its epipolar lines";
+      }
+    }
+  }
+  // Noise-free matches in general position, from the minimum of 8 up: all lie exactly on their epipolar lines, so
+  // the estimate must succeed and flag them all inliers.
+  for (size_t m = 8; m <= 20; ++m) {
+    SCOPED_TRACE(::testing::Message() << m << " noise-free matches");
+    vpUniRand rng(static_cast<uint64_t>(m));
+    vpGaussRand noise(1.0, 0.0, static_cast<long>(m));
+    std::vector<vpImagePoint> left, right;
+    randomMatches(scene, rng, m, 0.0, noise, left, right);
+    vpProjectiveStereoRig rig;
+    try {
+      rig.estimate(left, right);
+      EXPECT_EQ(std::count(rig.getInliers().begin(), rig.getInliers().end(), true), static_cast<long>(m));
+      EXPECT_LT(relativeErrorUpToScale(rig.fundamentalMatrix(), trueF(scene)), 1e-6);
+    } catch (const vpException &e) {
+      ADD_FAILURE() << "estimate() threw on exact matches: " << e.getStringMessage();
+    }
+  }
+}
+
+/*
+  20 % wrong matches: the right image point of 8 of 40 matches is replaced by the image of another random point,
+  drawn until it lies more than 20 px from the true epipolar line in both images (a closer "wrong" match would be
+  geometrically plausible). Noise-free with a 1 px threshold, and with 0.5 px noise with a 5 px threshold
+  (7 std of the epipolar distance, 4x below the outliers' distance): the wrong matches must all be rejected, the true
+  ones all kept, and F be exact (noise-free) or within the noisy test's per-seed bound for 32 matches (noisy).
+*/
+TEST(vpProjectiveStereoRig, EstimateRejectsOutliers)
+{
+  const Scene scene;
+  const Eigen::Matrix3d Ftrue = trueF(scene);
+  const size_t n = 40, nOut = 8;
+  for (int noisy = 0; noisy < 2; ++noisy) {
+    for (int seed = 1; seed <= 5; ++seed) {
+      SCOPED_TRACE(::testing::Message() << (noisy ? "noisy" : "noise-free") << ", seed " << seed);
+      const double sigma = noisy ? kSigma : 0.0;
+      vpUniRand rng(static_cast<uint64_t>(200 + seed));
+      vpGaussRand noise(1.0, 0.0, 200 + seed);
+      std::vector<vpImagePoint> left, right, freshLeft, freshRight;
+      randomMatches(scene, rng, n, sigma, noise, left, right);
+      randomMatches(scene, rng, 200, 0.0, noise, freshLeft, freshRight);
+      std::vector<bool> outlier(n, false);
+      for (size_t k = 0; k < nOut; ++k) {
+        const size_t i = static_cast<size_t>(rng.uniform(0, static_cast<int>(n)));
+        if (outlier[i]) {
+          --k;
+          continue;
+        }
+        for (;;) {
+          std::vector<vpImagePoint> otherLeft, otherRight;
+          randomMatches(scene, rng, 1, 0.0, noise, otherLeft, otherRight);
+          const Eigen::Vector2d d = epipolarDistances(Ftrue, left[i], otherRight[0]);
+          if (d.minCoeff() > 20.0) {
+            right[i] = otherRight[0];
+            break;
+          }
+        }
+        outlier[i] = true;
+      }
+
+      vpProjectiveStereoRig rig;
+      rig.estimate(left, right, noisy ? 5.0 : 1.0);
+      const std::vector<bool> &inliers = rig.getInliers();
+      ASSERT_EQ(inliers.size(), n);
+      size_t lost = 0;
+      for (size_t i = 0; i < n; ++i) {
+        if (outlier[i]) {
+          EXPECT_FALSE(inliers[i]) << "wrong match " << i << " kept";
+        } else if (!inliers[i]) {
+          ++lost;
+        }
+      }
+      const Eigen::Matrix3d F = toEigen<3, 3>(rig.getFundamentalMatrix());
+      EXPECT_EQ(lost, 0u);
+      if (noisy) {
+        EXPECT_LT(rmsEpipolarDistance(F, freshLeft, freshRight), 3.0 * kSigma * std::sqrt(14.0 / (n - nOut)));
+      } else {
+        EXPECT_LT(relativeErrorUpToScale(F, Ftrue), 1e-6);
+        EXPECT_LT(rig.getEstimationResidual(), 1e-6);
+      }
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The canonical frame
+// ---------------------------------------------------------------------------------------------------------------
+
+TEST(vpProjectiveStereoRig, FrameIndependentOfScaleAndSignOfF)
+{
+  const Scene scene;
+  const vpMatrix F = scene.sim.getFundamentalMatrix();
+  vpProjectiveStereoRig a, b;
+  a.setFundamentalMatrix(F);
+  b.setFundamentalMatrix(-3.0 * F);
+  const Eigen::Matrix<double, 3, 4> Pa = toEigen<3, 4>(a.getRightProjection());
+  const Eigen::Matrix<double, 3, 4> Pb = toEigen<3, 4>(b.getRightProjection());
+  EXPECT_LT(relativeError(Pb, Pa), 1e-12);
+  EXPECT_LT(relativeError(toEigen<3, 3>(b.getFundamentalMatrix()), toEigen<3, 3>(a.getFundamentalMatrix())), 1e-12);
+
+  // The same projective points, hence the same models, from either rig.
+  vpUniRand rng(7);
+  vpGaussRand noise(1.0, 0.0, 7);
+  std::vector<vpImagePoint> left, right;
+  randomMatches(scene, rng, 10, 0.0, noise, left, right);
+  for (size_t i = 0; i < left.size(); ++i) {
+    EXPECT_LT(
+        relativeErrorUpToScale(toEigen4(b.triangulate(left[i], right[i])), toEigen4(a.triangulate(left[i], right[i]))),
+        1e-10);
+  }
+}
+
+TEST(vpProjectiveStereoRig, CanonicalCameraPair)
+{
+  const Scene scene;
+  const vpProjectiveStereoRig &rig = scene.rig;
+  const Eigen::Matrix3d F = toEigen<3, 3>(rig.getFundamentalMatrix());
+  const Eigen::Matrix<double, 3, 4> P = toEigen<3, 4>(rig.getLeftProjection());
+  const Eigen::Matrix<double, 3, 4> Pp = toEigen<3, 4>(rig.getRightProjection());
+  Eigen::Matrix<double, 3, 4> I0 = Eigen::Matrix<double, 3, 4>::Zero();
+  I0.leftCols<3>().setIdentity();
+  EXPECT_EQ(P, I0);
+
+  const Eigen::Vector3d e = toEigen<3, 1>(rig.getLeftEpipole());
+  const Eigen::Vector3d ep = toEigen<3, 1>(rig.getRightEpipole());
+  EXPECT_NEAR(e.norm(), 1.0, 1e-12);
+  EXPECT_NEAR(ep.norm(), 1.0, 1e-12);
+  EXPECT_LT((F * e).norm(), 1e-12);
+  EXPECT_LT((F.transpose() * ep).norm(), 1e-12);
+  // The last column of P' is e', the image of the left camera centre (0, 0, 0, 1).
+  EXPECT_LT((Pp.col(3) - ep).norm(), 1e-12);
+  // P' is consistent with F: F ~ [e']_x P'(:, 0:3) (here exactly -F for unit e').
+  EXPECT_LT(relativeErrorUpToScale(Eigen::Matrix3d(skew(ep) * Pp.leftCols<3>()), F), 1e-12);
+  // ... and the left 3x3 block of P' is invertible (the frame is not degenerate).
+  EXPECT_GT(Eigen::JacobiSVD<Eigen::Matrix3d>(Pp.leftCols<3>()).singularValues()(2), 1e-3);
+
+  // Eigen accessors agree with the ViSP getters.
+  EXPECT_EQ(rig.fundamentalMatrix(), F);
+  EXPECT_EQ(rig.leftProjection(), P);
+  EXPECT_EQ(rig.rightProjection(), Pp);
+}
+
+TEST(vpProjectiveStereoRig, RankThreeInputIsProjectedOnRankTwo)
+{
+  const Scene scene;
+  vpUniRand rng(11);
+  vpMatrix F = scene.sim.getFundamentalMatrix();
+  for (unsigned int i = 0; i < 3; ++i) {
+    for (unsigned int j = 0; j < 3; ++j) {
+      F[i][j] += 1e-3 * rng.uniform(-1.0, 1.0);
+    }
+  }
+  ASSERT_GT(std::abs(toEigen<3, 3>(F).determinant()), 1e-12);
+  vpProjectiveStereoRig rig;
+  rig.setFundamentalMatrix(F);
+  const Eigen::Matrix3d F2 = rig.fundamentalMatrix();
+  EXPECT_LT(Eigen::JacobiSVD<Eigen::Matrix3d>(F2).singularValues()(2), 1e-14);
+  EXPECT_LT((F2 * toEigen<3, 1>(rig.getLeftEpipole())).norm(), 1e-12);
+  EXPECT_LT((F2.transpose() * toEigen<3, 1>(rig.getRightEpipole())).norm(), 1e-12);
+  // The closest rank-2 matrix is close to the input.
+  EXPECT_LT(relativeErrorUpToScale(F2, toEigen<3, 3>(F)), 1e-2);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// triangulate() and project()
+// ---------------------------------------------------------------------------------------------------------------
+
+TEST(vpProjectiveStereoRig, TriangulateNoiseFreeIsExact)
+{
+  const Scene scene;
+  vpUniRand rng(21);
+  vpGaussRand noise(1.0, 0.0, 21);
+  std::vector<vpImagePoint> left, right;
+  std::vector<vpColVector> wX;
+  randomMatches(scene, rng, 50, 0.0, noise, left, right, &wX);
+  double worstPixel = 0.0, worstPoint = 0.0;
+  for (size_t i = 0; i < wX.size(); ++i) {
+    const vpColVector M = scene.rig.triangulate(left[i], right[i]);
+    ASSERT_EQ(M.getRows(), 4u);
+    EXPECT_NEAR(M.frobeniusNorm(), 1.0, 1e-12);
+    vpImagePoint l, r;
+    scene.rig.project(M, l, r);
+    worstPixel = std::max(worstPixel, std::max(pixelDistance(l, left[i]), pixelDistance(r, right[i])));
+    // The true projective point H_PE^-1 N, up to scale and sign.
+    worstPoint = std::max(worstPoint, relativeErrorUpToScale(toEigen4(M), scene.projectivePoint(wX[i])));
+    // The Eigen overload gives the same point.
+    const Eigen::Vector4d Me = scene.rig.triangulate(Eigen::Vector2d(left[i].get_u(), left[i].get_v()),
+                                                     Eigen::Vector2d(right[i].get_u(), right[i].get_v()));
+    EXPECT_LT((Me - toEigen4(M)).norm(), 1e-15);
+  }
+  EXPECT_LT(worstPixel, 1e-8);
+  EXPECT_LT(worstPoint, 1e-8);
+}
+
+/*
+  0.5 px noise, 100 matches. The refined triangulation minimises the reprojection error over M, so it can be no worse
+  than the linear (DLT) point on any match; its minimum is, to first order, Sampson's error (relative accuracy of the
+  approximation ~ sigma / f, far below 2 %); and the squared minimum is sigma^2 chi-square with 1 dof (4
+  measurements, 3 point parameters), whose mean over 100 matches is within +-40 % of sigma^2 (2.8 std).
+  The corrected matches (projections of M) lie exactly on corresponding epipolar lines.
+*/
+TEST(vpProjectiveStereoRig, TriangulateNoisyIsOptimal)
+{
+  const Scene scene;
+  const vpProjectiveStereoRig &rig = scene.rig;
+  const Eigen::Matrix3d F = rig.fundamentalMatrix();
+  vpUniRand rng(31);
+  vpGaussRand noise(1.0, 0.0, 31);
+  std::vector<vpImagePoint> left, right;
+  randomMatches(scene, rng, 100, kSigma, noise, left, right);
+  double sumSquares = 0.0, sumLinear = 0.0, sumRefined = 0.0;
+  for (size_t i = 0; i < left.size(); ++i) {
+    SCOPED_TRACE(::testing::Message() << "match " << i);
+    const Eigen::Vector4d M = toEigen4(rig.triangulate(left[i], right[i]));
+    const Eigen::Vector4d Mlin = triangulateDLT(rig.leftProjection(), rig.rightProjection(), left[i], right[i]);
+    const double refined = reprojectionError(rig, M, left[i], right[i]);
+    const double linear = reprojectionError(rig, Mlin, left[i], right[i]);
+    const double sampson = sampsonError(F, left[i], right[i]);
+    EXPECT_LE(refined, linear + 1e-9);
+    EXPECT_NEAR(refined, sampson, 0.02 * sampson + 1e-6);
+    vpImagePoint l, r;
+    rig.project(toVispVector(M), l, r);
+    const Eigen::Vector3d m = pixel(l), mp = pixel(r);
+    EXPECT_LT(std::abs(mp.dot(F * m)) / (mp.norm() * m.norm()), 1e-12);
+    sumSquares += refined * refined;
+    sumLinear += linear;
+    sumRefined += refined;
+  }
+  const double meanSquare = sumSquares / left.size();
+  std::cout << "[ stats    ] triangulation, sigma " << kSigma << " px: mean squared refined error " << meanSquare
+            << " px^2 (expected " << kSigma * kSigma << "), mean error linear " << sumLinear / left.size()
+            << " px, refined " << sumRefined / left.size() << " px" << std::endl;
+  EXPECT_NEAR(meanSquare / (kSigma * kSigma), 1.0, 0.4);
+}
+
+TEST(vpProjectiveStereoRig, ProjectIsScaleAndSignInvariant)
+{
+  const Scene scene;
+  vpUniRand rng(41);
+  vpGaussRand noise(1.0, 0.0, 41);
+  std::vector<vpImagePoint> left, right;
+  std::vector<vpColVector> wX;
+  randomMatches(scene, rng, 20, 0.0, noise, left, right, &wX);
+  for (size_t i = 0; i < wX.size(); ++i) {
+    const Eigen::Vector4d M = scene.projectivePoint(wX[i]);
+    vpImagePoint l1, r1, l2, r2;
+    scene.rig.project(toVispVector(M), l1, r1);
+    scene.rig.project(toVispVector(Eigen::Vector4d(-2.0 * M)), l2, r2);
+    EXPECT_LT(pixelDistance(l1, l2), 1e-9);
+    EXPECT_LT(pixelDistance(r1, r2), 1e-9);
+    // And they are the simulator's images.
+    EXPECT_LT(pixelDistance(l1, left[i]), 1e-8);
+    EXPECT_LT(pixelDistance(r1, right[i]), 1e-8);
+    // The Eigen overload agrees.
+    Eigen::Vector4d s;
+    ASSERT_TRUE(scene.rig.project(M, s));
+    EXPECT_LT((s - Eigen::Vector4d(l1.get_u(), l1.get_v(), r1.get_u(), r1.get_v())).norm(), 1e-9);
+  }
+}
+
+TEST(vpProjectiveStereoRig, ProjectPointOnFocalPlaneThrows)
+{
+  const Scene scene;
+  const vpProjectiveStereoRig &rig = scene.rig;
+  vpImagePoint l, r;
+  // Left focal plane: (P M)_3 = M_3 = 0.
+  const Eigen::Vector4d Ml(1.0, 2.0, 0.0, 0.5);
+  EXPECT_TRUE(throwsProjective([&] { rig.project(toVispVector(Ml), l, r); },
+                               vpProjectiveException::pointAtInfinityError, "focal plane"));
+  Eigen::Vector4d s;
+  EXPECT_FALSE(rig.project(Ml, s));
+  // Right focal plane: (P' M)_3 = 0, M chosen orthogonal to the third row of P'.
+  // The two focal planes are nearly parallel (11 deg vergence): take the point of the right one closest to (0,0,1,0).
+  const Eigen::Vector4d p3 = rig.rightProjection().row(2).transpose();
+  Eigen::Vector4d Mr = Eigen::Vector4d::UnitZ() - p3(2) / p3.squaredNorm() * p3;
+  Mr.normalize();
+  ASSERT_GT(std::abs(Mr(2)), 1e-6); // far from the left focal plane at the library's 1e-12 tolerance
+  EXPECT_TRUE(throwsProjective([&] { rig.project(toVispVector(Mr), l, r); },
+                               vpProjectiveException::pointAtInfinityError, "focal plane"));
+  EXPECT_FALSE(rig.project(Mr, s));
+  // Close to, but off, the focal plane: a finite image.
+  EXPECT_NO_THROW(rig.project(toVispVector(Eigen::Vector4d(1.0, 2.0, 1e-6, 0.5)), l, r));
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// Invalid inputs
+// ---------------------------------------------------------------------------------------------------------------
+
+TEST(vpProjectiveStereoRig, EstimateInvalidInputsThrow)
+{
+  const Scene scene;
+  vpUniRand rng(51);
+  vpGaussRand noise(1.0, 0.0, 51);
+  std::vector<vpImagePoint> left, right;
+  randomMatches(scene, rng, 20, 0.0, noise, left, right);
+  vpProjectiveStereoRig rig;
+
+  const std::vector<vpImagePoint> left7(left.begin(), left.begin() + 7), right7(right.begin(), right.begin() + 7);
+  EXPECT_TRUE(throwsProjective([&] { rig.estimate(left7, right7); }, vpProjectiveException::notEnoughPointsError,
+                               "at least 8"));
+  const std::vector<vpImagePoint> right19(right.begin(), right.begin() + 19);
+  EXPECT_TRUE(
+      throwsProjective([&] { rig.estimate(left, right19); }, vpProjectiveException::dimensionError, "right points"));
+
+  std::vector<vpImagePoint> bad = left;
+  bad[3].set_u(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_TRUE(
+      throwsProjective([&] { rig.estimate(bad, right); }, vpProjectiveException::nonFiniteValueError, "not finite"));
+  bad = right;
+  bad[5].set_v(std::numeric_limits<double>::infinity());
+  EXPECT_TRUE(
+      throwsProjective([&] { rig.estimate(left, bad); }, vpProjectiveException::nonFiniteValueError, "not finite"));
+
+  EXPECT_TRUE(
+      throwsProjective([&] { rig.estimate(left, right, 0.0); }, vpProjectiveException::invalidValueError, "positive"));
+  EXPECT_TRUE(throwsProjective([&] { rig.estimate(left, right, std::numeric_limits<double>::quiet_NaN()); },
+                               vpProjectiveException::nonFiniteValueError, "not finite"));
+
+  // All points on one world plane: a homography relates the images and F is not determined.
+  std::vector<vpColVector> planar;
+  const vpColVector c = Scene::fixation();
+  while (planar.size() < 20) {
+    const double x = rng.uniform(-0.12, 0.12), y = rng.uniform(-0.1, 0.1);
+    const vpColVector X = point3(c[0] + x, c[1] + y, c[2] + 0.3 * x - 0.2 * y);
+    if (scene.sim.isVisible(X, 10.0)) {
+      planar.push_back(X);
+    }
+  }
+  std::vector<vpImagePoint> pl, pr;
+  imagesOf(scene.sim, planar, pl, pr);
+  EXPECT_TRUE(
+      throwsProjective([&] { rig.estimate(pl, pr); }, vpProjectiveException::degenerateConfigurationError, "plane"));
+  // Matches all on one image line.
+  std::vector<vpImagePoint> ll(12), lr(12);
+  for (size_t i = 0; i < ll.size(); ++i) {
+    ll[i].set_uv(100.0 + 30.0 * i, 200.0 + 10.0 * i);
+    lr[i].set_uv(80.0 + 31.0 * i, 190.0 + 12.0 * i);
+  }
+  EXPECT_TRUE(throwsProjective([&] { rig.estimate(ll, lr); }, vpProjectiveException::degenerateConfigurationError,
+                               "collinear"));
+  // Nothing of the failed calls was kept.
+  EXPECT_FALSE(rig.isInitialized());
+}
+
+TEST(vpProjectiveStereoRig, SetFundamentalMatrixInvalidInputsThrow)
+{
+  const Scene scene;
+  vpProjectiveStereoRig rig;
+  vpMatrix F = scene.sim.getFundamentalMatrix();
+  F[1][2] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(
+      throwsProjective([&] { rig.setFundamentalMatrix(F); }, vpProjectiveException::nonFiniteValueError, "not finite"));
+  F = scene.sim.getFundamentalMatrix();
+  F[0][0] = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(
+      throwsProjective([&] { rig.setFundamentalMatrix(F); }, vpProjectiveException::nonFiniteValueError, "not finite"));
+  EXPECT_TRUE(throwsProjective([&] { rig.setFundamentalMatrix(vpMatrix(4, 4, 1.0)); },
+                               vpProjectiveException::dimensionError, "must be 3x3"));
+  EXPECT_TRUE(throwsProjective([&] { rig.setFundamentalMatrix(vpMatrix(3, 4, 1.0)); },
+                               vpProjectiveException::dimensionError, "must be 3x3"));
+  EXPECT_TRUE(throwsProjective([&] { rig.setFundamentalMatrix(vpMatrix(3, 3, 0.0)); },
+                               vpProjectiveException::invalidValueError, "zero"));
+  EXPECT_TRUE(throwsProjective([&] { rig.setFundamentalMatrix(vpMatrix(3, 3, 1.0)); },
+                               vpProjectiveException::degenerateConfigurationError, "rank"));
+  EXPECT_FALSE(rig.isInitialized());
+}
+
+TEST(vpProjectiveStereoRig, UseBeforeInitialisationThrows)
+{
+  vpProjectiveStereoRig rig;
+  vpImagePoint l(240.0, 320.0), r(240.0, 300.0);
+  vpColVector M(4, 0.5);
+  const int code = vpProjectiveException::notInitializedError;
+  EXPECT_TRUE(throwsProjective([&] { rig.triangulate(l, r); }, code, "no fundamental matrix"));
+  EXPECT_TRUE(throwsProjective([&] { rig.project(M, l, r); }, code, "no fundamental matrix"));
+  EXPECT_TRUE(throwsProjective([&] { rig.getFundamentalMatrix(); }, code, "no fundamental matrix"));
+  EXPECT_TRUE(throwsProjective([&] { rig.getLeftProjection(); }, code, "no fundamental matrix"));
+  EXPECT_TRUE(throwsProjective([&] { rig.getRightProjection(); }, code, "no fundamental matrix"));
+  EXPECT_TRUE(throwsProjective([&] { rig.getLeftEpipole(); }, code, "no fundamental matrix"));
+  EXPECT_TRUE(throwsProjective([&] { rig.getRightEpipole(); }, code, "no fundamental matrix"));
+}
+
+TEST(vpProjectiveStereoRig, TriangulateAndProjectInvalidInputsThrow)
+{
+  const Scene scene;
+  const vpProjectiveStereoRig &rig = scene.rig;
+  vpImagePoint l(240.0, 320.0), r(240.0, 300.0);
+  vpImagePoint nan(std::numeric_limits<double>::quiet_NaN(), 300.0);
+  EXPECT_TRUE(
+      throwsProjective([&] { rig.triangulate(nan, r); }, vpProjectiveException::nonFiniteValueError, "not finite"));
+  EXPECT_TRUE(
+      throwsProjective([&] { rig.triangulate(l, nan); }, vpProjectiveException::nonFiniteValueError, "not finite"));
+
+  vpImagePoint pl, pr;
+  EXPECT_TRUE(throwsProjective([&] { rig.project(vpColVector(3, 1.0), pl, pr); }, vpProjectiveException::dimensionError,
+                               "must have 4 entries"));
+  EXPECT_TRUE(throwsProjective([&] { rig.project(vpColVector(5, 1.0), pl, pr); }, vpProjectiveException::dimensionError,
+                               "must have 4 entries"));
+  vpColVector M(4, 1.0);
+  M[2] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(
+      throwsProjective([&] { rig.project(M, pl, pr); }, vpProjectiveException::nonFiniteValueError, "not finite"));
+  EXPECT_TRUE(throwsProjective([&] { rig.project(vpColVector(4, 0.0), pl, pr); },
+                               vpProjectiveException::invalidValueError, "zero vector"));
+}

@@ -1,0 +1,272 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ */
+
+/*
+  Helpers shared by the GoogleTest suites (header only, not a test itself): a ground-truth scene built on
+  vpSimulatorStereoRig, seeded random point sets, Eigen/ViSP conversions, error measures and a checker for the
+  plugin's exceptions. Every random number comes from a vpUniRand or vpGaussRand seeded by the caller (ViSP's own
+  generators, so that the draws do not depend on the C++ standard library), hence every failure reproduces.
+*/
+
+#ifndef _vpProjectiveTestTools_h_
+#define _vpProjectiveTestTools_h_
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <gtest/gtest.h>
+
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpException.h>
+#include <visp3/core/vpGaussRand.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpMatrix.h>
+#include <visp3/core/vpUniRand.h>
+
+#include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpProjectiveStereoRig.h>
+#include <visp3/projective/vpSimulatorStereoRig.h>
+
+namespace vpProjectiveTest
+{
+template <int R, int C> Eigen::Matrix<double, R, C> toEigen(const vpArray2D<double> &A)
+{
+  Eigen::Matrix<double, R, C> E;
+  for (int i = 0; i < R; ++i) {
+    for (int j = 0; j < C; ++j) {
+      E(i, j) = A[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)];
+    }
+  }
+  return E;
+}
+
+inline Eigen::Vector4d toEigen4(const vpColVector &v)
+{
+  return Eigen::Vector4d(v[0], v[1], v[2], v[3]);
+}
+
+template <typename Derived> vpMatrix toVisp(const Eigen::MatrixBase<Derived> &E)
+{
+  vpMatrix A(static_cast<unsigned int>(E.rows()), static_cast<unsigned int>(E.cols()));
+  for (int i = 0; i < E.rows(); ++i) {
+    for (int j = 0; j < E.cols(); ++j) {
+      A[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)] = E(i, j);
+    }
+  }
+  return A;
+}
+
+inline vpColVector toVispVector(const Eigen::Vector4d &E)
+{
+  vpColVector v(4);
+  for (unsigned int i = 0; i < 4; ++i) {
+    v[i] = E(static_cast<int>(i));
+  }
+  return v;
+}
+
+inline vpColVector point3(double x, double y, double z)
+{
+  vpColVector p(3);
+  p[0] = x;
+  p[1] = y;
+  p[2] = z;
+  return p;
+}
+
+inline Eigen::Vector3d pixel(const vpImagePoint &ip)
+{
+  return Eigen::Vector3d(ip.get_u(), ip.get_v(), 1.0);
+}
+
+inline double pixelDistance(const vpImagePoint &a, const vpImagePoint &b)
+{
+  return std::hypot(a.get_u() - b.get_u(), a.get_v() - b.get_v());
+}
+
+//! ||A - B||_F / ||B||_F.
+template <typename DA, typename DB> double relativeError(const Eigen::MatrixBase<DA> &A, const Eigen::MatrixBase<DB> &B)
+{
+  return (A - B).norm() / B.norm();
+}
+
+//! Distance between the unit-norm versions of A and B, minimised over the sign: compares A and B up to scale.
+template <typename DA, typename DB>
+double relativeErrorUpToScale(const Eigen::MatrixBase<DA> &A, const Eigen::MatrixBase<DB> &B)
+{
+  const auto a = A / A.norm();
+  const auto b = B / B.norm();
+  return std::min((a - b).norm(), (a + b).norm());
+}
+
+inline Eigen::Matrix3d skew(const Eigen::Vector3d &w)
+{
+  Eigen::Matrix3d S;
+  S << 0, -w(2), w(1), w(2), 0, -w(0), -w(1), w(0), 0;
+  return S;
+}
+
+//! Symmetric epipolar distances (pixels) of a match to the epipolar lines of F: (left image, right image).
+inline Eigen::Vector2d epipolarDistances(const Eigen::Matrix3d &F, const vpImagePoint &left, const vpImagePoint &right)
+{
+  const Eigen::Vector3d m = pixel(left), mp = pixel(right);
+  const Eigen::Vector3d lp = F * m;             // epipolar line of m in the right image
+  const Eigen::Vector3d l = F.transpose() * mp; // epipolar line of m' in the left image
+  const double a = mp.dot(F * m);
+  return Eigen::Vector2d(std::abs(a) / l.head<2>().norm(), std::abs(a) / lp.head<2>().norm());
+}
+
+//! RMS over matches and both images of the epipolar distances (pixels).
+inline double rmsEpipolarDistance(const Eigen::Matrix3d &F, const std::vector<vpImagePoint> &left,
+                                  const std::vector<vpImagePoint> &right)
+{
+  double sum = 0.0;
+  for (size_t i = 0; i < left.size(); ++i) {
+    sum += epipolarDistances(F, left[i], right[i]).squaredNorm();
+  }
+  return std::sqrt(sum / (2.0 * static_cast<double>(left.size())));
+}
+
+/*!
+  The ground truth: the paper's rig (20 cm baseline, f = 1666.7 px, 640x480) looking at a fixation point 1 m away,
+  placed off the world origin so that the world, left-camera and projective frames all differ; a vpProjectiveStereoRig
+  given the true F; and H_PE of that rig's frame (N ~ H_PE M, N homogeneous left-camera coordinates).
+*/
+struct Scene {
+  vpSimulatorStereoRig sim;
+  vpProjectiveStereoRig rig;
+  Eigen::Matrix4d Hpe;
+  Eigen::Matrix4d HpeInv;
+
+  static vpColVector fixation() { return point3(0.2, -0.1, 1.5); }
+
+  Scene() : sim(vpSimulatorStereoRig::paperRig(fixation(), 1.0)), rig(), Hpe(), HpeInv()
+  {
+    rig.setFundamentalMatrix(sim.getFundamentalMatrix());
+    Hpe = toEigen<4, 4>(sim.getProjectiveToEuclidean(rig));
+    HpeInv = Hpe.inverse();
+  }
+
+  //! Homogeneous left-camera coordinates N = lMw (X, 1) of a world point (3x1).
+  Eigen::Vector4d cameraPoint(const vpColVector &wX) const
+  {
+    const vpHomogeneousMatrix lMw = sim.get_wMl().inverse();
+    Eigen::Vector4d N;
+    for (unsigned int i = 0; i < 3; ++i) {
+      N(static_cast<int>(i)) = lMw[i][0] * wX[0] + lMw[i][1] * wX[1] + lMw[i][2] * wX[2] + lMw[i][3];
+    }
+    N(3) = 1.0;
+    return N;
+  }
+
+  //! The true projective point H_PE^-1 N of a world point, unit norm (its sign is arbitrary).
+  Eigen::Vector4d projectivePoint(const vpColVector &wX) const { return (HpeInv * cameraPoint(wX)).normalized(); }
+
+  //! A world displacement as a metric displacement of the left camera frame, T_l = lMw T wMl.
+  Eigen::Matrix4d cameraDisplacement(const vpHomogeneousMatrix &wT) const
+  {
+    return toEigen<4, 4>(sim.toCameraFrame(vpMatrix(wT)));
+  }
+
+  //! The true p-displacement H_PE^-1 T_l H_PE (not normalised).
+  Eigen::Matrix4d projectiveDisplacement(const vpHomogeneousMatrix &wT) const
+  {
+    return HpeInv * cameraDisplacement(wT) * Hpe;
+  }
+
+  //! Direction (3x1 world) and point (3x1 world) of an axis, expressed in the left camera frame.
+  Eigen::Vector3d cameraDirection(const vpColVector &wDir) const
+  {
+    const vpHomogeneousMatrix lMw = sim.get_wMl().inverse();
+    Eigen::Vector3d d;
+    for (unsigned int i = 0; i < 3; ++i) {
+      d(static_cast<int>(i)) = lMw[i][0] * wDir[0] + lMw[i][1] * wDir[1] + lMw[i][2] * wDir[2];
+    }
+    return d;
+  }
+};
+
+//! A random unit 3-vector (world frame).
+inline vpColVector randomDirection(vpUniRand &rng)
+{
+  for (;;) {
+    const vpColVector d = point3(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
+    const double n = d.frobeniusNorm();
+    if (n > 0.2 && n <= 1.0) {
+      return d / n;
+    }
+  }
+}
+
+/*!
+  \e n random world points, uniform in the cube of half side \e halfSide centred at \e center, each visible in both
+  images at least \e margin pixels inside their borders (rejection sampling).
+*/
+inline std::vector<vpColVector> randomVisiblePoints(const vpSimulatorStereoRig &sim, vpUniRand &rng,
+                                                    const vpColVector &center, double halfSide, size_t n,
+                                                    double margin = 10.0)
+{
+  std::vector<vpColVector> points;
+  while (points.size() < n) {
+    const vpColVector X =
+        point3(center[0] + rng.uniform(-halfSide, halfSide), center[1] + rng.uniform(-halfSide, halfSide),
+               center[2] + rng.uniform(-halfSide, halfSide));
+    if (sim.isVisible(X, margin)) {
+      points.push_back(X);
+    }
+  }
+  return points;
+}
+
+//! Noise-free images of world points.
+inline void imagesOf(const vpSimulatorStereoRig &sim, const std::vector<vpColVector> &wX,
+                     std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right)
+{
+  vpGaussRand unused(1.0, 0.0, 1);
+  sim.project(wX, left, right, 0.0, unused);
+}
+
+/*!
+  Checks that \e f throws a vpProjectiveException (caught as a vpException) of code \e code whose message contains
+  \e word.
+*/
+template <typename Callable>::testing::AssertionResult throwsProjective(Callable &&f, int code, const std::string &word)
+{
+  try {
+    f();
+  } catch (const vpException &e) {
+    if (dynamic_cast<const vpProjectiveException *>(&e) == nullptr) {
+      return ::testing::AssertionFailure()
+             << "a vpException that is no vpProjectiveException: " << e.getStringMessage();
+    }
+    if (e.getCode() != code) {
+      return ::testing::AssertionFailure()
+             << "code " << e.getCode() << " instead of " << code << ": " << e.getStringMessage();
+    }
+    if (e.getStringMessage().find(word) == std::string::npos) {
+      return ::testing::AssertionFailure()
+             << "message \"" << e.getStringMessage() << "\" does not contain \"" << word << "\"";
+    }
+    return ::testing::AssertionSuccess();
+  } catch (const std::exception &e) {
+    return ::testing::AssertionFailure() << "a std::exception instead of a vpProjectiveException: " << e.what();
+  } catch (...) {
+    return ::testing::AssertionFailure() << "an unknown exception instead of a vpProjectiveException";
+  }
+  return ::testing::AssertionFailure() << "no exception thrown";
+}
+
+//! Singular values of a 4x4 matrix, decreasing.
+inline Eigen::Vector4d singularValues(const Eigen::Matrix4d &A)
+{
+  return Eigen::JacobiSVD<Eigen::Matrix4d>(A).singularValues();
+}
+
+} // namespace vpProjectiveTest
+
+#endif
