@@ -100,18 +100,18 @@ vpProjectiveRotation vpProjectiveRotation::log(const Eigen::Matrix4d &H, double 
   }
   const vpProjectiveDisplacement D(H); // normalises (12), rejects singular or non-finite H
   theta = D.getRotationAngle();
-  const double s = std::sin(theta);
-  if (!(s > 1e-6)) {
+  // With an encoder amount, sin(amount) replaces sin(theta): the trace of a noisy H is a poor angle estimate (it can
+  // even exceed 4), while the encoder reading is exact; its sign also fixes the generator's sign.
+  const double s = amount != 0.0 ? std::sin(amount) : std::sin(theta);
+  if (!(std::abs(s) > 1e-6)) {
     std::ostringstream os;
-    os << "the rotation angle " << theta
-       << " rad is too close to 0 or pi for the logarithm (25); use a trial motion between a few degrees and 170 deg";
+    os << "the rotation angle " << (amount != 0.0 ? amount : theta)
+       << " rad is too close to a multiple of pi for the logarithm (25); use a trial motion between a few degrees and "
+          "170 deg";
     fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
   }
   const Eigen::Matrix4d &Hn = D.matrix();
-  Eigen::Matrix4d Hhat = project((Hn - Hn.inverse()) / (2.0 * s));
-  if (amount < 0.0) {
-    Hhat = -Hhat; // exp(theta G) = exp((-theta)(-G)): the encoder fixes the sign
-  }
+  const Eigen::Matrix4d Hhat = project((Hn - Hn.inverse()) / (2.0 * s));
   vpProjectiveRotation R;
   R.m_Hhat = Hhat;
   return R;

@@ -45,12 +45,15 @@ public:
   explicit vpProjectiveRotation(const Eigen::Matrix4d &Hhat, double tolerance = 1e-6);
 
   /*!
-    Logarithm (25) of a p-rotation: the generator \f$ \hat H_R \f$ and angle \f$ \theta \in (0, \pi) \f$ with
-    \f$ H \simeq \exp(\theta \hat H_R) \f$. \e H may have any scale: it is normalised first (12).
-    If \e amount is non-zero (a signed trial angle read by the joint encoder) the generator's sign is chosen so that
-    \f$ H = \exp(\mathrm{amount}\, \hat H_R) \f$ up to the noise in \e H; \e theta still receives the image angle.
-    \exception vpProjectiveException if H is singular, not finite, or its angle is too close to 0 or \f$ \pi \f$ for
-    the logarithm to be defined.
+    Logarithm (25) of a p-rotation: the generator \f$ \hat H_R \f$ with \f$ H \simeq \exp(\theta \hat H_R) \f$,
+    projected on the exact generators (see project()). \e H may have any scale: it is normalised first (12).
+    \e theta receives the image angle \f$ \theta \in [0, \pi] \f$ of eq. (21).
+    If \e amount is non-zero (a signed trial angle read by the joint encoder) the generator is
+    \f$ (H - H^{-1}) / (2 \sin(\mathrm{amount})) \f$, so that \f$ H = \exp(\mathrm{amount}\, \hat H_R) \f$ up to the
+    noise in \e H: the encoder is more reliable than the trace of a noisy \e H, and fixes the generator's sign.
+    Otherwise \f$ \sin\theta \f$ is used and \f$ \theta \in (0, \pi) \f$.
+    \exception vpProjectiveException if H is singular or not finite, or the angle used is too close to a multiple of
+    \f$ \pi \f$ for the logarithm to be defined.
   */
   static vpProjectiveRotation log(const Eigen::Matrix4d &H, double &theta, double amount = 0.0);
   static vpProjectiveRotation log(const vpMatrix &H, double &theta, double amount = 0.0);
