@@ -20,8 +20,8 @@ const char *const kClass = "vpServoProjective";
 }
 
 vpServoProjective::vpServoProjective()
-  : m_robot(nullptr), m_features(), m_desired(), m_lambda(0.5), m_sigmaThreshold(1.0), m_maxDamping(10.0), m_J(),
-    m_e(), m_condition(0.0), m_damping(0.0), m_lambdaUsed(0.0)
+  : m_robot(nullptr), m_features(), m_desired(), m_lambda(0.5), m_sigmaThreshold(30.0), m_maxDamping(30.0),
+    m_qdotMax(0.0), m_J(), m_e(), m_condition(0.0), m_damping(0.0), m_lambdaUsed(0.0), m_saturated(false)
 {
 }
 
@@ -69,6 +69,16 @@ void vpServoProjective::setDamping(double sigmaThreshold, double maxDamping)
   }
   m_sigmaThreshold = sigmaThreshold;
   m_maxDamping = maxDamping;
+}
+
+void vpServoProjective::setMaxJointVelocity(double qdotMax)
+{
+  const std::string where = std::string(kClass) + "::setMaxJointVelocity()";
+  requireFinite(qdotMax, where, "the maximum joint velocity");
+  if (qdotMax < 0.0) {
+    fail(vpProjectiveException::invalidValueError, where, "the maximum joint velocity must be positive (0 disables)");
+  }
+  m_qdotMax = qdotMax;
 }
 
 void vpServoProjective::addFeature(vpFeatureStereoPoint &s, vpFeatureStereoPoint &s_star)
@@ -156,6 +166,11 @@ void vpServoProjective::computeControlLaw(const vpProjectiveRobot::JointVector &
   A.diagonal().array() += mu2;
   m_lambdaUsed = m_lambda(m_e.cwiseAbs().maxCoeff());
   qdot = -m_lambdaUsed * A.ldlt().solve(b);
+  const double largest = qdot.cwiseAbs().maxCoeff();
+  m_saturated = m_qdotMax > 0.0 && largest > m_qdotMax;
+  if (m_saturated) {
+    qdot *= m_qdotMax / largest;
+  }
   if (!qdot.allFinite()) {
     fail(vpProjectiveException::estimationFailedError, where,
          "the control law gave a non-finite velocity (singular task Jacobian); increase the damping");
