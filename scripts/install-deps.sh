@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages visp_projective needs, only when one is missing (run as root).
 set -euo pipefail
+# dpkg-dev: apt-get source visp (tests/contrib/build-visp-with-module.sh); doxygen: the doc target and its ctest case.
 packages=(build-essential cmake libvisp-dev libeigen3-dev libopencv-dev libceres-dev libgtest-dev libbenchmark-dev
-          gnuplot-nox)
+          gnuplot-nox dpkg-dev doxygen)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
