@@ -228,12 +228,23 @@ vpProjectiveDisplacement vpProjectiveDisplacement::estimate(const vpProjectiveSt
     os << "needs at least 5 points seen before and after the motion, got " << n;
     fail(vpProjectiveException::notEnoughPointsError, where, os.str());
   }
-  std::vector<Eigen::Vector4d> s0(n), s1(n), M0(n), M1(n);
+  std::vector<Eigen::Vector4d> s0(n), s1(n);
   for (size_t j = 0; j < n; ++j) {
     s0[j] << toEigen(left0[j], where, "a left image point before the motion"),
         toEigen(right0[j], where, "a right image point before the motion");
     s1[j] << toEigen(left1[j], where, "a left image point after the motion"),
         toEigen(right1[j], where, "a right image point after the motion");
+  }
+  return vpProjectiveDisplacement(estimateFromImages(rig, s0, s1));
+}
+
+Eigen::Matrix4d vpProjectiveDisplacement::estimateFromImages(const vpProjectiveStereoRig &rig,
+                                                             const std::vector<Eigen::Vector4d> &s0,
+                                                             const std::vector<Eigen::Vector4d> &s1)
+{
+  const size_t n = s0.size();
+  std::vector<Eigen::Vector4d> M0(n), M1(n);
+  for (size_t j = 0; j < n; ++j) {
     M0[j] = rig.triangulate(Eigen::Vector2d(s0[j].head<2>()), Eigen::Vector2d(s0[j].tail<2>()));
     M1[j] = rig.triangulate(Eigen::Vector2d(s1[j].head<2>()), Eigen::Vector2d(s1[j].tail<2>()));
   }
@@ -259,9 +270,9 @@ vpProjectiveDisplacement vpProjectiveDisplacement::estimate(const vpProjectiveSt
   ceres::Solve(options, &problem, &summary);
   const Eigen::Matrix4d Hrefined = H;
   if (!Hrefined.allFinite() || summary.final_cost > summary.initial_cost) {
-    return vpProjectiveDisplacement(Hlin);
+    return Hlin;
   }
-  return vpProjectiveDisplacement(Hrefined);
+  return normalize(Hrefined);
 }
 
 vpMatrix vpProjectiveDisplacement::getMatrix() const { return toVisp(m_H); }

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <Eigen/Dense>
@@ -298,38 +299,92 @@ void vpProjectiveRobot::addTrialMotion(unsigned int i, double amount, const std:
   m_calibrated = false;
 }
 
-void vpProjectiveRobot::algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat) const
+std::vector<Eigen::Vector4d> vpProjectiveRobot::triangulateZeroReference() const
 {
-  const std::string where = at("calibrate()");
-  const size_t n = m_types.size();
   std::vector<Eigen::Vector4d> M0(m_zeroImages.size());
   for (size_t j = 0; j < M0.size(); ++j) {
     M0[j] = m_rig.triangulate(Eigen::Vector2d(m_zeroImages[j].head<2>()), Eigen::Vector2d(m_zeroImages[j].tail<2>()));
   }
-  Hhat.assign(n, Eigen::Matrix4d::Zero());
-  std::vector<int> count(n, 0);
+  return M0;
+}
+
+void vpProjectiveRobot::algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat) const
+{
+  const std::string where = at("calibrate()");
+  const size_t n = m_types.size();
+  // Candidate generators of each joint: the logarithm of each of its trials, and their projected mean.
+  std::vector<std::vector<Eigen::Matrix4d>> candidates(n);
   for (const vpTrial &trial : m_trials) {
-    std::vector<Eigen::Vector4d> M1(trial.s.size());
-    for (size_t j = 0; j < M1.size(); ++j) {
-      M1[j] = m_rig.triangulate(Eigen::Vector2d(trial.s[j].head<2>()), Eigen::Vector2d(trial.s[j].tail<2>()));
+    // A blocked joint or a tiny trial leaves the markers where they were: H = I has no logarithm to speak of.
+    double motion = 0.0;
+    for (size_t j = 0; j < trial.s.size(); ++j) {
+      motion += (trial.s[j] - m_zeroImages[j]).squaredNorm();
     }
-    const Eigen::Matrix4d H = vpProjectiveDisplacement::estimateLinear(M0, M1);
-    if (m_types[trial.joint] == REVOLUTE) {
-      double theta = 0.0;
-      Hhat[trial.joint] += vpProjectiveRotation::log(H, theta, trial.amount).generator();
-    } else {
-      Hhat[trial.joint] += vpProjectiveTranslation::log(H, trial.amount).generator();
+    motion = std::sqrt(motion / (2.0 * static_cast<double>(trial.s.size())));
+    if (motion < 1.0) {
+      std::ostringstream os;
+      os << "the trial of joint " << trial.joint << " by " << trial.amount << " moved the markers by only " << motion
+         << " px RMS; the joint may be blocked or the trial too small to observe (use 20 to 60 deg)";
+      fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
     }
-    ++count[trial.joint];
+    // Maximum-likelihood displacement: the linear one from 7 noisy markers is too poor a start for the upgrade.
+    const Eigen::Matrix4d H = vpProjectiveDisplacement::estimateFromImages(m_rig, m_zeroImages, trial.s);
+    double theta = 0.0;
+    candidates[trial.joint].push_back(m_types[trial.joint] == REVOLUTE
+                                          ? vpProjectiveRotation::log(H, theta, trial.amount).generator()
+                                          : vpProjectiveTranslation::log(H, trial.amount).generator());
   }
+  // A single trial's homography occasionally lands far off (a small marker set gives a poorly conditioned 15-dof
+  // fit), which spoils the mean: keep the candidate that best predicts all the trials of its joint.
+  const std::vector<Eigen::Vector4d> M0 = triangulateZeroReference();
+  Hhat.assign(n, Eigen::Matrix4d::Zero());
   for (size_t i = 0; i < n; ++i) {
-    if (count[i] == 0) {
+    if (candidates[i].empty()) {
       std::ostringstream os;
       os << "joint " << i << " has no trial motion; call addTrialMotion(" << i << ", amount, left, right) first";
       fail(vpProjectiveException::notInitializedError, where, os.str());
     }
-    Hhat[i] /= count[i];
-    Hhat[i] = m_types[i] == REVOLUTE ? vpProjectiveRotation::project(Hhat[i]) : vpProjectiveTranslation::project(Hhat[i]);
+    Eigen::Matrix4d mean = Eigen::Matrix4d::Zero();
+    for (const Eigen::Matrix4d &G : candidates[i]) {
+      if (G.allFinite()) {
+        mean += G / static_cast<double>(candidates[i].size());
+      }
+    }
+    candidates[i].push_back(m_types[i] == REVOLUTE ? vpProjectiveRotation::project(mean)
+                                                   : vpProjectiveTranslation::project(mean));
+    double best = std::numeric_limits<double>::quiet_NaN();
+    for (const Eigen::Matrix4d &G : candidates[i]) {
+      if (!G.allFinite()) {
+        continue; // the projection of a degenerate logarithm
+      }
+      double sum = 0.0;
+      size_t count = 0;
+      accumulateTrialError(static_cast<unsigned int>(i), G, M0, sum, count);
+      const double error = sum / static_cast<double>(count);
+      if (!(error >= best)) { // the first finite candidate, then any better one
+        best = error;
+        Hhat[i] = G;
+      }
+    }
+  }
+}
+
+void vpProjectiveRobot::accumulateTrialError(unsigned int i, const Eigen::Matrix4d &Hhat,
+                                             const std::vector<Eigen::Vector4d> &M0, double &sum, size_t &count) const
+{
+  // A prediction with no image (on a camera's focal plane) counts as an error of one image diagonal per coordinate.
+  const double noImage = 1e6;
+  for (const vpTrial &trial : m_trials) {
+    if (trial.joint != i) {
+      continue;
+    }
+    const Eigen::Matrix4d H = m_types[i] == REVOLUTE ? vpProjectiveRotation::exp(Hhat, trial.amount)
+                                                     : vpProjectiveTranslation::exp(Hhat, trial.amount);
+    for (size_t j = 0; j < M0.size(); ++j) {
+      Eigen::Vector4d s;
+      sum += m_rig.project(Eigen::Vector4d(H * M0[j]), s) ? (s - trial.s[j]).squaredNorm() : 4.0 * noImage * noImage;
+      count += 4;
+    }
   }
 }
 
@@ -338,17 +393,8 @@ double vpProjectiveRobot::predictionResidual(const std::vector<Eigen::Matrix4d> 
 {
   double sum = 0.0;
   size_t count = 0;
-  for (const vpTrial &trial : m_trials) {
-    const Eigen::Matrix4d H = m_types[trial.joint] == REVOLUTE
-                                  ? vpProjectiveRotation::exp(Hhat[trial.joint], trial.amount)
-                                  : vpProjectiveTranslation::exp(Hhat[trial.joint], trial.amount);
-    for (size_t j = 0; j < M0.size(); ++j) {
-      Eigen::Vector4d s;
-      if (m_rig.project(Eigen::Vector4d(H * M0[j]), s)) {
-        sum += (s - trial.s[j]).squaredNorm();
-        count += 4;
-      }
-    }
+  for (unsigned int i = 0; i < m_types.size(); ++i) {
+    accumulateTrialError(i, Hhat[i], M0, sum, count);
   }
   return count > 0 ? std::sqrt(sum / static_cast<double>(count)) : 0.0;
 }
@@ -357,10 +403,7 @@ void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Matrix4d> &Hhat)
 {
   const size_t n = m_types.size();
   const size_t K = m_zeroImages.size();
-  std::vector<Eigen::Vector4d> M0(K);
-  for (size_t j = 0; j < K; ++j) {
-    M0[j] = m_rig.triangulate(Eigen::Vector2d(m_zeroImages[j].head<2>()), Eigen::Vector2d(m_zeroImages[j].tail<2>()));
-  }
+  const std::vector<Eigen::Vector4d> M0 = triangulateZeroReference();
 
   // 1. Conditioning: whiten the projective frame with the zero-reference points.
   const Eigen::Matrix4d Tn = whitening(M0);
@@ -373,7 +416,13 @@ void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Matrix4d> &Hhat)
   // 2. Affine step: the plane pi with pi^T Hhat_i = 0 for every joint is the plane at infinity.
   Eigen::Matrix<double, 4, Eigen::Dynamic> stacked(4, 4 * n);
   for (size_t i = 0; i < n; ++i) {
-    stacked.block<4, 4>(0, 4 * static_cast<Eigen::Index>(i)) = Hw[i] / Hw[i].norm();
+    const double norm = Hw[i].norm();
+    if (!(norm > 0.0) || !Hw[i].allFinite()) {
+      std::ostringstream os;
+      os << "the algebraic generator of joint " << i << " is zero or not finite; check its trial motions";
+      fail(vpProjectiveException::estimationFailedError, at("calibrate()"), os.str());
+    }
+    stacked.block<4, 4>(0, 4 * static_cast<Eigen::Index>(i)) = Hw[i] / norm;
   }
   Eigen::JacobiSVD<Eigen::MatrixXd> svdPi(stacked, Eigen::ComputeFullU);
   const Eigen::Vector4d pi = svdPi.matrixU().col(3);
@@ -420,6 +469,11 @@ void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Matrix4d> &Hhat)
     S.topLeftCorner<3, 3>() /= spread;
     S.topRightCorner<3, 1>() = -centroid / spread;
     G = S * G;
+  }
+  if (!G.allFinite() || !(std::abs(G.determinant()) > 0.0)) {
+    fail(vpProjectiveException::estimationFailedError, at("calibrate()"),
+         "the affine and metric upgrade of the generators failed; check that the trial motions are large enough and "
+         "that the markers are matched in the same order in every image");
   }
   const Eigen::Matrix4d GinvInit = G.inverse();
 
@@ -492,8 +546,10 @@ void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Matrix4d> &Hhat)
          "the bundle adjustment of the generators failed; check that the trial motions are large enough and that "
          "the markers are matched in the same order in every image");
   }
-  m_Ginv = GinvFinal;
+  // G is the model; its inverse is recomputed from it exactly as loadModel() does, so that a saved and reloaded
+  // model gives bit-identical generators and Jacobians.
   m_G = GinvFinal.inverse();
+  m_Ginv = m_G.inverse();
   m_axis = axis;
   m_point = point;
   for (size_t i = 0; i < n; ++i) {
@@ -530,11 +586,7 @@ void vpProjectiveRobot::calibrate()
   }
   std::vector<Eigen::Matrix4d> Hhat;
   algebraicGenerators(Hhat);
-  std::vector<Eigen::Vector4d> M0(m_zeroImages.size());
-  for (size_t j = 0; j < M0.size(); ++j) {
-    M0[j] = m_rig.triangulate(Eigen::Vector2d(m_zeroImages[j].head<2>()), Eigen::Vector2d(m_zeroImages[j].tail<2>()));
-  }
-  m_algebraicResidual = predictionResidual(Hhat, M0);
+  m_algebraicResidual = predictionResidual(Hhat, triangulateZeroReference());
   bundleAdjust(Hhat);
   m_calibrated = true;
 }
@@ -610,13 +662,40 @@ Eigen::Matrix4d vpProjectiveRobot::displacement(const JointVector &q) const
 void vpProjectiveRobot::jointMotions(const JointVector &q, Eigen::Matrix4d *HhatKq) const
 {
   // A_{k-1} Hhat_k A_{k-1}^-1 with A_{k-1}^-1 = exp(-q_{k-1} Hhat_{k-1}) ... exp(-q_0 Hhat_0): no matrix inverse.
-  Eigen::Matrix4d A = Eigen::Matrix4d::Identity();
-  Eigen::Matrix4d Ainv = Eigen::Matrix4d::Identity();
-  for (unsigned int k = 0; k < m_types.size(); ++k) {
+  // exp(+-q Hhat) share their terms: I +- sin(q) Hhat + (1 - cos(q)) Hhat^2 (26), I +- q Hhat (31), the same values
+  // as jointExp(i, q) and jointExp(i, -q). A_{-1} = I needs no product, and the last joint's exponential no value.
+  const unsigned int n = static_cast<unsigned int>(m_types.size());
+  Eigen::Matrix4d A, Ainv, AH, E, Einv;
+  for (unsigned int k = 0; k < n; ++k) {
     const unsigned int i = chainJoint(k);
-    HhatKq[i] = A * m_Hhat[i] * Ainv;
-    A = A * jointExp(i, q(i));
-    Ainv = jointExp(i, -q(i)) * Ainv;
+    const Eigen::Matrix4d &Hhat = m_Hhat[i];
+    if (k == 0) {
+      HhatKq[i] = Hhat;
+    } else {
+      AH.noalias() = A * Hhat;
+      HhatKq[i].noalias() = AH * Ainv;
+    }
+    if (k + 1 == n) {
+      break;
+    }
+    if (m_types[i] == REVOLUTE) {
+      const double s = std::sin(q(i));
+      const double c = 1.0 - std::cos(q(i));
+      Eigen::Matrix4d Hhat2;
+      Hhat2.noalias() = Hhat * Hhat;
+      E = Eigen::Matrix4d::Identity() + s * Hhat + c * Hhat2;
+      Einv = Eigen::Matrix4d::Identity() - s * Hhat + c * Hhat2;
+    } else {
+      E = Eigen::Matrix4d::Identity() + q(i) * Hhat;
+      Einv = Eigen::Matrix4d::Identity() - q(i) * Hhat;
+    }
+    if (k == 0) {
+      A = E;
+      Ainv = Einv;
+    } else {
+      A = A * E;
+      Ainv = Einv * Ainv;
+    }
   }
 }
 

@@ -111,7 +111,8 @@ vpProjectiveRotation vpProjectiveRotation::log(const Eigen::Matrix4d &H, double 
     fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
   }
   const Eigen::Matrix4d &Hn = D.matrix();
-  const Eigen::Matrix4d Hhat = project((Hn - Hn.inverse()) / (2.0 * s));
+  const Eigen::Matrix4d raw = (Hn - Hn.inverse()) / (2.0 * s);
+  const Eigen::Matrix4d Hhat = project(raw);
   vpProjectiveRotation R;
   R.m_Hhat = Hhat;
   return R;

@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <ceres/ceres.h>
 #include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
 
 #include "vpProjectiveInternal.h"
 
@@ -230,6 +231,9 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
   std::vector<size_t> inliers;
   if (n >= 15) {
     std::vector<uchar> mask;
+    // RANSAC draws from OpenCV's global generator: reseed it so that the same matches give the same estimate,
+    // whatever was computed before in the process.
+    cv::theRNG() = cv::RNG(0x5eedULL);
     cv::Mat Fcv = cv::findFundamentalMat(cvl, cvr, cv::FM_RANSAC, inlierThreshold, 0.999, mask);
     if (Fcv.empty() || mask.size() != n) {
       fail(vpProjectiveException::estimationFailedError, where,

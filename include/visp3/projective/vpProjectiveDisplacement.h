@@ -54,6 +54,7 @@ public:
     \exception vpProjectiveException if H is not 4x4, not finite or singular.
   */
   explicit vpProjectiveDisplacement(const vpMatrix &H);
+  //! \overload
   explicit vpProjectiveDisplacement(const Eigen::Matrix4d &H);
 
   /*!
@@ -77,6 +78,13 @@ public:
                                            const std::vector<vpImagePoint> &left1,
                                            const std::vector<vpImagePoint> &right1);
 
+  /*!
+    The maximum-likelihood estimate of the image overload on Eigen types: \e s0[j] and \e s1[j] are the pixels
+    \f$ (u, v, u', v') \f$ of point j before and after the motion (same sizes, at least 5, finite: unchecked). Returns
+    the normalised matrix (12).
+  */
+  static Eigen::Matrix4d estimateFromImages(const vpProjectiveStereoRig &rig, const std::vector<Eigen::Vector4d> &s0,
+                                            const std::vector<Eigen::Vector4d> &s1);
   //! Linear (DLT) estimate on Eigen types; same checks as estimate().
   static Eigen::Matrix4d estimateLinear(const std::vector<Eigen::Vector4d> &M0, const std::vector<Eigen::Vector4d> &M1);
 
@@ -88,6 +96,7 @@ public:
 
   //! The normalised 4x4 matrix.
   vpMatrix getMatrix() const;
+  //! The normalised 4x4 matrix (Eigen, no allocation).
   const Eigen::Matrix4d &matrix() const { return m_H; }
 
   //! Rotation angle \f$ \theta \in [0, \pi] \f$ of eq. (21), \f$ \cos\theta = (\mathrm{trace} H - 2)/2 \f$, clamped.

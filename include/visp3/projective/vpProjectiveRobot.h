@@ -84,7 +84,9 @@ public:
   //! Largest number of joints: fixed-size storage keeps the control loop free of allocations.
   static const unsigned int maxJoints = 16;
 
+  //! Joint values (n x 1) without heap allocation.
   typedef Eigen::Matrix<double, Eigen::Dynamic, 1, 0, maxJoints, 1> JointVector;
+  //! A 4 x n Jacobian without heap allocation.
   typedef Eigen::Matrix<double, 4, Eigen::Dynamic, 0, 4, maxJoints> PointJacobian;
 
   //! An empty model; use loadModel() or the other constructor.
@@ -95,16 +97,20 @@ public:
   */
   explicit vpProjectiveRobot(const std::vector<vpJointType> &joints);
 
+  //! Number of joints \e n.
   unsigned int getNumberOfJoints() const { return static_cast<unsigned int>(m_types.size()); }
+  //! Type of joint \e i. \exception vpProjectiveException on a bad index.
   vpJointType getJointType(unsigned int i) const;
   //! Sets where the rig is mounted (default EYE_TO_HAND); the acquisition is the same in both cases.
   void setRigMounting(vpRigMounting mounting) { m_mounting = mounting; }
+  //! Where the rig is mounted.
   vpRigMounting getRigMounting() const { return m_mounting; }
 
   /*! \name Acquisition */
   //@{
   //! The weakly calibrated rig whose projective frame the model lives in. Clears acquired data of another rig.
   void setStereoRig(const vpProjectiveStereoRig &rig);
+  //! The rig set by setStereoRig() (or read by loadModel()).
   const vpProjectiveStereoRig &getStereoRig() const { return m_rig; }
   /*!
     Images of the \f$ K \ge 5 \f$ markers of the last link at \f$ q = 0 \f$, in a fixed order (no 4 coplanar).
@@ -165,6 +171,8 @@ public:
     Inverse kinematics (the paper's motion-capture use): the joint values that best explain the observed images of
     the markers, by Ceres minimisation of the pixel error started at \e q0 (zeros if empty).
     \param left, right : images of the markers \e indices (all markers if \e indices is empty).
+    \param q0 : starting joint values (n x 1); zeros if empty.
+    \param indices : which markers \e left and \e right show, as indices of the zero-reference markers.
     \param residual : if not null, receives the final RMS pixel error.
   */
   vpColVector inverseKinematics(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right,
@@ -190,6 +198,7 @@ public:
 
   /*! \name Eigen access for hot paths (no allocation) */
   //@{
+  //! Generator \f$ \hat H_i \f$ of joint \e i (no index check).
   const Eigen::Matrix4d &generator(unsigned int i) const { return m_Hhat[i]; }
   //! \f$ \exp(q \hat H_i) \f$ by Rodrigues' form (26) or (31).
   Eigen::Matrix4d jointExp(unsigned int i, double q) const;
@@ -212,9 +221,14 @@ private:
 
   void checkCalibrated(const char *where) const;
   JointVector toJointVector(const vpColVector &q, const std::string &where) const;
+  std::vector<Eigen::Vector4d> triangulateZeroReference() const;
   void algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat) const;
   void bundleAdjust(const std::vector<Eigen::Matrix4d> &Hhat);
+  //! RMS pixel error of all trials predicted by the generators Hhat from the zero-reference points M0.
   double predictionResidual(const std::vector<Eigen::Matrix4d> &Hhat, const std::vector<Eigen::Vector4d> &M0) const;
+  //! Adds the squared pixel errors of joint i's trials predicted by Hhat, and their number of coordinates.
+  void accumulateTrialError(unsigned int i, const Eigen::Matrix4d &Hhat, const std::vector<Eigen::Vector4d> &M0,
+                            double &sum, size_t &count) const;
   void setModelFromTwists();
 
   //! Joint index at position k of the product of exponentials, base of the chain (the rig's end) first.

@@ -42,6 +42,7 @@ public:
     \f$ \hat H^3 = -\hat H \f$ by more than \e tolerance relative to \f$ \|\hat H\| \f$.
   */
   explicit vpProjectiveRotation(const vpMatrix &Hhat, double tolerance = 1e-6);
+  //! \overload
   explicit vpProjectiveRotation(const Eigen::Matrix4d &Hhat, double tolerance = 1e-6);
 
   /*!
@@ -50,12 +51,15 @@ public:
     \e theta receives the image angle \f$ \theta \in [0, \pi] \f$ of eq. (21).
     If \e amount is non-zero (a signed trial angle read by the joint encoder) the generator is
     \f$ (H - H^{-1}) / (2 \sin(\mathrm{amount})) \f$, so that \f$ H = \exp(\mathrm{amount}\, \hat H_R) \f$ up to the
-    noise in \e H: the encoder is more reliable than the trace of a noisy \e H, and fixes the generator's sign.
+    noise in \e H: the encoder is more reliable than the trace of a noisy \e H, and fixes the generator's sign. \e H is
+    then trusted to be a rotation: the eigenvalues of a homography estimated from a few markers are too noisy to tell
+    (vpProjectiveRobot checks instead that each trial moved the markers).
     Otherwise \f$ \sin\theta \f$ is used and \f$ \theta \in (0, \pi) \f$.
     \exception vpProjectiveException if H is singular or not finite, or the angle used is too close to a multiple of
     \f$ \pi \f$ for the logarithm to be defined.
   */
   static vpProjectiveRotation log(const Eigen::Matrix4d &H, double &theta, double amount = 0.0);
+  //! \overload
   static vpProjectiveRotation log(const vpMatrix &H, double &theta, double amount = 0.0);
 
   //! Rodrigues' form (26), \f$ \exp(\theta \hat H_R) \f$ (4x4).
@@ -65,6 +69,7 @@ public:
 
   //! The generator \f$ \hat H_R \f$ (4x4).
   const Eigen::Matrix4d &generator() const { return m_Hhat; }
+  //! The generator \f$ \hat H_R \f$ (4x4) as a vpMatrix.
   vpMatrix getGenerator() const;
 
   /*!

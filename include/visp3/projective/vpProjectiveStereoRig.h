@@ -47,6 +47,7 @@
 class VISP_EXPORT vpProjectiveStereoRig
 {
 public:
+  //! A 3x4 camera matrix.
   typedef Eigen::Matrix<double, 3, 4> Projection;
 
   vpProjectiveStereoRig();
@@ -106,8 +107,11 @@ public:
 
   /*! \name Eigen access for hot paths (no allocation) */
   //@{
+  //! \f$ P = [I | 0] \f$.
   const Projection &leftProjection() const { return m_P; }
+  //! \f$ P' \f$.
   const Projection &rightProjection() const { return m_Pp; }
+  //! \f$ F \f$, unit Frobenius norm.
   const Eigen::Matrix3d &fundamentalMatrix() const { return m_F; }
   /*!
     Triangulates \f$ (u, v) \f$, \f$ (u', v') \f$ into the unit-norm 4-vector \f$ M \f$ (linear, then Gauss-Newton).
