@@ -44,6 +44,7 @@ class VISP_EXPORT vpFeatureStereoPoint : public vpBasicFeature
 public:
   vpFeatureStereoPoint();
 
+  //! Resets \f$ s \f$ to zero (4 rows, all selected); called by the constructor.
   void init();
   /*!
     Sets \f$ s \f$ from the pixels of the point in the left and right images.
@@ -53,11 +54,17 @@ public:
   //! Sets \f$ s = (u, v, u', v') \f$ directly.
   void buildFrom(double u, double v, double up, double vp);
 
+  //! The point in the left image, \f$ (u, v) \f$.
   vpImagePoint getLeft() const;
+  //! The point in the right image, \f$ (u', v') \f$.
   vpImagePoint getRight() const;
+  //! Left column \f$ u \f$ (pixels).
   double get_u() const { return s[0]; }
+  //! Left row \f$ v \f$ (pixels).
   double get_v() const { return s[1]; }
+  //! Right column \f$ u' \f$ (pixels).
   double get_up() const { return s[2]; }
+  //! Right row \f$ v' \f$ (pixels).
   double get_vp() const { return s[3]; }
   //! \f$ s \f$ as an Eigen vector (no allocation).
   Eigen::Vector4d getFeature() const { return Eigen::Vector4d(s[0], s[1], s[2], s[3]); }
@@ -78,21 +85,28 @@ public:
     \exception vpProjectiveException if no rig was set or the point is on a camera's focal plane.
   */
   vpMatrix interaction(unsigned int select = FEATURE_ALL);
+  //! Prints the selected rows of \f$ s \f$.
   void print(unsigned int select = FEATURE_ALL) const;
+  //! A new feature of the same type (the caller deletes it), as vpBasicFeature requires.
   vpFeatureStereoPoint *duplicate() const;
 
   //! Draws the left image point (the camera parameters are not needed: \f$ s \f$ is in pixels).
   void display(const vpCameraParameters &cam, const vpImage<unsigned char> &I, const vpColor &color = vpColor::green,
                unsigned int thickness = 1) const;
+  //! Draws the left image point in a color image (the camera parameters are not needed).
   void display(const vpCameraParameters &cam, const vpImage<vpRGBa> &I, const vpColor &color = vpColor::green,
                unsigned int thickness = 1) const;
   //! Draws the point in the left image \e Ileft and in the right image \e Iright.
   void display(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
                const vpColor &color = vpColor::green, unsigned int thickness = 1) const;
 
+  //! Selection mask of \f$ u \f$, for error() and interaction().
   static unsigned int selectU() { return FEATURE_LINE[0]; }
+  //! Selection mask of \f$ v \f$.
   static unsigned int selectV() { return FEATURE_LINE[1]; }
+  //! Selection mask of \f$ u' \f$.
   static unsigned int selectUp() { return FEATURE_LINE[2]; }
+  //! Selection mask of \f$ v' \f$.
   static unsigned int selectVp() { return FEATURE_LINE[3]; }
 
 private:

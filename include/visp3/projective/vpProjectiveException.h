@@ -38,6 +38,7 @@ public:
     estimationFailedError         //!< An estimator did not converge to a usable result.
   };
 
+  //! An error of kind \e code (errorProjectiveCodeEnum) with a message saying what was wrong and what to do.
   vpProjectiveException(int code, const std::string &message) : vpException(code, message) {}
 };
 

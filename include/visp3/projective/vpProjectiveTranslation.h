@@ -39,6 +39,7 @@ public:
     \f$ \hat H^2 = 0 \f$ by more than \e tolerance relative to \f$ \|\hat H\|^2 \f$.
   */
   explicit vpProjectiveTranslation(const vpMatrix &Hhat, double tolerance = 1e-6);
+  //! \overload
   explicit vpProjectiveTranslation(const Eigen::Matrix4d &Hhat, double tolerance = 1e-6);
 
   /*!
@@ -47,14 +48,17 @@ public:
     \exception vpProjectiveException if tau is zero or not finite, or H is singular or not finite.
   */
   static vpProjectiveTranslation log(const Eigen::Matrix4d &H, double tau);
+  //! \overload
   static vpProjectiveTranslation log(const vpMatrix &H, double tau);
 
   //! \f$ I + \tau \hat H_T \f$ (31).
   Eigen::Matrix4d exp(double tau) const { return exp(m_Hhat, tau); }
+  //! \f$ I + \tau \hat H \f$ (31) for any generator \e Hhat.
   static Eigen::Matrix4d exp(const Eigen::Matrix4d &Hhat, double tau);
 
   //! The generator \f$ \hat H_T \f$ (4x4).
   const Eigen::Matrix4d &generator() const { return m_Hhat; }
+  //! The generator \f$ \hat H_T \f$ (4x4) as a vpMatrix.
   vpMatrix getGenerator() const;
 
   /*!

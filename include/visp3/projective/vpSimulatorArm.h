@@ -40,6 +40,7 @@ public:
   //! One Denavit-Hartenberg row: \f$ T = R_z(\theta) T_z(d) T_x(a) R_x(\alpha) \f$, the joint adds to \f$ \theta \f$
   //! (revolute) or \f$ d \f$ (prismatic), which thus hold the joint's offset at q = 0.
   struct vpDHRow {
+    //! Revolute or prismatic.
     vpJointKind kind;
     double theta; //!< rad
     double d;     //!< m
@@ -109,7 +110,9 @@ public:
   */
   static vpHomogeneousMatrix paperBasePose();
 
+  //! Number of joints \e n.
   unsigned int getNumberOfJoints() const { return static_cast<unsigned int>(m_dh.size()); }
+  //! Kind of joint \e i.
   vpJointKind getJointKind(unsigned int i) const;
   //! Tip pose \f$ {}^wM_t(q) \f$.
   vpHomogeneousMatrix get_wMt(const vpColVector &q) const;
@@ -135,6 +138,7 @@ public:
 
   //! Joint limits (from vpViper850 for the Viper, +-170 deg otherwise).
   const vpColVector &getJointMin() const { return m_qmin; }
+  //! Upper joint limits (n x 1).
   const vpColVector &getJointMax() const { return m_qmax; }
   //! Replaces the joint limits (n x 1 each, qmin <= qmax).
   void setJointLimits(const vpColVector &qmin, const vpColVector &qmax);

@@ -83,14 +83,21 @@ public:
 
   /*! \name Ground truth */
   //@{
+  //! Intrinsics of the left camera.
   const vpCameraParameters &getLeftCameraParameters() const { return m_camLeft; }
+  //! Intrinsics of the right camera.
   const vpCameraParameters &getRightCameraParameters() const { return m_camRight; }
+  //! \f$ [R' | t'] \f$: left-camera to right-camera coordinates.
   const vpHomogeneousMatrix &get_rMl() const { return m_rMl; }
+  //! Pose of the left camera in the world.
   const vpHomogeneousMatrix &get_wMl() const { return m_wMl; }
+  //! Image width (pixels).
   unsigned int getWidth() const { return m_width; }
+  //! Image height (pixels).
   unsigned int getHeight() const { return m_height; }
   //! Metric projection matrices \f$ K[I|0] \f$ and \f$ K'[R'|t'] \f$ (3x4), acting on left-camera coordinates.
   vpMatrix getLeftMetricProjection() const;
+  //! \f$ K'[R'|t'] \f$ (3x4), acting on left-camera coordinates.
   vpMatrix getRightMetricProjection() const;
   //! The true fundamental matrix (3x3, unit Frobenius norm, pixel coordinates): \f$ m'^T F m = 0 \f$.
   vpMatrix getFundamentalMatrix() const;
