@@ -19,7 +19,10 @@ const char *const kClass = "vpFeatureStereoPoint";
 const char *const kNames[4] = {"u", "v", "u'", "v'"};
 } // namespace
 
-vpFeatureStereoPoint::vpFeatureStereoPoint() : m_rig(nullptr) { init(); }
+vpFeatureStereoPoint::vpFeatureStereoPoint() : m_rig(nullptr)
+{
+  init();
+}
 
 void vpFeatureStereoPoint::init()
 {
@@ -126,7 +129,10 @@ void vpFeatureStereoPoint::print(unsigned int select) const
   std::cout << std::endl;
 }
 
-vpFeatureStereoPoint *vpFeatureStereoPoint::duplicate() const { return new vpFeatureStereoPoint(*this); }
+vpFeatureStereoPoint *vpFeatureStereoPoint::duplicate() const
+{
+  return new vpFeatureStereoPoint(*this);
+}
 
 void vpFeatureStereoPoint::display(const vpCameraParameters &, const vpImage<unsigned char> &I, const vpColor &color,
                                    unsigned int thickness) const

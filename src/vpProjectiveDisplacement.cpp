@@ -24,7 +24,7 @@ const char *const kClass = "vpProjectiveDisplacement";
 struct DisplacementReprojectionError {
   DisplacementReprojectionError(const vpProjectiveStereoRig::Projection &P, const vpProjectiveStereoRig::Projection &Pp,
                                 const Eigen::Vector4d &s0, const Eigen::Vector4d &s1)
-    : m_P(P), m_Pp(Pp), m_s0(s0), m_s1(s1)
+      : m_P(P), m_Pp(Pp), m_s0(s0), m_s1(s1)
   {
   }
 
@@ -70,8 +70,8 @@ void checkGeneralPosition(const std::vector<Eigen::Vector4d> &M, const std::stri
   for (size_t j = 0; j < n; ++j) {
     const double norm = M[j].norm();
     if (norm == 0.0) {
-      fail(vpProjectiveException::invalidValueError, where, std::string("a point of ") + which +
-                                                                " is the zero vector, which is no projective point");
+      fail(vpProjectiveException::invalidValueError, where,
+           std::string("a point of ") + which + " is the zero vector, which is no projective point");
     }
     U.col(static_cast<Eigen::Index>(j)) = M[j] / norm;
   }
@@ -114,7 +114,7 @@ std::vector<Eigen::Vector4d> toEigenPoints(const std::vector<vpColVector> &M, co
 vpProjectiveDisplacement::vpProjectiveDisplacement() : m_H(Eigen::Matrix4d::Identity()) {}
 
 vpProjectiveDisplacement::vpProjectiveDisplacement(const vpMatrix &H)
-  : m_H(normalize(toEigen<4, 4>(H, std::string(kClass) + "()", "H")))
+    : m_H(normalize(toEigen<4, 4>(H, std::string(kClass) + "()", "H")))
 {
 }
 
@@ -275,7 +275,10 @@ Eigen::Matrix4d vpProjectiveDisplacement::estimateFromImages(const vpProjectiveS
   return normalize(Hrefined);
 }
 
-vpMatrix vpProjectiveDisplacement::getMatrix() const { return toVisp(m_H); }
+vpMatrix vpProjectiveDisplacement::getMatrix() const
+{
+  return toVisp(m_H);
+}
 
 double vpProjectiveDisplacement::getRotationAngle() const
 {

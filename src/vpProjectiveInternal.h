@@ -39,8 +39,8 @@ inline void requireFinite(double x, const std::string &where, const std::string 
 }
 
 //! A vpMatrix of exactly R x C finite entries, as an Eigen fixed-size matrix.
-template <int R, int C> Eigen::Matrix<double, R, C> toEigen(const vpMatrix &A, const std::string &where,
-                                                               const std::string &what)
+template <int R, int C>
+Eigen::Matrix<double, R, C> toEigen(const vpMatrix &A, const std::string &where, const std::string &what)
 {
   if (A.getRows() != static_cast<unsigned int>(R) || A.getCols() != static_cast<unsigned int>(C)) {
     std::ostringstream os;
@@ -58,8 +58,8 @@ template <int R, int C> Eigen::Matrix<double, R, C> toEigen(const vpMatrix &A, c
 }
 
 //! A vpColVector of exactly N finite entries, as an Eigen fixed-size vector.
-template <int N> Eigen::Matrix<double, N, 1> toEigen(const vpColVector &v, const std::string &where,
-                                                     const std::string &what)
+template <int N>
+Eigen::Matrix<double, N, 1> toEigen(const vpColVector &v, const std::string &where, const std::string &what)
 {
   if (v.getRows() != static_cast<unsigned int>(N)) {
     std::ostringstream os;

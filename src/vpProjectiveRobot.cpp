@@ -24,7 +24,10 @@ namespace
 {
 const char *const kClass = "vpProjectiveRobot";
 
-std::string at(const char *method) { return std::string(kClass) + "::" + method; }
+std::string at(const char *method)
+{
+  return std::string(kClass) + "::" + method;
+}
 
 // Metric twist matrix (4x4 se(3), eq. (9)) of a revolute joint (unit axis w through p) or a prismatic one (d).
 Eigen::Matrix4d twistMatrix(vpProjectiveRobot::vpJointType type, const Eigen::Vector3d &axis,
@@ -41,8 +44,7 @@ Eigen::Matrix4d twistMatrix(vpProjectiveRobot::vpJointType type, const Eigen::Ve
 }
 
 // Rigid motion exp(q That) applied to a homogeneous metric point N: rotation about the axis (w, p) or translation.
-template <typename T>
-void moveRevolute(const T *w, const T *p, double q, const T *N, T *out)
+template <typename T> void moveRevolute(const T *w, const T *p, double q, const T *N, T *out)
 {
   const T c = T(std::cos(q)), s = T(std::sin(q));
   // X - p rotated by Rodrigues about the unit axis w, written for homogeneous N = (X, n4): X' = R (X - n4 p) + n4 p.
@@ -69,8 +71,8 @@ template <typename T> void projectPixels(const Eigen::Matrix<double, 3, 4> &P, c
 
 // Pixel error of marker N (metric, homogeneous) after a motion, seen through G^-1 (row-major 4x4) by the rig.
 struct MarkerObservation {
-  MarkerObservation(const vpProjectiveStereoRig &rig, const Eigen::Vector4d &s) : P(rig.leftProjection()),
-    Pp(rig.rightProjection()), s(s)
+  MarkerObservation(const vpProjectiveStereoRig &rig, const Eigen::Vector4d &s)
+      : P(rig.leftProjection()), Pp(rig.rightProjection()), s(s)
   {
   }
   template <typename T> void residual(const T *Ginv, const T *N, T *r) const
@@ -102,7 +104,7 @@ struct ZeroReferenceError : MarkerObservation {
 
 struct RevoluteTrialError : MarkerObservation {
   RevoluteTrialError(const vpProjectiveStereoRig &rig, const Eigen::Vector4d &s, double q)
-    : MarkerObservation(rig, s), q(q)
+      : MarkerObservation(rig, s), q(q)
   {
   }
   template <typename T> bool operator()(const T *Ginv, const T *N, const T *w, const T *p, T *r) const
@@ -117,7 +119,7 @@ struct RevoluteTrialError : MarkerObservation {
 
 struct PrismaticTrialError : MarkerObservation {
   PrismaticTrialError(const vpProjectiveStereoRig &rig, const Eigen::Vector4d &s, double q)
-    : MarkerObservation(rig, s), q(q)
+      : MarkerObservation(rig, s), q(q)
   {
   }
   template <typename T> bool operator()(const T *Ginv, const T *N, const T *d, T *r) const
@@ -188,9 +190,9 @@ Eigen::Matrix3d metricConic(const std::vector<Eigen::Matrix3d> &blocks)
 } // namespace
 
 vpProjectiveRobot::vpProjectiveRobot()
-  : m_types(), m_mounting(EYE_TO_HAND), m_rig(), m_zeroImages(), m_trials(), m_G(Eigen::Matrix4d::Identity()),
-    m_Ginv(Eigen::Matrix4d::Identity()), m_axis(), m_point(), m_Hhat(), m_M0(), m_residual(0.0),
-    m_algebraicResidual(0.0), m_calibrated(false)
+    : m_types(), m_mounting(EYE_TO_HAND), m_rig(), m_zeroImages(), m_trials(), m_G(Eigen::Matrix4d::Identity()),
+      m_Ginv(Eigen::Matrix4d::Identity()), m_axis(), m_point(), m_Hhat(), m_M0(), m_residual(0.0),
+      m_algebraicResidual(0.0), m_calibrated(false)
 {
 }
 
@@ -502,9 +504,9 @@ void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Matrix4d> &Hhat)
   }
   ceres::Problem problem;
   for (size_t j = 0; j < K; ++j) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<ZeroReferenceError, 4, 16, 4>(
-                                 new ZeroReferenceError(m_rig, m_zeroImages[j])),
-                             nullptr, Ginv.data(), N[j].data());
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<ZeroReferenceError, 4, 16, 4>(new ZeroReferenceError(m_rig, m_zeroImages[j])),
+        nullptr, Ginv.data(), N[j].data());
   }
   for (const vpTrial &trial : m_trials) {
     const unsigned int i = trial.joint;
@@ -803,7 +805,7 @@ class InverseKinematicsCost : public ceres::CostFunction
 public:
   InverseKinematicsCost(const vpProjectiveRobot &robot, const std::vector<Eigen::Vector4d> &M0,
                         const std::vector<Eigen::Vector4d> &s)
-    : m_robot(robot), m_M0(M0), m_s(s)
+      : m_robot(robot), m_M0(M0), m_s(s)
   {
     set_num_residuals(static_cast<int>(4 * s.size()));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(robot.getNumberOfJoints()));

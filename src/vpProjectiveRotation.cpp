@@ -74,7 +74,7 @@ vpProjectiveRotation::vpProjectiveRotation(const Eigen::Matrix4d &Hhat, double t
 }
 
 vpProjectiveRotation::vpProjectiveRotation(const vpMatrix &Hhat, double tolerance)
-  : vpProjectiveRotation(toEigen<4, 4>(Hhat, std::string(kClass) + "()", "Hhat"), tolerance)
+    : vpProjectiveRotation(toEigen<4, 4>(Hhat, std::string(kClass) + "()", "Hhat"), tolerance)
 {
 }
 
@@ -123,4 +123,7 @@ vpProjectiveRotation vpProjectiveRotation::log(const vpMatrix &H, double &theta,
   return log(toEigen<4, 4>(H, std::string(kClass) + "::log()", "H"), theta, amount);
 }
 
-vpMatrix vpProjectiveRotation::getGenerator() const { return toVisp(m_Hhat); }
+vpMatrix vpProjectiveRotation::getGenerator() const
+{
+  return toVisp(m_Hhat);
+}

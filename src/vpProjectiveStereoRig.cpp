@@ -27,7 +27,7 @@ const char *const kClass = "vpProjectiveStereoRig";
 struct StereoReprojectionError {
   StereoReprojectionError(const Eigen::Vector2d &left, const Eigen::Vector2d &right, double leftScale,
                           double rightScale)
-    : m_left(left), m_right(right), m_leftScale(leftScale), m_rightScale(rightScale)
+      : m_left(left), m_right(right), m_leftScale(leftScale), m_rightScale(rightScale)
   {
   }
 
@@ -50,7 +50,10 @@ struct StereoReprojectionError {
   double m_leftScale, m_rightScale;
 };
 
-Eigen::Vector2d dehomogenize(const Eigen::Vector3d &m) { return m.head<2>() / m(2); }
+Eigen::Vector2d dehomogenize(const Eigen::Vector3d &m)
+{
+  return m.head<2>() / m(2);
+}
 
 // Normalised 8-point estimate on the rows \e inliers of the design matrix A, with rank 2 enforced.
 Eigen::Matrix3d linearFundamental(const Eigen::MatrixXd &A, const std::vector<size_t> &inliers)
@@ -88,8 +91,9 @@ vpProjectiveStereoRig::Projection canonicalRightProjection(const Eigen::Matrix3d
 }
 
 // Linear triangulation on column-equilibrated equations (no coordinate of M is divided by).
-Eigen::Vector4d linearTriangulation(const vpProjectiveStereoRig::Projection &P, const vpProjectiveStereoRig::Projection &Pp,
-                                  const Eigen::Vector2d &m, const Eigen::Vector2d &mp)
+Eigen::Vector4d linearTriangulation(const vpProjectiveStereoRig::Projection &P,
+                                    const vpProjectiveStereoRig::Projection &Pp, const Eigen::Vector2d &m,
+                                    const Eigen::Vector2d &mp)
 {
   Eigen::Matrix4d A;
   A.row(0) = m(0) * P.row(2) - P.row(0);
@@ -133,8 +137,8 @@ bool projectWithJacobian(const vpProjectiveStereoRig::Projection &P, const vpPro
 } // namespace
 
 vpProjectiveStereoRig::vpProjectiveStereoRig()
-  : m_F(Eigen::Matrix3d::Zero()), m_P(Projection::Zero()), m_Pp(Projection::Zero()), m_e(Eigen::Vector3d::Zero()),
-    m_ep(Eigen::Vector3d::Zero()), m_inliers(), m_residual(0.0), m_initialized(false)
+    : m_F(Eigen::Matrix3d::Zero()), m_P(Projection::Zero()), m_Pp(Projection::Zero()), m_e(Eigen::Vector3d::Zero()),
+      m_ep(Eigen::Vector3d::Zero()), m_inliers(), m_residual(0.0), m_initialized(false)
 {
 }
 
@@ -160,7 +164,8 @@ void vpProjectiveStereoRig::setFundamentalMatrix(const vpMatrix &F)
          "F has rank 1; a fundamental matrix has rank 2 (check the matches it was computed from)");
   }
   // Closest rank-2 matrix, then unit Frobenius norm and a canonical sign: proportional inputs give the same frame.
-  Eigen::Matrix3d F2 = svd.matrixU() * Eigen::Vector3d(sigma(0), sigma(1), 0.0).asDiagonal() * svd.matrixV().transpose();
+  Eigen::Matrix3d F2 =
+      svd.matrixU() * Eigen::Vector3d(sigma(0), sigma(1), 0.0).asDiagonal() * svd.matrixV().transpose();
   F2 /= F2.norm();
   canonicalSign(F2);
   Eigen::Vector3d e = svd.matrixV().col(2);

@@ -41,7 +41,7 @@ vpProjectiveTranslation::vpProjectiveTranslation(const Eigen::Matrix4d &Hhat, do
 }
 
 vpProjectiveTranslation::vpProjectiveTranslation(const vpMatrix &Hhat, double tolerance)
-  : vpProjectiveTranslation(toEigen<4, 4>(Hhat, std::string(kClass) + "()", "Hhat"), tolerance)
+    : vpProjectiveTranslation(toEigen<4, 4>(Hhat, std::string(kClass) + "()", "Hhat"), tolerance)
 {
 }
 
@@ -90,4 +90,7 @@ vpProjectiveTranslation vpProjectiveTranslation::log(const vpMatrix &H, double t
   return log(toEigen<4, 4>(H, std::string(kClass) + "::log()", "H"), tau);
 }
 
-vpMatrix vpProjectiveTranslation::getGenerator() const { return toVisp(m_Hhat); }
+vpMatrix vpProjectiveTranslation::getGenerator() const
+{
+  return toVisp(m_Hhat);
+}

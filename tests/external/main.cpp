@@ -25,8 +25,8 @@ int main()
     rig.setFundamentalMatrix(F);
 
     // Markers seen with a disparity (u - u') that varies: a non-planar set of 6 points.
-    const double uv[6][3] = {{320, 240, 20}, {400, 250, 25}, {280, 180, 18}, {350, 300, 30}, {300, 320, 22},
-                             {420, 200, 27}};
+    const double uv[6][3] = {{320, 240, 20}, {400, 250, 25}, {280, 180, 18},
+                             {350, 300, 30}, {300, 320, 22}, {420, 200, 27}};
     std::vector<vpImagePoint> left, right;
     double worst = 0.0;
     for (const auto &p : uv) {
@@ -38,8 +38,7 @@ int main()
       left.push_back(ipLeft);
       right.push_back(ipRight);
     }
-    std::cout << "triangulated " << left.size() << " points, worst reprojection error " << worst << " px"
-              << std::endl;
+    std::cout << "triangulated " << left.size() << " points, worst reprojection error " << worst << " px" << std::endl;
     if (!(worst < 1e-6)) {
       std::cerr << "reprojection error too large" << std::endl;
       return 1;

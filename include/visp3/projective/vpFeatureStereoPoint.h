@@ -28,8 +28,8 @@ class vpProjectiveStereoRig;
 
   Unlike vpFeaturePoint, it needs no intrinsics and no depth. Its interaction matrix is taken with respect to the
   velocity \f$ \dot M \f$ of the projective point \f$ M \f$ (4x1) of the rig's frame, eq. (45):
-  \f[ \dot s = L_s \dot M, \qquad L_s = \begin{bmatrix} J_C(P M)\, P \\ J_C(P' M)\, P' \end{bmatrix} \quad (4 \times 4), \f]
-  with \f$ M \f$ triangulated from \f$ s \f$. Multiplied by the point Jacobian \f$ J_H(q, M) \f$ of
+  \f[ \dot s = L_s \dot M, \qquad L_s = \begin{bmatrix} J_C(P M)\, P \\ J_C(P' M)\, P' \end{bmatrix} \quad (4 \times 4),
+  \f] with \f$ M \f$ triangulated from \f$ s \f$. Multiplied by the point Jacobian \f$ J_H(q, M) \f$ of
   vpProjectiveRobot it gives the joint-space image Jacobian (46); vpServoProjective does exactly that.
 
   \code

@@ -27,7 +27,7 @@ class VISP_EXPORT vpProjectiveException : public vpException
 public:
   //! Kinds of error.
   enum errorProjectiveCodeEnum {
-    notEnoughPointsError = 100, //!< Fewer points or matches than the estimator needs.
+    notEnoughPointsError = 100,   //!< Fewer points or matches than the estimator needs.
     degenerateConfigurationError, //!< Coplanar, collinear or repeated points, or another critical configuration.
     nonFiniteValueError,          //!< An input contains NaN or infinity.
     dimensionError,               //!< Sizes of matrices or vectors do not match.

@@ -27,7 +27,8 @@
   - the exponential is exact at first order (31): \f$ \exp(\tau \hat H_T) = I + \tau \hat H_T \f$;
   - the logarithm of a normalised p-translation \f$ H_T \f$ of encoder-measured length \f$ \tau \f$ is
     \f$ \hat H_T = (H_T - I) / \tau \f$;
-  - the derivative is \f$ \frac{d}{d\tau} \exp(\tau \hat H_T) = \hat H_T \f$, and the inverse is \f$ I - \tau \hat H_T \f$.
+  - the derivative is \f$ \frac{d}{d\tau} \exp(\tau \hat H_T) = \hat H_T \f$, and the inverse is \f$ I - \tau \hat H_T
+  \f$.
 */
 class VISP_EXPORT vpProjectiveTranslation
 {
