@@ -188,6 +188,9 @@ struct SetupCase {
   ArmSetup (*make)();
 };
 
+//! Names the setup in GoogleTest's output instead of dumping its bytes.
+void PrintTo(const SetupCase &setup, std::ostream *os) { *os << setup.label; }
+
 const SetupCase kSetups[] = {{"PumaEyeToHand", pumaEyeToHand},
                              {"MixedEyeToHand", mixedEyeToHand},
                              {"PumaEyeInHand", pumaEyeInHand},
