@@ -18,7 +18,9 @@
 #include <Eigen/Core>
 #include <Eigen/SVD>
 
+#include <visp3/core/vpArray2D.h>
 #include <visp3/core/vpColVector.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpProjectiveException.h>
@@ -36,6 +38,43 @@ inline void requireFinite(double x, const std::string &where, const std::string 
   if (!std::isfinite(x)) {
     fail(vpProjectiveException::nonFiniteValueError, where, what + " is not finite (NaN or infinity)");
   }
+}
+
+//! True if every entry of a ViSP matrix, vector or transform is finite.
+inline bool allFinite(const vpArray2D<double> &A)
+{
+  for (unsigned int i = 0; i < A.getRows(); ++i) {
+    for (unsigned int j = 0; j < A.getCols(); ++j) {
+      if (!std::isfinite(A[i][j])) {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+//! The top-left R x C entries of a ViSP array, unchecked: for values the library itself produced.
+template <int R, int C> Eigen::Matrix<double, R, C> toEigenUnchecked(const vpArray2D<double> &A)
+{
+  Eigen::Matrix<double, R, C> E;
+  for (int i = 0; i < R; ++i) {
+    for (int j = 0; j < C; ++j) {
+      E(i, j) = A[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)];
+    }
+  }
+  return E;
+}
+
+//! A rigid 4x4 Eigen matrix as a vpHomogeneousMatrix (its last row is taken to be (0, 0, 0, 1)).
+inline vpHomogeneousMatrix toHomogeneous(const Eigen::Matrix4d &E)
+{
+  vpHomogeneousMatrix M;
+  for (unsigned int i = 0; i < 3; ++i) {
+    for (unsigned int j = 0; j < 4; ++j) {
+      M[i][j] = E(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
+    }
+  }
+  return M;
 }
 
 //! A vpMatrix of exactly R x C finite entries, as an Eigen fixed-size matrix.

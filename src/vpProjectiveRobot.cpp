@@ -664,8 +664,9 @@ Eigen::Matrix4d vpProjectiveRobot::displacement(const JointVector &q) const
 void vpProjectiveRobot::jointMotions(const JointVector &q, Eigen::Matrix4d *HhatKq) const
 {
   // A_{k-1} Hhat_k A_{k-1}^-1 with A_{k-1}^-1 = exp(-q_{k-1} Hhat_{k-1}) ... exp(-q_0 Hhat_0): no matrix inverse.
-  // exp(+-q Hhat) share their terms: I +- sin(q) Hhat + (1 - cos(q)) Hhat^2 (26), I +- q Hhat (31), the same values
-  // as jointExp(i, q) and jointExp(i, -q). A_{-1} = I needs no product, and the last joint's exponential no value.
+  // exp(+-q Hhat) share their terms: I +- sin(q) Hhat + (1 - cos(q)) Hhat^2 (26), I +- q Hhat (31), i.e.
+  // jointExp(i, q) and jointExp(i, -q) up to rounding. A_{-1} = I needs no product, and the last joint's exponential
+  // no value.
   const unsigned int n = static_cast<unsigned int>(m_types.size());
   Eigen::Matrix4d A, Ainv, AH, E, Einv;
   for (unsigned int k = 0; k < n; ++k) {

@@ -20,42 +20,12 @@
 
 #include <visp3/projective/vpProjectiveException.h>
 
+#include "vpProjectiveInternal.h"
+
+using namespace vpProjectiveInternal;
+
 namespace
 {
-bool isFinite(const vpArray2D<double> &A)
-{
-  for (unsigned int i = 0; i < A.getRows(); ++i) {
-    for (unsigned int j = 0; j < A.getCols(); ++j) {
-      if (!std::isfinite(A[i][j])) {
-        return false;
-      }
-    }
-  }
-  return true;
-}
-
-Eigen::Matrix4d toEigen(const vpHomogeneousMatrix &M)
-{
-  Eigen::Matrix4d E;
-  for (unsigned int i = 0; i < 4; ++i) {
-    for (unsigned int j = 0; j < 4; ++j) {
-      E(i, j) = M[i][j];
-    }
-  }
-  return E;
-}
-
-vpHomogeneousMatrix toHomogeneous(const Eigen::Matrix4d &E)
-{
-  vpHomogeneousMatrix M;
-  for (unsigned int i = 0; i < 3; ++i) {
-    for (unsigned int j = 0; j < 4; ++j) {
-      M[i][j] = E(i, j);
-    }
-  }
-  return M;
-}
-
 //! \f$ R_z(\theta) T_z(d) T_x(a) R_x(\alpha) \f$.
 Eigen::Matrix4d dhTransform(double theta, double d, double a, double alpha)
 {
@@ -128,7 +98,7 @@ vpSimulatorArm::vpSimulatorArm(const std::vector<vpDHRow> &dh, const vpHomogeneo
   const vpHomogeneousMatrix *poses[2] = {&eMt, &wMb};
   const char *names[2] = {"eMt", "wMb"};
   for (int k = 0; k < 2; ++k) {
-    if (!isFinite(*poses[k])) {
+    if (!allFinite(*poses[k])) {
       std::ostringstream os;
       os << "vpSimulatorArm: " << names[k] << " contains NaN or infinity; give a finite rigid transformation";
       throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
@@ -147,7 +117,7 @@ vpSimulatorArm::vpSimulatorArm(const std::vector<vpDHRow> &dh, const vpHomogeneo
          << "x" << tMarkers[k].getCols();
       throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
     }
-    if (!isFinite(tMarkers[k])) {
+    if (!allFinite(tMarkers[k])) {
       std::ostringstream os;
       os << "vpSimulatorArm: marker " << k << " contains NaN or infinity";
       throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
@@ -267,7 +237,7 @@ void vpSimulatorArm::checkJointVector(const vpColVector &q, const char *where, c
        << q.getCols();
     throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
   }
-  if (!isFinite(q)) {
+  if (!allFinite(q)) {
     std::ostringstream os;
     os << where << ": " << name << " contains NaN or infinity";
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
@@ -277,7 +247,7 @@ void vpSimulatorArm::checkJointVector(const vpColVector &q, const char *where, c
 vpHomogeneousMatrix vpSimulatorArm::get_wMe(const vpColVector &q) const
 {
   checkJointVector(q, "vpSimulatorArm::get_wMe()", "q");
-  Eigen::Matrix4d wMe = toEigen(m_wMb);
+  Eigen::Matrix4d wMe = toEigenUnchecked<4, 4>(m_wMb);
   for (unsigned int i = 0; i < m_dh.size(); ++i) {
     wMe = wMe * linkTransform(m_dh[i], q[i]);
   }
@@ -316,7 +286,7 @@ vpMatrix vpSimulatorArm::getTwist(unsigned int i) const
     throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
   }
   // Joint i turns (or slides) about the z axis of the frame before its DH transform, at q = 0.
-  Eigen::Matrix4d wMi = toEigen(m_wMb);
+  Eigen::Matrix4d wMi = toEigenUnchecked<4, 4>(m_wMb);
   for (unsigned int k = 0; k < i; ++k) {
     wMi = wMi * linkTransform(m_dh[k], 0.0);
   }

@@ -23,61 +23,22 @@
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
+#include "vpProjectiveInternal.h"
+
+using namespace vpProjectiveInternal;
+
 namespace
 {
 typedef Eigen::Matrix<double, 3, 4> Matrix34d;
 
-bool isFinite(double x)
-{
-  return std::isfinite(x);
-}
-
-bool isFinite(const vpArray2D<double> &A)
-{
-  for (unsigned int i = 0; i < A.getRows(); ++i) {
-    for (unsigned int j = 0; j < A.getCols(); ++j) {
-      if (!std::isfinite(A[i][j])) {
-        return false;
-      }
-    }
-  }
-  return true;
-}
-
-template <int R, int C> Eigen::Matrix<double, R, C> toEigen(const vpArray2D<double> &A)
-{
-  Eigen::Matrix<double, R, C> E;
-  for (int i = 0; i < R; ++i) {
-    for (int j = 0; j < C; ++j) {
-      E(i, j) = A[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)];
-    }
-  }
-  return E;
-}
-
-template <typename Derived> vpMatrix toVisp(const Eigen::MatrixBase<Derived> &E)
-{
-  vpMatrix A(static_cast<unsigned int>(E.rows()), static_cast<unsigned int>(E.cols()));
-  for (int i = 0; i < E.rows(); ++i) {
-    for (int j = 0; j < E.cols(); ++j) {
-      A[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)] = E(i, j);
-    }
-  }
-  return A;
-}
+bool finiteValue(double x) { return std::isfinite(x); }
+bool finiteValue(const vpArray2D<double> &A) { return allFinite(A); }
 
 Eigen::Matrix3d intrinsics(const vpCameraParameters &cam)
 {
   Eigen::Matrix3d K;
   K << cam.get_px(), 0.0, cam.get_u0(), 0.0, cam.get_py(), cam.get_v0(), 0.0, 0.0, 1.0;
   return K;
-}
-
-Eigen::Matrix3d skew(const Eigen::Vector3d &t)
-{
-  Eigen::Matrix3d S;
-  S << 0.0, -t(2), t(1), t(2), 0.0, -t(0), -t(1), t(0), 0.0;
-  return S;
 }
 
 void checkCamera(const vpCameraParameters &cam, const char *which)
@@ -89,7 +50,7 @@ void checkCamera(const vpCameraParameters &cam, const char *which)
           "vpCameraParameters::initPersProjWithoutDistortion()";
     throw vpProjectiveException(vpProjectiveException::invalidValueError, os.str());
   }
-  if (!isFinite(cam.get_px()) || !isFinite(cam.get_py()) || !isFinite(cam.get_u0()) || !isFinite(cam.get_v0())) {
+  if (!finiteValue(cam.get_px()) || !finiteValue(cam.get_py()) || !finiteValue(cam.get_u0()) || !finiteValue(cam.get_v0())) {
     std::ostringstream os;
     os << "vpSimulatorStereoRig: the " << which << " camera's intrinsics are not finite; give finite px, py, u0, v0";
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
@@ -104,7 +65,7 @@ void checkCamera(const vpCameraParameters &cam, const char *which)
 
 void checkPose(const vpHomogeneousMatrix &M, const char *name)
 {
-  if (!isFinite(M)) {
+  if (!finiteValue(M)) {
     std::ostringstream os;
     os << "vpSimulatorStereoRig: " << name << " contains NaN or infinity; give a finite rigid transformation";
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
@@ -125,7 +86,7 @@ void checkVector3(const vpColVector &v, const char *where, const char *name)
     os << where << ": " << name << " must be a 3x1 vector, got " << v.getRows() << "x" << v.getCols();
     throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
   }
-  if (!isFinite(v)) {
+  if (!finiteValue(v)) {
     std::ostringstream os;
     os << where << ": " << name << " contains NaN or infinity";
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
@@ -140,7 +101,7 @@ Eigen::Vector3d worldPoint(const vpColVector &wX, const char *where)
     os << where << ": a world point must be 3x1 or 4x1 (homogeneous), got " << wX.getRows() << "x" << wX.getCols();
     throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
   }
-  if (!isFinite(wX)) {
+  if (!finiteValue(wX)) {
     std::ostringstream os;
     os << where << ": the world point contains NaN or infinity";
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
@@ -197,7 +158,7 @@ vpSimulatorStereoRig vpSimulatorStereoRig::vergingRig(const vpColVector &fixatio
 {
   const char *where = "vpSimulatorStereoRig::vergingRig()";
   checkVector3(fixation, where, "the fixation point");
-  if (!isFinite(distance) || !isFinite(baseline)) {
+  if (!finiteValue(distance) || !finiteValue(baseline)) {
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
                                 std::string(where) + ": the distance or the baseline is not finite");
   }
@@ -244,14 +205,14 @@ vpMatrix vpSimulatorStereoRig::getLeftMetricProjection() const
 
 vpMatrix vpSimulatorStereoRig::getRightMetricProjection() const
 {
-  const Eigen::Matrix4d rMl = toEigen<4, 4>(m_rMl);
+  const Eigen::Matrix4d rMl = toEigenUnchecked<4, 4>(m_rMl);
   const Matrix34d P = intrinsics(m_camRight) * rMl.topRows<3>();
   return toVisp(P);
 }
 
 vpMatrix vpSimulatorStereoRig::getFundamentalMatrix() const
 {
-  const Eigen::Matrix4d rMl = toEigen<4, 4>(m_rMl);
+  const Eigen::Matrix4d rMl = toEigenUnchecked<4, 4>(m_rMl);
   const Eigen::Matrix3d R = rMl.topLeftCorner<3, 3>();
   const Eigen::Vector3d t = rMl.topRightCorner<3, 1>();
   const Eigen::Matrix3d F =
@@ -273,7 +234,7 @@ double vpSimulatorStereoRig::getMaxProjectiveToEuclideanResidual() const
 std::vector<Eigen::Vector4d> vpSimulatorStereoRig::samplePoints() const
 {
   // Depth (left camera) where the optical axes come closest: the vergence distance of a verging rig.
-  const Eigen::Matrix4d rMl = toEigen<4, 4>(m_rMl);
+  const Eigen::Matrix4d rMl = toEigenUnchecked<4, 4>(m_rMl);
   const Eigen::Matrix3d R = rMl.topLeftCorner<3, 3>();
   const Eigen::Vector3d t = rMl.topRightCorner<3, 1>();
   const double baseline = t.norm();
@@ -322,8 +283,8 @@ vpMatrix vpSimulatorStereoRig::getProjectiveToEuclidean(const vpProjectiveStereo
                                 std::string(where) + ": the projective rig has no fundamental matrix yet; call its "
                                                      "estimate() or setFundamentalMatrix() first");
   }
-  const Matrix34d P = toEigen<3, 4>(rig.getLeftProjection());
-  const Matrix34d Pp = toEigen<3, 4>(rig.getRightProjection());
+  const Matrix34d P = toEigenUnchecked<3, 4>(rig.getLeftProjection());
+  const Matrix34d Pp = toEigenUnchecked<3, 4>(rig.getRightProjection());
   if (!P.allFinite() || !Pp.allFinite()) {
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
                                 std::string(where) + ": the projective rig's camera matrices contain NaN or infinity");
@@ -354,7 +315,7 @@ vpMatrix vpSimulatorStereoRig::getProjectiveToEuclidean(const vpProjectiveStereo
   n.normalize();
   Matrix34d Pm = Matrix34d::Zero();
   Pm.leftCols<3>() = intrinsics(m_camLeft);
-  const Matrix34d Pmp = intrinsics(m_camRight) * toEigen<4, 4>(m_rMl).topRows<3>();
+  const Matrix34d Pmp = intrinsics(m_camRight) * toEigenUnchecked<4, 4>(m_rMl).topRows<3>();
   const Matrix34d B = Pp * Pplus * Pm;
   const Eigen::Vector3d e = Pp * n;
 
@@ -415,8 +376,8 @@ vpMatrix vpSimulatorStereoRig::getProjectiveToEuclidean(const vpProjectiveStereo
   const Eigen::Matrix4d G = Pplus * Pm + n * g.transpose();
   const double detG = G.determinant();
   if (!(residual <= getMaxProjectiveToEuclideanResidual()) || !std::isfinite(detG) || detG == 0.0) {
-    const Eigen::Matrix3d Fs = toEigen<3, 3>(getFundamentalMatrix());
-    Eigen::Matrix3d Fr = toEigen<3, 3>(rig.getFundamentalMatrix());
+    const Eigen::Matrix3d Fs = toEigenUnchecked<3, 3>(getFundamentalMatrix());
+    Eigen::Matrix3d Fr = toEigenUnchecked<3, 3>(rig.getFundamentalMatrix());
     Fr /= Fr.norm();
     const double dF = std::min((Fs - Fr).norm(), (Fs + Fr).norm());
     std::ostringstream os;
@@ -440,11 +401,11 @@ vpMatrix vpSimulatorStereoRig::toCameraFrame(const vpMatrix &wT) const
        << wT.getCols();
     throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
   }
-  if (!isFinite(wT)) {
+  if (!finiteValue(wT)) {
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
                                 "vpSimulatorStereoRig::toCameraFrame(): the displacement contains NaN or infinity");
   }
-  const Eigen::Matrix4d lT = toEigen<4, 4>(m_lMw) * toEigen<4, 4>(wT) * toEigen<4, 4>(m_wMl);
+  const Eigen::Matrix4d lT = toEigenUnchecked<4, 4>(m_lMw) * toEigenUnchecked<4, 4>(wT) * toEigenUnchecked<4, 4>(m_wMl);
   return toVisp(lT);
 }
 
@@ -452,8 +413,8 @@ bool vpSimulatorStereoRig::imageOf(const vpColVector &wX, vpImagePoint &ipLeft, 
                                    double minDepth) const
 {
   const Eigen::Vector3d X = worldPoint(wX, "vpSimulatorStereoRig::project()");
-  const Eigen::Matrix4d lMw = toEigen<4, 4>(m_lMw);
-  const Eigen::Matrix4d rMl = toEigen<4, 4>(m_rMl);
+  const Eigen::Matrix4d lMw = toEigenUnchecked<4, 4>(m_lMw);
+  const Eigen::Matrix4d rMl = toEigenUnchecked<4, 4>(m_rMl);
   const Eigen::Vector3d lX = lMw.topLeftCorner<3, 3>() * X + lMw.topRightCorner<3, 1>();
   const Eigen::Vector3d rX = rMl.topLeftCorner<3, 3>() * lX + rMl.topRightCorner<3, 1>();
 
@@ -487,7 +448,7 @@ bool vpSimulatorStereoRig::project(const vpColVector &wX, vpImagePoint &ipLeft, 
 bool vpSimulatorStereoRig::project(const vpColVector &wX, vpImagePoint &ipLeft, vpImagePoint &ipRight, double sigma,
                                    vpGaussRand &noise) const
 {
-  if (!isFinite(sigma) || sigma < 0.0) {
+  if (!finiteValue(sigma) || sigma < 0.0) {
     std::ostringstream os;
     os << "vpSimulatorStereoRig::project(): the noise standard deviation sigma = " << sigma
        << " px must be finite and non-negative";
@@ -521,7 +482,7 @@ bool vpSimulatorStereoRig::project(const std::vector<vpColVector> &wX, std::vect
 
 bool vpSimulatorStereoRig::isVisible(const vpColVector &wX, double margin, double minDepth) const
 {
-  if (!isFinite(margin) || !isFinite(minDepth)) {
+  if (!finiteValue(margin) || !finiteValue(minDepth)) {
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
                                 "vpSimulatorStereoRig::isVisible(): the margin or the minimal depth is not finite");
   }
@@ -532,7 +493,7 @@ bool vpSimulatorStereoRig::isVisible(const vpColVector &wX, double margin, doubl
 std::vector<vpColVector> vpSimulatorStereoRig::transform(const vpHomogeneousMatrix &wT,
                                                          const std::vector<vpColVector> &wX)
 {
-  if (!isFinite(wT)) {
+  if (!finiteValue(wT)) {
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
                                 "vpSimulatorStereoRig::transform(): the displacement contains NaN or infinity");
   }
@@ -546,7 +507,7 @@ std::vector<vpColVector> vpSimulatorStereoRig::transform(const vpHomogeneousMatr
          << "x" << X.getCols();
       throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
     }
-    if (!isFinite(X)) {
+    if (!finiteValue(X)) {
       std::ostringstream os;
       os << "vpSimulatorStereoRig::transform(): point " << k << " contains NaN or infinity";
       throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
@@ -569,7 +530,7 @@ vpHomogeneousMatrix vpSimulatorStereoRig::rotationAbout(const vpColVector &point
   const char *where = "vpSimulatorStereoRig::rotationAbout()";
   checkVector3(point, where, "the point on the axis");
   checkVector3(axis, where, "the axis direction");
-  if (!isFinite(theta)) {
+  if (!finiteValue(theta)) {
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
                                 std::string(where) + ": the angle is not finite");
   }
@@ -589,7 +550,7 @@ vpHomogeneousMatrix vpSimulatorStereoRig::translationAlong(const vpColVector &di
 {
   const char *where = "vpSimulatorStereoRig::translationAlong()";
   checkVector3(direction, where, "the direction");
-  if (!isFinite(tau)) {
+  if (!finiteValue(tau)) {
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
                                 std::string(where) + ": the translation length is not finite");
   }
