@@ -12,6 +12,7 @@
 
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
+#include "vpProjectiveCeres.h"
 #include "vpProjectiveInternal.h"
 
 using namespace vpProjectiveInternal;
@@ -240,7 +241,7 @@ vpProjectiveDisplacement vpProjectiveDisplacement::estimate(const vpProjectiveSt
 
 Eigen::Matrix4d vpProjectiveDisplacement::estimateFromImages(const vpProjectiveStereoRig &rig,
                                                              const std::vector<Eigen::Vector4d> &s0,
-                                                             const std::vector<Eigen::Vector4d> &s1)
+                                                             const std::vector<Eigen::Vector4d> &s1, int maxIterations)
 {
   const size_t n = s0.size();
   std::vector<Eigen::Vector4d> M0(n), M1(n);
@@ -260,14 +261,7 @@ Eigen::Matrix4d vpProjectiveDisplacement::estimateFromImages(const vpProjectiveS
     problem.SetManifold(M0[j].data(), new ceres::SphereManifold<4>());
   }
   problem.SetManifold(H.data(), new ceres::SphereManifold<16>());
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_SCHUR;
-  options.max_num_iterations = 100;
-  options.function_tolerance = 1e-12;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
+  const ceres::Solver::Summary summary = solveLeastSquares(problem, ceres::DENSE_SCHUR, maxIterations);
   const Eigen::Matrix4d Hrefined = H;
   if (!Hrefined.allFinite() || summary.final_cost > summary.initial_cost) {
     return Hlin;

@@ -16,6 +16,7 @@
 #include <visp3/projective/vpProjectiveRotation.h>
 #include <visp3/projective/vpProjectiveTranslation.h>
 
+#include "vpProjectiveCeres.h"
 #include "vpProjectiveInternal.h"
 
 using namespace vpProjectiveInternal;
@@ -531,16 +532,7 @@ void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Matrix4d> &Hhat)
       problem.SetManifold(axis[i].data(), new ceres::SphereManifold<3>());
     }
   }
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_SCHUR;
-  options.max_num_iterations = 200;
-  options.function_tolerance = 1e-12;
-  options.gradient_tolerance = 1e-14;
-  options.parameter_tolerance = 1e-12;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
+  const ceres::Solver::Summary summary = solveLeastSquares(problem, ceres::DENSE_SCHUR, 200);
 
   const Eigen::Matrix4d GinvFinal = Ginv;
   if (!GinvFinal.allFinite() || !summary.IsSolutionUsable()) {
@@ -897,16 +889,7 @@ vpColVector vpProjectiveRobot::inverseKinematics(const std::vector<vpImagePoint>
   }
   ceres::Problem problem;
   problem.AddResidualBlock(new InverseKinematicsCost(*this, M0, s), nullptr, q.data());
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = 100;
-  options.function_tolerance = 1e-16;
-  options.gradient_tolerance = 1e-16;
-  options.parameter_tolerance = 1e-14;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
+  const ceres::Solver::Summary summary = solveLeastSquares(problem, ceres::DENSE_QR, 100, 1e-15);
   if (!summary.IsSolutionUsable()) {
     fail(vpProjectiveException::estimationFailedError, where,
          "the inverse kinematics did not converge; start closer to the solution (q0) or check the marker images");

@@ -12,6 +12,7 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 
+#include "vpProjectiveCeres.h"
 #include "vpProjectiveInternal.h"
 
 using namespace vpProjectiveInternal;
@@ -301,14 +302,7 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
     problem.SetManifold(points[k].data(), new ceres::SphereManifold<4>());
   }
   problem.SetManifold(PpRowMajor.data(), new ceres::SphereManifold<12>());
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_SCHUR;
-  options.max_num_iterations = 100;
-  options.function_tolerance = 1e-12;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
+  const ceres::Solver::Summary summary = solveLeastSquares(problem, ceres::DENSE_SCHUR, 100);
 
   const Projection PpRefined = PpRowMajor;
   const Eigen::Vector3d epRefined = PpRefined.col(3);

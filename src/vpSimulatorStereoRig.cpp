@@ -31,8 +31,14 @@ namespace
 {
 typedef Eigen::Matrix<double, 3, 4> Matrix34d;
 
-bool finiteValue(double x) { return std::isfinite(x); }
-bool finiteValue(const vpArray2D<double> &A) { return allFinite(A); }
+bool finiteValue(double x)
+{
+  return std::isfinite(x);
+}
+bool finiteValue(const vpArray2D<double> &A)
+{
+  return allFinite(A);
+}
 
 Eigen::Matrix3d intrinsics(const vpCameraParameters &cam)
 {
@@ -50,7 +56,8 @@ void checkCamera(const vpCameraParameters &cam, const char *which)
           "vpCameraParameters::initPersProjWithoutDistortion()";
     throw vpProjectiveException(vpProjectiveException::invalidValueError, os.str());
   }
-  if (!finiteValue(cam.get_px()) || !finiteValue(cam.get_py()) || !finiteValue(cam.get_u0()) || !finiteValue(cam.get_v0())) {
+  if (!finiteValue(cam.get_px()) || !finiteValue(cam.get_py()) || !finiteValue(cam.get_u0()) ||
+      !finiteValue(cam.get_v0())) {
     std::ostringstream os;
     os << "vpSimulatorStereoRig: the " << which << " camera's intrinsics are not finite; give finite px, py, u0, v0";
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());

@@ -81,10 +81,11 @@ public:
   /*!
     The maximum-likelihood estimate of the image overload on Eigen types: \e s0[j] and \e s1[j] are the pixels
     \f$ (u, v, u', v') \f$ of point j before and after the motion (same sizes, at least 5, finite: unchecked). Returns
-    the normalised matrix (12).
+    the normalised matrix (12). \e maxIterations caps the Levenberg-Marquardt iterations (a starting point for a
+    larger adjustment needs few).
   */
   static Eigen::Matrix4d estimateFromImages(const vpProjectiveStereoRig &rig, const std::vector<Eigen::Vector4d> &s0,
-                                            const std::vector<Eigen::Vector4d> &s1);
+                                            const std::vector<Eigen::Vector4d> &s1, int maxIterations = 100);
   //! Linear (DLT) estimate on Eigen types; same checks as estimate().
   static Eigen::Matrix4d estimateLinear(const std::vector<Eigen::Vector4d> &M0, const std::vector<Eigen::Vector4d> &M1);
 
