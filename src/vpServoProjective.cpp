@@ -26,63 +26,6 @@ std::string at(const char *method)
 }
 
 /*!
-  The linear triangulation of vpProjectiveStereoRig::triangulateLinear() without its 4x4 SVD: the same row-normalised,
-  column-equilibrated system As M' = 0 (the equations m x P M = 0 and m' x P' M = 0, M = D M', D the column scales),
-  whose least-squares solution is the right singular vector v4 of As for its smallest singular value. v4 is the
-  dominant eigenvector of W = (As^T As)^-1 = V diag(1 / sigma_i^2) V^T, separated from the next one by the factor
-  (sigma_4 / sigma_3)^2, which is tiny for a stereo pair (sigma_4 measures its epipolar error): power iteration on W
-  started from W's largest column reaches machine precision in one to three steps. Returns false (the caller then
-  uses the SVD) if As is singular to working precision or the iteration does not settle, which happens only when
-  sigma_3 ~ sigma_4, i.e. when the pair does not determine a point.
-*/
-bool triangulateLinearFast(const vpProjectiveStereoRig::Projection &P, const vpProjectiveStereoRig::Projection &Pp,
-                           const Eigen::Vector4d &s, Eigen::Vector4d &M)
-{
-  Eigen::Matrix4d A;
-  A.row(0) = s(0) * P.row(2) - P.row(0);
-  A.row(1) = s(1) * P.row(2) - P.row(1);
-  A.row(2) = s(2) * Pp.row(2) - Pp.row(0);
-  A.row(3) = s(3) * Pp.row(2) - Pp.row(1);
-  for (int i = 0; i < 4; ++i) {
-    const double n = A.row(i).norm();
-    if (n > 0.0) {
-      A.row(i) /= n;
-    }
-  }
-  Eigen::Vector4d colScale;
-  for (int j = 0; j < 4; ++j) {
-    const double n = A.col(j).norm();
-    colScale(j) = n > 0.0 ? 1.0 / n : 1.0;
-  }
-  const Eigen::Matrix4d As = A * colScale.asDiagonal();
-  const Eigen::Matrix4d Asinv = As.inverse();
-  if (!Asinv.allFinite()) {
-    return false;
-  }
-  const Eigen::Matrix4d W = Asinv * Asinv.transpose();
-  Eigen::Index k = 0;
-  W.diagonal().maxCoeff(&k);
-  Eigen::Vector4d x = W.col(k);
-  const double xNorm = x.norm();
-  if (!(xNorm > 0.0) || !std::isfinite(xNorm)) {
-    return false;
-  }
-  x /= xNorm;
-  for (int iteration = 0; iteration < 8; ++iteration) {
-    Eigen::Vector4d y = W * x;
-    y /= y.norm();
-    const double change = (y - x).squaredNorm();
-    x = y;
-    if (change <= 1e-28) { // |y - x| <= 1e-14: the remaining error is (sigma_4 / sigma_3)^2 times smaller
-      M = colScale.asDiagonal() * x;
-      M /= M.norm();
-      return M.allFinite();
-    }
-  }
-  return false;
-}
-
-/*!
   In-place Cholesky factorisation \f$ A = L L^T \f$ of a symmetric positive definite matrix (lower triangle read,
   overwritten by L); false if A is not numerically positive definite (a pivot is not positive, or is NaN). Plain loops:
   for the few joints of an arm they are several times faster than Eigen's dynamic-size LLT and LDLT, which dispatch
@@ -273,10 +216,7 @@ void vpServoProjective::computeControlLaw(const vpProjectiveRobot::JointVector &
   for (size_t i = 0; i < m_features.size(); ++i) {
     const Eigen::Vector4d s = m_features[i]->getFeature();
     const Eigen::Vector4d sStar = m_desired[i]->getFeature();
-    Eigen::Vector4d M;
-    if (!triangulateLinearFast(rig.leftProjection(), rig.rightProjection(), s, M)) {
-      M = rig.triangulateLinear(s.head<2>(), s.tail<2>());
-    }
+    const Eigen::Vector4d M = rig.triangulateLinear(s.head<2>(), s.tail<2>());
     if (!m_robot->imageJacobian(HhatKq, M, Ji)) {
       std::ostringstream os;
       os << "feature " << i << " triangulates onto a camera's focal plane; check that it is matched correctly";
