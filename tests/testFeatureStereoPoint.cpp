@@ -45,26 +45,6 @@ using namespace vpProjectiveTest;
 
 namespace
 {
-Eigen::MatrixXd toEigenX(const vpMatrix &A)
-{
-  Eigen::MatrixXd E(A.getRows(), A.getCols());
-  for (unsigned int i = 0; i < A.getRows(); ++i) {
-    for (unsigned int j = 0; j < A.getCols(); ++j) {
-      E(i, j) = A[i][j];
-    }
-  }
-  return E;
-}
-
-Eigen::VectorXd toEigenV(const vpColVector &v)
-{
-  Eigen::VectorXd E(v.getRows());
-  for (unsigned int i = 0; i < v.getRows(); ++i) {
-    E(i) = v[i];
-  }
-  return E;
-}
-
 vpImagePoint imagePoint(double u, double v)
 {
   vpImagePoint ip;

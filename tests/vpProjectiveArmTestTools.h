@@ -45,6 +45,28 @@
 
 namespace vpProjectiveTest
 {
+//! A vpMatrix as a dynamic Eigen matrix (test comparisons).
+inline Eigen::MatrixXd toEigenX(const vpMatrix &A)
+{
+  Eigen::MatrixXd E(A.getRows(), A.getCols());
+  for (unsigned int i = 0; i < A.getRows(); ++i) {
+    for (unsigned int j = 0; j < A.getCols(); ++j) {
+      E(i, j) = A[i][j];
+    }
+  }
+  return E;
+}
+
+//! A vpColVector as a dynamic Eigen vector (test comparisons).
+inline Eigen::VectorXd toEigenV(const vpColVector &v)
+{
+  Eigen::VectorXd E(v.getRows());
+  for (unsigned int i = 0; i < v.getRows(); ++i) {
+    E(i) = v[i];
+  }
+  return E;
+}
+
 //! The paper's trial motions (degrees), joints 0-5.
 const double kPaperTrialDeg[6] = {30.0, 20.0, 30.0, 40.0, 60.0, 60.0};
 
