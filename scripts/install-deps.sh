@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages visp_projective needs, only when one is missing (run as root).
 set -euo pipefail
-# dpkg-dev: apt-get source visp (tests/contrib/build-visp-with-module.sh); doxygen: the doc target and its ctest case.
+# dpkg-dev: apt-get source visp (tests/contrib/build-visp-with-module.sh); doxygen: the doc target and its ctest case;
+# clang-14, libclang-rt-14-dev: the libFuzzer target (tests/fuzz/run-fuzz.sh).
 packages=(build-essential cmake libvisp-dev libeigen3-dev libopencv-dev libceres-dev libgtest-dev libbenchmark-dev
-          gnuplot-nox dpkg-dev doxygen)
+          gnuplot-nox dpkg-dev doxygen clang-14 libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,79 @@
+/*
+ * Writes the seed corpus of fuzzModelLoader (tests/fuzz/run-fuzz.sh): model files saved by saveModel() from small
+ * calibrated models (noise-free acquisitions of the test setups), each as a raw file ('r' + file) and as a body to be
+ * re-signed by the harness ('c' + body without its checksum line), plus truncated and corrupted variants.
+ *   makeSeedCorpus <corpus directory>
+ */
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "../vpProjectiveArmTestTools.h"
+
+using namespace vpProjectiveTest;
+
+namespace
+{
+std::string readAll(const std::string &path)
+{
+  std::ifstream in(path.c_str(), std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+void writeSeed(const std::string &dir, const std::string &name, char mode, const std::string &content)
+{
+  std::ofstream out((dir + "/" + name).c_str(), std::ios::binary);
+  out << mode << content;
+  if (!out) {
+    std::cerr << "cannot write " << dir << "/" << name << std::endl;
+    std::exit(1);
+  }
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  if (argc != 2) {
+    std::cerr << "usage: " << argv[0] << " <corpus directory>" << std::endl;
+    return 2;
+  }
+  const std::string dir = argv[1];
+  const std::vector<std::pair<std::string, ArmSetup> > setups = {{"puma", pumaEyeToHand()},
+                                                                  {"mixed-in-hand", mixedEyeInHand()}};
+  for (const auto &named : setups) {
+    const ArmSetup &s = named.second;
+    vpProjectiveRobot robot(s.jointTypes());
+    vpGaussRand noise(1.0, 0.0, 1);
+    if (!s.acquire(robot, 0.0, noise)) {
+      std::cerr << s.name << ": a marker left the view during the acquisition" << std::endl;
+      return 1;
+    }
+    robot.calibrate();
+    const std::string path = dir + "/.saved-" + named.first;
+    robot.saveModel(path);
+    const std::string file = readAll(path);
+    std::remove(path.c_str());
+    const std::string body = file.substr(0, file.rfind("checksum "));
+    const std::string p = named.first;
+    writeSeed(dir, p + "-valid", 'r', file);
+    writeSeed(dir, p + "-body", 'c', body);
+    writeSeed(dir, p + "-truncated-half", 'r', file.substr(0, file.size() / 2));
+    writeSeed(dir, p + "-body-truncated-half", 'c', body.substr(0, body.size() / 2));
+    std::string flipped = file;
+    flipped[flipped.size() / 3] ^= 0x10;
+    writeSeed(dir, p + "-corrupted", 'r', flipped);
+    std::string nan = body;
+    const size_t g = nan.find("\nG ");
+    nan.replace(g + 3, 1, "nan ");
+    writeSeed(dir, p + "-body-nan", 'c', nan);
+    std::string version = body;
+    version.replace(version.find("version 1"), 9, "version 2");
+    writeSeed(dir, p + "-body-version2", 'c', version);
+  }
+  std::cout << "seed corpus written to " << dir << std::endl;
+  return 0;
+}
