@@ -169,7 +169,10 @@ struct SetupCase {
 };
 
 //! Names the setup in GoogleTest's output instead of dumping its bytes.
-void PrintTo(const SetupCase &setup, std::ostream *os) { *os << setup.label; }
+void PrintTo(const SetupCase &setup, std::ostream *os)
+{
+  *os << setup.label;
+}
 
 const SetupCase kSetups[] = {{"PumaEyeToHand", pumaEyeToHand},
                              {"MixedEyeToHand", mixedEyeToHand},

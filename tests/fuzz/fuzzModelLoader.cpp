@@ -46,8 +46,7 @@ const std::string &modelPath()
 
 // Removes the temporary model file when an input is done (libFuzzer may end the process without running destructors
 // of static objects).
-struct RemoveModelFile
-{
+struct RemoveModelFile {
   ~RemoveModelFile() { std::remove(modelPath().c_str()); }
 };
 } // namespace

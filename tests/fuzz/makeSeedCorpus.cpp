@@ -42,8 +42,8 @@ int main(int argc, char **argv)
     return 2;
   }
   const std::string dir = argv[1];
-  const std::vector<std::pair<std::string, ArmSetup> > setups = {{"puma", pumaEyeToHand()},
-                                                                  {"mixed-in-hand", mixedEyeInHand()}};
+  const std::vector<std::pair<std::string, ArmSetup>> setups = {{"puma", pumaEyeToHand()},
+                                                                {"mixed-in-hand", mixedEyeInHand()}};
   for (const auto &named : setups) {
     const ArmSetup &s = named.second;
     vpProjectiveRobot robot(s.jointTypes());
