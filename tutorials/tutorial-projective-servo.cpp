@@ -20,7 +20,9 @@
   5. writes the trajectories of seed 1 as CSV and as PNG figures like the paper's Fig. 2, 4 and 5 (with gnuplot);
      with a display it also shows them live.
 
-  Usage: tutorial-projective-servo [--seeds N] [--output DIR] [--no-display] [--help]
+  Usage: tutorial-projective-servo [--seeds N] [--output DIR] [--model FILE] [--no-display] [--help]
+  With --model FILE, the first run acquires the arm and saves its model; later runs load it instead of acquiring
+  (the multi-seed study always acquires anew, since it measures the acquisition's noise too).
 */
 
 #include <algorithm>
@@ -500,6 +502,7 @@ int main(int argc, char **argv)
 {
   unsigned int seeds = 20;
   std::string output = ".";
+  std::string modelFile;
   bool display = std::getenv("DISPLAY") != nullptr;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -507,10 +510,13 @@ int main(int argc, char **argv)
       seeds = static_cast<unsigned int>(std::max(1, std::atoi(argv[++i])));
     } else if (arg == "--output" && i + 1 < argc) {
       output = argv[++i];
+    } else if (arg == "--model" && i + 1 < argc) {
+      modelFile = argv[++i];
     } else if (arg == "--no-display") {
       display = false;
     } else {
-      std::cout << "Usage: " << argv[0] << " [--seeds N (default 20)] [--output DIR (default .)] [--no-display]\n";
+      std::cout << "Usage: " << argv[0]
+                << " [--seeds N (default 20)] [--output DIR (default .)] [--model FILE] [--no-display]\n";
       return arg == "--help" ? EXIT_SUCCESS : EXIT_FAILURE;
     }
   }
@@ -529,10 +535,20 @@ int main(int argc, char **argv)
 
     std::cout << "\nSeed 1 at 0.5 px: acquisition and calibration\n";
     vpGaussRand noise(1.0, 0.0, 1);
-    const vpProjectiveRobot robot = acquire(world, 0.5, noise, true);
-    std::cout << "    epipolar geometry from the " << robot.getStereoRig().getInliers().size()
-              << " marker matches of the acquisition images: RMS residual "
-              << robot.getStereoRig().getEstimationResidual() << " px\n";
+    vpProjectiveRobot robot;
+    if (!modelFile.empty() && vpIoTools::checkFilename(modelFile)) {
+      robot.loadModel(modelFile); // acquired by an earlier run: no trial motion now
+      std::cout << "    model loaded from " << modelFile << "\n";
+    } else {
+      robot = acquire(world, 0.5, noise, true);
+      std::cout << "    epipolar geometry from the " << robot.getStereoRig().getInliers().size()
+                << " marker matches of the acquisition images: RMS residual "
+                << robot.getStereoRig().getEstimationResidual() << " px\n";
+      if (!modelFile.empty()) {
+        robot.saveModel(modelFile);
+        std::cout << "    model saved to " << modelFile << "\n";
+      }
+    }
     std::cout << "    algebraic generators: RMS error on the acquisition images " << robot.getAlgebraicResidual()
               << " px; after the bundle adjustment " << robot.getCalibrationResidual() << " px\n";
     std::cout << "    marker prediction at random q within +-30 deg: " << predictionError(world, robot, 1)
