@@ -26,8 +26,13 @@
 #include <visp3/projective/vpSimulatorArm.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
+#include "vpProjectiveArmTestTools.h"
+
 namespace
 {
+using vpProjectiveTest::expm; // independent reference: a scaled and squared Taylor series
+using vpProjectiveTest::point3;
+
 const double kTrialDeg[6] = {30.0, 20.0, 30.0, 40.0, 60.0, 60.0}; // the paper's trial motions
 
 template <int R, int C> Eigen::Matrix<double, R, C> toEigen(const vpArray2D<double> &A)
@@ -41,15 +46,6 @@ template <int R, int C> Eigen::Matrix<double, R, C> toEigen(const vpArray2D<doub
     }
   }
   return E;
-}
-
-vpColVector point3(double x, double y, double z)
-{
-  vpColVector p(3);
-  p[0] = x;
-  p[1] = y;
-  p[2] = z;
-  return p;
 }
 
 Eigen::Vector3d pixel(const vpImagePoint &ip)
@@ -81,26 +77,6 @@ Eigen::Vector4d leftCameraPoint(const vpSimulatorStereoRig &sim, const vpColVect
 }
 
 //! Matrix exponential by scaling and squaring with a Taylor series: independent of the twist's structure.
-Eigen::Matrix4d expm(const Eigen::Matrix4d &A)
-{
-  const double norm = A.cwiseAbs().rowwise().sum().maxCoeff();
-  int squarings = 0;
-  if (norm > 0.25) {
-    squarings = static_cast<int>(std::ceil(std::log2(norm / 0.25)));
-  }
-  const Eigen::Matrix4d B = A / std::pow(2.0, squarings);
-  Eigen::Matrix4d term = Eigen::Matrix4d::Identity();
-  Eigen::Matrix4d sum = Eigen::Matrix4d::Identity();
-  for (int k = 1; k <= 20; ++k) {
-    term = term * B / static_cast<double>(k);
-    sum += term;
-  }
-  for (int k = 0; k < squarings; ++k) {
-    sum = sum * sum;
-  }
-  return sum;
-}
-
 vpColVector randomJoints(const vpSimulatorArm &arm, vpUniRand &rng)
 {
   vpColVector q(arm.getNumberOfJoints());
