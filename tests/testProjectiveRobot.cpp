@@ -49,6 +49,7 @@
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
 #include "vpProjectiveArmTestTools.h"
+#include "vpModelFileChecksum.h"
 
 using namespace vpProjectiveTest;
 
@@ -135,16 +136,7 @@ void writeFile(const std::string &path, const std::string &text)
   f << text;
 }
 
-//! FNV-1a 64, the model file's checksum (same constants as src/vpProjectiveRobot.cpp).
-unsigned long long fnv1a(const std::string &text)
-{
-  unsigned long long h = 14695981039346656037ULL;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  return h;
-}
+using vpProjectiveTest::fnv1a;
 
 //! Re-signs an edited model body the way saveModel() does.
 std::string withChecksum(const std::string &body)

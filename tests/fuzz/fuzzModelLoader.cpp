@@ -24,19 +24,11 @@
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpProjectiveRobot.h>
+#include "../vpModelFileChecksum.h"
 
 namespace
 {
-// The FNV-1a 64-bit hash of src/vpProjectiveRobot.cpp (saveModel(), loadModel()).
-unsigned long long fnv1a(const std::string &text)
-{
-  unsigned long long h = 14695981039346656037ULL;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  return h;
-}
+using vpProjectiveTest::fnv1a;
 
 const std::string &modelPath()
 {
