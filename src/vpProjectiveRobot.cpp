@@ -330,8 +330,10 @@ void vpProjectiveRobot::algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat) 
          << " px RMS; the joint may be blocked or the trial too small to observe (use 20 to 60 deg)";
       fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
     }
-    // Maximum-likelihood displacement: the linear one from 7 noisy markers is too poor a start for the upgrade.
-    const Eigen::Matrix4d H = vpProjectiveDisplacement::estimateFromImages(m_rig, m_zeroImages, trial.s);
+    // Maximum-likelihood displacement: the linear one from 7 noisy markers is too poor a start for the upgrade. 15
+    // Levenberg-Marquardt iterations (of about 25 to full convergence) are enough for a start: the bundle adjustment
+    // refines everything, and at 1 px noise no acquisition of 300 failed with 12.
+    const Eigen::Matrix4d H = vpProjectiveDisplacement::estimateFromImages(m_rig, m_zeroImages, trial.s, 15);
     double theta = 0.0;
     candidates[trial.joint].push_back(m_types[trial.joint] == REVOLUTE
                                           ? vpProjectiveRotation::log(H, theta, trial.amount).generator()
@@ -402,41 +404,82 @@ double vpProjectiveRobot::predictionResidual(const std::vector<Eigen::Matrix4d> 
   return count > 0 ? std::sqrt(sum / static_cast<double>(count)) : 0.0;
 }
 
-void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Matrix4d> &Hhat)
+namespace
+{
+// Euclidean coordinates of a metric homogeneous point, false when it is (nearly) at infinity.
+bool euclidean(const Eigen::Vector4d &N, Eigen::Vector3d &X)
+{
+  if (!(std::abs(N(3)) > 1e-9 * N.norm())) {
+    return false;
+  }
+  X = N.head<3>() / N(3);
+  return X.allFinite();
+}
+
+// Rotation R and translation t with X1 ~ R X0 + t in the least-squares sense (Kabsch), false if degenerate.
+bool rigidMotion(const std::vector<Eigen::Vector3d> &X0, const std::vector<Eigen::Vector3d> &X1, Eigen::Matrix3d &R,
+                 Eigen::Vector3d &t)
+{
+  const size_t K = X0.size();
+  if (K < 3) {
+    return false;
+  }
+  Eigen::Vector3d c0 = Eigen::Vector3d::Zero(), c1 = Eigen::Vector3d::Zero();
+  for (size_t j = 0; j < K; ++j) {
+    c0 += X0[j] / static_cast<double>(K);
+    c1 += X1[j] / static_cast<double>(K);
+  }
+  Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
+  for (size_t j = 0; j < K; ++j) {
+    C += (X1[j] - c1) * (X0[j] - c0).transpose();
+  }
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(C, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+  D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+  R = svd.matrixU() * D * svd.matrixV().transpose();
+  t = c1 - R * c0;
+  return R.allFinite() && t.allFinite();
+}
+} // namespace
+
+bool vpProjectiveRobot::metricUpgrade(const std::vector<Eigen::Matrix4d> &Hhat, const std::vector<bool> &use,
+                                      const std::vector<Eigen::Vector4d> &M0, Eigen::Matrix4d &G) const
 {
   const size_t n = m_types.size();
-  const size_t K = m_zeroImages.size();
-  const std::vector<Eigen::Vector4d> M0 = triangulateZeroReference();
+  const size_t K = M0.size();
 
   // 1. Conditioning: whiten the projective frame with the zero-reference points.
   const Eigen::Matrix4d Tn = whitening(M0);
   const Eigen::Matrix4d TnInv = Tn.inverse();
-  std::vector<Eigen::Matrix4d> Hw(n);
-  for (size_t i = 0; i < n; ++i) {
-    Hw[i] = Tn * Hhat[i] * TnInv;
-  }
 
-  // 2. Affine step: the plane pi with pi^T Hhat_i = 0 for every joint is the plane at infinity.
-  Eigen::Matrix<double, 4, Eigen::Dynamic> stacked(4, 4 * n);
+  // 2. Affine step: the plane pi with pi^T Hhat_i = 0 for every joint used is the plane at infinity.
+  std::vector<Eigen::Matrix4d> Hw;
+  std::vector<vpJointType> types;
   for (size_t i = 0; i < n; ++i) {
-    const double norm = Hw[i].norm();
-    if (!(norm > 0.0) || !Hw[i].allFinite()) {
-      std::ostringstream os;
-      os << "the algebraic generator of joint " << i << " is zero or not finite; check its trial motions";
-      fail(vpProjectiveException::estimationFailedError, at("calibrate()"), os.str());
+    if (!use[i]) {
+      continue;
     }
-    stacked.block<4, 4>(0, 4 * static_cast<Eigen::Index>(i)) = Hw[i] / norm;
+    const Eigen::Matrix4d H = Tn * Hhat[i] * TnInv;
+    const double norm = H.norm();
+    if (!(norm > 0.0) || !H.allFinite()) {
+      return false;
+    }
+    Hw.push_back(H / norm);
+    types.push_back(m_types[i]);
+  }
+  Eigen::Matrix<double, 4, Eigen::Dynamic> stacked(4, 4 * Hw.size());
+  for (size_t i = 0; i < Hw.size(); ++i) {
+    stacked.block<4, 4>(0, 4 * static_cast<Eigen::Index>(i)) = Hw[i];
   }
   Eigen::JacobiSVD<Eigen::MatrixXd> svdPi(stacked, Eigen::ComputeFullU);
-  const Eigen::Vector4d pi = svdPi.matrixU().col(3);
   Eigen::Matrix4d A0;
   A0.topRows<3>() = svdPi.matrixU().leftCols<3>().transpose();
-  A0.row(3) = pi.transpose();
+  A0.row(3) = svdPi.matrixU().col(3).transpose();
 
   // 3. Metric step: W = B^-1 B^-T from the revolute blocks, B from Cholesky of W^-1.
   std::vector<Eigen::Matrix3d> blocks;
-  for (size_t i = 0; i < n; ++i) {
-    if (m_types[i] == REVOLUTE) {
+  for (size_t i = 0; i < Hw.size(); ++i) {
+    if (types[i] == REVOLUTE) {
       blocks.push_back((A0 * Hw[i] * A0.transpose()).topLeftCorner<3, 3>()); // A0 is orthogonal
     }
   }
@@ -446,60 +489,186 @@ void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Matrix4d> &Hhat)
   if (llt.info() == Eigen::Success) {
     B = llt.matrixU();
   }
-  Eigen::Matrix4d G = Eigen::Matrix4d::Identity();
+  G.setIdentity();
   G.topLeftCorner<3, 3>() = B;
   G = G * A0 * Tn;
 
   // Centre and scale the metric frame on the markers (a similarity, for conditioning only).
-  std::vector<Eigen::Vector4d> N(K);
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
-  bool finite = true;
+  std::vector<Eigen::Vector3d> X(K);
   for (size_t j = 0; j < K; ++j) {
-    N[j] = G * M0[j];
-    finite = finite && std::abs(N[j](3)) > 1e-9 * N[j].norm();
-    if (finite) {
-      centroid += N[j].head<3>() / N[j](3);
+    if (!euclidean(G * M0[j], X[j])) {
+      return false;
+    }
+    centroid += X[j] / static_cast<double>(K);
+  }
+  double spread = 0.0;
+  for (size_t j = 0; j < K; ++j) {
+    spread += (X[j] - centroid).squaredNorm() / static_cast<double>(K);
+  }
+  spread = std::sqrt(spread);
+  Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
+  S.topLeftCorner<3, 3>() /= spread;
+  S.topRightCorner<3, 1>() = -centroid / spread;
+  G = S * G;
+  return G.allFinite() && std::abs(G.determinant()) > 0.0;
+}
+
+bool vpProjectiveRobot::initialTwists(const Eigen::Matrix4d &G, const std::vector<Eigen::Matrix4d> &Hhat,
+                                      const std::vector<Eigen::Vector4d> &M0,
+                                      const std::vector<std::vector<Eigen::Vector4d>> &trialPoints,
+                                      std::vector<Eigen::Vector3d> &axis, std::vector<Eigen::Vector3d> &point) const
+{
+  const size_t n = m_types.size();
+  const size_t K = M0.size();
+  const Eigen::Matrix4d Ginv = G.inverse();
+  std::vector<Eigen::Vector3d> X0(K);
+  for (size_t j = 0; j < K; ++j) {
+    if (!euclidean(G * M0[j], X0[j])) {
+      return false;
     }
   }
-  if (finite) {
-    centroid /= static_cast<double>(K);
-    double spread = 0.0;
-    for (size_t j = 0; j < K; ++j) {
-      spread += (N[j].head<3>() / N[j](3) - centroid).squaredNorm();
+  axis.assign(n, Eigen::Vector3d::Zero());
+  point.assign(n, Eigen::Vector3d::Zero());
+  for (size_t i = 0; i < n; ++i) {
+    // Candidate (a): read off the metric image G Hhat_i G^-1 of the algebraic generator.
+    Eigen::Vector3d axisA, pointA = Eigen::Vector3d::Zero();
+    const Eigen::Matrix4d T = G * Hhat[i] * Ginv;
+    if (m_types[i] == REVOLUTE) {
+      const Eigen::Matrix3d S = T.topLeftCorner<3, 3>();
+      axisA = Eigen::Vector3d(S(2, 1) - S(1, 2), S(0, 2) - S(2, 0), S(1, 0) - S(0, 1)).normalized();
+      pointA = axisA.cross(Eigen::Vector3d(T.topRightCorner<3, 1>())); // v = p x w: w x v is the axis point nearest O
+    } else {
+      axisA = T.topRightCorner<3, 1>();
     }
-    spread = std::sqrt(spread / static_cast<double>(K));
-    Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
-    S.topLeftCorner<3, 3>() /= spread;
-    S.topRightCorner<3, 1>() = -centroid / spread;
-    G = S * G;
+    // Candidate (b): the rigid motions of the markers in the metric frame (Kabsch), which do not depend on how well
+    // the 15 parameters of a homography are determined by a small marker set far from the joint's axis.
+    Eigen::Vector3d wSum = Eigen::Vector3d::Zero(), dSum = Eigen::Vector3d::Zero();
+    Eigen::Matrix3d AtA = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d Atb = Eigen::Vector3d::Zero();
+    std::vector<Eigen::Matrix3d> R;
+    std::vector<Eigen::Vector3d> t;
+    size_t trials = 0;
+    for (size_t k = 0; k < m_trials.size(); ++k) {
+      if (m_trials[k].joint != i) {
+        continue;
+      }
+      std::vector<Eigen::Vector3d> X1(K);
+      bool finite = true;
+      for (size_t j = 0; j < K && finite; ++j) {
+        finite = euclidean(G * trialPoints[k][j], X1[j]);
+      }
+      Eigen::Matrix3d Rk;
+      Eigen::Vector3d tk;
+      if (!finite || !rigidMotion(X0, X1, Rk, tk)) {
+        continue;
+      }
+      const double amount = m_trials[k].amount;
+      if (m_types[i] == REVOLUTE) {
+        const Eigen::AngleAxisd aa(Rk);
+        wSum += (amount > 0.0 ? aa.angle() : -aa.angle()) * aa.axis(); // rotation by amount about w
+        AtA += (Eigen::Matrix3d::Identity() - Rk).transpose() * (Eigen::Matrix3d::Identity() - Rk);
+        Atb += (Eigen::Matrix3d::Identity() - Rk).transpose() * tk; // (I - R) p = t for p on the axis
+      } else {
+        dSum += tk / amount;
+      }
+      ++trials;
+    }
+    Eigen::Vector3d axisB = axisA, pointB = pointA;
+    if (trials > 0) {
+      if (m_types[i] == REVOLUTE) {
+        axisB = wSum.normalized();
+        AtA += axisB * axisB.transpose(); // w^T p = 0: the axis point nearest to the origin
+        pointB = AtA.ldlt().solve(Atb);
+      } else {
+        axisB = dSum / static_cast<double>(trials);
+      }
+    }
+    // Keep the candidate that predicts the joint's own trials best.
+    double best = std::numeric_limits<double>::infinity();
+    const Eigen::Vector3d axes[2] = {axisA, axisB};
+    const Eigen::Vector3d points[2] = {pointA, pointB};
+    for (int c = 0; c < 2; ++c) {
+      if (!axes[c].allFinite() || !points[c].allFinite() || !(axes[c].norm() > 0.0)) {
+        continue;
+      }
+      double sum = 0.0;
+      size_t count = 0;
+      accumulateTrialError(static_cast<unsigned int>(i), Ginv * twistMatrix(m_types[i], axes[c], points[c]) * G, M0,
+                           sum, count);
+      if (sum < best) {
+        best = sum;
+        axis[i] = axes[c];
+        point[i] = points[c];
+      }
+    }
+    if (!(best < std::numeric_limits<double>::infinity())) {
+      return false;
+    }
   }
-  if (!G.allFinite() || !(std::abs(G.determinant()) > 0.0)) {
+  return true;
+}
+
+void vpProjectiveRobot::initialMetricModel(const std::vector<Eigen::Matrix4d> &Hhat,
+                                           const std::vector<Eigen::Vector4d> &M0, Eigen::Matrix4d &G,
+                                           std::vector<Eigen::Vector3d> &axis,
+                                           std::vector<Eigen::Vector3d> &point) const
+{
+  const size_t n = m_types.size();
+  std::vector<std::vector<Eigen::Vector4d>> trialPoints(m_trials.size());
+  for (size_t k = 0; k < m_trials.size(); ++k) {
+    for (const Eigen::Vector4d &s : m_trials[k].s) {
+      trialPoints[k].push_back(m_rig.triangulate(Eigen::Vector2d(s.head<2>()), Eigen::Vector2d(s.tail<2>())));
+    }
+  }
+  // The upgrade from every joint's generator, then leaving one or two joints out in turn: a joint whose axis is far
+  // from a small marker set (the shoulder of an arm) can have a generator too poor for the common plane at infinity
+  // and metric conic (at 1 px noise, 6 PUMA acquisitions of 300 failed with every joint in). The candidate that
+  // predicts all the trials best starts the bundle adjustment.
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<std::vector<bool>> subsets(1, std::vector<bool>(n, true));
+  for (size_t a = 0; n >= 3 && a < n; ++a) {
+    for (size_t b = a; b < n && (b == a || n >= 4); ++b) {
+      std::vector<bool> use(n, true);
+      use[a] = false;
+      use[b] = false; // b == a: one joint left out
+      subsets.push_back(use);
+    }
+  }
+  for (const std::vector<bool> &use : subsets) {
+    Eigen::Matrix4d Gc;
+    std::vector<Eigen::Vector3d> axisC, pointC;
+    if (!metricUpgrade(Hhat, use, M0, Gc) || !initialTwists(Gc, Hhat, M0, trialPoints, axisC, pointC)) {
+      continue;
+    }
+    const Eigen::Matrix4d GcInv = Gc.inverse();
+    std::vector<Eigen::Matrix4d> HhatC(n);
+    for (size_t i = 0; i < n; ++i) {
+      HhatC[i] = GcInv * twistMatrix(m_types[i], axisC[i], pointC[i]) * Gc;
+    }
+    const double residual = predictionResidual(HhatC, M0);
+    if (residual < best) {
+      best = residual;
+      G = Gc;
+      axis = axisC;
+      point = pointC;
+    }
+  }
+  if (!(best < std::numeric_limits<double>::infinity())) {
     fail(vpProjectiveException::estimationFailedError, at("calibrate()"),
          "the affine and metric upgrade of the generators failed; check that the trial motions are large enough and "
          "that the markers are matched in the same order in every image");
   }
-  const Eigen::Matrix4d GinvInit = G.inverse();
+}
 
-  // 4. Metric twists read off G Hhat_i G^-1, projected on valid twists.
-  std::vector<Eigen::Vector3d> axis(n), point(n);
-  for (size_t i = 0; i < n; ++i) {
-    const Eigen::Matrix4d T = G * Hhat[i] * GinvInit;
-    if (m_types[i] == REVOLUTE) {
-      const Eigen::Matrix3d S = T.topLeftCorner<3, 3>();
-      Eigen::Vector3d w(S(2, 1) - S(1, 2), S(0, 2) - S(2, 0), S(1, 0) - S(0, 1));
-      w = 0.5 * w;
-      w.normalize();
-      const Eigen::Vector3d v = T.topRightCorner<3, 1>();
-      axis[i] = w;
-      point[i] = w.cross(v); // v = p x w, so w x v is the point of the axis nearest to the origin
-    } else {
-      axis[i] = T.topRightCorner<3, 1>();
-      point[i].setZero();
-    }
-  }
-
+void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Vector4d> &M0, const Eigen::Matrix4d &G,
+                                     std::vector<Eigen::Vector3d> axis, std::vector<Eigen::Vector3d> point)
+{
+  const size_t n = m_types.size();
+  const size_t K = m_zeroImages.size();
+  std::vector<Eigen::Vector4d> N(K);
   // 5. Bundle adjustment over G^-1, the twists and the markers, on the pixel error of every acquisition image.
-  Eigen::Matrix<double, 4, 4, Eigen::RowMajor> Ginv = GinvInit;
+  Eigen::Matrix<double, 4, 4, Eigen::RowMajor> Ginv = G.inverse();
   for (size_t j = 0; j < K; ++j) {
     N[j] = (G * M0[j]).normalized();
   }
@@ -580,8 +749,12 @@ void vpProjectiveRobot::calibrate()
   }
   std::vector<Eigen::Matrix4d> Hhat;
   algebraicGenerators(Hhat);
-  m_algebraicResidual = predictionResidual(Hhat, triangulateZeroReference());
-  bundleAdjust(Hhat);
+  const std::vector<Eigen::Vector4d> M0 = triangulateZeroReference();
+  m_algebraicResidual = predictionResidual(Hhat, M0);
+  Eigen::Matrix4d G;
+  std::vector<Eigen::Vector3d> axis, point;
+  initialMetricModel(Hhat, M0, G, axis, point);
+  bundleAdjust(M0, G, axis, point);
   m_calibrated = true;
 }
 

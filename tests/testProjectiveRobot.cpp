@@ -65,6 +65,34 @@ vpProjectiveRobot calibratedRobot(const ArmSetup &s, double sigma = 0.0, long se
   return robot;
 }
 
+//! RMS and worst pixel error of the model's marker images P H(q) M_j(0) against the true noise-free ones, over 50
+//! random configurations within +-range (per joint) of the zero reference with every marker in view.
+double predictionRms(const ArmSetup &s, const vpProjectiveRobot &robot, const std::vector<double> &range, long seed,
+                     double &worst)
+{
+  const vpProjectiveStereoRig &rig = robot.getStereoRig();
+  const std::vector<vpColVector> M0 = robot.getZeroReferencePoints();
+  vpUniRand rng(seed);
+  double sum = 0.0;
+  size_t count = 0;
+  worst = 0.0;
+  for (int t = 0; t < 50; ++t) {
+    const vpColVector q = s.randomVisibleJoints(rng, range);
+    EXPECT_EQ(q.getRows(), s.jointTypes().size());
+    const Eigen::Matrix4d H = toEigen<4, 4>(robot.getDisplacement(q));
+    for (size_t j = 0; j < M0.size(); ++j) {
+      vpImagePoint l, r;
+      rig.project(toVispVector(Eigen::Vector4d(H * toEigen4(M0[j]))), l, r);
+      const Eigen::Vector4d e =
+          Eigen::Vector4d(l.get_u(), l.get_v(), r.get_u(), r.get_v()) - s.imageOf(s.armJoints(q), j);
+      sum += e.squaredNorm();
+      count += 4;
+      worst = std::max(worst, e.cwiseAbs().maxCoeff());
+    }
+  }
+  return std::sqrt(sum / static_cast<double>(count));
+}
+
 //! Random model joints within the trial amounts of the setup, all markers in view.
 vpColVector randomJoints(const ArmSetup &s, vpUniRand &rng, double fraction = 1.0)
 {
@@ -537,30 +565,50 @@ TEST(ProjectiveRobot, CalibrationAtHalfPixelNoise)
     EXPECT_GT(residual, 0.38) << "seed " << seed;
     EXPECT_LT(residual, 0.55) << "seed " << seed;
     EXPECT_LT(residual, robot.getAlgebraicResidual()) << "the refinement must improve on the algebraic generators";
-    const vpProjectiveStereoRig &rig = robot.getStereoRig();
-    const std::vector<vpColVector> M0 = robot.getZeroReferencePoints();
-    vpUniRand rng(100 + seed);
-    double sum = 0.0, worst = 0.0;
-    size_t count = 0;
-    for (int t = 0; t < 50; ++t) {
-      const vpColVector q = s.randomVisibleJoints(rng, std::vector<double>(6, vpMath::rad(30.0)));
-      ASSERT_EQ(q.getRows(), 6u);
-      const Eigen::Matrix4d H = toEigen<4, 4>(robot.getDisplacement(q));
-      for (size_t j = 0; j < M0.size(); ++j) {
-        vpImagePoint l, r;
-        rig.project(toVispVector(Eigen::Vector4d(H * toEigen4(M0[j]))), l, r);
-        const Eigen::Vector4d e =
-            Eigen::Vector4d(l.get_u(), l.get_v(), r.get_u(), r.get_v()) - s.imageOf(s.armJoints(q), j);
-        sum += e.squaredNorm();
-        count += 4;
-        worst = std::max(worst, e.cwiseAbs().maxCoeff());
-      }
-    }
-    const double rms = std::sqrt(sum / static_cast<double>(count));
+    double worst = 0.0;
+    const double rms = predictionRms(s, robot, std::vector<double>(6, vpMath::rad(30.0)), 100 + seed, worst);
     std::cout << "[ measured ] seed " << seed << ": calibration residual " << residual << " px (algebraic "
               << robot.getAlgebraicResidual() << " px), prediction RMS " << rms << " px, worst " << worst << " px"
               << std::endl;
     EXPECT_LE(rms, 1.0) << "seed " << seed;
+  }
+}
+
+TEST(ProjectiveRobot, CalibrationAtOnePixelNoise)
+{
+  /*
+    The acquisition must not fail at 1 px noise, on any arm: at that level a single trial's homography of a joint
+    whose axis is far from the markers (the PUMA's shoulder, 20 deg trials) can be far off, which spoiled the upgrade
+    of 6 PUMA acquisitions out of 300 (an exception, or a bundle adjustment ending 100+ px off) before the upgrade
+    learned to leave such joints out. 60 seeds of the PUMA (eye-to-hand) and 20 of each other arm; at random
+    configurations within the trial amounts, the model must predict the markers within 5 sigma RMS: a failed
+    calibration is 20 times beyond, while the eye-in-hand models, acquired with 4 deg trials, measure 1.8 px mean and
+    3.4 px worst (the PUMA eye-to-hand: 0.62 and 1.0 px; 0.65 and 1.19 px over 300 seeds).
+  */
+  const double sigma = 1.0;
+  const std::vector<std::pair<ArmSetup, long>> setups = {
+      {pumaEyeToHand(), 60}, {pumaEyeInHand(), 20}, {viperEyeToHand(), 20}, {mixedEyeToHand(), 20}};
+  for (const auto &setup : setups) {
+    const ArmSetup &s = setup.first;
+    double meanRms = 0.0, worstRms = 0.0;
+    for (long seed = 1; seed <= setup.second; ++seed) {
+      vpProjectiveRobot robot(s.jointTypes());
+      vpGaussRand noise(1.0, 0.0, seed);
+      ASSERT_TRUE(s.acquire(robot, sigma, noise)) << s.name << ": a marker left the view during the acquisition";
+      try {
+        robot.calibrate();
+      } catch (const vpException &e) {
+        ADD_FAILURE() << s.name << ", seed " << seed << ": calibrate() failed: " << e.getStringMessage();
+        continue;
+      }
+      double worst = 0.0;
+      const double rms = predictionRms(s, robot, s.trialAmounts, 200 + seed, worst);
+      EXPECT_LE(rms, 5.0 * sigma) << s.name << ", seed " << seed;
+      meanRms += rms / static_cast<double>(setup.second);
+      worstRms = std::max(worstRms, rms);
+    }
+    std::cout << "[ measured ] " << s.name << " at 1 px, " << setup.second << " seeds: prediction RMS " << meanRms
+              << " px mean, " << worstRms << " px worst" << std::endl;
   }
 }
 

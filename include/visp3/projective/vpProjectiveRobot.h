@@ -223,7 +223,24 @@ private:
   JointVector toJointVector(const vpColVector &q, const std::string &where) const;
   std::vector<Eigen::Vector4d> triangulateZeroReference() const;
   void algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat) const;
-  void bundleAdjust(const std::vector<Eigen::Matrix4d> &Hhat);
+  /*!
+    Affine and metric upgrade from the generators of the joints flagged in \e use: G (4x4) maps the projective frame
+    to a metric one centred and scaled on the markers M0. False when the data do not give a finite, invertible G.
+  */
+  bool metricUpgrade(const std::vector<Eigen::Matrix4d> &Hhat, const std::vector<bool> &use,
+                     const std::vector<Eigen::Vector4d> &M0, Eigen::Matrix4d &G) const;
+  //! Metric axes and points of every joint in the frame of G, from its generator or its trials' rigid motions.
+  bool initialTwists(const Eigen::Matrix4d &G, const std::vector<Eigen::Matrix4d> &Hhat,
+                     const std::vector<Eigen::Vector4d> &M0,
+                     const std::vector<std::vector<Eigen::Vector4d>> &trialPoints, std::vector<Eigen::Vector3d> &axis,
+                     std::vector<Eigen::Vector3d> &point) const;
+  //! The start of the bundle adjustment: the best-predicting of the upgrades with every joint and all but one.
+  void initialMetricModel(const std::vector<Eigen::Matrix4d> &Hhat, const std::vector<Eigen::Vector4d> &M0,
+                          Eigen::Matrix4d &G, std::vector<Eigen::Vector3d> &axis,
+                          std::vector<Eigen::Vector3d> &point) const;
+  //! Bundle adjustment over G^-1, the twists and the markers, on the pixel error of every acquisition image.
+  void bundleAdjust(const std::vector<Eigen::Vector4d> &M0, const Eigen::Matrix4d &G, std::vector<Eigen::Vector3d> axis,
+                    std::vector<Eigen::Vector3d> point);
   //! RMS pixel error of all trials predicted by the generators Hhat from the zero-reference points M0.
   double predictionResidual(const std::vector<Eigen::Matrix4d> &Hhat, const std::vector<Eigen::Vector4d> &M0) const;
   //! Adds the squared pixel errors of joint i's trials predicted by Hhat, and their number of coordinates.
