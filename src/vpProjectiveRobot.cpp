@@ -317,6 +317,7 @@ void vpProjectiveRobot::algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat) 
   const size_t n = m_types.size();
   // Candidate generators of each joint: the logarithm of each of its trials, and their projected mean.
   std::vector<std::vector<Eigen::Matrix4d>> candidates(n);
+  std::vector<unsigned int> trialCount(n, 0);
   for (const vpTrial &trial : m_trials) {
     // A blocked joint or a tiny trial leaves the markers where they were: H = I has no logarithm to speak of.
     double motion = 0.0;
@@ -333,21 +334,30 @@ void vpProjectiveRobot::algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat) 
     // Maximum-likelihood displacement: the linear one from 7 noisy markers is too poor a start for the upgrade. 15
     // Levenberg-Marquardt iterations (of about 25 to full convergence) are enough for a start: the bundle adjustment
     // refines everything, and at 1 px noise no acquisition of 300 failed with 12.
-    const Eigen::Matrix4d H = vpProjectiveDisplacement::estimateFromImages(m_rig, m_zeroImages, trial.s, 15);
-    double theta = 0.0;
-    candidates[trial.joint].push_back(m_types[trial.joint] == REVOLUTE
-                                          ? vpProjectiveRotation::log(H, theta, trial.amount).generator()
-                                          : vpProjectiveTranslation::log(H, trial.amount).generator());
+    ++trialCount[trial.joint];
+    try {
+      const Eigen::Matrix4d H = vpProjectiveDisplacement::estimateFromImages(m_rig, m_zeroImages, trial.s, 15);
+      double theta = 0.0;
+      candidates[trial.joint].push_back(m_types[trial.joint] == REVOLUTE
+                                            ? vpProjectiveRotation::log(H, theta, trial.amount).generator()
+                                            : vpProjectiveTranslation::log(H, trial.amount).generator());
+    } catch (const vpProjectiveException &) {
+      // A noisy homography so far off that it is singular or has no logarithm gives no candidate; the joint's other
+      // trials, or the rigid motions of its markers in the metric frame (initialTwists()), still do.
+    }
   }
   // A single trial's homography occasionally lands far off (a small marker set gives a poorly conditioned 15-dof
   // fit), which spoils the mean: keep the candidate that best predicts all the trials of its joint.
   const std::vector<Eigen::Vector4d> M0 = triangulateZeroReference();
   Hhat.assign(n, Eigen::Matrix4d::Zero());
   for (size_t i = 0; i < n; ++i) {
-    if (candidates[i].empty()) {
+    if (trialCount[i] == 0) {
       std::ostringstream os;
       os << "joint " << i << " has no trial motion; call addTrialMotion(" << i << ", amount, left, right) first";
       fail(vpProjectiveException::notInitializedError, where, os.str());
+    }
+    if (candidates[i].empty()) {
+      continue; // Hhat_i = 0: the upgrade leaves joint i out
     }
     Eigen::Matrix4d mean = Eigen::Matrix4d::Zero();
     for (const Eigen::Matrix4d &G : candidates[i]) {
