@@ -576,6 +576,10 @@ int main(int argc, char **argv)
                                         study(world, 0.1, {0.01, 0.04, 0.09, 0.19, 0.21, 0.35}, seeds, 40)};
     printTable(studies, seeds);
     //! [Monte Carlo]
+    unsigned int failed = 0;
+    for (const Study &st : studies) {
+      failed += st.lostView + st.notConverged;
+    }
 
 #if defined(VISP_HAVE_X11)
     if (display) {
@@ -584,6 +588,10 @@ int main(int argc, char **argv)
 #else
     (void)display;
 #endif
+    if (failed > 0) {
+      std::cerr << failed << " runs did not converge" << std::endl;
+      return EXIT_FAILURE; // the table says which
+    }
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getStringMessage() << std::endl;
     return EXIT_FAILURE;
