@@ -14,6 +14,8 @@
   (b) The acquisition of the paper's arm (6 joints, 7 markers, 0.5 px noise): setStereoRig(), setZeroReference(),
       12 addTrialMotion() (trials [30, 20, 30, 40, 60, 60] deg both ways, as in tutorial-projective-servo.cpp) and
       calibrate(); and the same preceded by the weak calibration rig.estimate() from the acquisition images.
+  (a') (a) on the Eigen API with every robustness check of issue 6 on (image window, outlier rejection with
+      prediction, a lost 4th marker, joint limits with a joint in its activation band), far from and near the target.
   (c) (a) on the Eigen API for n in {3, 6, 7, 12} joints and {3, 10, 50} points: synthetic n-revolute-joint chains
       (vpSimulatorArm) calibrated noise-free through the public acquisition API in the true projective frame of the
       paper's rig, with random points near the gripper as features.
@@ -26,8 +28,9 @@
   (and the same ratio of CPU-time medians, steadier on a loaded machine), the (b) medians and the (c) table with its
   per-point slopes. The "allocs" counter is the number of malloc() calls per iteration of the timed loop, counted by a
   malloc() interposed in this program (operator new and Eigen both go through it); fractions of a call come from the
-  framework's own allocations amortised over the iterations. The interposition adds about 1% to the instruction count
-  of ViSP's vpServo iteration (306 allocations) and nothing to the projective one.
+  framework's own allocations amortised over the iterations. The program checks that every Eigen-API benchmark
+  allocates nothing per iteration (below 0.01 calls) and exits with 1 otherwise. The interposition adds about 1% to the
+  instruction count of ViSP's vpServo iteration (306 allocations) and nothing to the projective one.
   "***WARNING*** Library was built as DEBUG" refers to Debian's libbenchmark itself, not to this program.
 
   Usage: benchmarkServo [Google Benchmark options, e.g. --benchmark_filter=Servo --benchmark_repetitions=20]
@@ -335,6 +338,83 @@ void BM_vpServoProjective_Eigen(benchmark::State &state)
 }
 
 /*!
+  The same task with every check of issue 6 on, so that each one runs in the timed loop: an image window
+  (setImageSize), outlier rejection (setOutlierThreshold: epipolar distance and prediction H(q) H(q_l)^-1 M_l, the
+  features accepted once before the loop), a 4th marker declared lost (SERVO_REDUCED: the rank test's
+  eigenvalues), and joint limits with joint 0 beyond l1 in its upper activation band (the large projection operator
+  and the avoidance term). \e nearTarget puts s* 0.1 px from s on every coordinate (||e|| = 0.35 px, between vpServo's
+  e0 = 0.1 and e1 = 0.7): the operator then also needs the eigenvectors of J^T J for I - J^+ J.
+*/
+struct RobustTask {
+  std::vector<vpFeatureStereoPoint> s, sStar;
+  vpServoProjective task;
+  vpProjectiveRobot::JointVector q;
+
+  RobustTask(const vpProjectiveRobot &robot, bool nearTarget) : s(4), sStar(4), task(), q(6)
+  {
+    const PaperWorld &w = paperWorld();
+    vpGaussRand noise(1.0, 0.0, 7);
+    const vpColVector qv = degToRad(w.startDeg);
+    const std::vector<vpColVector> markers = w.arm.getMarkers(qv);
+    const std::vector<vpColVector> targets = w.arm.getMarkers(degToRad(w.targetDeg));
+    const unsigned int tracked[4] = {w.tracked[0], w.tracked[1], w.tracked[2], 3};
+    task.setRobot(robot);
+    task.setLambda(0.5);
+    task.setMaxJointVelocity(vpMath::rad(15.0));
+    for (unsigned int k = 0; k < 4; ++k) {
+      vpImagePoint l, r;
+      w.rig.project(markers[tracked[k]], l, r, kNoiseSigma, noise);
+      s[k].buildFrom(l, r);
+      if (nearTarget) {
+        sStar[k].buildFrom(l.get_u() + 0.1, l.get_v() - 0.1, r.get_u() + 0.1, r.get_v() - 0.1);
+      } else {
+        w.rig.project(targets[tracked[k]], l, r, kNoiseSigma, noise);
+        sStar[k].buildFrom(l, r);
+      }
+      task.addFeature(s[k], sStar[k]);
+    }
+    vpColVector qmin(6), qmax(6);
+    const double range = vpMath::rad(200.0);
+    for (unsigned int i = 0; i < 6; ++i) {
+      q(i) = qv[i];
+      const double position = i == 0 ? 0.95 : 0.5; // fraction of [qmin, qmax]: joint 0 beyond l1 = 0.93
+      qmin[i] = qv[i] - position * range;
+      qmax[i] = qmin[i] + range;
+    }
+    task.setImageSize(w.rig.getWidth(), w.rig.getHeight());
+    task.setOutlierThreshold(5.0);
+    task.setJointLimits(qmin, qmax);
+    vpProjectiveRobot::JointVector qdot(6);
+    task.computeControlLaw(q, qdot); // accepts the features once: the loop also evaluates their predictions
+    task.setFeatureTracked(3, false);
+  }
+};
+
+std::string robustLabel(const vpServoProjective &task)
+{
+  static const char *const status[3] = {"running", "reduced", "stopped"};
+  char label[96];
+  std::snprintf(label, sizeof(label), "%s, %u/%u active, |q2| %.2g", status[task.getStatus()],
+                task.getNumberOfActiveFeatures(), task.getNumberOfFeatures(),
+                task.getJointLimitVelocity().frobeniusNorm());
+  return label;
+}
+
+void BM_vpServoProjective_Eigen_Robust(benchmark::State &state)
+{
+  RobustTask t(paperRobot(), state.range(0) != 0);
+  vpProjectiveRobot::JointVector qdot(6);
+  const unsigned long long before = mallocCalls();
+  for (auto _ : state) {
+    t.task.computeControlLaw(t.q, qdot);
+    benchmark::DoNotOptimize(qdot.data());
+    benchmark::ClobberMemory();
+  }
+  reportAllocations(state, before);
+  state.SetLabel(robustLabel(t.task));
+}
+
+/*!
   ViSP's metric eye-in-hand servo of the same size: 6 image points (x, y, Z), a 12 x 6 task Jacobian
   L cVe eJe with eJe = vpViper850::get_eJe(q) (the metric counterpart of the projective model Jacobian) computed in
   the loop, and the pseudo-inverse control law.
@@ -515,8 +595,9 @@ void BM_Scaling(benchmark::State &state)
 // Reporting: the console output, plus the medians over the repetitions of the real and CPU time per iteration.
 // ---------------------------------------------------------------------------------------------------------------
 struct Median {
-  double real = -1.0; //!< us, negative if the benchmark did not run
-  double cpu = -1.0;  //!< us
+  double real = -1.0;   //!< us, negative if the benchmark did not run
+  double cpu = -1.0;    //!< us
+  double allocs = -1.0; //!< malloc() calls per iteration (median), negative if not counted
   bool valid() const { return real > 0.0 && cpu > 0.0; }
 };
 
@@ -535,6 +616,8 @@ public:
         Median &m = m_median[name.function_name + (name.args.empty() ? "" : "/" + name.args)];
         m.real = run.GetAdjustedRealTime() * toMicroseconds;
         m.cpu = run.GetAdjustedCPUTime() * toMicroseconds;
+        const auto allocs = run.counters.find("allocs");
+        m.allocs = allocs == run.counters.end() ? -1.0 : static_cast<double>(allocs->second);
       }
     }
     ConsoleReporter::ReportRuns(runs);
@@ -547,18 +630,26 @@ public:
     return it == m_median.end() ? Median() : it->second;
   }
 
+  //! Every benchmark that ran, by name.
+  const std::map<std::string, Median> &medians() const { return m_median; }
+
 private:
   std::map<std::string, Median> m_median;
 };
 
-void printRatio(const char *api, const Median &metric, const Median &projective)
+//! The ratio of the medians; \e target: also says whether the work order's ratio >= 5 is met.
+void printRatio(const char *api, const Median &metric, const Median &projective, bool target = true)
 {
   if (!metric.valid() || !projective.valid()) {
     return;
   }
   const double ratio = metric.real / projective.real;
-  std::printf("    ratio vpServo/vpServoProjective = %.2f (%s API, real time; CPU time: %.2f; target >= 5: %s)\n",
-              ratio, api, metric.cpu / projective.cpu, ratio >= 5.0 ? "met" : "NOT met");
+  std::printf("    ratio vpServo/vpServoProjective = %.2f (%s, real time; CPU time: %.2f", ratio, api,
+              metric.cpu / projective.cpu);
+  if (target) {
+    std::printf("; target >= 5: %s", ratio >= 5.0 ? "met" : "NOT met");
+  }
+  std::printf(")\n");
 }
 
 void printSummary(const MedianReporter &reporter)
@@ -580,8 +671,19 @@ void printSummary(const MedianReporter &reporter)
     std::printf("    vpServoProjective, Eigen API                 %9.3f us (%.3f)\n", projectiveEigen.real,
                 projectiveEigen.cpu);
   }
-  printRatio("vpColVector", metric, projective);
-  printRatio("Eigen", metric, projectiveEigen);
+  const Median robust = reporter.median("BM_vpServoProjective_Eigen_Robust/near_target:0");
+  const Median robustNear = reporter.median("BM_vpServoProjective_Eigen_Robust/near_target:1");
+  if (robust.valid()) {
+    std::printf("    vpServoProjective, Eigen API, every check on %9.3f us (%.3f) [4 points, 1 lost, joint 0 in "
+                "its band]\n",
+                robust.real, robust.cpu);
+  }
+  if (robustNear.valid()) {
+    std::printf("    the same 0.35 px from s* (I - J^+ J blended) %9.3f us (%.3f)\n", robustNear.real, robustNear.cpu);
+  }
+  printRatio("vpColVector API", metric, projective);
+  printRatio("Eigen API", metric, projectiveEigen);
+  printRatio("Eigen API, every check on", metric, robust, false);
 
   const Median calibrate = reporter.median("BM_Calibrate_6joints_7markers");
   const Median withRig = reporter.median("BM_RigEstimateAndCalibrate_6joints_7markers");
@@ -627,11 +729,47 @@ void printSummary(const MedianReporter &reporter)
   }
 }
 
+/*!
+  The allocation check: every benchmark of the Eigen API (BM_vpServoProjective_Eigen*, BM_Scaling) must allocate
+  nothing per iteration (fewer than 0.01 malloc() calls: the framework's own, amortised). Returns false otherwise.
+*/
+bool checkAllocations(const MedianReporter &reporter)
+{
+#ifdef BENCHMARK_SERVO_NO_MALLOC_COUNT
+  (void)reporter;
+  return true;
+#else
+  bool ok = true, any = false;
+  for (const auto &entry : reporter.medians()) {
+    const std::string &name = entry.first;
+    if (name.rfind("BM_vpServoProjective_Eigen", 0) != 0 && name.rfind("BM_Scaling", 0) != 0) {
+      continue;
+    }
+    any = true;
+    if (!(entry.second.allocs >= 0.0 && entry.second.allocs < 0.01)) {
+      std::printf("    ALLOCATES: %s, %.3f malloc() calls per iteration\n", name.c_str(), entry.second.allocs);
+      ok = false;
+    }
+  }
+  if (any) {
+    std::printf("allocation check (Eigen API, per iteration): %s\n", ok ? "no allocation" : "FAILED");
+  }
+  return ok;
+#endif
+}
+
 } // namespace
 
 BENCHMARK(BM_vpServo_Viper850)->Repetitions(10)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_vpServoProjective_vpColVector)->Repetitions(10)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_vpServoProjective_Eigen)->Repetitions(10)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_vpServoProjective_Eigen_Robust)
+    ->ArgName("near_target")
+    ->Arg(0)
+    ->Arg(1)
+    ->Repetitions(10)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Calibrate_6joints_7markers)->Repetitions(10)->ReportAggregatesOnly(true)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_RigEstimateAndCalibrate_6joints_7markers)
     ->Repetitions(10)
@@ -653,6 +791,7 @@ int main(int argc, char **argv)
   MedianReporter reporter;
   benchmark::RunSpecifiedBenchmarks(&reporter);
   printSummary(reporter);
+  const bool allocationFree = checkAllocations(reporter);
   benchmark::Shutdown();
-  return 0;
+  return allocationFree ? 0 : 1;
 }
