@@ -840,3 +840,54 @@ TEST(SimulatorArm, BadInputsThrow)
   expectThrowsCode([&]() { vpSimulatorArm(vpSimulatorArm::pumaTable(), I, markers, notRigid); },
                    vpProjectiveException::invalidValueError);
 }
+
+TEST(Simulator, BadInputsNameTheProblem)
+{
+  // The ground-truth classes are public API too: beyond the codes checked above, the construction and the settings
+  // reject bad input with a message naming the problem.
+  using vpProjectiveTest::throwsProjective;
+  const int dimension = vpProjectiveException::dimensionError, nonFinite = vpProjectiveException::nonFiniteValueError,
+            invalid = vpProjectiveException::invalidValueError;
+  const vpSimulatorArm arm = vpSimulatorArm::puma(vpSimulatorArm::paperBasePose());
+  vpColVector nan(6, 0.0);
+  nan[2] = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_TRUE(throwsProjective([&] { arm.getMarkers(nan); }, nonFinite, "contains NaN or infinity"));
+  EXPECT_TRUE(
+      throwsProjective([&] { arm.integrate(vpColVector(6, 0.0), vpColVector(6, 0.0), -1.0); }, invalid, "time step"));
+  vpSimulatorArm limited = arm;
+  vpColVector qmin(6, 0.0), qmax(6, 1.0);
+  qmin[3] = 2.0;
+  EXPECT_TRUE(throwsProjective([&] { limited.setJointLimits(qmin, qmax); }, invalid, "joint 3 has qmin"));
+  std::vector<vpSimulatorArm::vpDHRow> dh = vpSimulatorArm::pumaTable();
+  dh[1].a = std::numeric_limits<double>::infinity();
+  EXPECT_TRUE(throwsProjective(
+      [&] {
+        vpSimulatorArm(dh, vpSimulatorArm::gripperMount(), vpSimulatorArm::gripperMarkers(), vpHomogeneousMatrix());
+      },
+      nonFinite, "Denavit-Hartenberg row 1"));
+  std::vector<vpColVector> markers = vpSimulatorArm::gripperMarkers();
+  markers[4] = vpColVector(2, 0.0);
+  EXPECT_TRUE(throwsProjective(
+      [&] {
+        vpSimulatorArm(vpSimulatorArm::pumaTable(), vpSimulatorArm::gripperMount(), markers, vpHomogeneousMatrix());
+      },
+      dimension, "marker 4 must be a 3x1 point"));
+
+  const vpSimulatorStereoRig rig = vpSimulatorStereoRig::paperRig(vpColVector(3, 0.0), 1.0);
+  vpCameraParameters bad(-100.0, 100.0, 320.0, 240.0);
+  EXPECT_TRUE(throwsProjective(
+      [&] { vpSimulatorStereoRig(bad, rig.getRightCameraParameters(), rig.get_rMl(), rig.get_wMl(), 640, 480); },
+      invalid, "focal lengths in pixels must be positive"));
+  EXPECT_TRUE(throwsProjective(
+      [&] {
+        vpSimulatorStereoRig(rig.getLeftCameraParameters(), rig.getRightCameraParameters(), vpHomogeneousMatrix(),
+                             rig.get_wMl(), 640, 480);
+      },
+      vpProjectiveException::degenerateConfigurationError, "non-zero baseline"));
+  EXPECT_TRUE(throwsProjective(
+      [&] {
+        vpSimulatorStereoRig(rig.getLeftCameraParameters(), rig.getRightCameraParameters(), rig.get_rMl(),
+                             rig.get_wMl(), 0, 480);
+      },
+      invalid, "image size is zero"));
+}
