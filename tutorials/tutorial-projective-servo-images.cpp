@@ -94,6 +94,8 @@
 #include <visp3/projective/vpSimulatorArm.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
+#include "tutorial-projective-common.h"
+
 namespace
 {
 //! [World]
@@ -124,14 +126,9 @@ struct ImageModel {
 };
 //! [Image model]
 
-vpColVector degToRad(const std::vector<double> &deg)
-{
-  vpColVector q(static_cast<unsigned int>(deg.size()));
-  for (unsigned int i = 0; i < q.size(); ++i) {
-    q[i] = vpMath::rad(deg[i]);
-  }
-  return q;
-}
+using tutorial::degToRad;
+using tutorial::maxOf;
+using tutorial::mean;
 
 //! Joint values (rad) as a line of degrees.
 std::string degrees(const vpColVector &q)
@@ -808,17 +805,11 @@ vpProjectiveRobot acquire(Session &session, TrackingAccuracy &accuracy, StereoMa
   accuracy.add(world, session.q, session.tracker);
   zeroState = session.tracker;
   const std::vector<vpImagePoint> left0 = zeroState.getCogs(0), right0 = zeroState.getCogs(1);
-  std::vector<vpImagePoint> allLeft = left0, allRight = right0;
   if (verbose) {
     std::cout << "    markers 0-6 clicked once at the zero reference (simulated clicks, refined by vpDot2)\n";
   }
 
-  struct Trial {
-    unsigned int joint;
-    double amount;
-    std::vector<vpImagePoint> left, right;
-  };
-  std::vector<Trial> trials;
+  std::vector<tutorial::TrialMotion> trials;
   session.accuracy = &accuracy;
   for (unsigned int i = 0; i < n; ++i) {
     for (double sign : {1.0, -1.0}) {
@@ -851,25 +842,14 @@ vpProjectiveRobot acquire(Session &session, TrackingAccuracy &accuracy, StereoMa
         }
         std::cout << os.str() << "\n";
       }
-      Trial t{i, amount, session.tracker.getCogs(0), session.tracker.getCogs(1)};
-      allLeft.insert(allLeft.end(), t.left.begin(), t.left.end());
-      allRight.insert(allRight.end(), t.right.begin(), t.right.end());
-      trials.push_back(t);
+      trials.push_back({i, amount, session.tracker.getCogs(0), session.tracker.getCogs(1)});
     }
   }
   session.accuracy = nullptr;
 
-  // From here on, as in the main tutorial, with tracked centres instead of noisy projections.
-  vpProjectiveStereoRig rig;
-  rig.estimate(allLeft, allRight, 1.0); // inliers within 1 px of their epipolar line
-  vpProjectiveRobot robot(std::vector<vpProjectiveRobot::vpJointType>(n, vpProjectiveRobot::REVOLUTE));
-  robot.setStereoRig(rig);
-  robot.setZeroReference(left0, right0);
-  for (const Trial &t : trials) {
-    robot.addTrialMotion(t.joint, t.amount, t.left, t.right);
-  }
-  robot.calibrate();
-  return robot;
+  // From here on, as in the main tutorial, with tracked centres instead of noisy projections: F with inliers within
+  // 1 px of their epipolar line, then the calibration.
+  return tutorial::calibrateFromTrials(n, left0, right0, trials, 1.0);
 }
 //! [Acquisition]
 
@@ -877,30 +857,7 @@ vpProjectiveRobot acquire(Session &session, TrackingAccuracy &accuracy, StereoMa
 //! RMS pixel error of the markers predicted by the model, rig.project(H(q) M(0)), at random q within +-30 deg.
 double predictionError(const World &world, const vpProjectiveRobot &robot, unsigned int seed)
 {
-  const unsigned int n = world.arm.getNumberOfJoints();
-  const std::vector<vpColVector> M0 = robot.getZeroReferencePoints();
-  vpUniRand uniform(seed);
-  vpGaussRand noNoise(1.0, 0.0, 1);
-  double sum = 0.0;
-  unsigned int count = 0;
-  for (unsigned int k = 0; k < 100; ++k) {
-    vpColVector q(n);
-    for (unsigned int i = 0; i < n; ++i) {
-      q[i] = vpMath::rad(uniform.uniform(-30.0, 30.0));
-    }
-    std::vector<vpImagePoint> left, right;
-    if (!world.rig.project(world.arm.getMarkers(q), left, right, 0.0, noNoise)) {
-      continue; // only configurations where the truth is visible
-    }
-    const vpMatrix H = robot.getDisplacement(q);
-    for (size_t j = 0; j < M0.size(); ++j) {
-      vpImagePoint l, r;
-      robot.getStereoRig().project(H * M0[j], l, r);
-      sum += vpImagePoint::sqrDistance(l, left[j]) + vpImagePoint::sqrDistance(r, right[j]);
-      count += 4;
-    }
-  }
-  return std::sqrt(sum / count);
+  return tutorial::predictionError(robot, tutorial::trueMarkerImages(world.rig, world.arm), seed);
 }
 //! [Model accuracy]
 
@@ -1014,32 +971,8 @@ ServoRun servo(Session &session, const vpProjectiveRobot &robot, TrackingAccurac
 //! sqrt(diag(sigma^2 (J^T J)^-1)) with J the true stacked image Jacobian of the tracked markers at the target.
 vpColVector noiseFloor(const World &world, double sigma)
 {
-  const vpColVector qTarget = degToRad(world.targetDeg);
-  const unsigned int n = qTarget.size();
-  const unsigned int rows = 4 * static_cast<unsigned int>(world.tracked.size());
-  vpMatrix J(rows, n);
-  const double h = 1e-6;
-  for (unsigned int i = 0; i < n; ++i) {
-    vpColVector qp = qTarget, qm = qTarget;
-    qp[i] += h;
-    qm[i] -= h;
-    const std::vector<vpColVector> mp = world.arm.getMarkers(qp), mm = world.arm.getMarkers(qm);
-    for (unsigned int k = 0; k < world.tracked.size(); ++k) {
-      vpImagePoint lp, rp, lm, rm;
-      world.rig.project(mp[world.tracked[k]], lp, rp);
-      world.rig.project(mm[world.tracked[k]], lm, rm);
-      J[4 * k][i] = (lp.get_u() - lm.get_u()) / (2 * h);
-      J[4 * k + 1][i] = (lp.get_v() - lm.get_v()) / (2 * h);
-      J[4 * k + 2][i] = (rp.get_u() - rm.get_u()) / (2 * h);
-      J[4 * k + 3][i] = (rp.get_v() - rm.get_v()) / (2 * h);
-    }
-  }
-  const vpMatrix covariance = (J.t() * J).inverseByLU() * (sigma * sigma);
-  vpColVector floor(n);
-  for (unsigned int i = 0; i < n; ++i) {
-    floor[i] = std::sqrt(covariance[i][i]);
-  }
-  return floor;
+  const tutorial::ImagesAt trueImages = tutorial::trueMarkerImages(world.rig, world.arm, world.tracked);
+  return tutorial::noiseFloor(tutorial::imageJacobian(trueImages, degToRad(world.targetDeg)), sigma);
 }
 //! [Noise floor]
 
@@ -1068,20 +1001,6 @@ void writeImages(const Session &session, const ServoRun &run, const std::string 
   }
 }
 //! [Images]
-
-double mean(const std::vector<double> &x)
-{
-  double m = 0.0;
-  for (double v : x) {
-    m += v;
-  }
-  return x.empty() ? 0.0 : m / x.size();
-}
-
-double maxOf(const std::vector<double> &x)
-{
-  return x.empty() ? 0.0 : *std::max_element(x.begin(), x.end());
-}
 
 //! What the seeds give, for the table.
 struct Study {

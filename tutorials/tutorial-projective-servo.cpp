@@ -53,6 +53,8 @@
 #include <visp3/projective/vpSimulatorArm.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
+#include "tutorial-projective-common.h"
+
 namespace
 {
 //! [World]
@@ -74,14 +76,9 @@ struct World {
 };
 //! [World]
 
-vpColVector degToRad(const std::vector<double> &deg)
-{
-  vpColVector q(static_cast<unsigned int>(deg.size()));
-  for (unsigned int i = 0; i < q.size(); ++i) {
-    q[i] = vpMath::rad(deg[i]);
-  }
-  return q;
-}
+using tutorial::degToRad;
+using tutorial::maxOf;
+using tutorial::mean;
 
 //! [Acquisition]
 /*!
@@ -91,47 +88,12 @@ vpColVector degToRad(const std::vector<double> &deg)
 */
 vpProjectiveRobot acquire(const World &world, double sigma, vpGaussRand &noise, bool verbose)
 {
-  const unsigned int n = world.arm.getNumberOfJoints();
-  std::vector<vpImagePoint> left0, right0, allLeft, allRight;
-  world.rig.project(world.arm.getMarkers(vpColVector(n, 0.0)), left0, right0, sigma, noise);
-  allLeft = left0;
-  allRight = right0;
-
-  struct Trial {
-    unsigned int joint;
-    double amount;
-    std::vector<vpImagePoint> left, right;
+  // The images at q: noisy projections of all the markers, in view of both cameras or not.
+  const tutorial::ImagesAt imagesAt = [&](const vpColVector &q, std::vector<vpImagePoint> &left,
+                                          std::vector<vpImagePoint> &right) {
+    return world.rig.project(world.arm.getMarkers(q), left, right, sigma, noise);
   };
-  std::vector<Trial> trials;
-  for (unsigned int i = 0; i < n; ++i) {
-    for (double sign : {1.0, -1.0}) {
-      Trial t{i, sign * vpMath::rad(world.trialDeg[i]), {}, {}};
-      vpColVector q(n, 0.0);
-      q[i] = t.amount;
-      while (!world.rig.project(world.arm.getMarkers(q), t.left, t.right, sigma, noise)) {
-        t.amount /= 2.0; // the markers left the view: a smaller trial
-        q[i] = t.amount;
-      }
-      if (verbose && std::abs(t.amount) < vpMath::rad(world.trialDeg[i])) {
-        std::cout << "    joint " << i << ": trial reduced to " << vpMath::deg(t.amount) << " deg to stay in view\n";
-      }
-      allLeft.insert(allLeft.end(), t.left.begin(), t.left.end());
-      allRight.insert(allRight.end(), t.right.begin(), t.right.end());
-      trials.push_back(t);
-    }
-  }
-
-  vpProjectiveStereoRig rig;
-  rig.estimate(allLeft, allRight, std::max(1.0, 4.0 * sigma));
-
-  vpProjectiveRobot robot(std::vector<vpProjectiveRobot::vpJointType>(n, vpProjectiveRobot::REVOLUTE));
-  robot.setStereoRig(rig);
-  robot.setZeroReference(left0, right0);
-  for (const Trial &t : trials) {
-    robot.addTrialMotion(t.joint, t.amount, t.left, t.right);
-  }
-  robot.calibrate();
-  return robot;
+  return tutorial::acquireByTrials(world.trialDeg, imagesAt, std::max(1.0, 4.0 * sigma), verbose);
 }
 //! [Acquisition]
 
@@ -139,30 +101,7 @@ vpProjectiveRobot acquire(const World &world, double sigma, vpGaussRand &noise, 
 //! RMS pixel error of the markers predicted by the model, rig.project(H(q) M(0)), at random q within +-30 deg.
 double predictionError(const World &world, const vpProjectiveRobot &robot, unsigned int seed)
 {
-  const unsigned int n = world.arm.getNumberOfJoints();
-  const std::vector<vpColVector> M0 = robot.getZeroReferencePoints();
-  vpUniRand uniform(seed);
-  vpGaussRand noNoise(1.0, 0.0, 1);
-  double sum = 0.0;
-  unsigned int count = 0;
-  for (unsigned int k = 0; k < 100; ++k) {
-    vpColVector q(n);
-    for (unsigned int i = 0; i < n; ++i) {
-      q[i] = vpMath::rad(uniform.uniform(-30.0, 30.0));
-    }
-    std::vector<vpImagePoint> left, right;
-    if (!world.rig.project(world.arm.getMarkers(q), left, right, 0.0, noNoise)) {
-      continue; // only configurations where the truth is visible
-    }
-    const vpMatrix H = robot.getDisplacement(q);
-    for (size_t j = 0; j < M0.size(); ++j) {
-      vpImagePoint l, r;
-      robot.getStereoRig().project(H * M0[j], l, r);
-      sum += vpImagePoint::sqrDistance(l, left[j]) + vpImagePoint::sqrDistance(r, right[j]);
-      count += 4;
-    }
-  }
-  return std::sqrt(sum / count);
+  return tutorial::predictionError(robot, tutorial::trueMarkerImages(world.rig, world.arm), seed);
 }
 //! [Model accuracy]
 
@@ -243,32 +182,8 @@ ServoRun servo(const World &world, const vpProjectiveRobot &robot, double sigma,
 //! sqrt(diag(sigma^2 (J^T J)^-1)) with J the true stacked image Jacobian of the tracked markers at the target.
 vpColVector noiseFloor(const World &world, double sigma)
 {
-  const vpColVector qTarget = degToRad(world.targetDeg);
-  const unsigned int n = qTarget.size();
-  const unsigned int rows = 4 * static_cast<unsigned int>(world.tracked.size());
-  vpMatrix J(rows, n);
-  const double h = 1e-6;
-  for (unsigned int i = 0; i < n; ++i) {
-    vpColVector qp = qTarget, qm = qTarget;
-    qp[i] += h;
-    qm[i] -= h;
-    const std::vector<vpColVector> mp = world.arm.getMarkers(qp), mm = world.arm.getMarkers(qm);
-    for (unsigned int k = 0; k < world.tracked.size(); ++k) {
-      vpImagePoint lp, rp, lm, rm;
-      world.rig.project(mp[world.tracked[k]], lp, rp);
-      world.rig.project(mm[world.tracked[k]], lm, rm);
-      J[4 * k][i] = (lp.get_u() - lm.get_u()) / (2 * h);
-      J[4 * k + 1][i] = (lp.get_v() - lm.get_v()) / (2 * h);
-      J[4 * k + 2][i] = (rp.get_u() - rm.get_u()) / (2 * h);
-      J[4 * k + 3][i] = (rp.get_v() - rm.get_v()) / (2 * h);
-    }
-  }
-  const vpMatrix covariance = (J.t() * J).inverseByLU() * (sigma * sigma);
-  vpColVector floor(n);
-  for (unsigned int i = 0; i < n; ++i) {
-    floor[i] = std::sqrt(covariance[i][i]);
-  }
-  return floor;
+  const tutorial::ImagesAt trueImages = tutorial::trueMarkerImages(world.rig, world.arm, world.tracked);
+  return tutorial::noiseFloor(tutorial::imageJacobian(trueImages, degToRad(world.targetDeg)), sigma);
 }
 //! [Noise floor]
 
@@ -323,20 +238,6 @@ Study study(const World &world, double sigma, const std::vector<double> &paperDe
     st.meanAbsJointError /= runs;
   }
   return st;
-}
-
-double mean(const std::vector<double> &x)
-{
-  double m = 0.0;
-  for (double v : x) {
-    m += v;
-  }
-  return x.empty() ? 0.0 : m / x.size();
-}
-
-double maxOf(const std::vector<double> &x)
-{
-  return x.empty() ? 0.0 : *std::max_element(x.begin(), x.end());
 }
 
 //! [Table]
