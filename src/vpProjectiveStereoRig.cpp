@@ -5,6 +5,7 @@
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <Eigen/Dense>
@@ -80,6 +81,27 @@ double epipolarDistance(const Eigen::Matrix3d &F, const Eigen::Vector2d &m, cons
   const Eigen::Vector3d l = F.transpose() * mp.homogeneous();
   const double algebraic = std::abs(mp.homogeneous().dot(lp));
   return std::max(algebraic / lp.head<2>().norm(), algebraic / l.head<2>().norm());
+}
+
+/*
+  The matches within \e threshold pixels of their epipolar lines under the pixel F (epipolarDistance()), and the
+  truncated quadratic cost sum_i min(d_i^2, t^2) over all matches (MSAC).
+*/
+double consensus(const Eigen::Matrix3d &F, const std::vector<Eigen::Vector2d> &l, const std::vector<Eigen::Vector2d> &r,
+                 double threshold, std::vector<size_t> &inliers)
+{
+  inliers.clear();
+  double cost = 0.0;
+  for (size_t i = 0; i < l.size(); ++i) {
+    const double d = epipolarDistance(F, l[i], r[i]);
+    if (d <= threshold) {
+      inliers.push_back(i);
+      cost += d * d;
+    } else {
+      cost += threshold * threshold;
+    }
+  }
+  return std::isfinite(cost) ? cost : std::numeric_limits<double>::infinity();
 }
 
 // Canonical camera pair of a unit, canonically signed F: P' = [[e']_x F + e' e'^T | e'].
@@ -173,6 +195,48 @@ bool projectWithJacobian(const vpProjectiveStereoRig::Projection &P, const vpPro
   J.topRows<2>() = Jc * P;
   J.bottomRows<2>() = Jcp * Pp;
   return true;
+}
+
+/*
+  Gold-standard F of the matches \e index: in Hartley-normalised coordinates (T, Tp), P = [I|0] fixed, P' (scale
+  fixed on the unit sphere; the remaining 3-dof gauge P' + e' a^T is left to Levenberg-Marquardt's damping) and the
+  points free, from the normalised rank-2 \e Fn0; Ceres minimises the reprojection error of the matches, weighted back
+  to pixels. Returns the pixel F, or that of Fn0 if the refinement fails.
+*/
+Eigen::Matrix3d goldStandardFundamental(const std::vector<Eigen::Vector2d> &l, const std::vector<Eigen::Vector2d> &r,
+                                        const Eigen::Matrix3d &T, const Eigen::Matrix3d &Tp,
+                                        const std::vector<size_t> &index, const Eigen::Matrix3d &Fn0)
+{
+  Eigen::JacobiSVD<Eigen::Matrix3d> svdF(Fn0, Eigen::ComputeFullU);
+  const Eigen::Vector3d epn = svdF.matrixU().col(2);
+  const vpProjectiveStereoRig::Projection Ppn = canonicalRightProjection(Fn0 / Fn0.norm(), epn);
+  vpProjectiveStereoRig::Projection Pn = vpProjectiveStereoRig::Projection::Zero();
+  Pn.leftCols<3>().setIdentity();
+
+  Eigen::Matrix<double, 3, 4, Eigen::RowMajor> PpRowMajor = Ppn / Ppn.norm();
+  std::vector<Eigen::Vector4d> points(index.size());
+  ceres::Problem problem;
+  for (size_t k = 0; k < index.size(); ++k) {
+    const size_t i = index[k];
+    const Eigen::Vector2d mn = dehomogenize(T * l[i].homogeneous());
+    const Eigen::Vector2d mpn = dehomogenize(Tp * r[i].homogeneous());
+    points[k] = linearTriangulation(Pn, Ppn, mn, mpn);
+    auto *cost = new ceres::AutoDiffCostFunction<StereoReprojectionError, 4, 12, 4>(
+        new StereoReprojectionError(mn, mpn, T(0, 0), Tp(0, 0)));
+    problem.AddResidualBlock(cost, nullptr, PpRowMajor.data(), points[k].data());
+    problem.SetManifold(points[k].data(), new ceres::SphereManifold<4>());
+  }
+  problem.SetManifold(PpRowMajor.data(), new ceres::SphereManifold<12>());
+  const ceres::Solver::Summary summary = solveLeastSquares(problem, ceres::DENSE_SCHUR, 100);
+
+  const vpProjectiveStereoRig::Projection PpRefined = PpRowMajor;
+  const Eigen::Vector3d epRefined = PpRefined.col(3);
+  const Eigen::Matrix3d Fn = skew(epRefined) * PpRefined.leftCols<3>();
+  const Eigen::Matrix3d F = Tp.transpose() * Fn * T;
+  if (!F.allFinite() || F.norm() == 0.0 || summary.final_cost > summary.initial_cost) {
+    return Tp.transpose() * Fn0 * T; // the refinement failed: keep the start
+  }
+  return F;
 }
 } // namespace
 
@@ -272,83 +336,101 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
   }
 
   // Robust selection of the inliers: OpenCV's RANSAC needs 15 matches (it silently switches to LMedS below that),
-  // so fewer matches are all kept and screened by the consensus loop below.
+  // so fewer matches are all kept and screened by the consensus loop below (which is then not robust: see the
+  // header).
+  const Eigen::Matrix3d Tinv = T.inverse(), Tpinv = Tp.inverse();
   std::vector<size_t> inliers;
+  Eigen::Matrix3d Fn0 = Eigen::Matrix3d::Zero();
+  double cost = std::numeric_limits<double>::infinity();
   if (n >= 15) {
     std::vector<uchar> mask;
     // RANSAC draws from OpenCV's global generator: reseed it so that the same matches give the same estimate,
     // whatever was computed before in the process.
     cv::theRNG() = cv::RNG(0x5eedULL);
     cv::Mat Fcv = cv::findFundamentalMat(cvl, cvr, cv::FM_RANSAC, inlierThreshold, 0.999, mask);
-    if (Fcv.empty() || mask.size() != n) {
+    if (Fcv.empty() || Fcv.rows != 3 || Fcv.cols != 3 || mask.size() != n) {
       fail(vpProjectiveException::estimationFailedError, where,
            "OpenCV's robust estimator found no fundamental matrix; check that the matches are correct");
     }
+    Eigen::Matrix3d Fransac;
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) {
+        Fransac(a, b) = Fcv.at<double>(a, b);
+      }
+    }
+    if (Fransac.allFinite() && Fransac.norm() > 0.0) {
+      Fn0 = Tpinv.transpose() * Fransac * Tinv;
+      Fn0 /= Fn0.norm();
+      cost = consensus(Tp.transpose() * Fn0 * T, l, r, inlierThreshold, inliers);
+    }
+    std::vector<size_t> masked;
     for (size_t i = 0; i < n; ++i) {
       if (mask[i]) {
-        inliers.push_back(i);
+        masked.push_back(i);
+      }
+    }
+    if (masked.size() >= 8) {
+      std::vector<size_t> set;
+      const Eigen::Matrix3d Fn = linearFundamental(A, masked);
+      const double c = consensus(Tp.transpose() * Fn * T, l, r, inlierThreshold, set);
+      if (c < cost) {
+        Fn0 = Fn;
+        cost = c;
+        inliers = set;
       }
     }
   } else {
+    std::vector<size_t> all(n);
     for (size_t i = 0; i < n; ++i) {
-      inliers.push_back(i);
+      all[i] = i;
     }
+    Fn0 = linearFundamental(A, all);
+    inliers = all;
   }
 
-  // Consensus loop: refit linearly on all inliers (RANSAC's F comes from a minimal sample), then reclassify every
-  // match by its distance to the epipolar lines of that fit, until the inlier set is stable.
-  Eigen::Matrix3d Fn0 = Eigen::Matrix3d::Zero();
-  for (int round = 0; round < 5; ++round) {
-    if (inliers.size() < 8) {
-      std::ostringstream os;
-      os << "only " << inliers.size() << " of " << n
-         << " matches agree with one epipolar geometry (8 needed); check the matches or raise the inlier threshold";
-      fail(vpProjectiveException::estimationFailedError, where, os.str());
-    }
-    Fn0 = linearFundamental(A, inliers);
-    const Eigen::Matrix3d F = Tp.transpose() * Fn0 * T;
-    std::vector<size_t> consensus;
-    for (size_t i = 0; i < n; ++i) {
-      if (epipolarDistance(F, l[i], r[i]) <= inlierThreshold) {
-        consensus.push_back(i);
-      }
-    }
-    if (consensus == inliers) {
+  // Consensus loop: refit linearly on all inliers (RANSAC's F comes from a minimal sample), reclassify every match by
+  // its distance to the epipolar lines of that fit, and keep the refit while it lowers the truncated quadratic cost
+  // sum_i min(d_i^2, t^2) over all matches (MSAC): a refit on a poor set, which would lose matches, is refused.
+  for (int round = 0; round < 10 && n >= 15 && inliers.size() >= 8; ++round) {
+    std::vector<size_t> set;
+    const Eigen::Matrix3d Fn = linearFundamental(A, inliers);
+    const double c = consensus(Tp.transpose() * Fn * T, l, r, inlierThreshold, set);
+    if (!(c < cost)) {
       break;
     }
-    inliers = consensus;
+    Fn0 = Fn;
+    cost = c;
+    const bool stable = set == inliers;
+    inliers = set;
+    if (stable) {
+      break;
+    }
   }
-  Eigen::JacobiSVD<Eigen::Matrix3d> svdF(Fn0, Eigen::ComputeFullU);
-
-  // Gold-standard refinement in normalised coordinates: P = [I|0] fixed, P' (scale fixed on the unit sphere; the
-  // remaining 3-dof gauge P' + e' a^T is left to Levenberg-Marquardt's damping) and the points free.
-  const Eigen::Vector3d epn = svdF.matrixU().col(2);
-  Projection Ppn = canonicalRightProjection(Fn0 / Fn0.norm(), epn);
-  Projection Pn = Projection::Zero();
-  Pn.leftCols<3>().setIdentity();
-
-  Eigen::Matrix<double, 3, 4, Eigen::RowMajor> PpRowMajor = Ppn / Ppn.norm();
-  std::vector<Eigen::Vector4d> points(inliers.size());
-  ceres::Problem problem;
-  for (size_t k = 0; k < inliers.size(); ++k) {
-    const size_t i = inliers[k];
-    const Eigen::Vector2d mn = dehomogenize(T * l[i].homogeneous());
-    const Eigen::Vector2d mpn = dehomogenize(Tp * r[i].homogeneous());
-    points[k] = linearTriangulation(Pn, Ppn, mn, mpn);
-    auto *cost = new ceres::AutoDiffCostFunction<StereoReprojectionError, 4, 12, 4>(
-        new StereoReprojectionError(mn, mpn, T(0, 0), Tp(0, 0)));
-    problem.AddResidualBlock(cost, nullptr, PpRowMajor.data(), points[k].data());
-    problem.SetManifold(points[k].data(), new ceres::SphereManifold<4>());
+  if (inliers.size() < 8) {
+    std::ostringstream os;
+    os << "only " << inliers.size() << " of " << n
+       << " matches agree with one epipolar geometry (8 needed); check the matches or raise the inlier threshold";
+    fail(vpProjectiveException::estimationFailedError, where, os.str());
   }
-  problem.SetManifold(PpRowMajor.data(), new ceres::SphereManifold<12>());
-  const ceres::Solver::Summary summary = solveLeastSquares(problem, ceres::DENSE_SCHUR, 100);
 
-  const Projection PpRefined = PpRowMajor;
-  const Eigen::Vector3d epRefined = PpRefined.col(3);
-  Eigen::Matrix3d Fn = skew(epRefined) * PpRefined.leftCols<3>();
-  Eigen::Matrix3d F = Tp.transpose() * Fn * T;
-  if (!F.allFinite() || F.norm() == 0.0 || summary.final_cost > summary.initial_cost) {
-    F = Tp.transpose() * Fn0 * T; // the refinement failed: keep the linear estimate on the inliers
+  // Gold-standard refinement on the inliers, repeated on the inliers of the refined geometry until they are the
+  // matches it was fitted to.
+  Eigen::Matrix3d F = goldStandardFundamental(l, r, T, Tp, inliers, Fn0);
+  for (int round = 0; round < 4; ++round) {
+    std::vector<size_t> set;
+    consensus(F, l, r, inlierThreshold, set);
+    if (set == inliers) {
+      break;
+    }
+    if (set.size() < 8) {
+      std::ostringstream os;
+      os << "only " << set.size() << " of " << n << " matches agree with one epipolar geometry (8 needed); check "
+         << "the matches or raise the inlier threshold";
+      fail(vpProjectiveException::estimationFailedError, where, os.str());
+    }
+    inliers = set;
+    Eigen::Matrix3d Fn = Tpinv.transpose() * F * Tinv;
+    F = goldStandardFundamental(l, r, T, Tp, inliers, Fn / Fn.norm());
   }
   setFundamentalMatrix(toVisp(F));
 
