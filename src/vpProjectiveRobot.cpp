@@ -4,6 +4,7 @@
 
 #include <visp3/projective/vpProjectiveRobot.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -193,7 +194,7 @@ Eigen::Matrix3d metricConic(const std::vector<Eigen::Matrix3d> &blocks)
 vpProjectiveRobot::vpProjectiveRobot()
     : m_types(), m_mounting(EYE_TO_HAND), m_rig(), m_zeroImages(), m_trials(), m_G(Eigen::Matrix4d::Identity()),
       m_Ginv(Eigen::Matrix4d::Identity()), m_axis(), m_point(), m_Hhat(), m_M0(), m_residual(0.0),
-      m_algebraicResidual(0.0), m_calibrated(false)
+      m_algebraicResidual(0.0), m_outlierThreshold(0.0), m_inlier(), m_calibrated(false)
 {
 }
 
@@ -311,14 +312,15 @@ std::vector<Eigen::Vector4d> vpProjectiveRobot::triangulateZeroReference() const
   return M0;
 }
 
-void vpProjectiveRobot::algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat) const
+void vpProjectiveRobot::algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat)
 {
   const std::string where = at("calibrate()");
   const size_t n = m_types.size();
   // Candidate generators of each joint: the logarithm of each of its trials, and their projected mean.
   std::vector<std::vector<Eigen::Matrix4d>> candidates(n);
   std::vector<unsigned int> trialCount(n, 0);
-  for (const vpTrial &trial : m_trials) {
+  for (size_t k = 0; k < m_trials.size(); ++k) {
+    const vpTrial &trial = m_trials[k];
     // A blocked joint or a tiny trial leaves the markers where they were: H = I has no logarithm to speak of.
     double motion = 0.0;
     for (size_t j = 0; j < trial.s.size(); ++j) {
@@ -336,14 +338,24 @@ void vpProjectiveRobot::algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat) 
     // refines everything, and at 1 px noise no acquisition of 300 failed with 12.
     ++trialCount[trial.joint];
     try {
-      const Eigen::Matrix4d H = vpProjectiveDisplacement::estimateFromImages(m_rig, m_zeroImages, trial.s, 15);
+      // With an outlier threshold, mismatched markers are found by the 5-point consensus of estimateRobust() and
+      // left out of everything that follows (the candidates' scores, the rigid motions, the bundle adjustment).
+      const Eigen::Matrix4d H =
+          m_outlierThreshold > 0.0
+              ? vpProjectiveDisplacement::estimateRobust(m_rig, m_zeroImages, trial.s, m_outlierThreshold, m_inlier[k])
+              : vpProjectiveDisplacement::estimateFromImages(m_rig, m_zeroImages, trial.s, 15);
       double theta = 0.0;
       candidates[trial.joint].push_back(m_types[trial.joint] == REVOLUTE
                                             ? vpProjectiveRotation::log(H, theta, trial.amount).generator()
                                             : vpProjectiveTranslation::log(H, trial.amount).generator());
     } catch (const vpProjectiveException &) {
       // A noisy homography so far off that it is singular or has no logarithm gives no candidate; the joint's other
-      // trials, or the rigid motions of its markers in the metric frame (initialTwists()), still do.
+      // trials, or the rigid motions of its markers in the metric frame (initialTwists()), still do. A trial where
+      // too few markers agree on one displacement stays out of the initial model: the model of the other trials
+      // decides which of its observations to keep.
+      if (m_outlierThreshold > 0.0) {
+        m_inlier[k].assign(m_inlier[k].size(), false);
+      }
     }
   }
   // A single trial's homography occasionally lands far off (a small marker set gives a poorly conditioned 15-dof
@@ -389,15 +401,25 @@ void vpProjectiveRobot::accumulateTrialError(unsigned int i, const Eigen::Matrix
 {
   // A prediction with no image (on a camera's focal plane) counts as an error of one image diagonal per coordinate.
   const double noImage = 1e6;
-  for (const vpTrial &trial : m_trials) {
+  // With an outlier threshold t, an error counts at most as 3 t (RMS over the two images): a mismatch the consensus
+  // missed cannot outweigh the markers that agree.
+  const double cap = m_outlierThreshold > 0.0 ? 2.0 * 9.0 * m_outlierThreshold * m_outlierThreshold
+                                              : std::numeric_limits<double>::infinity();
+  for (size_t k = 0; k < m_trials.size(); ++k) {
+    const vpTrial &trial = m_trials[k];
     if (trial.joint != i) {
       continue;
     }
     const Eigen::Matrix4d H = m_types[i] == REVOLUTE ? vpProjectiveRotation::exp(Hhat, trial.amount)
                                                      : vpProjectiveTranslation::exp(Hhat, trial.amount);
     for (size_t j = 0; j < M0.size(); ++j) {
+      if (!m_inlier[k][j]) {
+        continue;
+      }
       Eigen::Vector4d s;
-      sum += m_rig.project(Eigen::Vector4d(H * M0[j]), s) ? (s - trial.s[j]).squaredNorm() : 4.0 * noImage * noImage;
+      const double e2 =
+          m_rig.project(Eigen::Vector4d(H * M0[j]), s) ? (s - trial.s[j]).squaredNorm() : 4.0 * noImage * noImage;
+      sum += std::min(e2, cap);
       count += 4;
     }
   }
@@ -449,6 +471,48 @@ bool rigidMotion(const std::vector<Eigen::Vector3d> &X0, const std::vector<Eigen
   R = svd.matrixU() * D * svd.matrixV().transpose();
   t = c1 - R * c0;
   return R.allFinite() && t.allFinite();
+}
+
+/*
+  Rigid motion supported by the most point pairs (residual below tolerance, in the units of X), from every triple,
+  refitted on its supporters; for pairs where some X1 are mismatched. False if no triple has support beyond itself.
+*/
+bool consensusRigidMotion(const std::vector<Eigen::Vector3d> &X0, const std::vector<Eigen::Vector3d> &X1,
+                          double tolerance, Eigen::Matrix3d &R, Eigen::Vector3d &t)
+{
+  const size_t K = X0.size();
+  size_t bestSupport = 3;
+  std::vector<size_t> bestSet;
+  for (size_t a = 0; a < K; ++a) {
+    for (size_t b = a + 1; b < K; ++b) {
+      for (size_t c = b + 1; c < K; ++c) {
+        Eigen::Matrix3d Rc;
+        Eigen::Vector3d tc;
+        if (!rigidMotion({X0[a], X0[b], X0[c]}, {X1[a], X1[b], X1[c]}, Rc, tc)) {
+          continue;
+        }
+        std::vector<size_t> set;
+        for (size_t j = 0; j < K; ++j) {
+          if ((Rc * X0[j] + tc - X1[j]).norm() < tolerance) {
+            set.push_back(j);
+          }
+        }
+        if (set.size() > bestSupport) {
+          bestSupport = set.size();
+          bestSet = set;
+        }
+      }
+    }
+  }
+  if (bestSet.empty()) {
+    return false;
+  }
+  std::vector<Eigen::Vector3d> Y0, Y1;
+  for (size_t j : bestSet) {
+    Y0.push_back(X0[j]);
+    Y1.push_back(X1[j]);
+  }
+  return rigidMotion(Y0, Y1, R, t);
 }
 } // namespace
 
@@ -563,14 +627,28 @@ bool vpProjectiveRobot::initialTwists(const Eigen::Matrix4d &G, const std::vecto
       if (m_trials[k].joint != i) {
         continue;
       }
-      std::vector<Eigen::Vector3d> X1(K);
+      // A trial whose markers did not agree on one homography (more mismatches than the 5-point consensus can
+      // verify) gets the consensus of rigid motions instead: 3 points fix one, and the metric frame (markers spread
+      // over a unit RMS radius) makes a tenth of that radius a tolerance far above the noise and below a mismatch;
+      // wider ones serve when a rough upgrade distorts the markers' shape more than that.
+      const bool verified = std::find(m_inlier[k].begin(), m_inlier[k].end(), true) != m_inlier[k].end();
+      std::vector<Eigen::Vector3d> X0k, X1k;
       bool finite = true;
       for (size_t j = 0; j < K && finite; ++j) {
-        finite = euclidean(G * trialPoints[k][j], X1[j]);
+        Eigen::Vector3d X1;
+        finite = euclidean(G * trialPoints[k][j], X1);
+        if (m_inlier[k][j] || !verified) {
+          X0k.push_back(X0[j]);
+          X1k.push_back(X1);
+        }
       }
       Eigen::Matrix3d Rk;
       Eigen::Vector3d tk;
-      if (!finite || !rigidMotion(X0, X1, Rk, tk)) {
+      bool fitted = finite && verified && rigidMotion(X0k, X1k, Rk, tk);
+      for (double tolerance = 0.1; finite && !verified && !fitted && tolerance < 1.0; tolerance *= 2.0) {
+        fitted = consensusRigidMotion(X0k, X1k, tolerance, Rk, tk); // wider if the upgrade is still rough
+      }
+      if (!fitted) {
         continue;
       }
       const double amount = m_trials[k].amount;
@@ -672,7 +750,8 @@ void vpProjectiveRobot::initialMetricModel(const std::vector<Eigen::Matrix4d> &H
 }
 
 void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Vector4d> &M0, const Eigen::Matrix4d &G,
-                                     std::vector<Eigen::Vector3d> axis, std::vector<Eigen::Vector3d> point)
+                                     std::vector<Eigen::Vector3d> axis, std::vector<Eigen::Vector3d> point,
+                                     bool robustLoss)
 {
   const size_t n = m_types.size();
   const size_t K = m_zeroImages.size();
@@ -688,17 +767,26 @@ void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Vector4d> &M0, con
         new ceres::AutoDiffCostFunction<ZeroReferenceError, 4, 16, 4>(new ZeroReferenceError(m_rig, m_zeroImages[j])),
         nullptr, Ginv.data(), N[j].data());
   }
-  for (const vpTrial &trial : m_trials) {
+  size_t observations = K;
+  for (size_t k = 0; k < m_trials.size(); ++k) {
+    const vpTrial &trial = m_trials[k];
     const unsigned int i = trial.joint;
     for (size_t j = 0; j < K; ++j) {
+      if (!m_inlier[k][j] && !robustLoss) {
+        continue;
+      }
+      ++observations;
+      // Cauchy loss at the outlier threshold (on the squared 4-vector error, 2 d^2): a mismatch pulls with a force
+      // that fades with its error instead of growing with it.
+      ceres::LossFunction *loss = robustLoss ? new ceres::CauchyLoss(std::sqrt(2.0) * m_outlierThreshold) : nullptr;
       if (m_types[i] == REVOLUTE) {
         problem.AddResidualBlock(new ceres::AutoDiffCostFunction<RevoluteTrialError, 4, 16, 4, 3, 3>(
                                      new RevoluteTrialError(m_rig, trial.s[j], trial.amount)),
-                                 nullptr, Ginv.data(), N[j].data(), axis[i].data(), point[i].data());
+                                 loss, Ginv.data(), N[j].data(), axis[i].data(), point[i].data());
       } else {
         problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PrismaticTrialError, 4, 16, 4, 3>(
                                      new PrismaticTrialError(m_rig, trial.s[j], trial.amount)),
-                                 nullptr, Ginv.data(), N[j].data(), axis[i].data());
+                                 loss, Ginv.data(), N[j].data(), axis[i].data());
       }
     }
   }
@@ -707,7 +795,8 @@ void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Vector4d> &M0, con
   }
   problem.SetManifold(Ginv.data(), new ceres::SphereManifold<16>());
   for (size_t i = 0; i < n; ++i) {
-    if (m_types[i] == REVOLUTE) {
+    // A joint whose trials are all left out of this adjustment keeps its initial axis.
+    if (m_types[i] == REVOLUTE && problem.HasParameterBlock(axis[i].data())) {
       problem.SetManifold(axis[i].data(), new ceres::SphereManifold<3>());
     }
   }
@@ -734,8 +823,7 @@ void vpProjectiveRobot::bundleAdjust(const std::vector<Eigen::Vector4d> &M0, con
   for (size_t j = 0; j < K; ++j) {
     m_M0[j] = (m_Ginv * N[j]).normalized();
   }
-  size_t scalars = 4 * K * (1 + m_trials.size());
-  m_residual = std::sqrt(2.0 * summary.final_cost / static_cast<double>(scalars));
+  m_residual = std::sqrt(2.0 * summary.final_cost / static_cast<double>(4 * observations));
   setModelFromTwists();
 }
 
@@ -757,15 +845,93 @@ void vpProjectiveRobot::calibrate()
     fail(vpProjectiveException::notInitializedError, where,
          "no zero reference; call setStereoRig(), setZeroReference() and addTrialMotion() for every joint first");
   }
+  const size_t K = m_zeroImages.size();
+  m_inlier.assign(m_trials.size(), std::vector<bool>(K, true));
+  const std::vector<Eigen::Vector4d> M0 = triangulateZeroReference();
+  if (m_outlierThreshold > 0.0) {
+    // The zero reference defines which marker is which: a marker whose two images there do not meet (a left-right
+    // mismatch) cannot be repaired, only reported.
+    for (size_t j = 0; j < K; ++j) {
+      Eigen::Vector4d s;
+      const double d = m_rig.project(M0[j], s) ? std::sqrt(0.5 * (s - m_zeroImages[j]).squaredNorm())
+                                               : std::numeric_limits<double>::infinity();
+      if (!(d <= m_outlierThreshold)) {
+        std::ostringstream os;
+        os << "the left and right images of marker " << j << " at the zero reference are " << d
+           << " px away from any 3D point (outlier threshold " << m_outlierThreshold
+           << " px): they are not the same marker; fix the matching of the zero-reference images";
+        fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
+      }
+    }
+  }
   std::vector<Eigen::Matrix4d> Hhat;
   algebraicGenerators(Hhat);
-  const std::vector<Eigen::Vector4d> M0 = triangulateZeroReference();
   m_algebraicResidual = predictionResidual(Hhat, M0);
   Eigen::Matrix4d G;
   std::vector<Eigen::Vector3d> axis, point;
   initialMetricModel(Hhat, M0, G, axis, point);
-  bundleAdjust(M0, G, axis, point);
+  if (m_outlierThreshold > 0.0) {
+    // Every trial observation, mismatches down-weighted by a robust loss; then least squares on exactly those the
+    // model accepts, until that set no longer changes (at most 3 rounds).
+    bundleAdjust(M0, G, axis, point, true);
+    classifyTrialObservations();
+    bundleAdjust(m_M0, m_G, m_axis, m_point, false);
+    for (int round = 0; round < 2 && classifyTrialObservations(); ++round) {
+      bundleAdjust(m_M0, m_G, m_axis, m_point, false);
+    }
+  } else {
+    bundleAdjust(M0, G, axis, point, false);
+  }
   m_calibrated = true;
+}
+
+bool vpProjectiveRobot::classifyTrialObservations()
+{
+  bool changed = false;
+  for (size_t k = 0; k < m_trials.size(); ++k) {
+    const vpTrial &trial = m_trials[k];
+    const Eigen::Matrix4d H = jointExp(trial.joint, trial.amount);
+    for (size_t j = 0; j < m_M0.size(); ++j) {
+      Eigen::Vector4d s;
+      const double d = m_rig.project(Eigen::Vector4d(H * m_M0[j]), s) ? std::sqrt(0.5 * (s - trial.s[j]).squaredNorm())
+                                                                      : std::numeric_limits<double>::infinity();
+      const bool inlier = d <= m_outlierThreshold;
+      changed = changed || inlier != m_inlier[k][j];
+      m_inlier[k][j] = inlier;
+    }
+  }
+  return changed;
+}
+
+void vpProjectiveRobot::setOutlierThreshold(double pixels)
+{
+  if (!std::isfinite(pixels) || pixels < 0.0) {
+    std::ostringstream os;
+    os << "the outlier threshold must be a finite number of pixels >= 0 (0 disables the rejection), got " << pixels;
+    fail(vpProjectiveException::invalidValueError, at("setOutlierThreshold()"), os.str());
+  }
+  m_outlierThreshold = pixels;
+  m_calibrated = false;
+}
+
+unsigned int vpProjectiveRobot::getNumberOfOutliers() const
+{
+  unsigned int outliers = 0;
+  for (const std::vector<bool> &trial : m_inlier) {
+    outliers += static_cast<unsigned int>(std::count(trial.begin(), trial.end(), false));
+  }
+  return outliers;
+}
+
+bool vpProjectiveRobot::isOutlier(unsigned int trial, unsigned int marker) const
+{
+  if (trial >= m_inlier.size() || marker >= m_inlier[trial].size()) {
+    std::ostringstream os;
+    os << "no observation of marker " << marker << " in trial " << trial << " (calibrate() saw " << m_inlier.size()
+       << " trials of " << m_zeroImages.size() << " markers)";
+    fail(vpProjectiveException::dimensionError, at("isOutlier()"), os.str());
+  }
+  return !m_inlier[trial][marker];
 }
 
 void vpProjectiveRobot::checkCalibrated(const char *method) const

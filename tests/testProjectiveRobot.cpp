@@ -612,6 +612,107 @@ TEST(ProjectiveRobot, CalibrationAtOnePixelNoise)
   }
 }
 
+TEST(ProjectiveRobot, AcquisitionWithMismatchedMarkers)
+{
+  /*
+    20 % of the trial observations (17 of 12 trials x 7 markers, at random) are mismatched: half of them take both
+    images of another marker (a tracker jumped to another blob), half only its right image (a left-right mismatch).
+    At 0.5 px noise, with setOutlierThreshold(1.5 px = 3 sigma), calibrate() must
+    - find the mismatches: at least 95 % of them flagged, and at most 3 % of the correct observations;
+    - give a model as accurate as the clean acquisition of the same seed (prediction RMS at random configurations,
+      mean over 8 seeds within 1.25 times the clean mean, every seed within 2 times its clean value).
+    Without the threshold the same contaminated data must visibly spoil the model (mean above 3 times the clean one),
+    or the test would not be testing the rejection.
+  */
+  const ArmSetup s = pumaEyeToHand();
+  const double sigma = 0.5;
+  const unsigned int K = 7, trials = 12, mismatched = 17;
+  double clean = 0.0, robust = 0.0, plain = 0.0;
+  unsigned int found = 0, falseAlarms = 0;
+  const long seeds = 8;
+  for (long seed = 1; seed <= seeds; ++seed) {
+    // Which observations are mismatched, and how.
+    vpUniRand pick(1000 + seed);
+    std::vector<std::vector<int>> donor(trials, std::vector<int>(K, -1)); // marker whose image is taken, -1: none
+    std::vector<std::vector<bool>> rightOnly(trials, std::vector<bool>(K, false));
+    for (unsigned int c = 0; c < mismatched;) {
+      const unsigned int k = static_cast<unsigned int>(pick.uniform(0, static_cast<int>(trials)));
+      const unsigned int j = static_cast<unsigned int>(pick.uniform(0, static_cast<int>(K)));
+      if (donor[k][j] >= 0) {
+        continue;
+      }
+      donor[k][j] = static_cast<int>((j + 1 + static_cast<unsigned int>(pick.uniform(0, static_cast<int>(K) - 1))) % K);
+      rightOnly[k][j] = c % 2 == 1;
+      ++c;
+    }
+    auto corrupt = [&](unsigned int k, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
+      const std::vector<vpImagePoint> left0 = left, right0 = right;
+      for (unsigned int j = 0; j < K; ++j) {
+        if (donor[k][j] >= 0) {
+          right[j] = right0[static_cast<size_t>(donor[k][j])];
+          if (!rightOnly[k][j]) {
+            left[j] = left0[static_cast<size_t>(donor[k][j])];
+          }
+        }
+      }
+    };
+    const std::vector<double> range(6, vpMath::rad(30.0));
+    double worst = 0.0;
+    {
+      vpProjectiveRobot robot(s.jointTypes());
+      vpGaussRand noise(1.0, 0.0, seed);
+      ASSERT_TRUE(s.acquire(robot, sigma, noise));
+      robot.calibrate();
+      const double rms = predictionRms(s, robot, range, 300 + seed, worst);
+      clean += rms / seeds;
+      vpProjectiveRobot contaminated(s.jointTypes());
+      vpGaussRand sameNoise(1.0, 0.0, seed);
+      ASSERT_TRUE(s.acquire(contaminated, sigma, sameNoise, corrupt));
+      contaminated.setOutlierThreshold(3.0 * sigma);
+      contaminated.calibrate();
+      const double rmsRobust = predictionRms(s, contaminated, range, 300 + seed, worst);
+      robust += rmsRobust / seeds;
+      EXPECT_LE(rmsRobust, 2.0 * rms) << "seed " << seed;
+      for (unsigned int k = 0; k < trials; ++k) {
+        for (unsigned int j = 0; j < K; ++j) {
+          const bool flagged = contaminated.isOutlier(k, j);
+          found += flagged && donor[k][j] >= 0 ? 1 : 0;
+          falseAlarms += flagged && donor[k][j] < 0 ? 1 : 0;
+        }
+      }
+    }
+    {
+      vpProjectiveRobot naive(s.jointTypes());
+      vpGaussRand sameNoise(1.0, 0.0, seed);
+      ASSERT_TRUE(s.acquire(naive, sigma, sameNoise, corrupt));
+      try {
+        naive.calibrate();
+        plain += predictionRms(s, naive, range, 300 + seed, worst) / seeds;
+      } catch (const vpException &) {
+        plain += 1e3 / seeds; // the contaminated data did not even calibrate
+      }
+    }
+  }
+  const double recall = found / static_cast<double>(seeds * mismatched);
+  const double falseRate = falseAlarms / static_cast<double>(seeds * (trials * K - mismatched));
+  std::cout << "[ measured ] 20 % mismatched trial observations at 0.5 px, " << seeds << " seeds: prediction RMS clean "
+            << clean << " px, with rejection " << robust << " px, without " << plain << " px; mismatches found "
+            << 100.0 * recall << " %, correct observations rejected " << 100.0 * falseRate << " %" << std::endl;
+  EXPECT_LE(robust, 1.25 * clean);
+  EXPECT_GE(plain, 3.0 * clean);
+
+  // Bad inputs of the outlier API.
+  vpProjectiveRobot robot(s.jointTypes());
+  EXPECT_TRUE(throwsProjective([&] { robot.setOutlierThreshold(-1.0); }, vpProjectiveException::invalidValueError,
+                               "outlier threshold"));
+  EXPECT_TRUE(throwsProjective([&] { robot.setOutlierThreshold(std::numeric_limits<double>::quiet_NaN()); },
+                               vpProjectiveException::invalidValueError, "outlier threshold"));
+  EXPECT_TRUE(throwsProjective([&] { robot.isOutlier(0, 0); }, vpProjectiveException::dimensionError,
+                               "no observation of marker 0 in trial 0"));
+  EXPECT_GE(recall, 0.95);
+  EXPECT_LE(falseRate, 0.03);
+}
+
 TEST(ProjectiveRobot, NoiseFreeAcquisitionWithEstimatedRig)
 {
   // The same acquisition with F estimated from the (noise-free) marker images of all acquisition views, as a user

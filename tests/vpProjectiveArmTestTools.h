@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -281,8 +282,12 @@ struct ArmSetup {
   /*!
     Acquisition as the plugin's user does it: rig with the true F, mounting, zero-reference images, then one trial
     per joint and sign with trialAmounts (images with Gaussian noise sigma). Returns false if a marker left the view.
+    \e corruptTrial, if given, may alter the images of trial k (numbered as addTrialMotion() sees them) before they
+    are added, to simulate mismatches.
   */
-  bool acquire(vpProjectiveRobot &robot, double sigma, vpGaussRand &noise) const
+  bool acquire(vpProjectiveRobot &robot, double sigma, vpGaussRand &noise,
+               const std::function<void(unsigned int, std::vector<vpImagePoint> &, std::vector<vpImagePoint> &)>
+                   &corruptTrial = nullptr) const
   {
     robot.setStereoRig(rig());
     robot.setRigMounting(mounting);
@@ -294,6 +299,9 @@ struct ArmSetup {
         vpColVector qModel(n(), 0.0);
         qModel[i] = sign * trialAmounts[i];
         ok = images(armJoints(qModel), left, right, sigma, noise) && ok;
+        if (corruptTrial) {
+          corruptTrial(2 * i + (sign > 0 ? 1 : 0), left, right);
+        }
         robot.addTrialMotion(i, qModel[i], left, right);
       }
     }

@@ -138,6 +138,27 @@ public:
   double getCalibrationResidual() const { return m_residual; }
   //! RMS pixel residual of the algebraic generators alone (before refinement), for comparison.
   double getAlgebraicResidual() const { return m_algebraicResidual; }
+  /*!
+    Mismatched markers in the acquisition images (a wrong blob tracked, two markers swapped): with \e pixels > 0,
+    calibrate() finds them in each trial by the 5-point consensus of vpProjectiveDisplacement::estimateRobust(),
+    leaves them out of the initial model and of the bundle adjustment, then keeps out exactly the trial observations
+    the final model places more than \e pixels away (RMS over the two images), with one more adjustment if that
+    changed. A zero-reference marker whose left and right images match no 3D point within \e pixels makes
+    calibrate() throw (the zero reference defines the markers). About 3 sigma of the pixel noise is a good value (1.5
+    px at 0.5 px); 0, the default, uses every observation.
+    \exception vpProjectiveException (invalidValueError) if \e pixels is negative or not finite.
+  */
+  void setOutlierThreshold(double pixels);
+  //! The outlier threshold in pixels (0: no rejection).
+  double getOutlierThreshold() const { return m_outlierThreshold; }
+  //! Number of trial observations (marker in a trial's pair of images) the last calibrate() left out.
+  unsigned int getNumberOfOutliers() const;
+  /*!
+    True if the last calibrate() left out marker \e marker of trial \e trial (trials numbered in the order of
+    addTrialMotion(), from 0).
+    \exception vpProjectiveException (dimensionError) if there is no such observation.
+  */
+  bool isOutlier(unsigned int trial, unsigned int marker) const;
   //@}
 
   /*! \name Model */
@@ -222,7 +243,9 @@ private:
   void checkCalibrated(const char *where) const;
   JointVector toJointVector(const vpColVector &q, const std::string &where) const;
   std::vector<Eigen::Vector4d> triangulateZeroReference() const;
-  void algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat) const;
+  void algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat);
+  //! Flags the trial observations farther than the outlier threshold from the model; true if a flag changed.
+  bool classifyTrialObservations();
   /*!
     Affine and metric upgrade from the generators of the joints flagged in \e use: G (4x4) maps the projective frame
     to a metric one centred and scaled on the markers M0. False when the data do not give a finite, invertible G.
@@ -238,9 +261,12 @@ private:
   void initialMetricModel(const std::vector<Eigen::Matrix4d> &Hhat, const std::vector<Eigen::Vector4d> &M0,
                           Eigen::Matrix4d &G, std::vector<Eigen::Vector3d> &axis,
                           std::vector<Eigen::Vector3d> &point) const;
-  //! Bundle adjustment over G^-1, the twists and the markers, on the pixel error of every acquisition image.
+  /*!
+    Bundle adjustment over G^-1, the twists and the markers, on the pixel error of the acquisition images: the inlier
+    observations, or with \e robustLoss every observation under a Cauchy loss at the outlier threshold.
+  */
   void bundleAdjust(const std::vector<Eigen::Vector4d> &M0, const Eigen::Matrix4d &G, std::vector<Eigen::Vector3d> axis,
-                    std::vector<Eigen::Vector3d> point);
+                    std::vector<Eigen::Vector3d> point, bool robustLoss);
   //! RMS pixel error of all trials predicted by the generators Hhat from the zero-reference points M0.
   double predictionResidual(const std::vector<Eigen::Matrix4d> &Hhat, const std::vector<Eigen::Vector4d> &M0) const;
   //! Adds the squared pixel errors of joint i's trials predicted by Hhat, and their number of coordinates.
@@ -269,6 +295,8 @@ private:
   std::vector<Eigen::Vector4d> m_M0; // refined zero-reference markers, unit norm
   double m_residual;
   double m_algebraicResidual;
+  double m_outlierThreshold;               // pixels, 0: every observation is used
+  std::vector<std::vector<bool>> m_inlier; // [trial][marker]: used by the last calibrate()
   bool m_calibrated;
 };
 
