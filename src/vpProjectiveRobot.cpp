@@ -333,9 +333,9 @@ void vpProjectiveRobot::algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat)
          << " px RMS; the joint may be blocked or the trial too small to observe (use 20 to 60 deg)";
       fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
     }
-    // Maximum-likelihood displacement: the linear one from 7 noisy markers is too poor a start for the upgrade. 15
+    // Maximum-likelihood displacement: the linear one from 7 noisy markers is too poor a start for the upgrade. 12
     // Levenberg-Marquardt iterations (of about 25 to full convergence) are enough for a start: the bundle adjustment
-    // refines everything, and at 1 px noise no acquisition of 300 failed with 12.
+    // refines everything, and at 1 px noise no acquisition of 300 failed with 12 (one failed with 8).
     ++trialCount[trial.joint];
     try {
       // With an outlier threshold, mismatched markers are found by the 5-point consensus of estimateRobust() and
@@ -343,7 +343,7 @@ void vpProjectiveRobot::algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat)
       const Eigen::Matrix4d H =
           m_outlierThreshold > 0.0
               ? vpProjectiveDisplacement::estimateRobust(m_rig, m_zeroImages, trial.s, m_outlierThreshold, m_inlier[k])
-              : vpProjectiveDisplacement::estimateFromImages(m_rig, m_zeroImages, trial.s, 15);
+              : vpProjectiveDisplacement::estimateFromImages(m_rig, m_zeroImages, trial.s, 12);
       double theta = 0.0;
       candidates[trial.joint].push_back(m_types[trial.joint] == REVOLUTE
                                             ? vpProjectiveRotation::log(H, theta, trial.amount).generator()
