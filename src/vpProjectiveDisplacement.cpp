@@ -396,18 +396,11 @@ public:
               int maxIterations, double tolerance = 1e-12) const
   {
     std::vector<size_t> index;
-    for (size_t j = 0; j < flags.size(); ++j) {
-      if (flags[j]) {
-        index.push_back(j);
-      }
-    }
+    RowMajor4 Hw;
+    std::vector<Eigen::Vector4d> X;
+    whiten(flags, H, points, index, Hw, X);
     const size_t m = index.size();
-    RowMajor4 Hw = m_data.T1 * H * m_data.T0inv;
-    Hw /= Hw.norm();
-    std::vector<Eigen::Vector4d> X(m), Xnew(m);
-    for (size_t k = 0; k < m; ++k) {
-      X[k] = (m_data.T0 * points[index[k]]).normalized();
-    }
+    std::vector<Eigen::Vector4d> Xnew(m);
     std::vector<Eigen::Matrix<double, 8, 1>> r(m);
     std::vector<Eigen::Matrix<double, 4, 16>> A(m);
     std::vector<Eigen::Matrix<double, 8, 4>> B(m);
@@ -511,18 +504,10 @@ public:
                            const std::vector<Eigen::Vector4d> &points, double sigmaFloor) const
   {
     std::vector<size_t> index;
-    for (size_t j = 0; j < flags.size(); ++j) {
-      if (flags[j]) {
-        index.push_back(j);
-      }
-    }
+    RowMajor4 Hw;
+    std::vector<Eigen::Vector4d> X;
+    whiten(flags, H, points, index, Hw, X);
     const size_t m = index.size();
-    RowMajor4 Hw = m_data.T1 * H * m_data.T0inv;
-    Hw /= Hw.norm();
-    std::vector<Eigen::Vector4d> X(m);
-    for (size_t k = 0; k < m; ++k) {
-      X[k] = (m_data.T0 * points[index[k]]).normalized();
-    }
     std::vector<Eigen::Matrix<double, 8, 1>> r(m);
     std::vector<Eigen::Matrix<double, 4, 16>> A(m);
     std::vector<Eigen::Matrix<double, 8, 4>> B(m);
@@ -585,6 +570,27 @@ public:
   }
 
 private:
+  /*
+    The flagged points' indices, and H (rig frame) and their points in the whitened frames, each on its unit sphere:
+    Hw = T1 H T0^-1, X = T0 M.
+  */
+  void whiten(const std::vector<bool> &flags, const Eigen::Matrix4d &H, const std::vector<Eigen::Vector4d> &points,
+              std::vector<size_t> &index, RowMajor4 &Hw, std::vector<Eigen::Vector4d> &X) const
+  {
+    index.clear();
+    for (size_t j = 0; j < flags.size(); ++j) {
+      if (flags[j]) {
+        index.push_back(j);
+      }
+    }
+    Hw = m_data.T1 * H * m_data.T0inv;
+    Hw /= Hw.norm();
+    X.resize(index.size());
+    for (size_t k = 0; k < index.size(); ++k) {
+      X[k] = (m_data.T0 * points[index[k]]).normalized();
+    }
+  }
+
   /*
     Residuals r (8 pixels) of the flagged points and, if asked, their Jacobians: A (4x16, view-1 rows, with respect to
     the row-major entries of Hw) and B (8x4, with respect to X). False if a point is on a camera's focal plane.

@@ -312,7 +312,7 @@ std::vector<Eigen::Vector4d> vpProjectiveRobot::triangulateZeroReference() const
   return M0;
 }
 
-void vpProjectiveRobot::algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat)
+void vpProjectiveRobot::algebraicGenerators(const std::vector<Eigen::Vector4d> &M0, std::vector<Eigen::Matrix4d> &Hhat)
 {
   const std::string where = at("calibrate()");
   const size_t n = m_types.size();
@@ -360,7 +360,6 @@ void vpProjectiveRobot::algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat)
   }
   // A single trial's homography occasionally lands far off (a small marker set gives a poorly conditioned 15-dof
   // fit), which spoils the mean: keep the candidate that best predicts all the trials of its joint.
-  const std::vector<Eigen::Vector4d> M0 = triangulateZeroReference();
   Hhat.assign(n, Eigen::Matrix4d::Zero());
   for (size_t i = 0; i < n; ++i) {
     if (trialCount[i] == 0) {
@@ -865,7 +864,7 @@ void vpProjectiveRobot::calibrate()
     }
   }
   std::vector<Eigen::Matrix4d> Hhat;
-  algebraicGenerators(Hhat);
+  algebraicGenerators(M0, Hhat);
   m_algebraicResidual = predictionResidual(Hhat, M0);
   Eigen::Matrix4d G;
   std::vector<Eigen::Vector3d> axis, point;

@@ -243,7 +243,8 @@ private:
   void checkCalibrated(const char *where) const;
   JointVector toJointVector(const vpColVector &q, const std::string &where) const;
   std::vector<Eigen::Vector4d> triangulateZeroReference() const;
-  void algebraicGenerators(std::vector<Eigen::Matrix4d> &Hhat);
+  //! Generator of each joint from its trials' displacements (the best-predicting candidate), M0 the zero reference.
+  void algebraicGenerators(const std::vector<Eigen::Vector4d> &M0, std::vector<Eigen::Matrix4d> &Hhat);
   //! Flags the trial observations farther than the outlier threshold from the model; true if a flag changed.
   bool classifyTrialObservations();
   /*!
