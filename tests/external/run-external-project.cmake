@@ -1,6 +1,7 @@
 # ctest case external_project: installs the built plugin into a temporary prefix, then configures, builds and runs
 # the external project of this directory against it.
 #   cmake -DBUILD_DIR=<plugin build> -DWORK_DIR=<scratch> -DGENERATOR=<generator> [-DCONFIG=<config>]
+#         [-DVISP_DIR=<the ViSP the plugin was built with>]
 #         -P run-external-project.cmake
 foreach(var BUILD_DIR WORK_DIR GENERATOR)
   if(NOT DEFINED ${var})
@@ -14,6 +15,12 @@ set(prefix "${WORK_DIR}/prefix")
 set(build "${WORK_DIR}/build")
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
+
+# The sub-build must find the ViSP the plugin was built with, not whichever ViSP is in /usr.
+set(visp_dir "")
+if(VISP_DIR)
+  set(visp_dir "-DVISP_DIR=${VISP_DIR}")
+endif()
 
 function(run step)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -39,7 +46,7 @@ if(NOT config OR NOT version)
 endif()
 
 run("configure" ${CMAKE_COMMAND} -S "${CMAKE_CURRENT_LIST_DIR}" -B "${build}" -G "${GENERATOR}"
-    -DCMAKE_BUILD_TYPE=${CONFIG} -DCMAKE_PREFIX_PATH=${prefix} -DEXPECTED_PREFIX=${prefix})
+    -DCMAKE_BUILD_TYPE=${CONFIG} -DCMAKE_PREFIX_PATH=${prefix} -DEXPECTED_PREFIX=${prefix} ${visp_dir})
 run("build" ${CMAKE_COMMAND} --build "${build}" --config "${CONFIG}")
 find_program(exe external_main PATHS "${build}" "${build}/${CONFIG}" NO_DEFAULT_PATH)
 if(NOT exe)

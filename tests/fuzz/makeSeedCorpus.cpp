@@ -1,4 +1,17 @@
 /*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*
  * Writes the seed corpus of fuzzModelLoader (tests/fuzz/run-fuzz.sh): model files saved by saveModel() from small
  * calibrated models (noise-free acquisitions of the test setups), each as a raw file ('r' + file) and as a body to be
  * re-signed by the harness ('c' + body without its checksum line), plus truncated and corrupted variants.
@@ -11,6 +24,10 @@
 #include <vector>
 
 #include "../vpProjectiveArmTestTools.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
 
 using namespace vpProjectiveTest;
 

@@ -1,5 +1,14 @@
 /*
  * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
  */
 
 /*!
@@ -11,6 +20,8 @@
 #ifndef _vpProjectiveRobot_h_
 #define _vpProjectiveRobot_h_
 
+#include <visp3/projective/vpProjectiveConfig.h>
+
 #include <string>
 #include <vector>
 
@@ -20,6 +31,8 @@
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
+
+BEGIN_VISP_NAMESPACE
 
 /*!
   \class vpProjectiveRobot
@@ -300,5 +313,7 @@ private:
   std::vector<std::vector<bool>> m_inlier; // [trial][marker]: used by the last calibrate()
   bool m_calibrated;
 };
+
+END_VISP_NAMESPACE
 
 #endif

@@ -1,5 +1,14 @@
 /*
  * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
  */
 
 /*!
@@ -10,6 +19,8 @@
 #ifndef _vpProjectiveStereoRig_h_
 #define _vpProjectiveStereoRig_h_
 
+#include <visp3/projective/vpProjectiveConfig.h>
+
 #include <vector>
 
 #include <Eigen/Core>
@@ -17,6 +28,8 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
+
+BEGIN_VISP_NAMESPACE
 
 /*!
   \class vpProjectiveStereoRig
@@ -156,5 +169,7 @@ private:
   double m_residual;
   bool m_initialized;
 };
+
+END_VISP_NAMESPACE
 
 #endif

@@ -1,5 +1,14 @@
 /*
  * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
  */
 
 /*!
@@ -10,6 +19,8 @@
 #ifndef _vpServoProjective_h_
 #define _vpServoProjective_h_
 
+#include <visp3/projective/vpProjectiveConfig.h>
+
 #include <vector>
 
 #include <Eigen/Core>
@@ -19,6 +30,8 @@
 #include <visp3/projective/vpFeatureStereoPoint.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/vs/vpAdaptiveGain.h>
+
+BEGIN_VISP_NAMESPACE
 
 /*!
   \class vpServoProjective
@@ -396,5 +409,7 @@ private:
   double m_e1;
   vpProjectiveRobot::JointVector m_qdot2; // secondary task of the last computeControlLaw()
 };
+
+END_VISP_NAMESPACE
 
 #endif

@@ -1,5 +1,14 @@
 /*
  * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
  */
 
 /*!
@@ -9,6 +18,8 @@
 
 #ifndef _vpSimulatorStereoRig_h_
 #define _vpSimulatorStereoRig_h_
+
+#include <visp3/projective/vpProjectiveConfig.h>
 
 #include <vector>
 
@@ -20,6 +31,8 @@
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
+
+BEGIN_VISP_NAMESPACE
 
 class vpProjectiveStereoRig;
 
@@ -178,5 +191,7 @@ private:
   unsigned int m_width;
   unsigned int m_height;
 };
+
+END_VISP_NAMESPACE
 
 #endif
