@@ -4,6 +4,7 @@ set -euo pipefail
 # dpkg-dev: apt-get source visp (tests/contrib/build-visp-with-module.sh); doxygen: the doc target and its ctest case;
 # clang-14, libclang-rt-14-dev: the libFuzzer target (tests/fuzz/run-fuzz.sh).
 packages=(build-essential cmake libvisp-dev libeigen3-dev libopencv-dev libceres-dev libgtest-dev libbenchmark-dev
+          nlohmann-json3-dev
           gnuplot-nox dpkg-dev doxygen clang-14 libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do

@@ -107,16 +107,10 @@ vpMatrix vpFeatureStereoPoint::interaction(unsigned int select)
          "the interaction matrix needs the weakly calibrated rig; call setStereoRig() first");
   }
   const Eigen::Vector4d M = m_rig->triangulate(Eigen::Vector2d(s[0], s[1]), Eigen::Vector2d(s[2], s[3]));
-  const vpProjectiveStereoRig::Projection *P[2] = {&m_rig->leftProjection(), &m_rig->rightProjection()};
-  Eigen::Matrix4d L;
-  for (int c = 0; c < 2; ++c) {
-    const Eigen::Vector3d m = *P[c] * M;
-    if (!(std::abs(m(2)) > 1e-12 * P[c]->norm())) {
-      fail(vpProjectiveException::pointAtInfinityError, where, "the point lies on a camera's focal plane");
-    }
-    // J_C(m) P, eq. (45)
-    L.row(2 * c) = (P[c]->row(0) - (m(0) / m(2)) * P[c]->row(2)) / m(2);
-    L.row(2 * c + 1) = (P[c]->row(1) - (m(1) / m(2)) * P[c]->row(2)) / m(2);
+  Eigen::Vector4d sM;
+  Eigen::Matrix4d L; // J_C(P M) P and J_C(P' M) P', eq. (45)
+  if (!m_rig->project(M, sM, &L)) {
+    fail(vpProjectiveException::pointAtInfinityError, where, "the point lies on a camera's focal plane");
   }
   vpMatrix Ls(getDimension(select), 4);
   unsigned int row = 0;

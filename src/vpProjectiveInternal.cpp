@@ -36,6 +36,21 @@ Eigen::Matrix4d whitening(const std::vector<Eigen::Vector4d> &points)
   return eig.eigenvectors() * lambda.cwiseSqrt().cwiseInverse().asDiagonal() * eig.eigenvectors().transpose();
 }
 
+std::vector<Eigen::Vector4d> stackStereoImages(const std::vector<vpImagePoint> &left,
+                                               const std::vector<vpImagePoint> &right, const std::string &where)
+{
+  if (left.size() != right.size()) {
+    std::ostringstream os;
+    os << "got " << left.size() << " left and " << right.size() << " right marker images; pass matched pairs";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  std::vector<Eigen::Vector4d> s(left.size());
+  for (size_t j = 0; j < left.size(); ++j) {
+    s[j] << toEigen(left[j], where, "a left marker image"), toEigen(right[j], where, "a right marker image");
+  }
+  return s;
+}
+
 Eigen::Matrix<double, 4, 3> sphereTangentBasis(const Eigen::Vector4d &M)
 {
   Eigen::HouseholderQR<Eigen::Vector4d> qr(M);

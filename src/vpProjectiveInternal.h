@@ -29,6 +29,8 @@
 
 #include <visp3/core/vpArray2D.h>
 #include <visp3/core/vpColVector.h>
+#include <visp3/core/vpConfig.h>
+#include <visp3/core/vpEigenConversion.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
@@ -36,6 +38,10 @@
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
+#endif
+
+#ifndef VISP_HAVE_EIGEN3
+#error "visp_projective needs a ViSP built with Eigen3 (USE_EIGEN3=ON): it converts through ViSP's vpEigenConversion.h"
 #endif
 
 namespace vpProjectiveInternal
@@ -66,27 +72,29 @@ inline bool allFinite(const vpArray2D<double> &A)
   return true;
 }
 
-//! The top-left R x C entries of a ViSP array, unchecked: for values the library itself produced.
-template <int R, int C> Eigen::Matrix<double, R, C> toEigenUnchecked(const vpArray2D<double> &A)
+/*
+  ViSP's own conversions (vpEigenConversion.h) do the copies: ViSP 3.5 and 3.6 declare them in namespace vp, ViSP 3.7
+  in VISP_NAMESPACE_NAME (visp), whether or not its classes are in that namespace.
+*/
+#ifdef VISP_NAMESPACE_NAME
+namespace conversion = VISP_NAMESPACE_NAME;
+#else
+namespace conversion = vp;
+#endif
+
+//! The top-left R x C entries of a ViSP matrix or transform, unchecked: for values the library itself produced.
+template <int R, int C, typename Array> Eigen::Matrix<double, R, C> toEigenUnchecked(const Array &A)
 {
-  Eigen::Matrix<double, R, C> E;
-  for (int i = 0; i < R; ++i) {
-    for (int j = 0; j < C; ++j) {
-      E(i, j) = A[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)];
-    }
-  }
-  return E;
+  Eigen::MatrixXd E(A.getRows(), A.getCols());
+  conversion::visp2eigen(A, E);
+  return E.topLeftCorner<R, C>();
 }
 
 //! A rigid 4x4 Eigen matrix as a vpHomogeneousMatrix (its last row is taken to be (0, 0, 0, 1)).
 inline vpHomogeneousMatrix toHomogeneous(const Eigen::Matrix4d &E)
 {
   vpHomogeneousMatrix M;
-  for (unsigned int i = 0; i < 3; ++i) {
-    for (unsigned int j = 0; j < 4; ++j) {
-      M[i][j] = E(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j));
-    }
-  }
+  conversion::eigen2visp(Eigen::MatrixXd(E), M);
   return M;
 }
 
@@ -99,13 +107,11 @@ Eigen::Matrix<double, R, C> toEigen(const vpMatrix &A, const std::string &where,
     os << what << " must be " << R << "x" << C << ", got " << A.getRows() << "x" << A.getCols();
     fail(vpProjectiveException::dimensionError, where, os.str());
   }
-  Eigen::Matrix<double, R, C> E;
-  for (int i = 0; i < R; ++i) {
-    for (int j = 0; j < C; ++j) {
-      requireFinite(A[i][j], where, what);
-      E(i, j) = A[i][j];
-    }
+  if (!allFinite(A)) {
+    fail(vpProjectiveException::nonFiniteValueError, where, what + " is not finite (NaN or infinity)");
   }
+  Eigen::Matrix<double, R, C> E;
+  conversion::visp2eigen(A, E);
   return E;
 }
 
@@ -118,9 +124,32 @@ Eigen::Matrix<double, N, 1> toEigen(const vpColVector &v, const std::string &whe
     os << what << " must have " << N << " entries, got " << v.getRows();
     fail(vpProjectiveException::dimensionError, where, os.str());
   }
-  Eigen::Matrix<double, N, 1> E;
-  for (int i = 0; i < N; ++i) {
-    requireFinite(v[i], where, what);
+  if (!allFinite(v)) {
+    fail(vpProjectiveException::nonFiniteValueError, where, what + " is not finite (NaN or infinity)");
+  }
+  Eigen::VectorXd E;
+  conversion::visp2eigen(v, E);
+  return E;
+}
+
+/*!
+  A vpColVector of exactly \e n finite entries (one per joint) as an Eigen vector of type \e Vector (dynamic, or of
+  fixed capacity such as vpProjectiveArmModel::JointVector).
+*/
+template <typename Vector>
+Vector toEigenVector(const vpColVector &v, size_t n, const std::string &where, const std::string &what)
+{
+  if (v.getRows() != n) {
+    std::ostringstream os;
+    os << what << " must have " << n << " entries (one per joint), got " << v.getRows();
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  if (!allFinite(v)) {
+    fail(vpProjectiveException::nonFiniteValueError, where, what + ": a joint value is NaN or infinite");
+  }
+  // Entry by entry: no temporary, since the servo's vpColVector API converts q at every call.
+  Vector E(static_cast<Eigen::Index>(n));
+  for (unsigned int i = 0; i < v.getRows(); ++i) {
     E(i) = v[i];
   }
   return E;
@@ -134,31 +163,22 @@ inline Eigen::Vector2d toEigen(const vpImagePoint &ip, const std::string &where,
   return Eigen::Vector2d(ip.get_u(), ip.get_v());
 }
 
+//! Pixels (u, v, u', v') of matched left and right image points, checked: same sizes, finite coordinates.
+std::vector<Eigen::Vector4d> stackStereoImages(const std::vector<vpImagePoint> &left,
+                                               const std::vector<vpImagePoint> &right, const std::string &where);
+
 template <typename Derived> vpMatrix toVisp(const Eigen::MatrixBase<Derived> &E)
 {
-  vpMatrix A(static_cast<unsigned int>(E.rows()), static_cast<unsigned int>(E.cols()));
-  for (int i = 0; i < E.rows(); ++i) {
-    for (int j = 0; j < E.cols(); ++j) {
-      A[i][j] = E(i, j);
-    }
-  }
+  vpMatrix A;
+  conversion::eigen2visp(Eigen::MatrixXd(E), A);
   return A;
 }
 
 template <typename Derived> vpColVector toVispVector(const Eigen::MatrixBase<Derived> &E)
 {
-  vpColVector v(static_cast<unsigned int>(E.size()));
-  for (int i = 0; i < E.size(); ++i) {
-    v[i] = E(i);
-  }
+  vpColVector v;
+  conversion::eigen2visp(Eigen::VectorXd(E), v);
   return v;
-}
-
-inline Eigen::Matrix3d skew(const Eigen::Vector3d &w)
-{
-  Eigen::Matrix3d S;
-  S << 0, -w(2), w(1), w(2), 0, -w(0), -w(1), w(0), 0;
-  return S;
 }
 
 //! Flips the sign of \e x so that its entry of largest magnitude is positive: a canonical sign for a direction.

@@ -100,40 +100,37 @@ double vpProjectiveRotation::generatorResidual(const Eigen::Matrix4d &Hhat)
   return (Hhat * Hhat * Hhat + Hhat).norm() / n;
 }
 
-Eigen::Matrix4d vpProjectiveRotation::exp(const Eigen::Matrix4d &Hhat, double theta)
-{
-  return Eigen::Matrix4d::Identity() + std::sin(theta) * Hhat + (1.0 - std::cos(theta)) * (Hhat * Hhat);
-}
-
-vpProjectiveRotation vpProjectiveRotation::log(const Eigen::Matrix4d &H, double &theta, double amount)
+vpProjectiveRotation vpProjectiveRotation::log(const vpProjectiveDisplacement &H, double amount)
 {
   const std::string where = std::string(kClass) + "::log()";
   if (!std::isfinite(amount)) {
-    fail(vpProjectiveException::nonFiniteValueError, where, "the trial amount is not finite");
+    fail(vpProjectiveException::nonFiniteValueError, where, "the encoder amount is not finite");
   }
-  const vpProjectiveDisplacement D(H); // normalises (12), rejects singular or non-finite H
-  theta = D.getRotationAngle();
   // With an encoder amount, sin(amount) replaces sin(theta): the trace of a noisy H is a poor angle estimate (it can
   // even exceed 4), while the encoder reading is exact; its sign also fixes the generator's sign.
-  const double s = amount != 0.0 ? std::sin(amount) : std::sin(theta);
+  const double angle = amount != 0.0 ? amount : H.getRotationAngle();
+  const double s = std::sin(angle);
   if (!(std::abs(s) > 1e-6)) {
     std::ostringstream os;
-    os << "the rotation angle " << (amount != 0.0 ? amount : theta)
+    os << "the rotation angle " << angle
        << " rad is too close to a multiple of pi for the logarithm (25); use a trial motion between a few degrees and "
           "170 deg";
     fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
   }
-  const Eigen::Matrix4d &Hn = D.matrix();
-  const Eigen::Matrix4d raw = (Hn - Hn.inverse()) / (2.0 * s);
-  const Eigen::Matrix4d Hhat = project(raw);
+  const Eigen::Matrix4d &Hn = H.matrix();
   vpProjectiveRotation R;
-  R.m_Hhat = Hhat;
+  R.m_Hhat = project((Hn - Hn.inverse()) / (2.0 * s));
   return R;
 }
 
-vpProjectiveRotation vpProjectiveRotation::log(const vpMatrix &H, double &theta, double amount)
+vpProjectiveDisplacement vpProjectiveRotation::exp(double theta) const
 {
-  return log(toEigen<4, 4>(H, std::string(kClass) + "::log()", "H"), theta, amount);
+  return vpProjectiveDisplacement(exp(m_Hhat, theta), vpProjectiveDisplacement::vpNormalized());
+}
+
+Eigen::Matrix4d vpProjectiveRotation::dexp(double theta) const
+{
+  return m_Hhat * exp(m_Hhat, theta);
 }
 
 vpMatrix vpProjectiveRotation::getGenerator() const

@@ -13,6 +13,8 @@
 
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
+#include <visp3/projective/vpMetricTwist.h>
+
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -22,7 +24,9 @@
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 
+#include "vpCostFunctors.h"
 #include "vpProjectiveCeres.h"
+#include "vpProjection.h"
 #include "vpProjectiveInternal.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -34,36 +38,6 @@ using namespace vpProjectiveInternal;
 namespace
 {
 const char *const kClass = "vpProjectiveStereoRig";
-
-/*
-  Reprojection error of one match in Hartley-normalised image coordinates, weighted back to pixels: the left camera
-  is [I | 0], the right camera P' is the 3x4 parameter block, the point M is a unit 4-vector.
-*/
-struct StereoReprojectionError {
-  StereoReprojectionError(const Eigen::Vector2d &left, const Eigen::Vector2d &right, double leftScale,
-                          double rightScale)
-      : m_left(left), m_right(right), m_leftScale(leftScale), m_rightScale(rightScale)
-  {
-  }
-
-  template <typename T> bool operator()(const T *const Pp, const T *const M, T *residual) const
-  {
-    // Left camera [I | 0].
-    residual[0] = (M[0] / M[2] - T(m_left(0))) / T(m_leftScale);
-    residual[1] = (M[1] / M[2] - T(m_left(1))) / T(m_leftScale);
-    // Right camera, Pp stored row-major.
-    T m[3];
-    for (int r = 0; r < 3; ++r) {
-      m[r] = Pp[4 * r] * M[0] + Pp[4 * r + 1] * M[1] + Pp[4 * r + 2] * M[2] + Pp[4 * r + 3] * M[3];
-    }
-    residual[2] = (m[0] / m[2] - T(m_right(0))) / T(m_rightScale);
-    residual[3] = (m[1] / m[2] - T(m_right(1))) / T(m_rightScale);
-    return true;
-  }
-
-  Eigen::Vector2d m_left, m_right;
-  double m_leftScale, m_rightScale;
-};
 
 Eigen::Vector2d dehomogenize(const Eigen::Vector3d &m)
 {
@@ -121,7 +95,7 @@ double consensus(const Eigen::Matrix3d &F, const std::vector<Eigen::Vector2d> &l
 vpProjectiveStereoRig::Projection canonicalRightProjection(const Eigen::Matrix3d &F, const Eigen::Vector3d &ep)
 {
   vpProjectiveStereoRig::Projection Pp;
-  Pp.leftCols<3>() = skew(ep) * F + ep * ep.transpose();
+  Pp.leftCols<3>() = vpMetricTwist::skew(ep) * F + ep * ep.transpose();
   Pp.col(3) = ep;
   return Pp;
 }
@@ -192,24 +166,6 @@ Eigen::Vector4d linearTriangulation(const vpProjectiveStereoRig::Projection &P,
   return M.normalized();
 }
 
-// Stacked pixel projections (u, v, u', v') of M and their Jacobian with respect to M (4x4), eq. (45).
-bool projectWithJacobian(const vpProjectiveStereoRig::Projection &P, const vpProjectiveStereoRig::Projection &Pp,
-                         const Eigen::Vector4d &M, Eigen::Vector4d &s, Eigen::Matrix4d &J)
-{
-  const Eigen::Vector3d m = P * M;
-  const Eigen::Vector3d mp = Pp * M;
-  if (m(2) == 0.0 || mp(2) == 0.0) {
-    return false;
-  }
-  s << m(0) / m(2), m(1) / m(2), mp(0) / mp(2), mp(1) / mp(2);
-  Eigen::Matrix<double, 2, 3> Jc, Jcp;
-  Jc << 1.0 / m(2), 0.0, -m(0) / (m(2) * m(2)), 0.0, 1.0 / m(2), -m(1) / (m(2) * m(2));
-  Jcp << 1.0 / mp(2), 0.0, -mp(0) / (mp(2) * mp(2)), 0.0, 1.0 / mp(2), -mp(1) / (mp(2) * mp(2));
-  J.topRows<2>() = Jc * P;
-  J.bottomRows<2>() = Jcp * Pp;
-  return true;
-}
-
 /*
   Gold-standard F of the matches \e index: in Hartley-normalised coordinates (T, Tp), P = [I|0] fixed, P' (scale
   fixed on the unit sphere; the remaining 3-dof gauge P' + e' a^T is left to Levenberg-Marquardt's damping) and the
@@ -244,7 +200,7 @@ Eigen::Matrix3d goldStandardFundamental(const std::vector<Eigen::Vector2d> &l, c
 
   const vpProjectiveStereoRig::Projection PpRefined = PpRowMajor;
   const Eigen::Vector3d epRefined = PpRefined.col(3);
-  const Eigen::Matrix3d Fn = skew(epRefined) * PpRefined.leftCols<3>();
+  const Eigen::Matrix3d Fn = vpMetricTwist::skew(epRefined) * PpRefined.leftCols<3>();
   const Eigen::Matrix3d F = Tp.transpose() * Fn * T;
   if (!F.allFinite() || F.norm() == 0.0 || summary.final_cost > summary.initial_cost) {
     return Tp.transpose() * Fn0 * T; // the refinement failed: keep the start
@@ -511,7 +467,7 @@ Eigen::Vector4d vpProjectiveStereoRig::triangulate(const Eigen::Vector2d &left, 
   // Gauss-Newton on the unit sphere, minimising the pixel reprojection error in both images.
   Eigen::Vector4d s;
   Eigen::Matrix4d J;
-  if (!projectWithJacobian(m_P, m_Pp, M, s, J)) {
+  if (!project(M, s, &J)) {
     return M;
   }
   double cost = (s - obs).squaredNorm();
@@ -525,7 +481,7 @@ Eigen::Vector4d vpProjectiveStereoRig::triangulate(const Eigen::Vector2d &left, 
     const Eigen::Vector4d Mnew = (M + B * delta).normalized();
     Eigen::Vector4d sNew;
     Eigen::Matrix4d Jnew;
-    if (!projectWithJacobian(m_P, m_Pp, Mnew, sNew, Jnew)) {
+    if (!project(Mnew, sNew, &Jnew)) {
       break;
     }
     const double costNew = (sNew - obs).squaredNorm();
@@ -553,17 +509,9 @@ vpColVector vpProjectiveStereoRig::triangulate(const vpImagePoint &ipLeft, const
   return toVispVector(triangulate(l, r));
 }
 
-bool vpProjectiveStereoRig::project(const Eigen::Vector4d &M, Eigen::Vector4d &s) const
+bool vpProjectiveStereoRig::project(const Eigen::Vector4d &M, Eigen::Vector4d &s, Eigen::Matrix4d *L) const
 {
-  const Eigen::Vector3d m = m_P * M;
-  const Eigen::Vector3d mp = m_Pp * M;
-  // A point on a camera's focal plane has no finite image.
-  const double eps = 1e-12 * M.norm();
-  if (!(std::abs(m(2)) > eps * m_P.norm()) || !(std::abs(mp(2)) > eps * m_Pp.norm())) {
-    return false;
-  }
-  s << m(0) / m(2), m(1) / m(2), mp(0) / mp(2), mp(1) / mp(2);
-  return s.allFinite();
+  return projectStereo(m_P, m_Pp, M, s, L) && s.allFinite();
 }
 
 void vpProjectiveStereoRig::project(const vpColVector &M, vpImagePoint &ipLeft, vpImagePoint &ipRight) const

@@ -67,25 +67,30 @@ double vpProjectiveTranslation::generatorResidual(const Eigen::Matrix4d &Hhat)
   return (Hhat * Hhat).norm() / n2;
 }
 
-Eigen::Matrix4d vpProjectiveTranslation::exp(const Eigen::Matrix4d &Hhat, double tau)
-{
-  return Eigen::Matrix4d::Identity() + tau * Hhat;
-}
-
-vpProjectiveTranslation vpProjectiveTranslation::log(const Eigen::Matrix4d &H, double tau)
+vpProjectiveTranslation vpProjectiveTranslation::log(const vpProjectiveDisplacement &H, double amount)
 {
   const std::string where = std::string(kClass) + "::log()";
-  if (!std::isfinite(tau)) {
-    fail(vpProjectiveException::nonFiniteValueError, where, "the trial length tau is not finite");
+  if (!std::isfinite(amount)) {
+    fail(vpProjectiveException::nonFiniteValueError, where, "the encoder amount tau is not finite");
   }
-  if (tau == 0.0) {
+  if (amount == 0.0) {
     fail(vpProjectiveException::invalidValueError, where,
-         "the trial length tau is zero; a prismatic joint must move to reveal its generator");
+         "the encoder amount tau is zero; a prismatic joint must move to reveal its generator, and the length of its "
+         "motion must be read by its encoder");
   }
-  const vpProjectiveDisplacement D(H);
   vpProjectiveTranslation T;
-  T.m_Hhat = project((D.matrix() - Eigen::Matrix4d::Identity()) / tau);
+  T.m_Hhat = project((H.matrix() - Eigen::Matrix4d::Identity()) / amount);
   return T;
+}
+
+vpProjectiveDisplacement vpProjectiveTranslation::exp(double tau) const
+{
+  return vpProjectiveDisplacement(exp(m_Hhat, tau), vpProjectiveDisplacement::vpNormalized());
+}
+
+Eigen::Matrix4d vpProjectiveTranslation::dexp(double) const
+{
+  return m_Hhat;
 }
 
 Eigen::Matrix4d vpProjectiveTranslation::project(const Eigen::Matrix4d &Hhat)
@@ -96,11 +101,6 @@ Eigen::Matrix4d vpProjectiveTranslation::project(const Eigen::Matrix4d &Hhat)
   Eigen::Vector4d u = svd.matrixU().col(0);
   u -= v.dot(u) * v;
   return svd.singularValues()(0) * u * v.transpose();
-}
-
-vpProjectiveTranslation vpProjectiveTranslation::log(const vpMatrix &H, double tau)
-{
-  return log(toEigen<4, 4>(H, std::string(kClass) + "::log()", "H"), tau);
 }
 
 vpMatrix vpProjectiveTranslation::getGenerator() const

@@ -51,7 +51,7 @@ Eigen::Matrix4d dhTransform(double theta, double d, double a, double alpha)
 
 Eigen::Matrix4d linkTransform(const vpSimulatorArm::vpDHRow &row, double q)
 {
-  if (row.kind == vpSimulatorArm::REVOLUTE) {
+  if (row.type == vpSimulatorArm::REVOLUTE) {
     return dhTransform(row.theta + q, row.d, row.a, row.alpha);
   }
   return dhTransform(row.theta, row.d + q, row.a, row.alpha);
@@ -102,7 +102,7 @@ vpSimulatorArm::vpSimulatorArm(const std::vector<vpDHRow> &dh, const vpHomogeneo
       os << "vpSimulatorArm: Denavit-Hartenberg row " << i << " contains NaN or infinity";
       throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
     }
-    if (r.kind != REVOLUTE && r.kind != PRISMATIC) {
+    if (r.type != REVOLUTE && r.type != PRISMATIC) {
       std::ostringstream os;
       os << "vpSimulatorArm: Denavit-Hartenberg row " << i << " has an unknown joint kind; use REVOLUTE or PRISMATIC";
       throw vpProjectiveException(vpProjectiveException::invalidValueError, os.str());
@@ -140,7 +140,7 @@ vpSimulatorArm::vpSimulatorArm(const std::vector<vpDHRow> &dh, const vpHomogeneo
   m_qmin.resize(n);
   m_qmax.resize(n);
   for (unsigned int i = 0; i < n; ++i) {
-    const double limit = (dh[i].kind == REVOLUTE) ? vpMath::rad(170.0) : 0.5;
+    const double limit = (dh[i].type == REVOLUTE) ? vpMath::rad(170.0) : 0.5;
     m_qmin[i] = -limit;
     m_qmax[i] = limit;
   }
@@ -231,15 +231,15 @@ vpSimulatorArm vpSimulatorArm::viper850(const vpHomogeneousMatrix &wMb)
   return arm;
 }
 
-vpSimulatorArm::vpJointKind vpSimulatorArm::getJointKind(unsigned int i) const
+vpSimulatorArm::vpJointType vpSimulatorArm::getJointType(unsigned int i) const
 {
   if (i >= m_dh.size()) {
     std::ostringstream os;
-    os << "vpSimulatorArm::getJointKind(): joint " << i << " does not exist; the arm has " << m_dh.size()
+    os << "vpSimulatorArm::getJointType(): joint " << i << " does not exist; the arm has " << m_dh.size()
        << " joints, indexed from 0";
     throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
   }
-  return m_dh[i].kind;
+  return m_dh[i].type;
 }
 
 void vpSimulatorArm::checkJointVector(const vpColVector &q, const char *where, const char *name) const
@@ -305,23 +305,7 @@ vpMatrix vpSimulatorArm::getTwist(unsigned int i) const
   }
   const Eigen::Vector3d z = wMi.block<3, 1>(0, 2);
   const Eigen::Vector3d p = wMi.block<3, 1>(0, 3);
-  Eigen::Vector3d w = Eigen::Vector3d::Zero();
-  Eigen::Vector3d v = z;
-  if (m_dh[i].kind == REVOLUTE) {
-    w = z;
-    v = -w.cross(p);
-  }
-  vpMatrix T(4, 4, 0.0);
-  T[0][1] = -w(2);
-  T[0][2] = w(1);
-  T[1][0] = w(2);
-  T[1][2] = -w(0);
-  T[2][0] = -w(1);
-  T[2][1] = w(0);
-  for (unsigned int r = 0; r < 3; ++r) {
-    T[r][3] = v(r);
-  }
-  return T;
+  return toVisp(vpProjectiveJoint::twist(m_dh[i].type, z, p));
 }
 
 vpHomogeneousMatrix vpSimulatorArm::getDisplacement(const vpColVector &q) const

@@ -29,6 +29,7 @@
 #include <visp3/core/vpThetaUVector.h>
 #include <visp3/core/vpTranslationVector.h>
 
+#include <visp3/projective/vpMetricTwist.h>
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
@@ -236,7 +237,7 @@ vpMatrix vpSimulatorStereoRig::getFundamentalMatrix() const
   const Eigen::Matrix3d R = rMl.topLeftCorner<3, 3>();
   const Eigen::Vector3d t = rMl.topRightCorner<3, 1>();
   const Eigen::Matrix3d F =
-      intrinsics(m_camRight).inverse().transpose() * skew(t) * R * intrinsics(m_camLeft).inverse();
+      intrinsics(m_camRight).inverse().transpose() * vpMetricTwist::skew(t) * R * intrinsics(m_camLeft).inverse();
   return toVisp(F / F.norm());
 }
 

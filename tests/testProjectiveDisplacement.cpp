@@ -570,9 +570,9 @@ RotationErrors rotationErrors(const Scene &scene, const MismatchCase &c, const E
     const Eigen::Vector4d a = Tm * N0, b = Tl * N0;
     transfer += (a.head<3>() / a(3) - b.head<3>()).squaredNorm() / static_cast<double>(c.body.size());
   }
-  double theta = 0.0;
-  const Eigen::Matrix4d G = vpProjectiveRotation::log(H, theta, c.theta).generator();
-  const Eigen::Matrix4d Gtrue = vpProjectiveRotation::log(truth(scene, c.T), theta, c.theta).generator();
+  const Eigen::Matrix4d G = vpProjectiveRotation::log(vpProjectiveDisplacement(H), c.theta).generator();
+  const Eigen::Matrix4d Gtrue =
+      vpProjectiveRotation::log(vpProjectiveDisplacement(truth(scene, c.T)), c.theta).generator();
   RotationErrors r;
   r.e[RotationErrors::Angle] = std::abs(vpProjectiveDisplacement(H).getRotationAngle() - c.theta);
   r.e[RotationErrors::Transfer] = 1000.0 * std::sqrt(transfer);

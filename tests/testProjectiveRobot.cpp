@@ -160,7 +160,7 @@ Eigen::Matrix4d chainProduct(const vpProjectiveRobot &robot, const vpColVector &
 //! A file name of this process only: other build trees may run the same suite at the same time.
 std::string tempFile(const std::string &name)
 {
-  return ::testing::TempDir() + "visp_projective_" + std::to_string(static_cast<long>(getpid())) + "_" + name + ".yml";
+  return ::testing::TempDir() + "visp_projective_" + std::to_string(static_cast<long>(getpid())) + "_" + name + ".json";
 }
 
 std::string readFile(const std::string &path)
@@ -175,22 +175,6 @@ void writeFile(const std::string &path, const std::string &text)
 {
   std::ofstream f(path.c_str(), std::ios::binary);
   f << text;
-}
-
-using vpProjectiveTest::fnv1a;
-
-//! Re-signs an edited model body the way saveModel() does.
-std::string withChecksum(const std::string &body)
-{
-  std::ostringstream os;
-  os << body << "checksum " << std::hex << fnv1a(body) << '\n';
-  return os.str();
-}
-
-//! The body of a model file (everything before the checksum line).
-std::string bodyOf(const std::string &text)
-{
-  return text.substr(0, text.rfind("checksum "));
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -234,7 +218,7 @@ TEST_P(ProjectiveRobotSetup, GroundTruthIsConsistent)
       EXPECT_LT(relativeError(expm(q[i] * s.cameraTwist(i)), T), 1e-12) << s.name << " joint " << i;
       // The twist is a unit rotation about a line (revolute) or a unit translation (prismatic).
       const Eigen::Matrix4d That = s.cameraTwist(i);
-      if (s.arm.getJointKind(i) == vpSimulatorArm::REVOLUTE) {
+      if (s.arm.getJointType(i) == vpSimulatorArm::REVOLUTE) {
         EXPECT_NEAR((That * That * That + That).norm(), 0.0, 1e-12);
       } else {
         EXPECT_NEAR((That.topRightCorner<3, 1>().norm()), 1.0, 1e-12);
@@ -291,7 +275,7 @@ TEST_P(ProjectiveRobotSetup, GeneratorsMatchGroundTruth)
     worst = std::max(worst, err);
     EXPECT_LT(err, 1e-9) << s.name << " joint " << i;
     const double n = Hhat.norm();
-    if (s.arm.getJointKind(i) == vpSimulatorArm::REVOLUTE) {
+    if (s.arm.getJointType(i) == vpSimulatorArm::REVOLUTE) {
       EXPECT_EQ(robot.getJointType(i), vpProjectiveRobot::REVOLUTE);
       EXPECT_LT((Hhat * Hhat * Hhat + Hhat).norm() / (n * n * n), 1e-12) << "Hhat^3 = -Hhat, joint " << i;
       const Eigen::Vector4d sv = singularValues(Hhat);
@@ -376,7 +360,7 @@ TEST_P(ProjectiveRobotSetup, ImageJacobianMatchesSimulatedImages)
       worst = std::max(worst, err);
       EXPECT_LT(err, 1e-8) << s.name << " marker " << j << " q = " << q.t() << "\nJ =\n" << J << "\nfd =\n" << Jfd;
       for (unsigned int k = 0; k < s.n(); ++k) {
-        if (s.arm.getJointKind(k) == vpSimulatorArm::PRISMATIC) {
+        if (s.arm.getJointType(k) == vpSimulatorArm::PRISMATIC) {
           const double e = (J.col(k) - Jfd.col(k)).norm() / Jfd.col(k).norm();
           worstPrismatic = std::max(worstPrismatic, e);
           EXPECT_LT(e, 1e-8) << s.name << " prismatic column " << k;
@@ -479,7 +463,7 @@ TEST_P(ProjectiveRobotSetup, InverseKinematicsRecoversJoints)
     vpColVector q0 = q;
     for (unsigned int i = 0; i < s.n(); ++i) {
       // 5 deg, or 1 cm for a prismatic joint.
-      q0[i] += rng.uniform(-1.0, 1.0) * (s.arm.getJointKind(i) == vpSimulatorArm::REVOLUTE ? vpMath::rad(5.0) : 0.01);
+      q0[i] += rng.uniform(-1.0, 1.0) * (s.arm.getJointType(i) == vpSimulatorArm::REVOLUTE ? vpMath::rad(5.0) : 0.01);
     }
     std::vector<vpImagePoint> left, right;
     ASSERT_TRUE(s.images(s.armJoints(q), left, right));
@@ -795,6 +779,7 @@ TEST(ProjectiveRobot, ModelFileErrors)
   robot.saveModel(path);
   const std::string text = readFile(path);
   ASSERT_GT(text.size(), 100u);
+  const nlohmann::json file = nlohmann::json::parse(text);
   const std::string bad = tempFile("errors_bad");
   const int code = vpProjectiveException::fileError;
   vpProjectiveRobot target = calibratedRobot(s);
@@ -804,73 +789,98 @@ TEST(ProjectiveRobot, ModelFileErrors)
   std::remove(bad.c_str());
   EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "cannot open"));
 
-  // Truncated: at line starts, mid-line, inside the checksum line. (Dropping only the final newline leaves every
-  // byte of content and the checksum intact, which is not a truncation of the model.)
-  const size_t checksumAt = text.rfind("checksum ");
+  // Truncated: at the start, inside values, inside the markers, inside the checksum, before the last brace.
+  const size_t checksumAt = text.rfind("\"checksum\"");
   ASSERT_NE(checksumAt, std::string::npos);
   std::vector<size_t> cuts = {0,
                               1,
                               10,
                               text.size() / 4,
                               text.size() / 2,
-                              text.find("\nmarkers") + 1,
-                              text.find("\nresidual") + 5,
+                              text.find("\"markers\"") + 1,
+                              text.find("\"calibration_residual\"") + 5,
                               checksumAt,
-                              checksumAt + 9,
-                              checksumAt + 12,
+                              checksumAt + 15,
                               text.size() - 2};
   for (size_t cut : cuts) {
     writeFile(bad, text.substr(0, cut));
-    EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "checksum")) << "cut at " << cut;
+    EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "truncated")) << "cut at " << cut;
   }
 
-  // One byte changed (every third position of the body, every byte of the checksum line but its final newline): the
-  // checksum, or the checksum line's own checks, catch it.
-  int caught = 0, tried = 0;
-  for (size_t k = 0; k + 1 < text.size(); k += (k < checksumAt ? 3 : 1)) { // every third byte, all of the checksum
+  // One byte changed (every third position, every byte of the checksum line but its final newline): the JSON syntax,
+  // an entry's check or the checksum catch it, unless the change leaves every value as it was (a 17th significant
+  // digit that reads back to the same double): then the model loaded is bit-identical to the one saved.
+  int caught = 0, tried = 0, harmless = 0;
+  for (size_t k = 0; k + 2 < text.size(); k += (k < checksumAt ? 3 : 1)) { // every third byte, all of the checksum
     std::string edited = text;
     edited[k] = static_cast<char>(edited[k] ^ 0x01);
     writeFile(bad, edited);
     ++tried;
-    if (throwsProjective([&] { target.loadModel(bad); }, code, "checksum")) {
+    if (throwsProjective([&] { target.loadModel(bad); }, code, "model file")) {
       ++caught;
+      continue;
+    }
+    vpProjectiveRobot reloaded;
+    reloaded.loadModel(bad);
+    bool identical = toEigen<4, 4>(reloaded.getProjectiveToMetric()) == toEigen<4, 4>(robot.getProjectiveToMetric());
+    for (unsigned int i = 0; i < s.n(); ++i) {
+      identical = identical && toEigen<4, 4>(reloaded.getGenerator(i)) == toEigen<4, 4>(robot.getGenerator(i));
+    }
+    for (size_t j = 0; j < robot.getZeroReferencePoints().size(); ++j) {
+      identical =
+          identical && toEigen4(reloaded.getZeroReferencePoints()[j]) == toEigen4(robot.getZeroReferencePoints()[j]);
+    }
+    if (identical) {
+      ++harmless;
     } else {
-      ADD_FAILURE() << "byte " << k << " ('" << text[k] << "') changed was not detected";
+      ADD_FAILURE() << "byte " << k << " ('" << text[k] << "') changed the model undetected";
     }
   }
-  EXPECT_EQ(caught, tried);
+  EXPECT_EQ(caught + harmless, tried);
+  EXPECT_GT(caught, 9 * tried / 10);
+  std::cout << "[ measured ] one byte changed: " << caught << " of " << tried << " caught, " << harmless
+            << " left every value as it was" << std::endl;
 
-  // Another version: edited without re-signing, the checksum fails; re-signed, the version check names it.
-  const std::string body = bodyOf(text);
-  const size_t v = body.find("version 1\n");
-  ASSERT_NE(v, std::string::npos);
-  std::string body2 = body;
-  body2.replace(v, 9, "version 2");
-  writeFile(bad, body2 + text.substr(checksumAt));
+  // A value edited without re-signing fails the checksum; another version is named.
+  nlohmann::json edited = file;
+  edited["model"]["G"][0][0] = edited["model"]["G"][0][0].get<double>() * 1.001;
+  writeFile(bad, edited.dump(2));
   EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "checksum"));
-  writeFile(bad, withChecksum(body2));
-  EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "version 2"));
+  nlohmann::json version = file;
+  version["version"] = 3;
+  writeFile(bad, version.dump(2));
+  EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "version 3"));
 
-  // Re-signed but inconsistent content: another magic word, a non-finite value, a joint type, too few markers.
-  std::string other = body;
-  other.replace(0, other.find('\n'), "some_other_model");
-  writeFile(bad, withChecksum(other));
+  // Re-signed but inconsistent content: another format, a non-finite value, a joint type, too few markers, a missing
+  // entry, a singular G.
+  nlohmann::json other = file;
+  other["format"] = "some_other_model";
+  writeFile(bad, resigned(other));
   EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "visp_projective_robot_model"));
-  std::string nonFinite = body;
-  const size_t g = nonFinite.find("\nG ") + 3;
-  nonFinite.replace(g, nonFinite.find(' ', g) - g, "nan");
-  writeFile(bad, withChecksum(nonFinite));
+  nlohmann::json nonFinite = file;
+  nonFinite["model"]["G"][0][0] = std::numeric_limits<double>::quiet_NaN(); // written as null
+  writeFile(bad, resigned(nonFinite));
   EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "non-finite"));
-  std::string joints = body;
-  joints.replace(joints.find("joints 6 R"), 10, "joints 6 X");
-  writeFile(bad, withChecksum(joints));
+  nlohmann::json joints = file;
+  joints["model"]["joints"][2] = "screw";
+  writeFile(bad, resigned(joints));
   EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "joint type"));
-  std::string markers = body;
-  markers.replace(markers.find("markers 7"), 9, "markers 4");
-  writeFile(bad, withChecksum(markers));
+  nlohmann::json markers = file;
+  markers["model"]["markers"].erase(3);
+  markers["model"]["markers"].erase(3);
+  markers["model"]["markers"].erase(3);
+  writeFile(bad, resigned(markers));
   EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "markers"));
+  nlohmann::json missing = file;
+  missing["model"].erase("twists");
+  writeFile(bad, resigned(missing));
+  EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "twists"));
+  nlohmann::json singular = file;
+  singular["model"]["G"][1] = singular["model"]["G"][0];
+  writeFile(bad, resigned(singular));
+  EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "singular"));
   // The re-signed original loads: the checksum recomputation above is the library's.
-  writeFile(bad, withChecksum(body));
+  writeFile(bad, resigned(file));
   EXPECT_NO_THROW(target.loadModel(bad));
 
   // A failed load leaves the robot as it was.
@@ -884,7 +894,7 @@ TEST(ProjectiveRobot, ModelFileErrors)
   EXPECT_TRUE(
       throwsProjective([&] { empty.saveModel(bad); }, vpProjectiveException::notInitializedError, "not acquired"));
   EXPECT_TRUE(
-      throwsProjective([&] { robot.saveModel("/nonexistent_dir_visp_projective/model.yml"); }, code, "cannot open"));
+      throwsProjective([&] { robot.saveModel("/nonexistent_dir_visp_projective/model.json"); }, code, "cannot open"));
   std::remove(path.c_str());
   std::remove(bad.c_str());
 }

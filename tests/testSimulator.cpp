@@ -582,7 +582,7 @@ TEST(SimulatorArm, ProductOfExponentialsWithPrismaticJoint)
   dh[3] = {vpSimulatorArm::REVOLUTE, 0.5, 0.05, 0.0, 0.0};
   const vpSimulatorArm arm(dh, vpSimulatorArm::gripperMount(), vpSimulatorArm::gripperMarkers(),
                            vpHomogeneousMatrix(0.0, 0.0, 1.0, 0.3, 0.0, 0.0));
-  EXPECT_EQ(arm.getJointKind(2), vpSimulatorArm::PRISMATIC);
+  EXPECT_EQ(arm.getJointType(2), vpSimulatorArm::PRISMATIC);
   EXPECT_NEAR(arm.getJointMax()[2], 0.5, 1e-15);
   EXPECT_NEAR(arm.getJointMax()[0], vpMath::rad(170.0), 1e-15);
   vpUniRand rng(44);
@@ -825,7 +825,7 @@ TEST(SimulatorArm, BadInputsThrow)
   expectThrowsCode([&]() { arm.get_wMt(nan); }, vpProjectiveException::nonFiniteValueError);
   expectThrowsCode([&]() { arm.getDisplacement(nan); }, vpProjectiveException::nonFiniteValueError);
   expectThrowsCode([&]() { arm.getTwist(6); }, vpProjectiveException::dimensionError);
-  expectThrowsCode([&]() { arm.getJointKind(6); }, vpProjectiveException::dimensionError);
+  expectThrowsCode([&]() { arm.getJointType(6); }, vpProjectiveException::dimensionError);
   expectThrowsCode([&]() { arm.integrate(vpColVector(6, 0.0), vpColVector(3, 0.0), 0.1); },
                    vpProjectiveException::dimensionError);
   expectThrowsCode([&]() { arm.integrate(vpColVector(6, 0.0), nan, 0.1); }, vpProjectiveException::nonFiniteValueError);

@@ -1,29 +1,20 @@
 /*
  * visp_projective: non-metric stereo visual servoing for ViSP.
- * Copyright (C) 2026 The visp_projective authors.
- *
- * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
- * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
- * later version. See the file LICENSE at the root directory of this source distribution.
- *
- * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
- * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
- * more details.
  */
 
 /*
-  The model file's checksum, re-implemented independently of src/vpProjectiveRobot.cpp so that tests and the fuzzer
-  can forge files that pass it: FNV-1a 64 of the body, written as "checksum <hex>" on the last line.
+  The model file's checksum, re-implemented independently of src/vpProjectiveModelFile.cpp so that tests and the
+  fuzzer can forge files that pass it: FNV-1a 64 of the "model" member written compactly, as "fnv1a64:" and 16
+  hexadecimal digits in the "checksum" member.
 */
 
 #ifndef _vpModelFileChecksum_h_
 #define _vpModelFileChecksum_h_
 
+#include <cstdio>
 #include <string>
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
+#include <nlohmann/json.hpp>
 
 namespace vpProjectiveTest
 {
@@ -35,6 +26,15 @@ inline unsigned long long fnv1a(const std::string &text)
     h *= 1099511628211ULL;
   }
   return h;
+}
+
+//! \e file with its "checksum" member recomputed from its "model" member (which must exist), as JSON text.
+inline std::string resigned(nlohmann::json file)
+{
+  char digits[17];
+  std::snprintf(digits, sizeof(digits), "%016llx", fnv1a(file["model"].dump()));
+  file["checksum"] = std::string("fnv1a64:") + digits;
+  return file.dump(2) + "\n";
 }
 } // namespace vpProjectiveTest
 

@@ -125,8 +125,8 @@ inline Eigen::Matrix4d expm(const Eigen::Matrix4d &A)
 //! simulator's code.
 inline Eigen::Matrix4d dhTransform(const vpSimulatorArm::vpDHRow &row, double q)
 {
-  const double theta = row.theta + (row.kind == vpSimulatorArm::REVOLUTE ? q : 0.0);
-  const double d = row.d + (row.kind == vpSimulatorArm::PRISMATIC ? q : 0.0);
+  const double theta = row.theta + (row.type == vpSimulatorArm::REVOLUTE ? q : 0.0);
+  const double d = row.d + (row.type == vpSimulatorArm::PRISMATIC ? q : 0.0);
   const double ct = std::cos(theta), st = std::sin(theta);
   const double ca = std::cos(row.alpha), sa = std::sin(row.alpha);
   Eigen::Matrix4d T;
@@ -175,7 +175,7 @@ struct ArmSetup {
     std::vector<vpProjectiveRobot::vpJointType> types(n());
     for (unsigned int i = 0; i < n(); ++i) {
       types[i] =
-          arm.getJointKind(i) == vpSimulatorArm::REVOLUTE ? vpProjectiveRobot::REVOLUTE : vpProjectiveRobot::PRISMATIC;
+          arm.getJointType(i) == vpSimulatorArm::REVOLUTE ? vpProjectiveRobot::REVOLUTE : vpProjectiveRobot::PRISMATIC;
     }
     return types;
   }
@@ -260,7 +260,7 @@ struct ArmSetup {
     }
     const Eigen::Vector3d z = wMi.block<3, 1>(0, 2);
     const Eigen::Vector3d p = wMi.block<3, 1>(0, 3);
-    if (dh[i].kind == vpSimulatorArm::REVOLUTE) {
+    if (dh[i].type == vpSimulatorArm::REVOLUTE) {
       return twistMatrix(z, -z.cross(p));
     }
     return twistMatrix(Eigen::Vector3d::Zero(), z);

@@ -244,8 +244,7 @@ void estimateMotion(const vpProjectiveStereoRig &rig, const std::vector<vpImageP
   const vpProjectiveDisplacement *H[2] = {&Hlinear, &Hrefined};
   Estimate *out[2] = {&linear, &refined};
   for (int k = 0; k < 2; ++k) {
-    double theta = 0.0;
-    const vpProjectiveRotation R = vpProjectiveRotation::log(H[k]->getMatrix(), theta, scene.angle);
+    const vpProjectiveRotation R = vpProjectiveRotation::log(*H[k], scene.angle);
     out[k]->angle = vpMath::deg(H[k]->getRotationAngle());
     out[k]->angleError = std::fabs(out[k]->angle - vpMath::deg(scene.angle));
     compare(R.getGenerator(), HhatTrue, Hpe, scene, sim, *out[k]);

@@ -13,8 +13,8 @@
 
 /*
  * Writes the seed corpus of fuzzModelLoader (tests/fuzz/run-fuzz.sh): model files saved by saveModel() from small
- * calibrated models (noise-free acquisitions of the test setups), each as a raw file ('r' + file) and as a body to be
- * re-signed by the harness ('c' + body without its checksum line), plus truncated and corrupted variants.
+ * calibrated models (noise-free acquisitions of the test setups), each as a raw file ('r' + file) and as a file to be
+ * re-signed by the harness ('c' + file), plus truncated, corrupted and edited variants.
  *   makeSeedCorpus <corpus directory>
  */
 #include <fstream>
@@ -22,6 +22,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "../vpProjectiveArmTestTools.h"
 
@@ -70,26 +72,28 @@ int main(int argc, char **argv)
       return 1;
     }
     robot.calibrate();
-    const std::string path = dir + "/.saved-" + named.first;
+    const std::string path = dir + "/.saved-" + named.first + ".json";
     robot.saveModel(path);
     const std::string file = readAll(path);
     std::remove(path.c_str());
-    const std::string body = file.substr(0, file.rfind("checksum "));
+    const nlohmann::json json = nlohmann::json::parse(file);
     const std::string p = named.first;
     writeSeed(dir, p + "-valid", 'r', file);
-    writeSeed(dir, p + "-body", 'c', body);
+    writeSeed(dir, p + "-resigned", 'c', file);
     writeSeed(dir, p + "-truncated-half", 'r', file.substr(0, file.size() / 2));
-    writeSeed(dir, p + "-body-truncated-half", 'c', body.substr(0, body.size() / 2));
+    writeSeed(dir, p + "-resigned-truncated-half", 'c', file.substr(0, file.size() / 2));
     std::string flipped = file;
     flipped[flipped.size() / 3] ^= 0x10;
     writeSeed(dir, p + "-corrupted", 'r', flipped);
-    std::string nan = body;
-    const size_t g = nan.find("\nG ");
-    nan.replace(g + 3, 1, "nan ");
-    writeSeed(dir, p + "-body-nan", 'c', nan);
-    std::string version = body;
-    version.replace(version.find("version 1"), 9, "version 2");
-    writeSeed(dir, p + "-body-version2", 'c', version);
+    nlohmann::json nan = json;
+    nan["model"]["G"][0][0] = nullptr;
+    writeSeed(dir, p + "-resigned-null", 'c', nan.dump(2));
+    nlohmann::json version = json;
+    version["version"] = 1;
+    writeSeed(dir, p + "-resigned-version1", 'c', version.dump(2));
+    nlohmann::json joints = json;
+    joints["model"]["joints"].push_back("revolute");
+    writeSeed(dir, p + "-resigned-extra-joint", 'c', joints.dump(2));
   }
   std::cout << "seed corpus written to " << dir << std::endl;
   return 0;

@@ -224,6 +224,13 @@ public:
   vpProjectiveDisplacement inverse() const;
 
 private:
+  friend class vpProjectiveRotation;
+  friend class vpProjectiveTranslation;
+  //! Wraps \e H, normalised by construction (an exponential): no eq. (12), which would only add rounding.
+  struct vpNormalized {
+  };
+  vpProjectiveDisplacement(const Eigen::Matrix4d &H, vpNormalized) : m_H(H) {}
+
   Eigen::Matrix4d m_H;
 };
 

@@ -21,9 +21,12 @@
 
 #include <visp3/projective/vpProjectiveConfig.h>
 
+#include <cmath>
+
 #include <Eigen/Core>
 
 #include <visp3/core/vpMatrix.h>
+#include <visp3/projective/vpProjectiveDisplacement.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -34,8 +37,8 @@ BEGIN_VISP_NAMESPACE
   projective frame of a weakly calibrated rig (Ruf & Horaud, section 5.1, eqs. (18)-(27)).
 
   The generator \f$ \hat H_R \f$ (4x4) is \f$ H_{PE}^{-1} \hat T_R H_{PE} \f$, \f$ \hat T_R \in se(3) \f$ a unit-speed
-  rotational twist. Equivalently \f$ \hat H_R = k_2 h_1^T - k_1 h_2^T \f$ with \f$ h_i^T k_j = \delta_{ij} \f$ (27).
-  It satisfies \f$ \hat H_R^3 = -\hat H_R \f$ and has rank 2, which gives
+  rotational twist (vpMetricTwist::revolute()). Equivalently \f$ \hat H_R = k_2 h_1^T - k_1 h_2^T \f$ with
+  \f$ h_i^T k_j = \delta_{ij} \f$ (27). It satisfies \f$ \hat H_R^3 = -\hat H_R \f$ and has rank 2, which gives
   - the exponential, Rodrigues' form (26): \f$ \exp(\theta \hat H_R) = I + \sin\theta\, \hat H_R + (1 - \cos\theta)
     \hat H_R^2 \f$;
   - the logarithm (25) of a normalised p-rotation \f$ H \f$ with angle \f$ \theta \in (0, \pi) \f$ from (21):
@@ -44,6 +47,10 @@ BEGIN_VISP_NAMESPACE
   - the inverse \f$ \exp(\theta \hat H_R)^{-1} = \exp(-\theta \hat H_R) \f$.
 
   The generator is unique although the Jordan decomposition of \f$ H_R \f$ is not.
+
+  vpProjectiveRotation and vpProjectiveTranslation share one interface (log(), exp(), dexp(), generator(),
+  project(), generatorResidual()), so that generic code and tests treat both joint groups alike; vpProjectiveJoint
+  dispatches on a joint's type.
 */
 class VISP_EXPORT vpProjectiveRotation
 {
@@ -59,26 +66,48 @@ public:
   explicit vpProjectiveRotation(const Eigen::Matrix4d &Hhat, double tolerance = 1e-6);
 
   /*!
-    Logarithm (25) of a p-rotation: the generator \f$ \hat H_R \f$ with \f$ H \simeq \exp(\theta \hat H_R) \f$,
-    projected on the exact generators (see project()). \e H may have any scale: it is normalised first (12).
-    \e theta receives the image angle \f$ \theta \in [0, \pi] \f$ of eq. (21).
-    If \e amount is non-zero (a signed trial angle read by the joint encoder) the generator is
-    \f$ (H - H^{-1}) / (2 \sin(\mathrm{amount})) \f$, so that \f$ H = \exp(\mathrm{amount}\, \hat H_R) \f$ up to the
-    noise in \e H: the encoder is more reliable than the trace of a noisy \e H, and fixes the generator's sign. \e H is
-    then trusted to be a rotation: the eigenvalues of a homography estimated from a few markers are too noisy to tell
-    (vpProjectiveRobot checks instead that each trial moved the markers).
-    Otherwise \f$ \sin\theta \f$ is used and \f$ \theta \in (0, \pi) \f$.
-    \exception vpProjectiveException if H is singular or not finite, or the angle used is too close to a multiple of
+    Logarithm (25) of a p-rotation: the generator \f$ \hat H_R \f$ with \f$ H = \exp(\theta \hat H_R) \f$, projected on
+    the exact generators (see project()). \e H is normalised by eq. (12) on construction.
+
+    \e amount is the signed angle (radians) read by the joint's encoder, or 0 when there is none. With an amount the
+    generator is \f$ (H - H^{-1}) / (2 \sin(\mathrm{amount})) \f$, so that \f$ H = \exp(\mathrm{amount}\, \hat H_R)
+    \f$ up to the noise in \e H: the encoder is more reliable than the trace of a noisy \e H, and fixes the
+    generator's sign; \e H is then trusted to be a rotation (the eigenvalues of a homography estimated from a few
+    markers are too noisy to tell). With 0 the image angle \f$ \theta \in (0, \pi) \f$ of eq. (21)
+    (vpProjectiveDisplacement::getRotationAngle()) is used, and the generator turns by a positive angle.
+    \exception vpProjectiveException if \e amount is not finite, or the angle used is too close to a multiple of
     \f$ \pi \f$ for the logarithm to be defined.
   */
-  static vpProjectiveRotation log(const Eigen::Matrix4d &H, double &theta, double amount = 0.0);
-  //! \overload
-  static vpProjectiveRotation log(const vpMatrix &H, double &theta, double amount = 0.0);
+  static vpProjectiveRotation log(const vpProjectiveDisplacement &H, double amount);
 
-  //! Rodrigues' form (26), \f$ \exp(\theta \hat H_R) \f$ (4x4).
-  Eigen::Matrix4d exp(double theta) const { return exp(m_Hhat, theta); }
-  //! Rodrigues' form (26) for any generator with \f$ \hat H^3 = -\hat H \f$.
-  static Eigen::Matrix4d exp(const Eigen::Matrix4d &Hhat, double theta);
+  //! The p-rotation \f$ \exp(\theta \hat H_R) \f$ by Rodrigues' form (26).
+  vpProjectiveDisplacement exp(double theta) const;
+  //! \f$ \frac{d}{d\theta} \exp(\theta \hat H_R) = \hat H_R \exp(\theta \hat H_R) \f$ (4x4).
+  Eigen::Matrix4d dexp(double theta) const;
+
+  /*!
+    Rodrigues' form (26), \f$ \exp(\theta \hat H) = I + \sin\theta\, \hat H + (1 - \cos\theta) \hat H^2 \f$ (4x4), for
+    any \e Hhat with \f$ \hat H^3 = -\hat H \f$: the plugin's one exponential of a revolute joint, templated on the
+    scalar (double, or a Ceres Jet for automatic differentiation).
+  */
+  template <typename T> static Eigen::Matrix<T, 4, 4> exp(const Eigen::Matrix<T, 4, 4> &Hhat, const T &theta)
+  {
+    using std::cos;
+    using std::sin;
+    return Eigen::Matrix<T, 4, 4>::Identity() + sin(theta) * Hhat + (T(1.0) - cos(theta)) * (Hhat * Hhat);
+  }
+  /*!
+    \f$ \exp(\theta \hat H) M \f$ (4x1) from the same form (26), with two matrix-vector products instead of a 4x4
+    product.
+  */
+  template <typename T>
+  static Eigen::Matrix<T, 4, 1> act(const Eigen::Matrix<T, 4, 4> &Hhat, const T &theta, const Eigen::Matrix<T, 4, 1> &M)
+  {
+    using std::cos;
+    using std::sin;
+    const Eigen::Matrix<T, 4, 1> HM = Hhat * M;
+    return M + sin(theta) * HM + (T(1.0) - cos(theta)) * (Hhat * HM);
+  }
 
   //! The generator \f$ \hat H_R \f$ (4x4).
   const Eigen::Matrix4d &generator() const { return m_Hhat; }

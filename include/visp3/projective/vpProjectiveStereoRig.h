@@ -152,9 +152,13 @@ public:
   */
   Eigen::Vector4d triangulateLinear(const Eigen::Vector2d &left, const Eigen::Vector2d &right) const;
   /*!
-    Writes \f$ s = (u, v, u', v') \f$ of \f$ M \f$; returns false when \f$ M \f$ is on a camera's focal plane.
+    Writes \f$ s = (u, v, u', v') \f$ (pixels) of \f$ M \f$ (4x1, any scale and sign) and, if \e L is not null,
+    \f$ L = \partial s / \partial M \f$ (4x4): the rows \f$ J_C(P M) P \f$ and \f$ J_C(P' M) P' \f$ of eq. (45) (the
+    interaction matrix of vpFeatureStereoPoint). Returns false when \f$ M \f$ is on a camera's focal plane: its
+    depth \f$ |P_3 M| \f$ is at most \f$ 10^{-12} \|P\|_F \|M\| \f$ (likewise for \f$ P' \f$), the one tolerance
+    of the plugin.
   */
-  bool project(const Eigen::Vector4d &M, Eigen::Vector4d &s) const;
+  bool project(const Eigen::Vector4d &M, Eigen::Vector4d &s, Eigen::Matrix4d *L = nullptr) const;
   //@}
 
 private:

@@ -24,6 +24,7 @@
 #include <Eigen/Core>
 
 #include <visp3/core/vpMatrix.h>
+#include <visp3/projective/vpProjectiveDisplacement.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -35,13 +36,15 @@ BEGIN_VISP_NAMESPACE
 
   The generator \f$ \hat H_T = k_3 h_4^T \f$ (4x4, rank 1) is the product of the direction's vanishing point
   \f$ k_3 \f$ and the plane at infinity \f$ h_4^T \f$ (30). It is \f$ H_{PE}^{-1} \hat T_T H_{PE} \f$ with
-  \f$ \hat T_T \in se(3) \f$ a translation of unit speed (metres per unit of \f$ \tau \f$), and it is nilpotent:
-  \f$ \hat H_T^2 = 0 \f$, so
+  \f$ \hat T_T \in se(3) \f$ a translation of unit speed (metres per unit of \f$ \tau \f$, vpMetricTwist::prismatic()),
+  and it is nilpotent: \f$ \hat H_T^2 = 0 \f$, so
   - the exponential is exact at first order (31): \f$ \exp(\tau \hat H_T) = I + \tau \hat H_T \f$;
   - the logarithm of a normalised p-translation \f$ H_T \f$ of encoder-measured length \f$ \tau \f$ is
     \f$ \hat H_T = (H_T - I) / \tau \f$;
-  - the derivative is \f$ \frac{d}{d\tau} \exp(\tau \hat H_T) = \hat H_T \f$, and the inverse is \f$ I - \tau \hat H_T
-  \f$.
+  - the derivative is \f$ \frac{d}{d\tau} \exp(\tau \hat H_T) = \hat H_T = \hat H_T \exp(\tau \hat H_T) \f$, and the
+    inverse is \f$ I - \tau \hat H_T \f$.
+
+  Same interface as vpProjectiveRotation (see there).
 */
 class VISP_EXPORT vpProjectiveTranslation
 {
@@ -57,18 +60,33 @@ public:
   explicit vpProjectiveTranslation(const Eigen::Matrix4d &Hhat, double tolerance = 1e-6);
 
   /*!
-    Logarithm of a p-translation of length \e tau (31): \f$ \hat H_T = (H_T - I)/\tau \f$ after normalising \e H (12).
-    The result is projected on the closest rank-1 matrix so that \f$ \hat H_T^2 = 0 \f$ holds up to the noise of H.
-    \exception vpProjectiveException if tau is zero or not finite, or H is singular or not finite.
+    Logarithm of a p-translation of length \e amount (31): \f$ \hat H_T = (H_T - I) / \tau \f$, \f$ \tau \f$ =
+    \e amount, the signed length read by the joint's encoder (the length of a translation cannot be seen by an
+    uncalibrated rig, so it is required). The result is projected on the closest exact generator (see project()), so
+    that \f$ \hat H_T^2 = 0 \f$ holds up to the noise of H.
+    \exception vpProjectiveException if \e amount is zero or not finite.
   */
-  static vpProjectiveTranslation log(const Eigen::Matrix4d &H, double tau);
-  //! \overload
-  static vpProjectiveTranslation log(const vpMatrix &H, double tau);
+  static vpProjectiveTranslation log(const vpProjectiveDisplacement &H, double amount);
 
-  //! \f$ I + \tau \hat H_T \f$ (31).
-  Eigen::Matrix4d exp(double tau) const { return exp(m_Hhat, tau); }
-  //! \f$ I + \tau \hat H \f$ (31) for any generator \e Hhat.
-  static Eigen::Matrix4d exp(const Eigen::Matrix4d &Hhat, double tau);
+  //! The p-translation \f$ I + \tau \hat H_T \f$ (31).
+  vpProjectiveDisplacement exp(double tau) const;
+  //! \f$ \frac{d}{d\tau} \exp(\tau \hat H_T) = \hat H_T \f$ (4x4).
+  Eigen::Matrix4d dexp(double tau) const;
+
+  /*!
+    \f$ \exp(\tau \hat H) = I + \tau \hat H \f$ (31) (4x4) for any \e Hhat with \f$ \hat H^2 = 0 \f$: the plugin's one
+    exponential of a prismatic joint, templated on the scalar (double, or a Ceres Jet).
+  */
+  template <typename T> static Eigen::Matrix<T, 4, 4> exp(const Eigen::Matrix<T, 4, 4> &Hhat, const T &tau)
+  {
+    return Eigen::Matrix<T, 4, 4>::Identity() + tau * Hhat;
+  }
+  //! \f$ \exp(\tau \hat H) M = M + \tau \hat H M \f$ (4x1).
+  template <typename T>
+  static Eigen::Matrix<T, 4, 1> act(const Eigen::Matrix<T, 4, 4> &Hhat, const T &tau, const Eigen::Matrix<T, 4, 1> &M)
+  {
+    return M + tau * (Hhat * M);
+  }
 
   //! The generator \f$ \hat H_T \f$ (4x4).
   const Eigen::Matrix4d &generator() const { return m_Hhat; }

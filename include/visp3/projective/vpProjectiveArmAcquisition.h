@@ -1,0 +1,189 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*!
+  \file vpProjectiveArmAcquisition.h
+  \brief The acquisition of an arm's projective kinematic model from images: trial motions, algebraic generators,
+  affine and metric upgrade, bundle adjustment, outliers.
+*/
+
+#ifndef _vpProjectiveArmAcquisition_h_
+#define _vpProjectiveArmAcquisition_h_
+
+#include <visp3/projective/vpProjectiveConfig.h>
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpImagePoint.h>
+#include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpProjectiveStereoRig.h>
+
+BEGIN_VISP_NAMESPACE
+
+/*!
+  \class vpProjectiveArmAcquisition
+  \ingroup group_projective
+  \brief The data of an arm's acquisition (Ruf & Horaud, section 6) and the calibration that turns it into a
+  vpProjectiveArmModel.
+
+  setZeroReference() takes the images of the markers at the zero reference; addTrialMotion() the images after one
+  joint alone moved by a known amount (several per joint, ideally both ways: one chord per joint leaves the axis tilt
+  of the base joints poorly determined, a second, opposite one fixes it). calibrate() then computes
+  -# the algebraic generators from the trial homographies (logarithms (25), (31)), each trial's displacement by
+     maximum likelihood (vpProjectiveDisplacement::estimateFromImages(), or estimateRobust() with an outlier
+     threshold), each joint's generator the candidate that best predicts its trials;
+  -# in a frame whitened by the zero-reference points, the plane \f$ \pi \f$ with \f$ \pi^T \hat H_i = 0 \f$ for all
+     joints (affine step) and the symmetric \f$ W \f$ with \f$ A_i W + W A_i^T = 0 \f$ for the revolute blocks
+     (metric step): a matrix \f$ G \f$ with \f$ \hat H_i = G^{-1} \hat T_i G \f$, \f$ \hat T_i \in se(3) \f$, tried with
+     every joint and with one or two left out, each metric twist read off its generator or off the Kabsch rigid
+     motions of its trials' markers;
+  -# a Ceres bundle adjustment over \f$ G^{-1} \f$, the metric twists (revolute: unit axis and a point on it;
+     prismatic: a direction vector) and the marker points, minimising the pixel error of every acquisition image in
+     both cameras with \f$ P, P' \f$ fixed. All generators thereby share one \f$ G \f$, which is \f$ H_{PE} \f$ up to a
+     similarity, and the final RMS residual (getCalibrationResidual()) sits at the image noise level: the self-check.
+
+  Joint amounts are radians (revolute) or the encoder's length unit (prismatic).
+*/
+class VISP_EXPORT vpProjectiveArmAcquisition
+{
+public:
+  //! Joint kinds.
+  typedef vpProjectiveJoint::vpJointType vpJointType;
+
+  //! An acquisition without joints (construct with joint types to use it).
+  vpProjectiveArmAcquisition();
+  /*!
+    The acquisition of a chain of joints of the given kinds, base to tip.
+    \exception vpProjectiveException (dimensionError, invalidValueError) if there are no joints, more than
+    vpProjectiveArmModel::maxJoints, or a kind is neither REVOLUTE nor PRISMATIC.
+  */
+  explicit vpProjectiveArmAcquisition(const std::vector<vpJointType> &types);
+
+  //! Number of joints \e n.
+  unsigned int getNumberOfJoints() const { return static_cast<unsigned int>(m_types.size()); }
+  //! The kinds of the joints, base to tip.
+  const std::vector<vpJointType> &getJointTypes() const { return m_types; }
+  //! Sets where the rig is mounted (default EYE_TO_HAND); the acquisition is the same in both cases.
+  void setRigMounting(vpProjectiveArmModel::vpRigMounting mounting) { m_mounting = mounting; }
+  //! Where the rig is mounted.
+  vpProjectiveArmModel::vpRigMounting getRigMounting() const { return m_mounting; }
+
+  /*!
+    The weakly calibrated rig whose projective frame the model will live in. Clears the images of another rig.
+    \exception vpProjectiveException (notInitializedError) if the rig has no fundamental matrix.
+  */
+  void setStereoRig(const vpProjectiveStereoRig &rig);
+  //! The rig set by setStereoRig().
+  const vpProjectiveStereoRig &getStereoRig() const { return m_rig; }
+
+  /*!
+    Images of the \f$ K \ge 5 \f$ markers (no 4 coplanar) at the zero reference, in a fixed order: pixels, left[j] and
+    right[j] of marker j. Clears the trials.
+    \exception vpProjectiveException (notEnoughPointsError, dimensionError, nonFiniteValueError, notInitializedError)
+    on fewer than 5 markers, a size mismatch, a non-finite coordinate, no rig.
+  */
+  void setZeroReference(const std::vector<vpImagePoint> &left0, const std::vector<vpImagePoint> &right0);
+  /*!
+    The same, with the joints' encoder readings \e qRef (n x 1: radians, or length units) at the zero reference: the
+    model then takes absolute encoder readings (vpProjectiveArmModel::zeroReferenceJoints()), and so does
+    addTrialMotion(const vpColVector &, ...).
+    \exception vpProjectiveException as the other overload, and if \e qRef has not n finite entries.
+  */
+  void setZeroReference(const vpColVector &qRef, const std::vector<vpImagePoint> &left0,
+                        const std::vector<vpImagePoint> &right0);
+  //! The joint values at the zero reference (n x 1; zeros unless given to setZeroReference()).
+  vpColVector getZeroReferenceJoints() const;
+
+  /*!
+    Images of the same markers, in the same order, after joint \e i alone moved from the zero reference by \e amount
+    (radians or length units, signed, as read by the encoder). Call several times per joint, ideally both ways.
+    \exception vpProjectiveException on a bad joint index (dimensionError), a zero, non-finite or whole-turn amount
+    (invalidValueError, nonFiniteValueError), a size mismatch (dimensionError), no zero reference
+    (notInitializedError).
+  */
+  void addTrialMotion(unsigned int i, double amount, const std::vector<vpImagePoint> &left,
+                      const std::vector<vpImagePoint> &right);
+  /*!
+    The same from the encoder readings \e q (n x 1) after the trial: the joint i whose reading differs most from the
+    zero reference's is the one that moved, by \f$ q_i - q_{ref,i} \f$; the others must not have moved by more than
+    1 % of that (encoder noise), since the trial is one joint's motion alone.
+    \exception vpProjectiveException as the other overload, and (dimensionError, nonFiniteValueError,
+    invalidValueError) if \e q has not n finite entries, or no joint or several joints moved.
+  */
+  void addTrialMotion(const vpColVector &q, const std::vector<vpImagePoint> &left,
+                      const std::vector<vpImagePoint> &right);
+  //! Number of trial motions added since the zero reference.
+  unsigned int getNumberOfTrials() const { return static_cast<unsigned int>(m_trials.size()); }
+  //! Number of markers of the zero reference.
+  unsigned int getNumberOfMarkers() const { return static_cast<unsigned int>(m_zeroImages.size()); }
+
+  /*!
+    Mismatched markers in the acquisition images (a wrong blob tracked, two markers swapped): with \e pixels > 0,
+    calibrate() finds them in each trial by the 5-point consensus of vpProjectiveDisplacement::estimateRobust(),
+    leaves them out of the initial model and of the bundle adjustment, then keeps out exactly the trial observations
+    the final model places more than \e pixels away (RMS over the two images), with one more adjustment if that
+    changed. A zero-reference marker whose left and right images match no 3D point within \e pixels makes
+    calibrate() throw (the zero reference defines the markers). About 3 sigma of the pixel noise is a good value;
+    0, the default, uses every observation.
+    \exception vpProjectiveException (invalidValueError) if \e pixels is negative or not finite.
+  */
+  void setOutlierThreshold(double pixels);
+  //! The outlier threshold in pixels (0: no rejection).
+  double getOutlierThreshold() const { return m_outlierThreshold; }
+
+  /*!
+    Computes the model (see the class documentation). On success the outlier flags and the residuals describe this
+    calibration; on failure nothing changes.
+    \exception vpProjectiveException (notInitializedError) if a joint has no trial motion or the zero reference is
+    missing; (degenerateConfigurationError) if a trial did not move the markers (a blocked joint, a too small trial) or
+    a zero-reference marker's left and right images disagree beyond the outlier threshold; (estimationFailedError) if
+    the upgrade or the bundle adjustment fails.
+  */
+  vpProjectiveArmModel calibrate();
+  //! RMS pixel residual per coordinate of the last calibrate()'s bundle adjustment (the self-check: ~ noise level).
+  double getCalibrationResidual() const { return m_residual; }
+  //! RMS pixel residual of the algebraic generators alone (before the upgrade and the adjustment), for comparison.
+  double getAlgebraicResidual() const { return m_algebraicResidual; }
+  //! Number of trial observations (marker in a trial's pair of images) the last calibrate() left out.
+  unsigned int getNumberOfOutliers() const;
+  /*!
+    True if the last calibrate() left out marker \e marker of trial \e trial (trials numbered in the order of
+    addTrialMotion(), from 0).
+    \exception vpProjectiveException (dimensionError) if there is no such observation.
+  */
+  bool isOutlier(unsigned int trial, unsigned int marker) const;
+
+private:
+  std::vector<vpJointType> m_types;
+  vpProjectiveArmModel::vpRigMounting m_mounting;
+  vpProjectiveStereoRig m_rig;
+  std::vector<Eigen::Vector4d> m_zeroImages; // (u, v, u', v') of each marker at the zero reference
+  vpProjectiveArmModel::JointVector m_qRef;
+  struct vpTrial {
+    unsigned int joint;
+    double amount;
+    std::vector<Eigen::Vector4d> s; // (u, v, u', v') of each marker
+  };
+  std::vector<vpTrial> m_trials;
+  double m_outlierThreshold;
+  std::vector<std::vector<bool>> m_inlier; // [trial][marker]: used by the last calibrate()
+  double m_residual;
+  double m_algebraicResidual;
+};
+
+END_VISP_NAMESPACE
+
+#endif

@@ -1,0 +1,97 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*!
+  \file vpProjectiveModelFile.h
+  \brief The model file: a projective arm model saved as versioned, checksummed JSON.
+*/
+
+#ifndef _vpProjectiveModelFile_h_
+#define _vpProjectiveModelFile_h_
+
+#include <visp3/projective/vpProjectiveConfig.h>
+
+#include <string>
+
+#include <visp3/projective/vpProjectiveArmModel.h>
+
+BEGIN_VISP_NAMESPACE
+
+/*!
+  \class vpProjectiveModelFile
+  \ingroup group_projective
+  \brief Reads and writes a vpProjectiveArmModel as a JSON file (nlohmann-json), so that an arm is acquired once and
+  servoed on later runs.
+
+  The file is one JSON object:
+  \code{.json}
+  {
+    "format": "visp_projective_robot_model",
+    "version": 2,
+    "model": {
+      "mounting": "eye-to-hand",
+      "joints": ["revolute", "revolute", "prismatic"],
+      "zero_reference_joints": [0.0, 0.0, 0.0],
+      "rig": { "fundamental_matrix": [[...], [...], [...]] },
+      "G": [[...], [...], [...], [...]],
+      "twists": [ { "axis": [x, y, z], "point": [x, y, z] }, ... ],
+      "markers": [ [x, y, z, w], ... ],
+      "calibration_residual": 0.41,
+      "algebraic_residual": 20.9
+    },
+    "checksum": "fnv1a64:0123456789abcdef"
+  }
+  \endcode
+  with matrices as arrays of rows, values in the units of vpProjectiveArmModel (G maps the projective frame to the
+  metric one; axes and points in that metric frame; joint values in radians or encoder length units; residuals in
+  pixels). The checksum is FNV-1a (64 bits) of the "model" member written compactly (<tt>dump()</tt> of
+  nlohmann-json): a value edited or damaged on disk is detected on load. Doubles are written with 17 significant
+  digits, so that a model read back is bit-identical to the one saved.
+
+  Every failure to read is a vpProjectiveException (fileError) whose message names the file and what is wrong: missing
+  or unreadable, not JSON or truncated, another format or version, a checksum that does not match, a missing, mistyped
+  or non-finite entry, inconsistent sizes, or a model that vpProjectiveArmModel rejects.
+*/
+class VISP_EXPORT vpProjectiveModelFile
+{
+public:
+  //! The format version this build writes and reads.
+  static const int version = 2;
+
+  /*!
+    Writes \e model and its calibration residuals (pixels; see vpProjectiveArmAcquisition) to \e filename.
+    \exception vpProjectiveException (fileError) if the file cannot be written.
+  */
+  static void save(const std::string &filename, const vpProjectiveArmModel &model, double calibrationResidual,
+                   double algebraicResidual);
+  /*!
+    Reads a model written by save(); \e calibrationResidual and \e algebraicResidual, if not null, receive the
+    residuals it was saved with.
+    \exception vpProjectiveException (fileError) as described in the class documentation.
+  */
+  static vpProjectiveArmModel load(const std::string &filename, double *calibrationResidual = nullptr,
+                                   double *algebraicResidual = nullptr);
+
+  //! The JSON text that save() writes.
+  static std::string toString(const vpProjectiveArmModel &model, double calibrationResidual, double algebraicResidual);
+  /*!
+    The model of a JSON text as written by save(); \e name (a file name) is quoted in the error messages.
+    \exception vpProjectiveException (fileError) as load().
+  */
+  static vpProjectiveArmModel fromString(const std::string &text, const std::string &name,
+                                         double *calibrationResidual = nullptr, double *algebraicResidual = nullptr);
+};
+
+END_VISP_NAMESPACE
+
+#endif

@@ -1,0 +1,34 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+#include <visp3/projective/vpProjectiveJoint.h>
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+Eigen::Matrix4d vpProjectiveJoint::log(vpJointType type, const vpProjectiveDisplacement &H, double amount)
+{
+  return type == REVOLUTE ? vpProjectiveRotation::log(H, amount).generator()
+                          : vpProjectiveTranslation::log(H, amount).generator();
+}
+
+Eigen::Matrix4d vpProjectiveJoint::project(vpJointType type, const Eigen::Matrix4d &Hhat)
+{
+  return type == REVOLUTE ? vpProjectiveRotation::project(Hhat) : vpProjectiveTranslation::project(Hhat);
+}
+
+const char *vpProjectiveJoint::name(vpJointType type)
+{
+  return type == REVOLUTE ? "revolute" : "prismatic";
+}
