@@ -81,9 +81,9 @@ public:
 
   /*!
     Estimates \f$ H \f$ from the images of at least 5 rigid points before and after the motion, seen by a weakly
-    calibrated rig: triangulation, linear estimate, then Ceres minimisation of the reprojection error of all four
-    point sets over \f$ H \f$ and the points \f$ M_0^{(j)} \f$ (the maximum-likelihood estimate under Gaussian pixel
-    noise).
+    calibrated rig: triangulation, linear estimate, then minimisation of the reprojection error of all four point
+    sets over \f$ H \f$ and the points \f$ M_0^{(j)} \f$ (the maximum-likelihood estimate under Gaussian pixel
+    noise), by the plugin's one Levenberg-Marquardt for this cost (see estimateFromImages()).
     \exception vpProjectiveException as for the other overload, or if the rig has no fundamental matrix.
   */
   static vpProjectiveDisplacement estimate(const vpProjectiveStereoRig &rig, const std::vector<vpImagePoint> &left0,
@@ -95,7 +95,9 @@ public:
     The maximum-likelihood estimate of the image overload on Eigen types: \e s0[j] and \e s1[j] are the pixels
     \f$ (u, v, u', v') \f$ of point j before and after the motion (same sizes, at least 5, finite: unchecked). Returns
     the normalised matrix (12). \e maxIterations caps the Levenberg-Marquardt iterations (a starting point for a
-    larger adjustment needs few).
+    larger adjustment needs few). The minimisation works in frames whitened by each point set, with \f$ H \f$ (16
+    entries) and each point (4) on its unit sphere, and eliminates the points by the Schur complement of the normal
+    equations; if it cannot lower the cost, the linear estimate is returned.
   */
   static Eigen::Matrix4d estimateFromImages(const vpProjectiveStereoRig &rig, const std::vector<Eigen::Vector4d> &s0,
                                             const std::vector<Eigen::Vector4d> &s1, int maxIterations = 100);
@@ -107,8 +109,7 @@ public:
     least-squares estimates arbitrarily far. The robust estimates below hypothesise H from minimal sets of 5 points
     (eq. (10) gives 3 constraints per point, H has 15 degrees of freedom), keep the hypothesis that the most points
     agree with, and refit it on those points only by the maximum-likelihood estimate of estimateFromImages() (the
-    same cost, minimised by a dedicated Levenberg-Marquardt with the points eliminated by the Schur complement, several
-    times faster than the generic solver on 7 points; both reach the same optimum to 1e-7).
+    same cost and the same Levenberg-Marquardt).
 
     <b>Error of a point.</b> Both observations of point j are noisy: \f$ s_0 = (u, v, u', v') \f$ before and
     \f$ s_1 \f$ after the motion. Its error under a candidate \f$ H \f$ is its gold-standard reprojection error
@@ -144,18 +145,16 @@ public:
     space. The characteristic polynomial of a displacement normalised by (12) is
     \f$ (x - 1)^2 (x^2 - 2 x \cos\theta + 1) \f$ for every rotation, screw or translation, so its coefficients
     satisfy \f$ e_3 = e_1 \f$ and \f$ e_2 = 2 e_1 - 2 \f$; a fit whose deviation from these exceeds 8 times its
-    spread under the noise (sampled from the covariance of the fit) is rejected. Measured on correct data: at most 3.3.
+    spread under the noise (sampled from the covariance of the fit) is rejected.
 
     <b>Failure.</b> Any 5 points in general position are fitted exactly by a 3D homography, so 5 agreeing points
     prove nothing: with n >= 6 points a displacement must be supported by at least 6 (a point beyond its minimal set
     confirms it). estimationFailedError is thrown when fewer points agree, when the best fit is no rigid
     displacement, or when two different sets of as many points each agree with a rigid displacement, not with one
-    another, and neither fits 1000 times more likely (the data are ambiguous). Measured at 0.5 px, t = 1.5 px,
-    mismatches shifting image points by 10 px or more, 400 seeds: 7 markers with 1 mismatch, 96 % estimated with the
-    mismatch rejected, 4 % reported, 0.4 % with the mismatch kept; 7 with 2 (5 correct: never enough), 99.75 %
-    reported; 10 with 2, all correct. With 6 points of which 1 is mismatched, about 2 % of the configurations admit a
-    rigid-looking fit of all 6 (only 3 constraints are redundant): use 7 points or more. With exactly n = 5 points no
-    mismatch between the views can be detected, only a point whose left and right images disagree.
+    another, and neither fits 1000 times more likely (the data are ambiguous). Use 7 points or more: with 6 points of
+    which 1 is mismatched, some configurations admit a rigid-looking fit of all 6 (only 3 constraints are redundant).
+    With exactly n = 5 points no mismatch between the views can be detected, only a point whose left and right images
+    disagree. The measured rates are on the page \ref page_estimation_accuracy.
 
     <b>Point-set version.</b> There is no robust overload of estimate(M0, M1): an inlier threshold needs a distance,
     and distances between projective points depend on the arbitrary projective frame fixed by F (any
@@ -188,7 +187,7 @@ public:
     the motion. Returns the normalised \f$ H \f$ (12), fills \e inliers (the points within \e inlierThreshold of
     the returned H, which it was fitted to). \e maxIterations is the number of 5-point subsets drawn at most when
     they are not all enumerated (see above); the ML refit runs at most 100 Levenberg-Marquardt iterations. Allocates;
-    about 0.2 ms for 7 markers (0.4 ms with one mismatched) on one core.
+    (timings: benchmark program tests/benchmark/benchmarkServo, page \ref page_estimation_accuracy).
     \exception vpProjectiveException as the vpImagePoint overload, and invalidValueError if maxIterations < 1;
     estimationFailedError when fewer than 6 points (5 when n = 5) agree with one rigid displacement (see above).
   */

@@ -73,15 +73,11 @@ public:
     and their projective points, repeated on the inliers of the refined geometry until they are the matches it was
     fitted to. Needs at least 8 matches in general position.
 
-    Robustness, measured at 0.5 px with 20 % of random wrong pairings (a fifth of the right points permuted) and
-    the default threshold: with 40 (100) matches the accuracy of \f$ F \f$ (RMS epipolar distance of fresh matches)
-    is 0.99 (1.14) times that of the estimate from the correct matches alone, 99.4 % (99.7 %) of the wrong pairings
-    farther than 4 px from their epipolar lines are flagged in getInliers(), and 0.7 % (0.6 %) of the correct
-    matches. Wrong pairings within the threshold of their true epipolar line cannot be told from correct ones.
+    Wrong pairings within the threshold of their true epipolar line cannot be told from correct ones (measured
+    robustness: page \ref page_estimation_accuracy).
     Below 15 matches there is no robust selection (OpenCV's RANSAC needs 15, and F's 7 degrees of freedom leave
     little redundancy): all the matches are fitted, those beyond the threshold of the refined geometry dropped and
-    the rest refitted. Correct sets are estimated from 9 matches on (8: 96 % at 0.5 px); one wrong match among 10 to
-    14 is reported by estimationFailedError in about 90 % of cases, and otherwise absorbed by F without a trace in
+    the rest refitted: one wrong match among fewer than 15 may be absorbed by F without a trace in
     getEstimationResidual(): use 15 matches or more when wrong ones are possible.
     \param left, right : matched image points, left[i] seen as right[i].
     \param inlierThreshold : maximum distance in pixels of an inlier to its epipolar lines (the larger of the two
