@@ -40,6 +40,7 @@ vpProjectiveDisplacement::vpProjectiveDisplacement(const vpMatrix &H)
 }
 
 vpProjectiveDisplacement::vpProjectiveDisplacement(const Eigen::Matrix4d &H) : m_H(normalize(H)) {}
+
 Eigen::Matrix4d vpProjectiveDisplacement::normalize(const Eigen::Matrix4d &H)
 {
   const std::string where = std::string(kClass) + "::normalize()";
@@ -64,6 +65,7 @@ Eigen::Matrix4d vpProjectiveDisplacement::normalize(const Eigen::Matrix4d &H)
   const double gamma = (trace < 0.0 ? -1.0 : 1.0) * std::pow(std::abs(det), 0.25);
   return Hs / gamma;
 }
+
 vpMatrix vpProjectiveDisplacement::getMatrix() const
 {
   return toVisp(m_H);
@@ -104,4 +106,62 @@ vpProjectiveDisplacement vpProjectiveDisplacement::operator*(const vpProjectiveD
 vpProjectiveDisplacement vpProjectiveDisplacement::inverse() const
 {
   return vpProjectiveDisplacement(Eigen::Matrix4d(m_H.inverse()));
+}
+
+Eigen::Matrix4d vpProjectiveDisplacement::logarithm() const
+{
+  const double c = std::max(-1.0, std::min(1.0, 0.5 * (m_H.trace() - 2.0)));
+  const double theta = std::acos(c);
+  const double s = std::sin(theta);
+  if (c < 0.0 && s < 1e-6) {
+    fail(vpProjectiveException::degenerateConfigurationError, std::string(kClass) + "::log()",
+         "the rotation angle is pi: the logarithm of a half turn is not unique (the axis direction is); compose two "
+         "smaller displacements instead");
+  }
+  // Coefficients of the Hermite interpolant of log at 1, 1, exp(+-i theta); their series below 1e-3 rad, where the
+  // closed forms lose digits (theta - sin(theta) and 1 - cos(theta) cancel).
+  double b2, b3;
+  if (theta < 1e-3) {
+    const double t2 = theta * theta;
+    b2 = -0.5 + t2 / 4.0 + t2 * t2 / 80.0;
+    b3 = 1.0 / 3.0 + t2 / 20.0;
+  } else {
+    const double oneMinusCos = 2.0 * std::sin(0.5 * theta) * std::sin(0.5 * theta);
+    b2 = 1.0 - 0.5 * theta * (1.0 / std::tan(0.5 * theta) + c / s);
+    b3 = (s - theta * c) / (2.0 * oneMinusCos * s);
+  }
+  const Eigen::Matrix4d D = m_H - Eigen::Matrix4d::Identity();
+  const Eigen::Matrix4d D2 = D * D;
+  return D + b2 * D2 + b3 * (D2 * D);
+}
+
+vpMatrix vpProjectiveDisplacement::log() const
+{
+  return toVisp(logarithm());
+}
+
+vpProjectiveDisplacement vpProjectiveDisplacement::exp(const Eigen::Matrix4d &Hhat)
+{
+  if (!Hhat.allFinite()) {
+    fail(vpProjectiveException::nonFiniteValueError, std::string(kClass) + "::exp()",
+         "Hhat has a NaN or infinite entry");
+  }
+  const Eigen::Matrix4d H2 = Hhat * Hhat;
+  const double theta2 = std::max(0.0, -0.5 * H2.trace());
+  const double theta = std::sqrt(theta2);
+  double a2, a3; // (1 - cos) / theta^2, (theta - sin) / theta^3, by their series near 0
+  if (theta < 1e-3) {
+    a2 = 0.5 - theta2 / 24.0;
+    a3 = 1.0 / 6.0 - theta2 / 120.0;
+  } else {
+    a2 = 2.0 * std::sin(0.5 * theta) * std::sin(0.5 * theta) / theta2;
+    a3 = (theta - std::sin(theta)) / (theta2 * theta);
+  }
+  return vpProjectiveDisplacement(Eigen::Matrix4d(Eigen::Matrix4d::Identity() + Hhat + a2 * H2 + a3 * (H2 * Hhat)),
+                                  vpNormalized());
+}
+
+vpProjectiveDisplacement vpProjectiveDisplacement::exp(const vpMatrix &Hhat)
+{
+  return exp(toEigen<4, 4>(Hhat, std::string(kClass) + "::exp()", "Hhat"));
 }

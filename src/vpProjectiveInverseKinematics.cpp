@@ -15,9 +15,8 @@
 
 #include <cmath>
 
-#include <ceres/ceres.h>
+#include <Eigen/Dense>
 
-#include "vpProjectiveCeres.h"
 #include "vpProjectiveInternal.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -28,53 +27,36 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-// Pixel error of the observed markers at configuration q, with the analytic Jacobian of eqs. (45)-(46).
-class InverseKinematicsCost : public ceres::CostFunction
+/*!
+  The normal equations of the pixel error at \e q: \f$ J^T J \f$ (n x n), \f$ J^T r \f$ and the cost \f$ r^T r \f$,
+  accumulated marker by marker (4 rows of \f$ J \f$, eq. (46), at a time: nothing is allocated). False if a marker
+  is on a camera's focal plane at \e q.
+*/
+bool normalEquations(const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
+                     const std::vector<unsigned int> &indices, const vpProjectiveArmModel::JointVector &q,
+                     vpProjectiveArmModel::JointMatrix &JtJ, vpProjectiveArmModel::JointVector &Jtr, double &cost)
 {
-public:
-  InverseKinematicsCost(const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
-                        const std::vector<unsigned int> &indices)
-      : m_model(model), m_s(s), m_indices(indices)
-  {
-    set_num_residuals(static_cast<int>(4 * s.size()));
-    mutable_parameter_block_sizes()->push_back(static_cast<int>(model.getNumberOfJoints()));
-  }
-
-  bool Evaluate(double const *const *parameters, double *residuals, double **jacobians) const override
-  {
-    const unsigned int n = m_model.getNumberOfJoints();
-    const vpProjectiveArmModel::JointVector q =
-        Eigen::Map<const Eigen::VectorXd>(parameters[0], static_cast<Eigen::Index>(n));
-    const Eigen::Matrix4d H = m_model.displacement(q);
-    Eigen::Matrix4d HhatKq[vpProjectiveArmModel::maxJoints];
-    m_model.jointMotions(q, HhatKq);
-    vpProjectiveArmModel::PointJacobian J;
-    for (size_t k = 0; k < m_s.size(); ++k) {
-      const Eigen::Vector4d M = H * m_model.markers()[m_indices[k]];
-      Eigen::Vector4d s;
-      if (!m_model.getStereoRig().project(M, s)) {
-        return false;
-      }
-      Eigen::Map<Eigen::Vector4d>(residuals + 4 * k) = s - m_s[k];
-      if (jacobians != nullptr && jacobians[0] != nullptr) {
-        if (!m_model.imageJacobian(HhatKq, M, J)) {
-          return false;
-        }
-        for (int r = 0; r < 4; ++r) {
-          for (unsigned int i = 0; i < n; ++i) {
-            jacobians[0][(4 * k + static_cast<size_t>(r)) * n + i] = J(r, i);
-          }
-        }
-      }
+  const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
+  const Eigen::Matrix4d H = model.displacement(q);
+  Eigen::Matrix4d HhatKq[vpProjectiveArmModel::maxJoints];
+  model.jointMotions(q, HhatKq);
+  JtJ.setZero(n, n);
+  Jtr.setZero(n);
+  cost = 0.0;
+  vpProjectiveArmModel::PointJacobian J;
+  for (size_t k = 0; k < s.size(); ++k) {
+    const Eigen::Vector4d M = H * model.markers()[indices[k]];
+    Eigen::Vector4d sM;
+    if (!model.getStereoRig().project(M, sM) || !model.imageJacobian(HhatKq, M, J)) {
+      return false;
     }
-    return true;
+    const Eigen::Vector4d r = sM - s[k];
+    JtJ.noalias() += J.transpose() * J;
+    Jtr.noalias() += J.transpose() * r;
+    cost += r.squaredNorm();
   }
-
-private:
-  const vpProjectiveArmModel &m_model;
-  const std::vector<Eigen::Vector4d> &m_s;
-  const std::vector<unsigned int> &m_indices;
-};
+  return std::isfinite(cost);
+}
 } // namespace
 
 vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solve(const vpProjectiveArmModel &model,
@@ -83,16 +65,53 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solve(const vpP
                                                                        const vpProjectiveArmModel::JointVector &q0,
                                                                        double *residual)
 {
-  Eigen::VectorXd q = q0;
-  ceres::Problem problem;
-  problem.AddResidualBlock(new InverseKinematicsCost(model, s, indices), nullptr, q.data());
-  const ceres::Solver::Summary summary = solveLeastSquares(problem, ceres::DENSE_QR, 100, 1e-15);
-  if (!summary.IsSolutionUsable()) {
+  // Levenberg-Marquardt on the normal equations, damping relative to their diagonal (Marquardt's scaling, so that
+  // radians and length units mix): a few iterations from a nearby start (motion capture), more from afar.
+  typedef vpProjectiveArmModel::JointMatrix JointMatrix;
+  typedef vpProjectiveArmModel::JointVector JointVector;
+  JointMatrix JtJ, A;
+  JointVector Jtr, q = q0, qNew, step;
+  double cost = 0.0;
+  if (!normalEquations(model, s, indices, q, JtJ, Jtr, cost)) {
+    fail(vpProjectiveException::estimationFailedError, "vpProjectiveInverseKinematics::solve()",
+         "a marker lies on a camera's focal plane at the starting joint values; start closer to the solution (q0)");
+  }
+  double lambda = 1e-3;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    bool accepted = false;
+    double costNew = 0.0;
+    for (int attempt = 0; attempt < 10 && !accepted; ++attempt) {
+      A = JtJ;
+      A.diagonal() += lambda * JtJ.diagonal().cwiseMax(1e-12 * JtJ.diagonal().maxCoeff());
+      step = A.ldlt().solve(-Jtr);
+      qNew = q + step;
+      JointMatrix JtJNew;
+      JointVector JtrNew;
+      if (step.allFinite() && normalEquations(model, s, indices, qNew, JtJNew, JtrNew, costNew) && costNew < cost) {
+        accepted = true;
+        const bool converged = cost - costNew <= 1e-15 * cost || step.norm() <= 1e-15 * (1.0 + q.norm());
+        q = qNew;
+        JtJ = JtJNew;
+        Jtr = JtrNew;
+        cost = costNew;
+        lambda = std::max(lambda / 10.0, 1e-12);
+        if (converged) {
+          iteration = 100;
+        }
+      } else {
+        lambda *= 10.0;
+      }
+    }
+    if (!accepted) {
+      break; // no step lowers the cost: a minimum to working precision
+    }
+  }
+  if (!q.allFinite()) {
     fail(vpProjectiveException::estimationFailedError, "vpProjectiveInverseKinematics::solve()",
          "the inverse kinematics did not converge; start closer to the solution (q0) or check the marker images");
   }
   if (residual != nullptr) {
-    *residual = std::sqrt(2.0 * summary.final_cost / static_cast<double>(4 * s.size()));
+    *residual = std::sqrt(cost / static_cast<double>(4 * s.size()));
   }
   return q;
 }

@@ -13,10 +13,12 @@
 
 #include <visp3/projective/vpProjectiveRobot.h>
 
+#include <limits>
 #include <sstream>
 
 #include <visp3/projective/vpProjectiveInverseKinematics.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
+#include <visp3/projective/vpProjectiveSelfCalibration.h>
 
 #include "vpProjectiveInternal.h"
 
@@ -272,6 +274,81 @@ vpColVector vpProjectiveRobot::inverseKinematics(const std::vector<vpImagePoint>
   }
   const JointVector start = q0.getRows() == 0 ? model.zeroReferenceJoints() : toJointVector(q0, "inverseKinematics()");
   return toVispVector(vpProjectiveInverseKinematics::solve(model, s, which, start, residual));
+}
+
+void vpProjectiveRobot::predictMarkers(const std::vector<vpColVector> &trajectory,
+                                       std::vector<std::vector<vpImagePoint>> &left,
+                                       std::vector<std::vector<vpImagePoint>> &right,
+                                       const std::vector<unsigned int> &indices) const
+{
+  const std::string where = at("predictMarkers()");
+  const vpProjectiveArmModel &model = getModel();
+  const unsigned int K = static_cast<unsigned int>(model.markers().size());
+  std::vector<unsigned int> which = indices;
+  if (which.empty()) {
+    for (unsigned int j = 0; j < K; ++j) {
+      which.push_back(j);
+    }
+  }
+  for (unsigned int j : which) {
+    if (j >= K) {
+      std::ostringstream os;
+      os << "marker index " << j << " is out of range; the model has " << K << " markers";
+      fail(vpProjectiveException::dimensionError, where, os.str());
+    }
+  }
+  std::vector<JointVector> q;
+  for (const vpColVector &qk : trajectory) {
+    q.push_back(toJointVector(qk, "predictMarkers()"));
+  }
+  left.assign(q.size(), std::vector<vpImagePoint>(which.size()));
+  right.assign(q.size(), std::vector<vpImagePoint>(which.size()));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (size_t k = 0; k < q.size(); ++k) {
+    const Eigen::Matrix4d H = model.displacement(q[k]);
+    for (size_t j = 0; j < which.size(); ++j) {
+      Eigen::Vector4d s;
+      if (!model.predictMarker(which[j], H, s)) {
+        s.setConstant(nan);
+      }
+      left[k][j].set_uv(s(0), s(1));
+      right[k][j].set_uv(s(2), s(3));
+    }
+  }
+}
+
+void vpProjectiveRobot::getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogeneousMatrix &lMr) const
+{
+  Eigen::Matrix3d Kle, Kre;
+  Eigen::Matrix4d lMre;
+  vpProjectiveSelfCalibration::metricStereoRig(getModel(), Kle, Kre, lMre);
+  Kl = toVisp(Kle);
+  Kr = toVisp(Kre);
+  lMr = toHomogeneous(lMre);
+}
+
+void vpProjectiveRobot::getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogeneousMatrix &lMr, unsigned int markerA,
+                                           unsigned int markerB, double distance) const
+{
+  Eigen::Matrix3d Kle, Kre;
+  Eigen::Matrix4d lMre;
+  vpProjectiveSelfCalibration::metricStereoRig(
+      getModel(), Kle, Kre, lMre, vpProjectiveSelfCalibration::SCALE_MARKER_DISTANCE, markerA, markerB, distance);
+  Kl = toVisp(Kle);
+  Kr = toVisp(Kre);
+  lMr = toHomogeneous(lMre);
+}
+
+void vpProjectiveRobot::getMetricJointAxes(std::vector<vpColVector> &direction, std::vector<vpColVector> &point) const
+{
+  std::vector<Eigen::Vector3d> d, p;
+  vpProjectiveSelfCalibration::jointAxes(getModel(), d, p);
+  direction.clear();
+  point.clear();
+  for (size_t i = 0; i < d.size(); ++i) {
+    direction.push_back(toVispVector(d[i]));
+    point.push_back(toVispVector(p[i]));
+  }
 }
 
 void vpProjectiveRobot::saveModel(const std::string &filename) const

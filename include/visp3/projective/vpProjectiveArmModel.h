@@ -148,6 +148,17 @@ public:
   const std::vector<Eigen::Vector4d> &markers() const { return m_M0; }
   //! Joint values \f$ q_{ref} \f$ (n x 1) at the zero reference.
   const JointVector &zeroReferenceJoints() const { return m_qRef; }
+  /*!
+    The plane at infinity \f$ \pi \f$ (4x1) of the projective frame, the last row of \f$ G \f$: \f$ \pi^T M = 0 \f$
+    for the points at infinity, and \f$ \pi^T H = \pi^T \f$ for every p-displacement \f$ H = G^{-1} T G \f$.
+  */
+  Eigen::Vector4d planeAtInfinity() const { return m_G.row(3).transpose(); }
+  /*!
+    Orbit height (15)-(16) \f$ \rho = \pi^T M \f$ of a projective point \e M (4x1): \f$ \rho N = G M \f$ with
+    \f$ N \f$ of last coordinate 1. It does not change when the point moves rigidly (\f$ \rho(H M) = \rho(M) \f$),
+    and relates its projective velocity to its metric one: \f$ \dot M = \rho\, G^{-1} \dot N \f$.
+  */
+  double orbitHeight(const Eigen::Vector4d &M) const { return m_G.row(3).dot(M); }
   //@}
 
   /*! \name Kinematics (Eigen types, no allocation, no argument check) */

@@ -217,6 +217,37 @@ public:
   */
   vpMotionType classify(double tolerance = 1e-6) const;
 
+  /*!
+    Principal logarithm \f$ \hat H \in pse(3) \f$ (4x4) of any p-displacement (rotation, translation, screw,
+    identity): \f$ \exp(\hat H) = H \f$ and, for \f$ H = H_{PE}^{-1} T H_{PE} \f$, \f$ \hat H = H_{PE}^{-1} \log(T)
+    H_{PE} \f$ with \f$ \log(T) \in se(3) \f$ of rotation angle \f$ \theta \in [0, \pi) \f$ (eq. (21)). Since the
+    minimal polynomial of \f$ D = H - I \f$ divides \f$ x^2 (x^2 - 2 (\cos\theta - 1) x + 2 - 2 \cos\theta) \f$, the
+    logarithm is the cubic
+    \f[ \hat H = D + b_2 D^2 + b_3 D^3, \qquad
+        b_2 = 1 - \frac{\theta}{2} \left( \cot\frac{\theta}{2} + \cot\theta \right), \qquad
+        b_3 = \frac{\sin\theta - \theta \cos\theta}{2 (1 - \cos\theta) \sin\theta}, \f]
+    the Hermite interpolant of \f$ \log \f$ at the eigenvalues \f$ 1, 1, e^{\pm i\theta} \f$ (\f$ b_2 \to -1/2 \f$,
+    \f$ b_3 \to 1/3 \f$ as \f$ \theta \to 0 \f$: the series of \f$ \log(I + D) \f$). A scaled or negated \f$ H \f$
+    gives the same result (the matrix is kept normalised by eq. (12)).
+    \exception vpProjectiveException (degenerateConfigurationError) if the rotation angle is \f$ \pi \f$ (within
+    1e-6 rad): the logarithm is not unique there.
+  */
+  vpMatrix log() const;
+  //! log() on Eigen types.
+  Eigen::Matrix4d logarithm() const;
+  /*!
+    The p-displacement \f$ \exp(\hat H) \f$ of an element \e Hhat (4x4) of pse(3), such as log() gives or a body
+    velocity times a duration: with \f$ \theta^2 = -\mathrm{trace}(\hat H^2) / 2 \f$,
+    \f[ \exp(\hat H) = I + \hat H + \frac{1 - \cos\theta}{\theta^2} \hat H^2
+        + \frac{\theta - \sin\theta}{\theta^3} \hat H^3, \f]
+    exact for \f$ \hat H = H_{PE}^{-1} \hat T H_{PE} \f$, \f$ \hat T \in se(3) \f$ (\f$ \hat T^4 = -\theta^2 \hat T^2
+    \f$).
+    \exception vpProjectiveException (nonFiniteValueError, dimensionError) if \e Hhat is not finite or not 4x4.
+  */
+  static vpProjectiveDisplacement exp(const vpMatrix &Hhat);
+  //! \overload
+  static vpProjectiveDisplacement exp(const Eigen::Matrix4d &Hhat);
+
   //! Composition: points move by \f$ H_2 H_1 \f$ when they move by \f$ H_1 \f$, then \f$ H_2 \f$.
   vpProjectiveDisplacement operator*(const vpProjectiveDisplacement &other) const;
   //! Inverse displacement.

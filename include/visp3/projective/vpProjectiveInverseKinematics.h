@@ -43,14 +43,17 @@ class VISP_EXPORT vpProjectiveInverseKinematics
 {
 public:
   /*!
-    Minimises the pixel error by Levenberg-Marquardt (Ceres, at most 100 iterations) from \e q0.
+    Minimises the pixel error by Levenberg-Marquardt from \e q0 (at most 100 iterations), on the normal equations
+    accumulated marker by marker: nothing is allocated, so that motion capture can call it at every frame, warm-started
+    at the previous frame's joint values (a few microseconds per iteration for 6 joints and 7 markers).
     \param model : the arm's model.
     \param s : pixels \f$ (u, v, u', v') \f$ of the observed markers (finite: unchecked).
     \param indices : index of each observed marker among the model's markers (same size as \e s, valid: unchecked).
     \param q0 : starting joint values (n x 1).
     \param residual : if not null, receives the final RMS pixel error per coordinate.
     \return the joint values (n x 1).
-    \exception vpProjectiveException (estimationFailedError) if the minimisation gives no usable solution.
+    \exception vpProjectiveException (estimationFailedError) if a marker is on a camera's focal plane at \e q0 or the
+    minimisation gives no finite solution.
   */
   static vpProjectiveArmModel::JointVector solve(const vpProjectiveArmModel &model,
                                                  const std::vector<Eigen::Vector4d> &s,

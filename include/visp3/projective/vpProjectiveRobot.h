@@ -28,6 +28,7 @@
 #include <Eigen/Core>
 
 #include <visp3/core/vpColVector.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpProjectiveArmAcquisition.h>
@@ -189,6 +190,31 @@ public:
   vpColVector getZeroReferenceJoints() const;
   //@}
 
+  /*! \name Metric self-calibration (see vpProjectiveSelfCalibration) */
+  //@{
+  /*!
+    The metric stereo rig hidden in the model: the intrinsics of both cameras (3x3, pixels, skew included) and the
+    right camera's pose in the left camera's frame (\f$ X_l = {}^l M_r X_r \f$), its translation in the prismatic
+    joints' encoder unit (least squares over them), or of unit length when the arm has no prismatic joint.
+    \exception vpProjectiveException (notInitializedError) before calibrate() or loadModel();
+    (degenerateConfigurationError) if the model gives no metric upgrade.
+  */
+  void getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogeneousMatrix &lMr) const;
+  /*!
+    The same with the translation's unit fixed by the distance \e distance (any length unit) between the markers
+    \e markerA and \e markerB of the zero reference.
+    \exception vpProjectiveException as the other overload, and if the markers or the distance are invalid.
+  */
+  void getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogeneousMatrix &lMr, unsigned int markerA,
+                          unsigned int markerB, double distance) const;
+  /*!
+    The joints' axes in the left camera's frame: per joint a unit direction (3x1) and a point (3x1, on a revolute
+    joint's axis; the origin for a prismatic joint), lengths in the unit of getMetricStereoRig(Kl, Kr, lMr).
+    \exception vpProjectiveException as getMetricStereoRig().
+  */
+  void getMetricJointAxes(std::vector<vpColVector> &direction, std::vector<vpColVector> &point) const;
+  //@}
+
   /*! \name Kinematics (ViSP types, checked; q holds encoder readings, n x 1) */
   //@{
   //! \f$ H(q) \f$ (4x4) of the last link, eq. (34).
@@ -201,6 +227,16 @@ public:
   vpMatrix getImageJacobian(const vpColVector &q, const vpColVector &M) const;
   //! Predicted images of marker \e j at configuration q: \f$ P H(q) M_j(0) \f$ and \f$ P' H(q) M_j(0) \f$.
   void projectMarker(unsigned int j, const vpColVector &q, vpImagePoint &ipLeft, vpImagePoint &ipRight) const;
+  /*!
+    Motion synthesis: the predicted images of the markers \e indices (all if empty) at every configuration of the
+    joint trajectory \e trajectory (each n x 1), without moving anything: a camera-free preview of a motion, to check
+    visibility before moving. left[k][j] and right[k][j] are marker indices[j] at trajectory[k]; a marker on a camera's
+    focal plane gets NaN coordinates.
+    \exception vpProjectiveException on a bad joint vector or marker index, or before calibrate().
+  */
+  void predictMarkers(const std::vector<vpColVector> &trajectory, std::vector<std::vector<vpImagePoint>> &left,
+                      std::vector<std::vector<vpImagePoint>> &right,
+                      const std::vector<unsigned int> &indices = std::vector<unsigned int>()) const;
   /*!
     Inverse kinematics (the paper's motion-capture use; see vpProjectiveInverseKinematics): the joint values that
     best explain the observed images of the markers, started at \e q0.
