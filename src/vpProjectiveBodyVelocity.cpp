@@ -67,36 +67,13 @@ vpProjectiveBodyVelocity vpProjectiveBodyVelocity::fromSequence(const std::vecto
     os << "got " << H.size() << " displacements but " << t.size() << " times; give one time per displacement";
     fail(vpProjectiveException::dimensionError, where, os.str());
   }
-  if (k >= H.size()) {
-    std::ostringstream os;
-    os << "sample " << k << " is out of range; the sequence has " << H.size() << " samples";
-    fail(vpProjectiveException::dimensionError, where, os.str());
-  }
-  if (halfWindow == 0) {
-    fail(vpProjectiveException::invalidValueError, where, "the half window must be at least 1 sample");
-  }
-  const size_t first = k >= halfWindow ? k - halfWindow : 0;
-  const size_t last = std::min(H.size() - 1, k + halfWindow);
-  for (size_t j = first; j <= last; ++j) {
-    if (!std::isfinite(t[j]) || (j > first && !(t[j] > t[j - 1]))) {
-      fail(vpProjectiveException::invalidValueError, where, "the times must be finite and strictly increasing");
-    }
-  }
-  if (last == first) {
-    fail(vpProjectiveException::invalidValueError, where, "a velocity needs at least two samples");
-  }
+  const std::vector<std::pair<size_t, double>> weights = slopeWeights(t, k, halfWindow, where); // checks k too
   const vpProjectiveDisplacement HkInv = H[k].inverse();
-  Eigen::Matrix4d sum = Eigen::Matrix4d::Zero();
-  double weight = 0.0;
-  for (size_t j = first; j <= last; ++j) {
-    if (j == k) {
-      continue; // log(I) = 0 adds nothing
-    }
-    const double dt = t[j] - t[k];
-    sum += dt * (H[j] * HkInv).logarithm();
-    weight += dt * dt;
+  Eigen::Matrix4d slope = Eigen::Matrix4d::Zero();
+  for (const std::pair<size_t, double> &w : weights) {
+    slope += w.second * (H[w.first] * HkInv).logarithm();
   }
-  return vpProjectiveBodyVelocity(sum / weight);
+  return vpProjectiveBodyVelocity(slope);
 }
 
 vpMatrix vpProjectiveBodyVelocity::getMatrix() const

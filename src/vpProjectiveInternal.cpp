@@ -13,6 +13,10 @@
 
 #include "vpProjectiveInternal.h"
 
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
@@ -49,6 +53,38 @@ std::vector<Eigen::Vector4d> stackStereoImages(const std::vector<vpImagePoint> &
     s[j] << toEigen(left[j], where, "a left marker image"), toEigen(right[j], where, "a right marker image");
   }
   return s;
+}
+
+std::vector<std::pair<size_t, double>> slopeWeights(const std::vector<double> &t, size_t k, size_t halfWindow,
+                                                    const std::string &where)
+{
+  if (k >= t.size()) {
+    std::ostringstream os;
+    os << "sample " << k << " is out of range; the sequence has " << t.size() << " samples";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  if (halfWindow == 0) {
+    fail(vpProjectiveException::invalidValueError, where, "the half window must be at least 1 sample");
+  }
+  const size_t first = k >= halfWindow ? k - halfWindow : 0;
+  const size_t last = std::min(t.size() - 1, k + halfWindow);
+  if (last == first) {
+    fail(vpProjectiveException::invalidValueError, where, "a velocity needs at least two samples");
+  }
+  double sum = 0.0;
+  for (size_t j = first; j <= last; ++j) {
+    if (!std::isfinite(t[j]) || (j > first && !(t[j] > t[j - 1]))) {
+      fail(vpProjectiveException::invalidValueError, where, "the times must be finite and strictly increasing");
+    }
+    sum += (t[j] - t[k]) * (t[j] - t[k]);
+  }
+  std::vector<std::pair<size_t, double>> weights;
+  for (size_t j = first; j <= last; ++j) {
+    if (j != k) {
+      weights.emplace_back(j, (t[j] - t[k]) / sum);
+    }
+  }
+  return weights;
 }
 
 Eigen::Matrix<double, 4, 3> sphereTangentBasis(const Eigen::Vector4d &M)

@@ -22,6 +22,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -215,6 +216,17 @@ inline Eigen::Matrix3d hartleyNormalization(const std::vector<Eigen::Vector2d> &
   signed canonically, T = (sum M M^T / n)^(-1/2), so that the points T M are spread isotropically over the sphere.
 */
 Eigen::Matrix4d whitening(const std::vector<Eigen::Vector4d> &points);
+
+/*!
+  The weights of the least-squares slope at sample \e k of a sequence sampled at times \e t: over the samples
+  \f$ |j - k| \le \f$ \e halfWindow (clipped at the ends), \f$ \dot x_k = \sum_j w_j (x_j - x_k) \f$ with
+  \f$ w_j = (t_j - t_k) / \sum_i (t_i - t_k)^2 \f$ (\f$ x_j - x_k \f$ being a difference in the group: joint values,
+  or \f$ \log(H_j H_k^{-1}) \f$). Returns the pairs (j, w_j), j != k. Throws (dimensionError, invalidValueError,
+  naming \e where) if \e k is out of range, \e halfWindow is 0, the window has one sample or its times are not finite
+  and strictly increasing.
+*/
+std::vector<std::pair<size_t, double>> slopeWeights(const std::vector<double> &t, size_t k, size_t halfWindow,
+                                                    const std::string &where);
 
 //! Orthonormal basis (4x3) of the tangent space of the unit sphere at the unit vector M.
 Eigen::Matrix<double, 4, 3> sphereTangentBasis(const Eigen::Vector4d &M);

@@ -1,0 +1,277 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+#include <visp3/projective/vpProjectiveRigidBodyTracker.h>
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <Eigen/Dense>
+
+#include "vpProjection.h"
+#include "vpProjectiveInternal.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveInternal;
+
+namespace
+{
+std::string at(const char *method)
+{
+  return std::string("vpProjectiveRigidBodyTracker::") + method;
+}
+
+//! Beyond this RMS pixel error per coordinate, a warm-started fit is taken for a wrong minimum (a jump).
+const double kWarmStartResidual = 5.0;
+} // namespace
+
+vpProjectiveRigidBodyTracker::vpProjectiveRigidBodyTracker()
+    : m_rig(), m_M(), m_T(Eigen::Matrix4d::Identity()), m_Tinv(Eigen::Matrix4d::Identity()), m_H(), m_history(),
+      m_times(), m_window(4), m_residual(0.0), m_tracked(0)
+{
+}
+
+void vpProjectiveRigidBodyTracker::init(const vpProjectiveStereoRig &rig, const std::vector<vpImagePoint> &left0,
+                                        const std::vector<vpImagePoint> &right0, double t0)
+{
+  const std::string where = at("init()");
+  if (!rig.isInitialized()) {
+    fail(vpProjectiveException::notInitializedError, where, "the rig has no fundamental matrix; estimate it first");
+  }
+  requireFinite(t0, where, "the reference time");
+  const std::vector<Eigen::Vector4d> s = stackStereoImages(left0, right0, where);
+  if (s.size() < 5) {
+    std::ostringstream os;
+    os << "needs the images of at least 5 markers (no 4 coplanar), got " << s.size();
+    fail(vpProjectiveException::notEnoughPointsError, where, os.str());
+  }
+  std::vector<Eigen::Vector4d> M(s.size());
+  for (size_t j = 0; j < s.size(); ++j) {
+    M[j] = rig.triangulate(Eigen::Vector2d(s[j].head<2>()), Eigen::Vector2d(s[j].tail<2>()));
+  }
+  m_rig = rig;
+  m_M = M;
+  m_T = whitening(M);
+  m_Tinv = m_T.inverse();
+  m_H = vpProjectiveDisplacement();
+  m_history.assign(1, m_H);
+  m_times.assign(1, t0);
+  m_residual = 0.0;
+  m_tracked = static_cast<unsigned int>(s.size());
+}
+
+void vpProjectiveRigidBodyTracker::setVelocityWindow(unsigned int frames)
+{
+  if (frames == 0) {
+    fail(vpProjectiveException::invalidValueError, at("setVelocityWindow()"),
+         "the velocity is fitted over at least 1 past frame");
+  }
+  m_window = frames;
+}
+
+bool vpProjectiveRigidBodyTracker::refine(const std::vector<Eigen::Vector4d> &s, Eigen::Matrix4d &H, double &cost,
+                                          unsigned int &used) const
+{
+  // In the frame whitened by the reference points: Hw = T H T^-1, X_j = T M_j, cameras P T^-1, P' T^-1.
+  typedef Eigen::Matrix<double, 4, 4, Eigen::RowMajor> RowMajor4;
+  const vpProjectiveStereoRig::Projection cameras[2] = {m_rig.leftProjection() * m_Tinv,
+                                                        m_rig.rightProjection() * m_Tinv};
+  auto evaluate = [&](const RowMajor4 &Hw, Eigen::Matrix<double, 16, 16> *N, Eigen::Matrix<double, 16, 1> *g,
+                      double &c) {
+    c = 0.0;
+    used = 0;
+    if (N != nullptr) {
+      N->setZero();
+      g->setZero();
+    }
+    Eigen::Vector2d uv;
+    Eigen::Matrix<double, 2, 4> G;
+    Eigen::Matrix<double, 2, 16> A;
+    for (size_t j = 0; j < s.size(); ++j) {
+      if (!s[j].allFinite()) {
+        continue;
+      }
+      const Eigen::Vector4d X = (m_T * m_M[j]).normalized();
+      const Eigen::Vector4d Z = Hw * X;
+      for (int k = 0; k < 2; ++k) {
+        if (!projectPoint(cameras[k], Z, uv, N != nullptr ? &G : nullptr)) {
+          return false;
+        }
+        const Eigen::Vector2d r = uv - s[j].segment<2>(2 * k);
+        c += r.squaredNorm();
+        if (N != nullptr) {
+          for (int row = 0; row < 4; ++row) { // d(Hw X)_row / dHw(row, col) = X(col)
+            A.block<2, 4>(0, 4 * row) = G.col(row) * X.transpose();
+          }
+          N->noalias() += A.transpose() * A;
+          g->noalias() += A.transpose() * r;
+        }
+      }
+      ++used;
+    }
+    return std::isfinite(c);
+  };
+  RowMajor4 Hw = m_T * H * m_Tinv;
+  Hw /= Hw.norm();
+  Eigen::Matrix<double, 16, 16> N;
+  Eigen::Matrix<double, 16, 1> g;
+  if (!evaluate(Hw, &N, &g, cost)) {
+    return false;
+  }
+  double lambda = 1e-4;
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    const Eigen::Map<const Eigen::Matrix<double, 16, 1>> h(Hw.data());
+    // The residuals ignore the scale of Hw (J h = 0): a term along h fixes the step on its unit sphere.
+    const double gauge = std::max(N.trace() / 16.0, 1e-300);
+    bool accepted = false;
+    for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
+      Eigen::Matrix<double, 16, 16> S = N;
+      S.diagonal() *= 1.0 + lambda;
+      S.noalias() += gauge * h * h.transpose();
+      const Eigen::Matrix<double, 16, 1> step = S.ldlt().solve(-g);
+      RowMajor4 HwNew = Hw;
+      Eigen::Map<Eigen::Matrix<double, 16, 1>>(HwNew.data()) += step;
+      HwNew /= HwNew.norm();
+      double costNew = 0.0;
+      if (step.allFinite() && evaluate(HwNew, nullptr, nullptr, costNew) && costNew < cost) {
+        const bool converged = cost - costNew <= 1e-12 * cost;
+        Hw = HwNew;
+        evaluate(Hw, &N, &g, cost);
+        lambda = std::max(lambda / 10.0, 1e-12);
+        accepted = true;
+        if (converged) {
+          iteration = 30;
+        }
+      } else {
+        lambda *= 10.0;
+      }
+    }
+    if (!accepted) {
+      break;
+    }
+  }
+  H = m_Tinv * Eigen::Matrix4d(Hw) * m_T;
+  return H.allFinite() && used >= 4;
+}
+
+const Eigen::Matrix4d &vpProjectiveRigidBodyTracker::track(const std::vector<Eigen::Vector4d> &s, double t)
+{
+  const std::string where = at("track()");
+  if (!isInitialized()) {
+    fail(vpProjectiveException::notInitializedError, where, "call init() with the reference images first");
+  }
+  if (s.size() != m_M.size()) {
+    std::ostringstream os;
+    os << "got the images of " << s.size() << " markers but the reference has " << m_M.size()
+       << "; pass every marker in the reference's order, flagging the lost ones";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  if (!std::isfinite(t) || !(t > m_times.back())) {
+    std::ostringstream os;
+    os << "the frame time " << t << " must be finite and after the previous frame's (" << m_times.back() << ")";
+    fail(vpProjectiveException::invalidValueError, where, os.str());
+  }
+  unsigned int visible = 0;
+  for (const Eigen::Vector4d &sj : s) {
+    visible += sj.allFinite() ? 1 : 0;
+  }
+  if (visible < 4) {
+    std::ostringstream os;
+    os << "only " << visible << " markers are visible; a displacement of known points needs 4 in general position";
+    fail(vpProjectiveException::notEnoughPointsError, where, os.str());
+  }
+  Eigen::Matrix4d H = m_H.matrix();
+  double cost = 0.0;
+  unsigned int used = 0;
+  bool ok = refine(s, H, cost, used);
+  if (!ok || std::sqrt(cost / (4.0 * used)) > kWarmStartResidual) {
+    // A jump, or a wrong minimum: the maximum-likelihood displacement of the visible markers from their reference.
+    if (visible < 5) {
+      fail(vpProjectiveException::notEnoughPointsError, where,
+           "the warm-started fit failed and only 4 markers are visible; a fresh estimate needs 5");
+    }
+    std::vector<Eigen::Vector4d> s0, s1;
+    for (size_t j = 0; j < s.size(); ++j) {
+      if (s[j].allFinite()) {
+        Eigen::Vector4d s0j;
+        m_rig.project(m_M[j], s0j);
+        s0.push_back(s0j);
+        s1.push_back(s[j]);
+      }
+    }
+    Eigen::Matrix4d Hfresh;
+    try {
+      Hfresh = vpProjectiveDisplacement::estimateFromImages(m_rig, s0, s1);
+    } catch (const vpProjectiveException &e) {
+      fail(vpProjectiveException::estimationFailedError, where,
+           std::string("no displacement explains the markers: ") + e.getStringMessage());
+    }
+    double costFresh = 0.0;
+    unsigned int usedFresh = 0;
+    if (refine(s, Hfresh, costFresh, usedFresh) && (!ok || costFresh < cost)) {
+      H = Hfresh;
+      cost = costFresh;
+      used = usedFresh;
+      ok = true;
+    }
+  }
+  if (!ok) {
+    fail(vpProjectiveException::estimationFailedError, where,
+         "no displacement explains the markers (on a camera's focal plane?)");
+  }
+  m_H = vpProjectiveDisplacement(H);
+  if (m_history.size() > m_window) {
+    m_history.erase(m_history.begin());
+    m_times.erase(m_times.begin());
+  }
+  m_history.push_back(m_H);
+  m_times.push_back(t);
+  m_residual = std::sqrt(cost / (4.0 * used));
+  m_tracked = used;
+  return m_H.matrix();
+}
+
+vpProjectiveDisplacement vpProjectiveRigidBodyTracker::track(const std::vector<vpImagePoint> &left,
+                                                             const std::vector<vpImagePoint> &right, double t,
+                                                             const std::vector<bool> &visible)
+{
+  const std::string where = at("track()");
+  if (left.size() != right.size() || (!visible.empty() && visible.size() != left.size())) {
+    std::ostringstream os;
+    os << "got " << left.size() << " left, " << right.size() << " right images and " << visible.size()
+       << " visibility flags; pass one of each per marker";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  std::vector<Eigen::Vector4d> s(left.size());
+  for (size_t j = 0; j < s.size(); ++j) {
+    s[j] << left[j].get_u(), left[j].get_v(), right[j].get_u(), right[j].get_v();
+    if (!visible.empty() && !visible[j]) {
+      s[j].setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+  track(s, t);
+  return m_H;
+}
+
+vpProjectiveBodyVelocity vpProjectiveRigidBodyTracker::getVelocity() const
+{
+  if (m_history.size() < 2) {
+    fail(vpProjectiveException::notInitializedError, at("getVelocity()"),
+         "no frame tracked yet; call track() on a frame first");
+  }
+  return vpProjectiveBodyVelocity::fromSequence(m_history, m_times, m_history.size() - 1, m_window);
+}
