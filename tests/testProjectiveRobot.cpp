@@ -230,11 +230,11 @@ TEST_P(ProjectiveRobotSetup, GroundTruthIsConsistent)
   const vpColVector q = randomJoints(s, rng);
   ASSERT_EQ(q.getRows(), s.n());
   const std::vector<vpColVector> X0 = s.markersAt(s.qRef), X = s.markersAt(s.armJoints(q));
-  const Eigen::Matrix4d lMw0 = toEigen4x4(s.leftPose(s.qRef).inverse());
-  const Eigen::Matrix4d lMw = toEigen4x4(s.leftPose(s.armJoints(q)).inverse());
+  const Eigen::Matrix4d lMw0 = toEigen<4, 4>(s.leftPose(s.qRef).inverse());
+  const Eigen::Matrix4d lMw = toEigen<4, 4>(s.leftPose(s.armJoints(q)).inverse());
   for (size_t j = 0; j < X.size(); ++j) {
-    const Eigen::Vector4d N0 = lMw0 * Eigen::Vector4d(X0[j][0], X0[j][1], X0[j][2], 1.0);
-    const Eigen::Vector4d N = lMw * Eigen::Vector4d(X[j][0], X[j][1], X[j][2], 1.0);
+    const Eigen::Vector4d N0 = lMw0 * toEigen<3, 1>(X0[j]).homogeneous();
+    const Eigen::Vector4d N = lMw * toEigen<3, 1>(X[j]).homogeneous();
     EXPECT_LT((s.cameraMotion(q) * N0 - N).norm(), 1e-12);
   }
   // One F and one H_PE for every configuration.

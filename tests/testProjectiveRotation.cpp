@@ -34,6 +34,7 @@
 
 #include <gtest/gtest.h>
 
+#include <visp3/projective/vpMetricTwist.h>
 #include <visp3/projective/vpProjectiveDisplacement.h>
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveRotation.h>
@@ -77,7 +78,7 @@ Eigen::Matrix4d metricTwist(const Scene &scene, const Axis &a)
   const Eigen::Vector3d w = scene.cameraDirection(a.direction).normalized();
   const Eigen::Vector3d p = scene.cameraPoint(a.point).head<3>();
   Eigen::Matrix4d That = Eigen::Matrix4d::Zero();
-  That.topLeftCorner<3, 3>() = skew(w);
+  That.topLeftCorner<3, 3>() = vpMetricTwist::skew(w);
   That.topRightCorner<3, 1>() = -w.cross(p);
   return That;
 }

@@ -37,6 +37,7 @@
 
 #include <gtest/gtest.h>
 
+#include <visp3/projective/vpMetricTwist.h>
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
@@ -612,7 +613,7 @@ TEST(vpProjectiveStereoRig, CanonicalCameraPair)
   // The last column of P' is e', the image of the left camera centre (0, 0, 0, 1).
   EXPECT_LT((Pp.col(3) - ep).norm(), 1e-12);
   // P' is consistent with F: F ~ [e']_x P'(:, 0:3) (here exactly -F for unit e').
-  EXPECT_LT(relativeErrorUpToScale(Eigen::Matrix3d(skew(ep) * Pp.leftCols<3>()), F), 1e-12);
+  EXPECT_LT(relativeErrorUpToScale(Eigen::Matrix3d(vpMetricTwist::skew(ep) * Pp.leftCols<3>()), F), 1e-12);
   // ... and the left 3x3 block of P' is invertible (the frame is not degenerate).
   EXPECT_GT(Eigen::JacobiSVD<Eigen::Matrix3d>(Pp.leftCols<3>()).singularValues()(2), 1e-3);
 

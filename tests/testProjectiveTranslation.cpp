@@ -32,6 +32,7 @@
 
 #include <gtest/gtest.h>
 
+#include <visp3/projective/vpMetricTwist.h>
 #include <visp3/projective/vpProjectiveDisplacement.h>
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveRotation.h>
@@ -307,7 +308,7 @@ TEST(vpProjectiveTranslation, InvalidInputsThrow)
   // Matrices that are no p-translation generators: a p-rotation generator (Hhat^3 = -Hhat, not nilpotent), a random
   // matrix, a rank-1 matrix that is not nilpotent (a projector).
   Eigen::Matrix4d rotation = Eigen::Matrix4d::Zero();
-  rotation.topLeftCorner<3, 3>() = skew(Eigen::Vector3d(0.0, 0.0, 1.0));
+  rotation.topLeftCorner<3, 3>() = vpMetricTwist::skew(Eigen::Vector3d(0.0, 0.0, 1.0));
   EXPECT_TRUE(throwsProjective([&] { vpProjectiveTranslation T(Eigen::Matrix4d(scene.HpeInv * rotation * scene.Hpe)); },
                                vpProjectiveException::invalidValueError, "not a p-translation generator"));
   Eigen::Matrix4d random;
