@@ -16,9 +16,9 @@
   - construction, accessors and the ViSP selection masks (selectU() ... selectVp(), FEATURE_ALL);
   - error() = s - s* on the selected rows, also through the vpBasicFeature interface;
   - interaction() = L_s of eq. (45), the derivative of the projections (P M, P' M) with respect to the projective
-    point M triangulated from s, checked against Richardson-extrapolated central differences of the rig's projection
-    at random points seen by the paper's rig; L_s M = 0 (the images do not change when M is scaled); L_s J_H(q, M)
-    is the robot's image Jacobian (46), which the servo relies on;
+    point M triangulated from s, checked against the Richardson-extrapolated central differences of the rig's
+    projection (vpNumericJacobian.h) at random points seen by the paper's rig; L_s M = 0 (the images do not change when
+  M is scaled); L_s J_H(q, M) is the robot's image Jacobian (46), which the servo relies on;
   - duplicate() is a deep, independent copy keeping the rig; print() honours the selection;
   - misuse throws a vpProjectiveException with a meaningful code and message.
 
@@ -48,6 +48,7 @@
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
+#include "vpNumericJacobian.h"
 #include "vpProjectiveArmTestTools.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -65,25 +66,21 @@ vpImagePoint imagePoint(double u, double v)
   return ip;
 }
 
-//! d s / d M by Richardson extrapolation of central differences of the rig's projection.
-Eigen::Matrix4d numericInteraction(const vpProjectiveStereoRig &rig, const Eigen::Vector4d &M, double h)
+//! Noise-free images of \e n random points within \e halfSide of the scene's fixation point (seed \e seed).
+void randomImages(const Scene &scene, long seed, double halfSide, size_t n, std::vector<vpImagePoint> &left,
+                  std::vector<vpImagePoint> &right)
 {
-  auto project = [&](const Eigen::Vector4d &X) {
-    Eigen::Vector4d s;
-    EXPECT_TRUE(rig.project(X, s));
-    return s;
-  };
-  Eigen::Matrix4d L;
-  for (int k = 0; k < 4; ++k) {
-    auto central = [&](double step) {
-      Eigen::Vector4d a = M, b = M;
-      a(k) += step;
-      b(k) -= step;
-      return Eigen::Vector4d((project(a) - project(b)) / (2.0 * step));
-    };
-    L.col(k) = (4.0 * central(0.5 * h) - central(h)) / 3.0;
-  }
-  return L;
+  vpUniRand rng(seed);
+  imagesOf(scene.sim, randomVisiblePoints(scene.sim, rng, Scene::fixation(), halfSide, n), left, right);
+}
+
+//! A feature built from a match, given the rig.
+vpFeatureStereoPoint featureOf(const vpImagePoint &left, const vpImagePoint &right, const vpProjectiveStereoRig &rig)
+{
+  vpFeatureStereoPoint s;
+  s.buildFrom(left, right);
+  s.setStereoRig(rig);
+  return s;
 }
 } // namespace
 
@@ -151,24 +148,25 @@ TEST(FeatureStereoPoint, ErrorIsDifferenceOnSelectedRows)
 TEST(FeatureStereoPoint, InteractionIsDerivativeOfProjections)
 {
   const Scene scene;
-  vpUniRand rng(7);
-  const std::vector<vpColVector> points = randomVisiblePoints(scene.sim, rng, Scene::fixation(), 0.15, 20);
   std::vector<vpImagePoint> left, right;
-  imagesOf(scene.sim, points, left, right);
+  randomImages(scene, 7, 0.15, 20, left, right);
   double worst = 0.0;
-  for (size_t k = 0; k < points.size(); ++k) {
-    vpFeatureStereoPoint s;
-    s.buildFrom(left[k], right[k]);
-    s.setStereoRig(scene.rig);
+  for (size_t k = 0; k < left.size(); ++k) {
+    SCOPED_TRACE(::testing::Message() << "point " << k);
+    vpFeatureStereoPoint s = featureOf(left[k], right[k], scene.rig);
     const Eigen::MatrixXd L = toEigenX(s.interaction());
     ASSERT_EQ(L.rows(), 4);
     ASSERT_EQ(L.cols(), 4);
     // The point the feature triangulates: the rig's own (unit norm, its sign convention).
     const Eigen::Vector4d M = toEigen4(scene.rig.triangulate(left[k], right[k]));
-    const Eigen::Matrix4d Lfd = numericInteraction(scene.rig, M, 1e-6);
-    const double err = (L - Lfd).norm() / Lfd.norm();
-    worst = std::max(worst, err);
-    EXPECT_LT(err, 1e-8) << "point " << k << "\nL =\n" << L << "\nfd =\n" << Lfd;
+    const auto project = [&](const Eigen::VectorXd &X) {
+      Eigen::Vector4d image;
+      EXPECT_TRUE(scene.rig.project(Eigen::Vector4d(X), image));
+      return image;
+    };
+    const Eigen::MatrixXd Lfd = numericJacobian(project, M, 1e-6);
+    worst = std::max(worst, jacobianRelativeError(L, Lfd));
+    EXPECT_TRUE(jacobianMatches(L, Lfd, 1e-8));
     // The images do not move when M is scaled: L_s M = 0.
     EXPECT_LT((L * M).norm(), 1e-12 * L.norm() * M.norm());
     // The rows of a selection are those rows.
@@ -216,13 +214,9 @@ TEST(FeatureStereoPoint, InteractionTimesPointJacobianIsImageJacobian)
 TEST(FeatureStereoPoint, DuplicateIsIndependentCopy)
 {
   const Scene scene;
-  vpUniRand rng(27);
-  const std::vector<vpColVector> points = randomVisiblePoints(scene.sim, rng, Scene::fixation(), 0.1, 1);
   std::vector<vpImagePoint> left, right;
-  imagesOf(scene.sim, points, left, right);
-  vpFeatureStereoPoint s;
-  s.buildFrom(left[0], right[0]);
-  s.setStereoRig(scene.rig);
+  randomImages(scene, 27, 0.1, 1, left, right);
+  vpFeatureStereoPoint s = featureOf(left[0], right[0], scene.rig);
   const Eigen::MatrixXd L = toEigenX(s.interaction());
   std::unique_ptr<vpFeatureStereoPoint> copy(s.duplicate());
   ASSERT_NE(copy.get(), nullptr);

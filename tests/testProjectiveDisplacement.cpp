@@ -991,10 +991,8 @@ TEST(vpProjectiveDisplacement, EstimateFromPointsInvalidInputsThrow)
                                    c + point3(0.0, 0.0, 0.0)};
   // Put the 4th on the plane of the first three.
   {
-    const Eigen::Vector3d a(five[0][0], five[0][1], five[0][2]), b(five[1][0], five[1][1], five[1][2]),
-        d(five[2][0], five[2][1], five[2][2]);
-    const Eigen::Vector3d q = a + 0.3 * (b - a) + 0.4 * (d - a);
-    five[3] = point3(q(0), q(1), q(2));
+    const Eigen::Vector3d a = toEigen<3, 1>(five[0]), b = toEigen<3, 1>(five[1]), d = toEigen<3, 1>(five[2]);
+    five[3] = toVispVector(Eigen::Vector3d(a + 0.3 * (b - a) + 0.4 * (d - a)));
   }
   const vpHomogeneousMatrix T5 = randomMotion(scene, rng, five, Rotation, 0.5);
   const std::vector<vpColVector> P0 = projectivePoints(scene, five);

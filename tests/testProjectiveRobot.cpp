@@ -26,10 +26,10 @@
   Bounds. Noise-free, the bundle adjustment ends at ~1e-12 px and every model quantity agrees with the ground truth to
   1e-13..5e-12 relative (measured); the bounds 1e-9 (generators, displacements, eq. (39)) leave three orders of
   magnitude for other platforms yet catch any modelling error (a wrong sign, order or frame gives errors of order 1).
-  Finite differences use Richardson extrapolation of central differences, h = 1e-3 (rad or m): truncation error
-  ~h^4 |f^(5)| / 480 ~ 1e-13 relative, rounding ~1e-16 * |s| / h ~ 1e-11; the bounds 1e-8 (image Jacobian against
-  the simulator) and 1e-7 (point Jacobian against the model) sit above both. Noisy bounds are derived at the tests.
-  Every random number comes from a seeded vpUniRand / vpGaussRand.
+  Numeric derivatives are vpNumericJacobian.h's Richardson extrapolation of central differences, h = 1e-3 (rad or m):
+  truncation error ~h^4 |f^(5)| / 480 ~ 1e-13 relative, rounding ~1e-16 * |s| / h ~ 1e-11; the bounds 1e-8 (image
+  Jacobian against the simulator) and 1e-7 (point Jacobian and joint motions against the model) sit above both. Noisy
+  bounds are derived at the tests. Every random number comes from a seeded vpUniRand / vpGaussRand.
 */
 
 #include <cmath>
@@ -57,8 +57,9 @@
 #include <visp3/projective/vpSimulatorArm.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
-#include "vpProjectiveArmTestTools.h"
 #include "vpModelFileChecksum.h"
+#include "vpNumericJacobian.h"
+#include "vpProjectiveArmTestTools.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -116,23 +117,6 @@ vpColVector randomJoints(const ArmSetup &s, vpUniRand &rng, double fraction = 1.
   const vpColVector q = s.randomVisibleJoints(rng, range);
   EXPECT_EQ(q.getRows(), s.n()) << s.name << ": no visible configuration found";
   return q;
-}
-
-//! Richardson extrapolation of central differences: (4 D(h/2) - D(h)) / 3, error O(h^4).
-template <typename F> Eigen::MatrixXd richardson(F f, const vpColVector &x, double h)
-{
-  const Eigen::VectorXd f0 = f(x);
-  Eigen::MatrixXd J(f0.size(), x.getRows());
-  for (unsigned int k = 0; k < x.getRows(); ++k) {
-    auto central = [&](double step) {
-      vpColVector a = x, b = x;
-      a[k] += step;
-      b[k] -= step;
-      return Eigen::VectorXd((f(a) - f(b)) / (2.0 * step));
-    };
-    J.col(k) = (4.0 * central(0.5 * h) - central(h)) / 3.0;
-  }
-  return J;
 }
 
 //! Noise-free images of marker j at arm joints qArm, and the projective point triangulated from them.
@@ -230,11 +214,11 @@ TEST_P(ProjectiveRobotSetup, GroundTruthIsConsistent)
   const vpColVector q = randomJoints(s, rng);
   ASSERT_EQ(q.getRows(), s.n());
   const std::vector<vpColVector> X0 = s.markersAt(s.qRef), X = s.markersAt(s.armJoints(q));
-  const Eigen::Matrix4d lMw0 = toEigen4x4(s.leftPose(s.qRef).inverse());
-  const Eigen::Matrix4d lMw = toEigen4x4(s.leftPose(s.armJoints(q)).inverse());
+  const Eigen::Matrix4d lMw0 = toEigen<4, 4>(s.leftPose(s.qRef).inverse());
+  const Eigen::Matrix4d lMw = toEigen<4, 4>(s.leftPose(s.armJoints(q)).inverse());
   for (size_t j = 0; j < X.size(); ++j) {
-    const Eigen::Vector4d N0 = lMw0 * Eigen::Vector4d(X0[j][0], X0[j][1], X0[j][2], 1.0);
-    const Eigen::Vector4d N = lMw * Eigen::Vector4d(X[j][0], X[j][1], X[j][2], 1.0);
+    const Eigen::Vector4d N0 = lMw0 * toEigen<3, 1>(X0[j]).homogeneous();
+    const Eigen::Vector4d N = lMw * toEigen<3, 1>(X[j]).homogeneous();
     EXPECT_LT((s.cameraMotion(q) * N0 - N).norm(), 1e-12);
   }
   // One F and one H_PE for every configuration.
@@ -354,16 +338,14 @@ TEST_P(ProjectiveRobotSetup, ImageJacobianMatchesSimulatedImages)
       const Eigen::MatrixXd J = toEigenX(robot.getImageJacobian(q, M));
       ASSERT_EQ(J.rows(), 4);
       ASSERT_EQ(J.cols(), static_cast<Eigen::Index>(s.n()));
-      const Eigen::MatrixXd Jfd =
-          richardson([&](const vpColVector &x) { return Eigen::VectorXd(s.imageOf(x, j)); }, qArm, 1e-3);
-      const double err = (J - Jfd).norm() / Jfd.norm();
-      worst = std::max(worst, err);
-      EXPECT_LT(err, 1e-8) << s.name << " marker " << j << " q = " << q.t() << "\nJ =\n" << J << "\nfd =\n" << Jfd;
+      const Eigen::MatrixXd Jfd = numericJacobian(
+          [&](const Eigen::VectorXd &x) { return s.imageOf(toVispVector(x), j); }, toEigenV(qArm), 1e-3);
+      worst = std::max(worst, jacobianRelativeError(J, Jfd));
+      EXPECT_TRUE(jacobianMatches(J, Jfd, 1e-8)) << s.name << " marker " << j << " q = " << q.t();
       for (unsigned int k = 0; k < s.n(); ++k) {
         if (s.arm.getJointType(k) == vpSimulatorArm::PRISMATIC) {
-          const double e = (J.col(k) - Jfd.col(k)).norm() / Jfd.col(k).norm();
-          worstPrismatic = std::max(worstPrismatic, e);
-          EXPECT_LT(e, 1e-8) << s.name << " prismatic column " << k;
+          worstPrismatic = std::max(worstPrismatic, jacobianRelativeError(J.col(k), Jfd.col(k)));
+          EXPECT_TRUE(jacobianMatches(J.col(k), Jfd.col(k), 1e-8)) << s.name << " prismatic column " << k;
         }
       }
       // Invariant to the scale and sign of M.
@@ -387,14 +369,13 @@ TEST_P(ProjectiveRobotSetup, PointJacobianIsDerivativeOfDisplacement)
     for (size_t j = 0; j < M0.size(); ++j) {
       const Eigen::Vector4d M = toEigen<4, 4>(robot.getDisplacement(q)) * toEigen4(M0[j]);
       const Eigen::MatrixXd JH = toEigenX(robot.getPointJacobian(q, toVispVector(M)));
-      const Eigen::MatrixXd Jfd = richardson(
-          [&](const vpColVector &x) {
-            return Eigen::VectorXd(toEigen<4, 4>(robot.getDisplacement(x)) * toEigen4(M0[j]));
+      const Eigen::MatrixXd Jfd = numericJacobian(
+          [&](const Eigen::VectorXd &x) {
+            return Eigen::Vector4d(toEigen<4, 4>(robot.getDisplacement(toVispVector(x))) * toEigen4(M0[j]));
           },
-          q, 1e-3);
-      const double err = (JH - Jfd).norm() / Jfd.norm();
-      worst = std::max(worst, err);
-      EXPECT_LT(err, 1e-7) << s.name << " marker " << j;
+          toEigenV(q), 1e-3);
+      worst = std::max(worst, jacobianRelativeError(JH, Jfd));
+      EXPECT_TRUE(jacobianMatches(JH, Jfd, 1e-7)) << s.name << " marker " << j;
     }
   }
   std::cout << "[ measured ] " << s.name << ": worst point Jacobian error " << worst << std::endl;
@@ -425,20 +406,16 @@ TEST_P(ProjectiveRobotSetup, JointMotionsFollowEquation39)
       const double err39 = relativeError(HhatKq, expected);
       worst39 = std::max(worst39, err39);
       EXPECT_LT(err39, 1e-9) << s.name << " joint " << k;
-      // (dH/dq_k) H^-1 by finite differences.
-      vpColVector a = q, b = q;
-      const double h = 1e-3;
-      a[k] += h;
-      b[k] -= h;
-      const Eigen::Matrix4d a4 = toEigen<4, 4>(robot.getDisplacement(a)), b4 = toEigen<4, 4>(robot.getDisplacement(b));
-      vpColVector a2 = q, b2 = q;
-      a2[k] += 0.5 * h;
-      b2[k] -= 0.5 * h;
-      const Eigen::Matrix4d dH =
-          (4.0 * (toEigen<4, 4>(robot.getDisplacement(a2)) - toEigen<4, 4>(robot.getDisplacement(b2))) / h -
-           (a4 - b4) / (2.0 * h)) /
-          3.0;
-      const double errFd = relativeError(Eigen::Matrix4d(dH * H.inverse()), HhatKq);
+      // (dH/dq_k) H^-1, dH/dq_k by numeric differentiation of the displacement along q_k.
+      const Eigen::MatrixXd dH = numericJacobian(
+          [&](const Eigen::VectorXd &x) {
+            vpColVector qk = q;
+            qk[k] = x(0);
+            return stacked(toEigen<4, 4>(robot.getDisplacement(qk)));
+          },
+          Eigen::VectorXd::Constant(1, q[k]), 1e-3);
+      const Eigen::Matrix4d dHdqk = Eigen::Map<const Eigen::Matrix4d>(dH.data());
+      const double errFd = relativeError(Eigen::Matrix4d(dHdqk * H.inverse()), HhatKq);
       worstFd = std::max(worstFd, errFd);
       EXPECT_LT(errFd, 1e-7) << s.name << " joint " << k;
       // The point Jacobian's columns are these motions applied to the current point.

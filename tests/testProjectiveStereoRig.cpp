@@ -37,6 +37,7 @@
 
 #include <gtest/gtest.h>
 
+#include <visp3/projective/vpMetricTwist.h>
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
@@ -62,6 +63,40 @@ void randomMatches(const Scene &scene, vpUniRand &rng, size_t n, double sigma, v
   scene.sim.project(wX, left, right, sigma, noise);
   if (points) {
     *points = wX;
+  }
+}
+
+/*
+  The data of one seed: a vpUniRand and a vpGaussRand seeded alike, n matches with noise sigma, then nFresh noise-free
+  matches to judge a fitted F on; the generators go on with what the test draws next.
+*/
+struct SeededMatches {
+  vpUniRand rng;
+  vpGaussRand noise;
+  std::vector<vpColVector> points; //!< the world points of the matches
+  std::vector<vpImagePoint> left, right, freshLeft, freshRight;
+
+  SeededMatches(const Scene &scene, long seed, size_t n, double sigma, size_t nFresh = 0)
+      : rng(static_cast<uint64_t>(seed)), noise(1.0, 0.0, seed), points(), left(), right(), freshLeft(), freshRight()
+  {
+    randomMatches(scene, rng, n, sigma, noise, left, right, &points);
+    if (nFresh > 0) {
+      randomMatches(scene, rng, nFresh, 0.0, noise, freshLeft, freshRight);
+    }
+  }
+};
+
+//! The right image of a random point lying more than 20 px from the epipolar lines (true F) of \e left in both
+//! images: a wrong match for \e left that no geometric test could take for a correct one.
+vpImagePoint wrongRightImage(const Scene &scene, const Eigen::Matrix3d &Ftrue, const vpImagePoint &left, vpUniRand &rng,
+                             vpGaussRand &noise)
+{
+  for (;;) {
+    std::vector<vpImagePoint> otherLeft, otherRight;
+    randomMatches(scene, rng, 1, 0.0, noise, otherLeft, otherRight);
+    if (epipolarDistances(Ftrue, left, otherRight[0]).minCoeff() > 20.0) {
+      return otherRight[0];
+    }
   }
 }
 
@@ -114,6 +149,47 @@ double sampsonError(const Eigen::Matrix3d &F, const vpImagePoint &l, const vpIma
   const Eigen::Vector3d Fm = F * m, Ftmp = F.transpose() * mp;
   return std::abs(mp.dot(Fm)) / std::sqrt(Fm.head<2>().squaredNorm() + Ftmp.head<2>().squaredNorm());
 }
+
+// The noisy estimation tests: n = 50 matches with kSigma noise, 20 seeds (see EstimateNoisyReachesNoiseFloor).
+const size_t kNoisyMatches = 50;
+const int kNoisySeeds = 20;
+
+//! First-order RMS distance of a match to its epipolar lines under the fitted F (see EstimateNoisyReachesNoiseFloor).
+double expectedResidual()
+{
+  return kSigma * std::sqrt((kNoisyMatches - 7.0) / (2.0 * kNoisyMatches));
+}
+
+//! First-order RMS epipolar distance of fresh noise-free matches under the fitted F.
+double expectedPrediction()
+{
+  return kSigma * std::sqrt(14.0 / kNoisyMatches);
+}
+
+struct NoiseFloor {
+  double meanResidual, meanPrediction, maxPrediction, maxResidualDeviation;
+};
+
+//! estimate() with \e threshold on the data of the noisy tests, each seed within the per-seed bounds; the statistics.
+NoiseFloor estimateAtNoiseFloor(const Scene &scene, double threshold)
+{
+  NoiseFloor f = {0.0, 0.0, 0.0, 0.0};
+  for (int seed = 1; seed <= kNoisySeeds; ++seed) {
+    SCOPED_TRACE(::testing::Message() << "threshold " << threshold << " px, seed " << seed);
+    const SeededMatches data(scene, 100 + seed, kNoisyMatches, kSigma, 200);
+    vpProjectiveStereoRig rig;
+    rig.estimate(data.left, data.right, threshold);
+    const double prediction = rmsEpipolarDistance(rig.fundamentalMatrix(), data.freshLeft, data.freshRight);
+    const double residual = rig.getEstimationResidual();
+    EXPECT_LT(prediction, 3.0 * expectedPrediction());
+    EXPECT_NEAR(residual / expectedResidual(), 1.0, 0.35);
+    f.meanResidual += residual / kNoisySeeds;
+    f.meanPrediction += prediction / kNoisySeeds;
+    f.maxPrediction = std::max(f.maxPrediction, prediction);
+    f.maxResidualDeviation = std::max(f.maxResidualDeviation, std::abs(residual / expectedResidual() - 1.0));
+  }
+  return f;
+}
 } // namespace
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -125,10 +201,9 @@ TEST(vpProjectiveStereoRig, EstimateNoiseFreeIsExact)
   const Scene scene;
   for (unsigned int seed = 1; seed <= 5; ++seed) {
     SCOPED_TRACE(::testing::Message() << "seed " << seed);
-    vpUniRand rng(seed);
-    vpGaussRand noise(1.0, 0.0, static_cast<long>(seed));
-    std::vector<vpImagePoint> left, right;
-    randomMatches(scene, rng, 8 + 4 * seed, 0.0, noise, left, right);
+    // The fresh points are drawn after the estimated ones: they play no part in the estimate.
+    const SeededMatches data(scene, static_cast<long>(seed), 8 + 4 * seed, 0.0, 50);
+    const std::vector<vpImagePoint> &left = data.left, &right = data.right;
 
     vpProjectiveStereoRig rig;
     ASSERT_FALSE(rig.isInitialized());
@@ -138,10 +213,8 @@ TEST(vpProjectiveStereoRig, EstimateNoiseFreeIsExact)
 
     // Epipolar constraint on the matches used and on fresh points.
     EXPECT_LT(maxAlgebraicEpipolarResidual(F, left, right), 1e-8);
-    std::vector<vpImagePoint> freshLeft, freshRight;
-    randomMatches(scene, rng, 50, 0.0, noise, freshLeft, freshRight);
-    EXPECT_LT(maxAlgebraicEpipolarResidual(F, freshLeft, freshRight), 1e-8);
-    EXPECT_LT(rmsEpipolarDistance(F, freshLeft, freshRight), 1e-6);
+    EXPECT_LT(maxAlgebraicEpipolarResidual(F, data.freshLeft, data.freshRight), 1e-8);
+    EXPECT_LT(rmsEpipolarDistance(F, data.freshLeft, data.freshRight), 1e-6);
 
     // Proportional to the true F, unit norm, rank 2.
     EXPECT_LT(relativeErrorUpToScale(F, trueF(scene)), 1e-6);
@@ -172,38 +245,13 @@ TEST(vpProjectiveStereoRig, EstimateNoiseFreeIsExact)
 TEST(vpProjectiveStereoRig, EstimateNoisyReachesNoiseFloor)
 {
   const Scene scene;
-  const size_t n = 50;
-  const double expectedResidual = kSigma * std::sqrt((n - 7.0) / (2.0 * n));
-  const double expectedPrediction = kSigma * std::sqrt(14.0 / n);
-  const int seeds = 20;
-  double sumResidual = 0.0, sumPrediction = 0.0, maxPrediction = 0.0, maxResidualDev = 0.0;
-  for (int seed = 1; seed <= seeds; ++seed) {
-    SCOPED_TRACE(::testing::Message() << "seed " << seed);
-    vpUniRand rng(static_cast<uint64_t>(100 + seed));
-    vpGaussRand noise(1.0, 0.0, 100 + seed);
-    std::vector<vpImagePoint> left, right, freshLeft, freshRight;
-    randomMatches(scene, rng, n, kSigma, noise, left, right);
-    randomMatches(scene, rng, 200, 0.0, noise, freshLeft, freshRight);
-
-    vpProjectiveStereoRig rig;
-    rig.estimate(left, right, 5.0);
-    const Eigen::Matrix3d F = toEigen<3, 3>(rig.getFundamentalMatrix());
-    const double prediction = rmsEpipolarDistance(F, freshLeft, freshRight);
-    const double residual = rig.getEstimationResidual();
-    EXPECT_LT(prediction, 3.0 * expectedPrediction);
-    EXPECT_NEAR(residual / expectedResidual, 1.0, 0.35);
-    sumResidual += residual;
-    sumPrediction += prediction;
-    maxPrediction = std::max(maxPrediction, prediction);
-    maxResidualDev = std::max(maxResidualDev, std::abs(residual / expectedResidual - 1.0));
-  }
-  const double meanResidual = sumResidual / seeds, meanPrediction = sumPrediction / seeds;
-  std::cout << "[ stats    ] F, sigma " << kSigma << " px, n " << n << ": residual mean " << meanResidual
-            << " px (expected " << expectedResidual << "), max relative deviation " << maxResidualDev
-            << "; fresh RMS epipolar distance mean " << meanPrediction << " px, max " << maxPrediction
-            << " (first order " << expectedPrediction << ")" << std::endl;
-  EXPECT_NEAR(meanResidual / expectedResidual, 1.0, 0.10);
-  EXPECT_LT(meanPrediction, 1.5 * expectedPrediction);
+  const NoiseFloor f = estimateAtNoiseFloor(scene, 5.0);
+  std::cout << "[ stats    ] F, sigma " << kSigma << " px, n " << kNoisyMatches << ": residual mean " << f.meanResidual
+            << " px (expected " << expectedResidual() << "), max relative deviation " << f.maxResidualDeviation
+            << "; fresh RMS epipolar distance mean " << f.meanPrediction << " px, max " << f.maxPrediction
+            << " (first order " << expectedPrediction() << ")" << std::endl;
+  EXPECT_NEAR(f.meanResidual / expectedResidual(), 1.0, 0.10);
+  EXPECT_LT(f.meanPrediction, 1.5 * expectedPrediction());
 }
 
 /*
@@ -213,22 +261,7 @@ TEST(vpProjectiveStereoRig, EstimateNoisyReachesNoiseFloor)
 TEST(vpProjectiveStereoRig, EstimateLooseThresholdStaysAccurate)
 {
   const Scene scene;
-  const size_t n = 50;
-  const double expectedResidual = kSigma * std::sqrt((n - 7.0) / (2.0 * n));
-  const double expectedPrediction = kSigma * std::sqrt(14.0 / n);
-  for (int seed = 1; seed <= 20; ++seed) {
-    SCOPED_TRACE(::testing::Message() << "seed " << seed);
-    vpUniRand rng(static_cast<uint64_t>(100 + seed));
-    vpGaussRand noise(1.0, 0.0, 100 + seed);
-    std::vector<vpImagePoint> left, right, freshLeft, freshRight;
-    randomMatches(scene, rng, n, kSigma, noise, left, right);
-    randomMatches(scene, rng, 200, 0.0, noise, freshLeft, freshRight);
-
-    vpProjectiveStereoRig rig;
-    rig.estimate(left, right, 100.0);
-    EXPECT_LT(rmsEpipolarDistance(rig.fundamentalMatrix(), freshLeft, freshRight), 3.0 * expectedPrediction);
-    EXPECT_NEAR(rig.getEstimationResidual() / expectedResidual, 1.0, 0.35);
-  }
+  estimateAtNoiseFloor(scene, 100.0);
 }
 
 /*
@@ -240,17 +273,14 @@ TEST(vpProjectiveStereoRig, EstimateLooseThresholdStaysAccurate)
 TEST(vpProjectiveStereoRig, EstimateInliersAgreeWithReturnedF)
 {
   const Scene scene;
-  const size_t n = 50;
   const double threshold = 3.0 * std::sqrt(2.0) * kSigma;
-  for (int seed = 1; seed <= 20; ++seed) {
+  for (int seed = 1; seed <= kNoisySeeds; ++seed) {
     SCOPED_TRACE(::testing::Message() << "seed " << seed);
-    vpUniRand rng(static_cast<uint64_t>(100 + seed));
-    vpGaussRand noise(1.0, 0.0, 100 + seed);
-    std::vector<vpImagePoint> left, right;
-    randomMatches(scene, rng, n, kSigma, noise, left, right);
+    const SeededMatches data(scene, 100 + seed, kNoisyMatches, kSigma);
+    const std::vector<vpImagePoint> &left = data.left, &right = data.right;
     vpProjectiveStereoRig rig;
     rig.estimate(left, right, threshold);
-    for (size_t i = 0; i < n; ++i) {
+    for (size_t i = 0; i < left.size(); ++i) {
       const double d = epipolarDistances(rig.fundamentalMatrix(), left[i], right[i]).maxCoeff();
       if (d < 0.75 * threshold) {
         EXPECT_TRUE(rig.getInliers()[i]) << "match " << i << " at " << d << " px from its epipolar lines";
@@ -261,13 +291,10 @@ TEST(vpProjectiveStereoRig, EstimateInliersAgreeWithReturnedF)
   // the estimate must succeed and flag them all inliers.
   for (size_t m = 8; m <= 20; ++m) {
     SCOPED_TRACE(::testing::Message() << m << " noise-free matches");
-    vpUniRand rng(static_cast<uint64_t>(m));
-    vpGaussRand noise(1.0, 0.0, static_cast<long>(m));
-    std::vector<vpImagePoint> left, right;
-    randomMatches(scene, rng, m, 0.0, noise, left, right);
+    const SeededMatches data(scene, static_cast<long>(m), m, 0.0);
     vpProjectiveStereoRig rig;
     try {
-      rig.estimate(left, right);
+      rig.estimate(data.left, data.right);
       EXPECT_EQ(std::count(rig.getInliers().begin(), rig.getInliers().end(), true), static_cast<long>(m));
       EXPECT_LT(relativeErrorUpToScale(rig.fundamentalMatrix(), trueF(scene)), 1e-6);
     } catch (const vpException &e) {
@@ -292,32 +319,20 @@ TEST(vpProjectiveStereoRig, EstimateRejectsOutliers)
     for (int seed = 1; seed <= 5; ++seed) {
       SCOPED_TRACE(::testing::Message() << (noisy ? "noisy" : "noise-free") << ", seed " << seed);
       const double sigma = noisy ? kSigma : 0.0;
-      vpUniRand rng(static_cast<uint64_t>(200 + seed));
-      vpGaussRand noise(1.0, 0.0, 200 + seed);
-      std::vector<vpImagePoint> left, right, freshLeft, freshRight;
-      randomMatches(scene, rng, n, sigma, noise, left, right);
-      randomMatches(scene, rng, 200, 0.0, noise, freshLeft, freshRight);
+      SeededMatches data(scene, 200 + seed, n, sigma, 200);
       std::vector<bool> outlier(n, false);
       for (size_t k = 0; k < nOut; ++k) {
-        const size_t i = static_cast<size_t>(rng.uniform(0, static_cast<int>(n)));
+        const size_t i = static_cast<size_t>(data.rng.uniform(0, static_cast<int>(n)));
         if (outlier[i]) {
           --k;
           continue;
         }
-        for (;;) {
-          std::vector<vpImagePoint> otherLeft, otherRight;
-          randomMatches(scene, rng, 1, 0.0, noise, otherLeft, otherRight);
-          const Eigen::Vector2d d = epipolarDistances(Ftrue, left[i], otherRight[0]);
-          if (d.minCoeff() > 20.0) {
-            right[i] = otherRight[0];
-            break;
-          }
-        }
+        data.right[i] = wrongRightImage(scene, Ftrue, data.left[i], data.rng, data.noise);
         outlier[i] = true;
       }
 
       vpProjectiveStereoRig rig;
-      rig.estimate(left, right, noisy ? 5.0 : 1.0);
+      rig.estimate(data.left, data.right, noisy ? 5.0 : 1.0);
       const std::vector<bool> &inliers = rig.getInliers();
       ASSERT_EQ(inliers.size(), n);
       size_t lost = 0;
@@ -331,7 +346,7 @@ TEST(vpProjectiveStereoRig, EstimateRejectsOutliers)
       const Eigen::Matrix3d F = toEigen<3, 3>(rig.getFundamentalMatrix());
       EXPECT_EQ(lost, 0u);
       if (noisy) {
-        EXPECT_LT(rmsEpipolarDistance(F, freshLeft, freshRight), 3.0 * kSigma * std::sqrt(14.0 / (n - nOut)));
+        EXPECT_LT(rmsEpipolarDistance(F, data.freshLeft, data.freshRight), 3.0 * kSigma * std::sqrt(14.0 / (n - nOut)));
       } else {
         EXPECT_LT(relativeErrorUpToScale(F, Ftrue), 1e-6);
         EXPECT_LT(rig.getEstimationResidual(), 1e-6);
@@ -434,13 +449,11 @@ TEST(vpProjectiveStereoRig, EstimateWrongPairingsMatchOutlierFreeAccuracy)
     size_t detectable = 0, detectableFlagged = 0, close = 0, closeFlagged = 0, correct = 0, correctFlagged = 0;
     for (int seed = 1; seed <= seeds; ++seed) {
       SCOPED_TRACE(::testing::Message() << "seed " << seed);
-      vpUniRand rng(static_cast<uint64_t>(400 + seed));
-      vpGaussRand noise(1.0, 0.0, 400 + seed);
-      std::vector<vpImagePoint> left, right, freshLeft, freshRight;
-      randomMatches(scene, rng, n, kSigma, noise, left, right);
-      randomMatches(scene, rng, 200, 0.0, noise, freshLeft, freshRight);
+      SeededMatches data(scene, 400 + seed, n, kSigma, 200);
+      const std::vector<vpImagePoint> &left = data.left, &right = data.right, &freshLeft = data.freshLeft,
+                                      &freshRight = data.freshRight;
       std::vector<vpImagePoint> wrongRight = right;
-      const std::vector<bool> wrong = mispair(rng, nWrong, wrongRight);
+      const std::vector<bool> wrong = mispair(data.rng, nWrong, wrongRight);
       std::vector<vpImagePoint> correctLeft, correctRight;
       for (size_t i = 0; i < n; ++i) {
         if (!wrong[i]) {
@@ -515,13 +528,10 @@ TEST(vpProjectiveStereoRig, EstimateSmallSetsAreNotRobust)
     SCOPED_TRACE(::testing::Message() << n << " correct matches");
     int succeeded = 0;
     for (int seed = 1; seed <= seeds; ++seed) {
-      vpUniRand rng(static_cast<uint64_t>(600 + seed));
-      vpGaussRand noise(1.0, 0.0, 600 + seed);
-      std::vector<vpImagePoint> left, right;
-      randomMatches(scene, rng, n, kSigma, noise, left, right);
+      const SeededMatches data(scene, 600 + seed, n, kSigma);
       vpProjectiveStereoRig rig;
       try {
-        rig.estimate(left, right);
+        rig.estimate(data.left, data.right);
         ++succeeded;
         EXPECT_GE(std::count(rig.getInliers().begin(), rig.getInliers().end(), true), static_cast<long>(n) - 1)
             << "seed " << seed;
@@ -535,21 +545,11 @@ TEST(vpProjectiveStereoRig, EstimateSmallSetsAreNotRobust)
     SCOPED_TRACE(::testing::Message() << n << " matches, one wrong");
     int reported = 0, rejected = 0;
     for (int seed = 1; seed <= seeds; ++seed) {
-      vpUniRand rng(static_cast<uint64_t>(700 + seed));
-      vpGaussRand noise(1.0, 0.0, 700 + seed);
-      std::vector<vpImagePoint> left, right;
-      randomMatches(scene, rng, n, kSigma, noise, left, right);
-      for (;;) {
-        std::vector<vpImagePoint> otherLeft, otherRight;
-        randomMatches(scene, rng, 1, 0.0, noise, otherLeft, otherRight);
-        if (epipolarDistances(Ftrue, left[0], otherRight[0]).minCoeff() > 20.0) {
-          right[0] = otherRight[0];
-          break;
-        }
-      }
+      SeededMatches data(scene, 700 + seed, n, kSigma);
+      data.right[0] = wrongRightImage(scene, Ftrue, data.left[0], data.rng, data.noise);
       vpProjectiveStereoRig rig;
       try {
-        rig.estimate(left, right);
+        rig.estimate(data.left, data.right);
         rejected += rig.getInliers()[0] ? 0 : 1;
       } catch (const vpProjectiveException &e) {
         EXPECT_EQ(e.getCode(), vpProjectiveException::estimationFailedError) << e.getStringMessage();
@@ -581,10 +581,8 @@ TEST(vpProjectiveStereoRig, FrameIndependentOfScaleAndSignOfF)
   EXPECT_LT(relativeError(toEigen<3, 3>(b.getFundamentalMatrix()), toEigen<3, 3>(a.getFundamentalMatrix())), 1e-12);
 
   // The same projective points, hence the same models, from either rig.
-  vpUniRand rng(7);
-  vpGaussRand noise(1.0, 0.0, 7);
-  std::vector<vpImagePoint> left, right;
-  randomMatches(scene, rng, 10, 0.0, noise, left, right);
+  const SeededMatches data(scene, 7, 10, 0.0);
+  const std::vector<vpImagePoint> &left = data.left, &right = data.right;
   for (size_t i = 0; i < left.size(); ++i) {
     EXPECT_LT(
         relativeErrorUpToScale(toEigen4(b.triangulate(left[i], right[i])), toEigen4(a.triangulate(left[i], right[i]))),
@@ -612,7 +610,7 @@ TEST(vpProjectiveStereoRig, CanonicalCameraPair)
   // The last column of P' is e', the image of the left camera centre (0, 0, 0, 1).
   EXPECT_LT((Pp.col(3) - ep).norm(), 1e-12);
   // P' is consistent with F: F ~ [e']_x P'(:, 0:3) (here exactly -F for unit e').
-  EXPECT_LT(relativeErrorUpToScale(Eigen::Matrix3d(skew(ep) * Pp.leftCols<3>()), F), 1e-12);
+  EXPECT_LT(relativeErrorUpToScale(Eigen::Matrix3d(vpMetricTwist::skew(ep) * Pp.leftCols<3>()), F), 1e-12);
   // ... and the left 3x3 block of P' is invertible (the frame is not degenerate).
   EXPECT_GT(Eigen::JacobiSVD<Eigen::Matrix3d>(Pp.leftCols<3>()).singularValues()(2), 1e-3);
 
@@ -650,11 +648,9 @@ TEST(vpProjectiveStereoRig, RankThreeInputIsProjectedOnRankTwo)
 TEST(vpProjectiveStereoRig, TriangulateNoiseFreeIsExact)
 {
   const Scene scene;
-  vpUniRand rng(21);
-  vpGaussRand noise(1.0, 0.0, 21);
-  std::vector<vpImagePoint> left, right;
-  std::vector<vpColVector> wX;
-  randomMatches(scene, rng, 50, 0.0, noise, left, right, &wX);
+  const SeededMatches data(scene, 21, 50, 0.0);
+  const std::vector<vpImagePoint> &left = data.left, &right = data.right;
+  const std::vector<vpColVector> &wX = data.points;
   double worstPixel = 0.0, worstPoint = 0.0;
   for (size_t i = 0; i < wX.size(); ++i) {
     const vpColVector M = scene.rig.triangulate(left[i], right[i]);
@@ -686,10 +682,8 @@ TEST(vpProjectiveStereoRig, TriangulateNoisyIsOptimal)
   const Scene scene;
   const vpProjectiveStereoRig &rig = scene.rig;
   const Eigen::Matrix3d F = rig.fundamentalMatrix();
-  vpUniRand rng(31);
-  vpGaussRand noise(1.0, 0.0, 31);
-  std::vector<vpImagePoint> left, right;
-  randomMatches(scene, rng, 100, kSigma, noise, left, right);
+  const SeededMatches data(scene, 31, 100, kSigma);
+  const std::vector<vpImagePoint> &left = data.left, &right = data.right;
   double sumSquares = 0.0, sumLinear = 0.0, sumRefined = 0.0;
   for (size_t i = 0; i < left.size(); ++i) {
     SCOPED_TRACE(::testing::Message() << "match " << i);
@@ -718,11 +712,9 @@ TEST(vpProjectiveStereoRig, TriangulateNoisyIsOptimal)
 TEST(vpProjectiveStereoRig, ProjectIsScaleAndSignInvariant)
 {
   const Scene scene;
-  vpUniRand rng(41);
-  vpGaussRand noise(1.0, 0.0, 41);
-  std::vector<vpImagePoint> left, right;
-  std::vector<vpColVector> wX;
-  randomMatches(scene, rng, 20, 0.0, noise, left, right, &wX);
+  const SeededMatches data(scene, 41, 20, 0.0);
+  const std::vector<vpImagePoint> &left = data.left, &right = data.right;
+  const std::vector<vpColVector> &wX = data.points;
   for (size_t i = 0; i < wX.size(); ++i) {
     const Eigen::Vector4d M = scene.projectivePoint(wX[i]);
     vpImagePoint l1, r1, l2, r2;
@@ -771,10 +763,9 @@ TEST(vpProjectiveStereoRig, ProjectPointOnFocalPlaneThrows)
 TEST(vpProjectiveStereoRig, EstimateInvalidInputsThrow)
 {
   const Scene scene;
-  vpUniRand rng(51);
-  vpGaussRand noise(1.0, 0.0, 51);
-  std::vector<vpImagePoint> left, right;
-  randomMatches(scene, rng, 20, 0.0, noise, left, right);
+  SeededMatches data(scene, 51, 20, 0.0);
+  const std::vector<vpImagePoint> &left = data.left, &right = data.right;
+  vpUniRand &rng = data.rng; // the planar points below go on with it
   vpProjectiveStereoRig rig;
 
   const std::vector<vpImagePoint> left7(left.begin(), left.begin() + 7), right7(right.begin(), right.begin() + 7);

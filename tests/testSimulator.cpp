@@ -44,32 +44,11 @@ using namespace VISP_NAMESPACE_NAME;
 namespace
 {
 using vpProjectiveTest::expm; // independent reference: a scaled and squared Taylor series
+using vpProjectiveTest::pixel;
 using vpProjectiveTest::point3;
+using vpProjectiveTest::toEigen; // checks the size of the ViSP array
 
 const double kTrialDeg[6] = {30.0, 20.0, 30.0, 40.0, 60.0, 60.0}; // the paper's trial motions
-
-template <int R, int C> Eigen::Matrix<double, R, C> toEigen(const vpArray2D<double> &A)
-{
-  EXPECT_EQ(A.getRows(), static_cast<unsigned int>(R));
-  EXPECT_EQ(A.getCols(), static_cast<unsigned int>(C));
-  Eigen::Matrix<double, R, C> E;
-  for (int i = 0; i < R; ++i) {
-    for (int j = 0; j < C; ++j) {
-      E(i, j) = A[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)];
-    }
-  }
-  return E;
-}
-
-Eigen::Vector3d pixel(const vpImagePoint &ip)
-{
-  return Eigen::Vector3d(ip.get_u(), ip.get_v(), 1.0);
-}
-
-Eigen::Vector3d toEigen3(const vpColVector &v)
-{
-  return Eigen::Vector3d(v[0], v[1], v[2]);
-}
 
 //! A world point drawn uniformly in a box around the fixation point, visible in both images of \e sim.
 vpColVector visiblePoint(const vpSimulatorStereoRig &sim, vpUniRand &rng)
@@ -85,11 +64,10 @@ vpColVector visiblePoint(const vpSimulatorStereoRig &sim, vpUniRand &rng)
 //! Left-camera homogeneous coordinates N = (lX, 1) of a world point.
 Eigen::Vector4d leftCameraPoint(const vpSimulatorStereoRig &sim, const vpColVector &wX)
 {
-  const Eigen::Matrix4d lMw = toEigen<4, 4>(sim.get_wMl().inverse());
-  return lMw * Eigen::Vector4d(wX[0], wX[1], wX[2], 1.0);
+  return toEigen<4, 4>(sim.get_wMl().inverse()) * toEigen<3, 1>(wX).homogeneous();
 }
 
-//! Matrix exponential by scaling and squaring with a Taylor series: independent of the twist's structure.
+//! Random joint values within the arm's limits.
 vpColVector randomJoints(const vpSimulatorArm &arm, vpUniRand &rng)
 {
   vpColVector q(arm.getNumberOfJoints());
@@ -432,8 +410,8 @@ TEST(SimulatorStereoRig, RigidMotionsOfPointSets)
   X.push_back(point3(0.1, -0.2, 5.0));
   X.push_back(point3(1.1, -0.2, 0.3));
   const std::vector<vpColVector> Y = vpSimulatorStereoRig::transform(T, X);
-  EXPECT_LT((toEigen3(Y[0]) - toEigen3(X[0])).norm(), 1e-12);
-  EXPECT_LT((toEigen3(Y[1]) - Eigen::Vector3d(0.1, 0.8, 0.3)).norm(), 1e-12);
+  EXPECT_LT((toEigen<3, 1>(Y[0]) - toEigen<3, 1>(X[0])).norm(), 1e-12);
+  EXPECT_LT((toEigen<3, 1>(Y[1]) - Eigen::Vector3d(0.1, 0.8, 0.3)).norm(), 1e-12);
   // Homogeneous points keep their form.
   vpColVector Xh(4);
   Xh[0] = 2.2;
@@ -442,7 +420,7 @@ TEST(SimulatorStereoRig, RigidMotionsOfPointSets)
   Xh[3] = 2.0;
   const vpColVector Yh = vpSimulatorStereoRig::transform(T, std::vector<vpColVector>(1, Xh))[0];
   ASSERT_EQ(Yh.getRows(), 4u);
-  EXPECT_LT((Eigen::Vector3d(Yh[0], Yh[1], Yh[2]) / Yh[3] - Eigen::Vector3d(0.1, 0.8, 0.3)).norm(), 1e-12);
+  EXPECT_LT(((toEigen<4, 1>(Yh)).hnormalized() - Eigen::Vector3d(0.1, 0.8, 0.3)).norm(), 1e-12);
   // Translation of 5 cm along a non-unit direction.
   const vpHomogeneousMatrix D = vpSimulatorStereoRig::translationAlong(point3(3.0, 0.0, 4.0), 0.05);
   EXPECT_NEAR(D[0][3], 0.03, 1e-15);
@@ -634,12 +612,14 @@ TEST(SimulatorArm, DisplacementMovesMarkers)
     const std::vector<vpColVector> moved = vpSimulatorStereoRig::transform(arm.getDisplacement(q), m0);
     const std::vector<vpColVector> mq = arm.getMarkers(q);
     for (size_t j = 0; j < m0.size(); ++j) {
-      EXPECT_LT((toEigen3(moved[j]) - toEigen3(mq[j])).norm(), 1e-12);
+      EXPECT_LT((toEigen<3, 1>(moved[j]) - toEigen<3, 1>(mq[j])).norm(), 1e-12);
     }
     // Markers are rigidly attached: wMt(q) tX.
     const Eigen::Matrix4d wMt = toEigen<4, 4>(arm.get_wMt(q));
     const vpColVector &tX = arm.getToolMarkers()[3];
-    EXPECT_LT((wMt.topLeftCorner<3, 3>() * toEigen3(tX) + wMt.topRightCorner<3, 1>() - toEigen3(mq[3])).norm(), 1e-12);
+    EXPECT_LT(
+        (wMt.topLeftCorner<3, 3>() * toEigen<3, 1>(tX) + wMt.topRightCorner<3, 1>() - toEigen<3, 1>(mq[3])).norm(),
+        1e-12);
   }
 }
 
@@ -684,7 +664,7 @@ TEST(SimulatorArm, GripperMarkersNoFourCoplanar)
           const int id[4] = {a, b, c, d};
           Eigen::Matrix4d M;
           for (int k = 0; k < 4; ++k) {
-            M.block<3, 1>(0, k) = toEigen3(m[id[k]]);
+            M.block<3, 1>(0, k) = toEigen<3, 1>(m[id[k]]);
             M(3, k) = 1.0;
           }
           minDet = std::min(minDet, std::fabs(M.determinant())); // 6 x tetrahedron volume, m^3
@@ -709,7 +689,7 @@ TEST(SimulatorArm, GripperMarkersNoFourCoplanar)
   EXPECT_GT(minDistance, 0.008); // every marker at least 8 mm off the plane of any other three
   // All within the 10 cm gripper.
   for (size_t k = 0; k < m.size(); ++k) {
-    EXPECT_LE(toEigen3(m[k]).cwiseAbs().maxCoeff(), 0.05 + 1e-12);
+    EXPECT_LE((toEigen<3, 1>(m[k])).cwiseAbs().maxCoeff(), 0.05 + 1e-12);
   }
   // Markers 0-2 share the front face y = -2 cm; all others are behind it.
   for (size_t k = 0; k < m.size(); ++k) {
@@ -740,7 +720,7 @@ TEST(SimulatorArm, PaperSetupZeroReferenceInView)
                                       Eigen::Vector3d(wMr[0][3], wMr[1][3], wMr[2][3])};
   for (int c = 0; c < 2; ++c) {
     for (int k = 0; k < 3; ++k) {
-      const Eigen::Vector3d toCamera = (centres[c] - toEigen3(m[k])).normalized();
+      const Eigen::Vector3d toCamera = (centres[c] - toEigen<3, 1>(m[k])).normalized();
       EXPECT_GT(n.dot(toCamera), std::cos(vpMath::rad(35.0))) << "camera " << c << " marker " << k;
     }
   }

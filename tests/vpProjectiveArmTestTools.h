@@ -20,9 +20,11 @@
   Eye-in-hand: the rig rides on the tool (wMl(q) = wMt(q) tMl), the markers are static in the world; each
   configuration then has its own vpSimulatorStereoRig, all with the same K, K', rMl, hence the same F and H_PE.
 
-  Ground truth, independent of the plugin: the metric twist of joint i at qRef in the world frame is read off the
-  Denavit-Hartenberg frame reached after rows 0..i-1 at qRef (axis z, through the origin of that frame); in the left
-  camera frame it is lMw Tw wMl (eye-to-hand) or -lMw(qRef) Tw wMl(qRef) (eye-in-hand: the camera moves, the scene
+  Ground truth, independent of the plugin's models: the metric twist of joint i at qRef in the world frame is read off
+  the Denavit-Hartenberg frame reached after rows 0..i-1 at qRef (axis z, through the origin of that frame; written
+  again in dhTransform(), not taken from the simulator), its 4x4 matrix made by vpMetricTwist's hats, which
+  GroundTruthIsConsistent (testProjectiveRobot) checks against the simulated motions with the independent expm(); in the
+  left camera frame it is lMw Tw wMl (eye-to-hand) or -lMw(qRef) Tw wMl(qRef) (eye-in-hand: the camera moves, the scene
   moves the other way). The true motion of the scene in the left camera frame from qRef to qRef + q is
   lMw wMt(qArm) wMt(qRef)^-1 wMl (eye-to-hand) or wMl(qArm)^-1 wMl(qRef) (eye-in-hand). In both cases the
   projective displacement is H_PE^-1 T H_PE, the generator H_PE^-1 That H_PE.
@@ -46,6 +48,7 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpUniRand.h>
 
+#include <visp3/projective/vpMetricTwist.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 #include <visp3/projective/vpSimulatorArm.h>
@@ -59,67 +62,8 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace vpProjectiveTest
 {
-//! A vpMatrix as a dynamic Eigen matrix (test comparisons).
-inline Eigen::MatrixXd toEigenX(const vpMatrix &A)
-{
-  Eigen::MatrixXd E(A.getRows(), A.getCols());
-  for (unsigned int i = 0; i < A.getRows(); ++i) {
-    for (unsigned int j = 0; j < A.getCols(); ++j) {
-      E(i, j) = A[i][j];
-    }
-  }
-  return E;
-}
-
-//! A vpColVector as a dynamic Eigen vector (test comparisons).
-inline Eigen::VectorXd toEigenV(const vpColVector &v)
-{
-  Eigen::VectorXd E(v.getRows());
-  for (unsigned int i = 0; i < v.getRows(); ++i) {
-    E(i) = v[i];
-  }
-  return E;
-}
-
 //! The paper's trial motions (degrees), joints 0-5.
 const double kPaperTrialDeg[6] = {30.0, 20.0, 30.0, 40.0, 60.0, 60.0};
-
-inline Eigen::Matrix4d toEigen4x4(const vpHomogeneousMatrix &M)
-{
-  return toEigen<4, 4>(M);
-}
-
-inline vpHomogeneousMatrix toHomogeneous(const Eigen::Matrix4d &E)
-{
-  vpHomogeneousMatrix M;
-  for (unsigned int i = 0; i < 3; ++i) {
-    for (unsigned int j = 0; j < 4; ++j) {
-      M[i][j] = E(static_cast<int>(i), static_cast<int>(j));
-    }
-  }
-  return M;
-}
-
-//! Matrix exponential by scaling and squaring of a Taylor series: independent of any twist structure.
-inline Eigen::Matrix4d expm(const Eigen::Matrix4d &A)
-{
-  const double norm = A.cwiseAbs().rowwise().sum().maxCoeff();
-  int squarings = 0;
-  if (norm > 0.25) {
-    squarings = static_cast<int>(std::ceil(std::log2(norm / 0.25)));
-  }
-  const Eigen::Matrix4d B = A / std::pow(2.0, squarings);
-  Eigen::Matrix4d term = Eigen::Matrix4d::Identity();
-  Eigen::Matrix4d sum = Eigen::Matrix4d::Identity();
-  for (int k = 1; k <= 20; ++k) {
-    term = term * B / static_cast<double>(k);
-    sum += term;
-  }
-  for (int k = 0; k < squarings; ++k) {
-    sum = sum * sum;
-  }
-  return sum;
-}
 
 //! \f$ R_z(\theta) T_z(d) T_x(a) R_x(\alpha) \f$, written again here so that the ground truth does not reuse the
 //! simulator's code.
@@ -131,15 +75,6 @@ inline Eigen::Matrix4d dhTransform(const vpSimulatorArm::vpDHRow &row, double q)
   const double ca = std::cos(row.alpha), sa = std::sin(row.alpha);
   Eigen::Matrix4d T;
   T << ct, -st * ca, st * sa, row.a * ct, st, ct * ca, -ct * sa, row.a * st, 0.0, sa, ca, d, 0.0, 0.0, 0.0, 1.0;
-  return T;
-}
-
-//! A 4x4 metric twist matrix from (w, v).
-inline Eigen::Matrix4d twistMatrix(const Eigen::Vector3d &w, const Eigen::Vector3d &v)
-{
-  Eigen::Matrix4d T = Eigen::Matrix4d::Zero();
-  T.topLeftCorner<3, 3>() = skew(w);
-  T.topRightCorner<3, 1>() = v;
   return T;
 }
 
@@ -254,22 +189,21 @@ struct ArmSetup {
   Eigen::Matrix4d worldTwist(unsigned int i, const vpColVector &qArm) const
   {
     const std::vector<vpSimulatorArm::vpDHRow> &dh = arm.getDHTable();
-    Eigen::Matrix4d wMi = toEigen4x4(arm.get_wMb());
+    Eigen::Matrix4d wMi = toEigen<4, 4>(arm.get_wMb());
     for (unsigned int k = 0; k < i; ++k) {
       wMi = wMi * dhTransform(dh[k], qArm[k]);
     }
     const Eigen::Vector3d z = wMi.block<3, 1>(0, 2);
     const Eigen::Vector3d p = wMi.block<3, 1>(0, 3);
-    if (dh[i].type == vpSimulatorArm::REVOLUTE) {
-      return twistMatrix(z, -z.cross(p));
-    }
-    return twistMatrix(Eigen::Vector3d::Zero(), z);
+    // The plugin's hats (vpMetricTwist): GroundTruthIsConsistent checks them against the simulated motions with the
+    // independent expm().
+    return dh[i].type == vpSimulatorArm::REVOLUTE ? vpMetricTwist::revolute(z, p) : vpMetricTwist::prismatic(z);
   }
 
   //! The metric twist That_i of joint i at the zero reference, in the left camera frame (see the file comment).
   Eigen::Matrix4d cameraTwist(unsigned int i) const
   {
-    const Eigen::Matrix4d wMl0 = toEigen4x4(leftPose(qRef));
+    const Eigen::Matrix4d wMl0 = toEigen<4, 4>(leftPose(qRef));
     const Eigen::Matrix4d T = wMl0.inverse() * worldTwist(i, qRef) * wMl0;
     return mounting == vpProjectiveRobot::EYE_TO_HAND ? T : Eigen::Matrix4d(-T);
   }
@@ -279,11 +213,11 @@ struct ArmSetup {
   {
     const vpColVector qArm = armJoints(qModel);
     if (mounting == vpProjectiveRobot::EYE_TO_HAND) {
-      const Eigen::Matrix4d D = toEigen4x4(arm.get_wMt(qArm) * arm.get_wMt(qRef).inverse());
-      const Eigen::Matrix4d W = toEigen4x4(wMl);
+      const Eigen::Matrix4d D = toEigen<4, 4>(arm.get_wMt(qArm) * arm.get_wMt(qRef).inverse());
+      const Eigen::Matrix4d W = toEigen<4, 4>(wMl);
       return W.inverse() * D * W;
     }
-    return toEigen4x4(leftPose(qArm).inverse() * leftPose(qRef));
+    return toEigen<4, 4>(leftPose(qArm).inverse() * leftPose(qRef));
   }
 
   //! The true generator H_PE^-1 That_i H_PE of joint i.

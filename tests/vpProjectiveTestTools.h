@@ -23,13 +23,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
 
 #include <visp3/core/vpColVector.h>
+#include <visp3/core/vpConfig.h>
+#include <visp3/core/vpEigenConversion.h>
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpGaussRand.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
@@ -45,42 +49,85 @@
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
+#ifndef VISP_HAVE_EIGEN3
+#error "the tests convert through ViSP's vpEigenConversion.h, which needs a ViSP built with Eigen3"
+#endif
+
 namespace vpProjectiveTest
 {
-template <int R, int C> Eigen::Matrix<double, R, C> toEigen(const vpArray2D<double> &A)
+/*
+  ViSP <-> Eigen conversions: ViSP's own (vpEigenConversion.h), declared in namespace vp by ViSP 3.5 and 3.6 and in
+  VISP_NAMESPACE_NAME by ViSP 3.7, whether or not its classes are in that namespace (as src/vpProjectiveInternal.h).
+*/
+#ifdef VISP_NAMESPACE_NAME
+namespace conversion = VISP_NAMESPACE_NAME;
+#else
+namespace conversion = vp;
+#endif
+
+//! A vpMatrix as a dynamic Eigen matrix (test comparisons).
+inline Eigen::MatrixXd toEigenX(const vpMatrix &A)
 {
-  Eigen::Matrix<double, R, C> E;
-  for (int i = 0; i < R; ++i) {
-    for (int j = 0; j < C; ++j) {
-      E(i, j) = A[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)];
-    }
+  Eigen::MatrixXd E(A.getRows(), A.getCols());
+  conversion::visp2eigen(A, E);
+  return E;
+}
+
+//! \overload
+inline Eigen::MatrixXd toEigenX(const vpHomogeneousMatrix &M)
+{
+  Eigen::MatrixXd E(4, 4);
+  conversion::visp2eigen(M, E);
+  return E;
+}
+
+//! A vpColVector as a dynamic Eigen vector (test comparisons).
+inline Eigen::VectorXd toEigenV(const vpColVector &v)
+{
+  Eigen::VectorXd E(v.getRows());
+  conversion::visp2eigen(v, E);
+  return E;
+}
+
+//! \overload
+inline Eigen::MatrixXd toEigenX(const vpColVector &v)
+{
+  return toEigenV(v);
+}
+
+/*!
+  A vpMatrix, vpHomogeneousMatrix or vpColVector of R x C entries as a fixed-size Eigen matrix. A size mismatch is a
+  test failure, and the result is then all NaN, so that no comparison with it passes.
+*/
+template <int R, int C, typename Array> Eigen::Matrix<double, R, C> toEigen(const Array &A)
+{
+  const Eigen::MatrixXd E = toEigenX(A);
+  if (E.rows() != R || E.cols() != C) {
+    ADD_FAILURE() << "a " << E.rows() << "x" << E.cols() << " ViSP array where a " << R << "x" << C
+                  << " one was expected";
+    return Eigen::Matrix<double, R, C>::Constant(std::numeric_limits<double>::quiet_NaN());
   }
   return E;
 }
 
 inline Eigen::Vector4d toEigen4(const vpColVector &v)
 {
-  return Eigen::Vector4d(v[0], v[1], v[2], v[3]);
+  return toEigen<4, 1>(v);
 }
 
-template <typename Derived> vpMatrix toVisp(const Eigen::MatrixBase<Derived> &E)
+//! An Eigen matrix as a ViSP \e Array: a vpMatrix (the default), vpHomogeneousMatrix or vpColVector (an Eigen vector).
+template <typename Array = vpMatrix, typename Derived> Array toVisp(const Eigen::MatrixBase<Derived> &E)
 {
-  vpMatrix A(static_cast<unsigned int>(E.rows()), static_cast<unsigned int>(E.cols()));
-  for (int i = 0; i < E.rows(); ++i) {
-    for (int j = 0; j < E.cols(); ++j) {
-      A[static_cast<unsigned int>(i)][static_cast<unsigned int>(j)] = E(i, j);
-    }
-  }
+  using Source =
+      typename std::conditional<std::is_same<Array, vpColVector>::value, Eigen::VectorXd, Eigen::MatrixXd>::type;
+  Array A;
+  conversion::eigen2visp(Source(E), A);
   return A;
 }
 
-inline vpColVector toVispVector(const Eigen::Vector4d &E)
+template <typename Derived> vpColVector toVispVector(const Eigen::MatrixBase<Derived> &E)
 {
-  vpColVector v(4);
-  for (unsigned int i = 0; i < 4; ++i) {
-    v[i] = E(static_cast<int>(i));
-  }
-  return v;
+  return toVisp<vpColVector>(E);
 }
 
 inline vpColVector point3(double x, double y, double z)
@@ -115,13 +162,6 @@ double relativeErrorUpToScale(const Eigen::MatrixBase<DA> &A, const Eigen::Matri
   const auto a = A / A.norm();
   const auto b = B / B.norm();
   return std::min((a - b).norm(), (a + b).norm());
-}
-
-inline Eigen::Matrix3d skew(const Eigen::Vector3d &w)
-{
-  Eigen::Matrix3d S;
-  S << 0, -w(2), w(1), w(2), 0, -w(0), -w(1), w(0), 0;
-  return S;
 }
 
 //! Symmetric epipolar distances (pixels) of a match to the epipolar lines of F: (left image, right image).
@@ -168,13 +208,7 @@ struct Scene {
   //! Homogeneous left-camera coordinates N = lMw (X, 1) of a world point (3x1).
   Eigen::Vector4d cameraPoint(const vpColVector &wX) const
   {
-    const vpHomogeneousMatrix lMw = sim.get_wMl().inverse();
-    Eigen::Vector4d N;
-    for (unsigned int i = 0; i < 3; ++i) {
-      N(static_cast<int>(i)) = lMw[i][0] * wX[0] + lMw[i][1] * wX[1] + lMw[i][2] * wX[2] + lMw[i][3];
-    }
-    N(3) = 1.0;
-    return N;
+    return toEigen<4, 4>(sim.get_wMl().inverse()) * toEigen<3, 1>(wX).homogeneous();
   }
 
   //! The true projective point H_PE^-1 N of a world point, unit norm (its sign is arbitrary).
@@ -195,12 +229,7 @@ struct Scene {
   //! Direction (3x1 world) and point (3x1 world) of an axis, expressed in the left camera frame.
   Eigen::Vector3d cameraDirection(const vpColVector &wDir) const
   {
-    const vpHomogeneousMatrix lMw = sim.get_wMl().inverse();
-    Eigen::Vector3d d;
-    for (unsigned int i = 0; i < 3; ++i) {
-      d(static_cast<int>(i)) = lMw[i][0] * wDir[0] + lMw[i][1] * wDir[1] + lMw[i][2] * wDir[2];
-    }
-    return d;
+    return toEigen<4, 4>(sim.get_wMl().inverse()).topLeftCorner<3, 3>() * toEigen<3, 1>(wDir);
   }
 };
 
@@ -272,6 +301,30 @@ template <typename Callable>::testing::AssertionResult throwsProjective(Callable
     return ::testing::AssertionFailure() << "an unknown exception instead of a vpProjectiveException";
   }
   return ::testing::AssertionFailure() << "no exception thrown";
+}
+
+/*!
+  Matrix exponential by scaling and squaring of a Taylor series: deliberately independent of the plugin's closed forms
+  and of any twist structure, the ground truth they are checked against.
+*/
+inline Eigen::Matrix4d expm(const Eigen::Matrix4d &A)
+{
+  const double norm = A.cwiseAbs().rowwise().sum().maxCoeff();
+  int squarings = 0;
+  if (norm > 0.25) {
+    squarings = static_cast<int>(std::ceil(std::log2(norm / 0.25)));
+  }
+  const Eigen::Matrix4d B = A / std::pow(2.0, squarings);
+  Eigen::Matrix4d term = Eigen::Matrix4d::Identity();
+  Eigen::Matrix4d sum = Eigen::Matrix4d::Identity();
+  for (int k = 1; k <= 20; ++k) {
+    term = term * B / static_cast<double>(k);
+    sum += term;
+  }
+  for (int k = 0; k < squarings; ++k) {
+    sum = sum * sum;
+  }
+  return sum;
 }
 
 //! Singular values of a 4x4 matrix, decreasing.
