@@ -40,27 +40,6 @@ using namespace vpProjectiveTest;
 
 namespace
 {
-//! Matrix exponential by scaling and squaring of a Taylor series: a ground truth independent of any twist formula.
-Eigen::Matrix4d expm(const Eigen::Matrix4d &A)
-{
-  int squarings = 0;
-  double norm = A.norm();
-  while (norm > 0.25) {
-    norm /= 2.0;
-    ++squarings;
-  }
-  const Eigen::Matrix4d B = A / std::pow(2.0, squarings);
-  Eigen::Matrix4d E = Eigen::Matrix4d::Identity(), term = Eigen::Matrix4d::Identity();
-  for (int k = 1; k < 25; ++k) {
-    term = term * B / static_cast<double>(k);
-    E += term;
-  }
-  for (int k = 0; k < squarings; ++k) {
-    E = E * E;
-  }
-  return E;
-}
-
 //! A metric twist (left camera frame) of rotation angle \e theta about a random axis through a point near the
 //! scene, plus a translation of \e along along it (a screw) and \e across it.
 Eigen::Matrix4d randomTwist(const Scene &scene, vpUniRand &rng, double theta, double along, double across)

@@ -86,7 +86,7 @@ TEST_P(SelfCalibrationSetup, NoiseFreeGivesTheTruth)
   const Eigen::Matrix3d KlTrue = intrinsics(s.camLeft), KrTrue = intrinsics(s.camRight);
   EXPECT_LT((toEigen<3, 3>(Kl) - KlTrue).norm() / KlTrue.norm(), 1e-6);
   EXPECT_LT((toEigen<3, 3>(Kr) - KrTrue).norm() / KrTrue.norm(), 1e-6);
-  const Eigen::Matrix4d lMrTrue = toEigen4x4(s.rMl.inverse()), lMrEst = toEigen4x4(lMr);
+  const Eigen::Matrix4d lMrTrue = toEigen<4, 4>(s.rMl.inverse()), lMrEst = toEigen<4, 4>(lMr);
   EXPECT_LT(rotationError(lMrEst.topLeftCorner<3, 3>(), lMrTrue.topLeftCorner<3, 3>()), 1e-6);
   const Eigen::Vector3d b = lMrEst.topRightCorner<3, 1>(), bTrue = lMrTrue.topRightCorner<3, 1>();
   EXPECT_LT(directionError(b, bTrue), 1e-6);
@@ -100,7 +100,7 @@ TEST_P(SelfCalibrationSetup, NoiseFreeGivesTheTruth)
   const std::vector<vpColVector> X = s.markersAt(s.qRef);
   const double d01 = (X[0] - X[1]).frobeniusNorm();
   robot.getMetricStereoRig(Kl, Kr, lMr, 0, 1, d01);
-  const double metricBaseline = toEigen4x4(lMr).topRightCorner<3, 1>().norm();
+  const double metricBaseline = toEigen<4, 4>(lMr).topRightCorner<3, 1>().norm();
   EXPECT_NEAR(metricBaseline, bTrue.norm(), 1e-6 * bTrue.norm());
   // Joint axes in the left camera frame, against the simulator's twists: unit direction (up to the sign of the
   // encoder), point on the axis (distance of the estimated point to the true axis).
@@ -196,7 +196,7 @@ TEST(vpProjectiveSelfCalibration, AccuracyAtHalfAPixel)
           c = std::max(c, std::abs(K[cam](a, 2) - Ktrue[cam](a, 2)));
         }
       }
-      const Eigen::Matrix4d lMrTrue = toEigen4x4(s.rMl.inverse()), lMrEst = toEigen4x4(lMr);
+      const Eigen::Matrix4d lMrTrue = toEigen<4, 4>(s.rMl.inverse()), lMrEst = toEigen<4, 4>(lMr);
       focal.push_back(f);
       principal.push_back(c);
       rotation.push_back(vpMath::deg(rotationError(lMrEst.topLeftCorner<3, 3>(), lMrTrue.topLeftCorner<3, 3>())));
