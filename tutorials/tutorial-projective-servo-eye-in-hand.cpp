@@ -59,6 +59,8 @@
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
+#include "tutorial-command-line.h"
+#include "tutorial-projective-figures.h"
 #include "tutorial-projective-servo-viper850-common.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -77,6 +79,10 @@ namespace
   frame is expressed in the Viper's base frame f (z up, x forward).
 */
 struct World {
+  std::string title =
+      "Non-metric visual servoing of ViSP's simulated Viper850 by an uncalibrated stereo rig on its hand";
+  std::string servoed = "the hand"; // what the task moves
+  std::string tool = "hand";        // whose pose error the detailed run prints
   // Zero reference of the projective model (where the acquisition starts): the arm raised, the flange 64 cm in front
   // of the base and 70 cm high, pointing 30 deg down, towards the object.
   std::vector<double> qRefDeg = {0, -90, 180, 0, 30, 0};
@@ -120,6 +126,10 @@ struct World {
   {
   }
 
+  //! The pose of the servoed frame, the hand (the object is static: its motion relative to the object is its motion
+  //! in the base frame), when the joints are at q.
+  vpHomogeneousMatrix servoedPose(const vpViper850 &viper, const vpColVector &q) const { return get_fMe(viper, q); }
+
   unsigned int nbMarkers() const { return static_cast<unsigned int>(fMarkers.size()); }
 
   //! The metric rig when the joints are at q: the same cameras, carried by the flange.
@@ -137,44 +147,27 @@ struct World {
 
 int main(int argc, char **argv)
 {
-  Options options;
+  unsigned int seeds = 20;
+  std::string modelFile;
+  bool display = tutorial::hasDisplay();
+  tutorial::CommandLine cmd;
+  cmd.add("--seeds", seeds, "N", "noise seeds of the study at each noise level", 1)
+      .add("--model", modelFile, "FILE", "model file (.json): acquired and saved once, loaded by later runs")
+      .flag("--no-display", display, false, "no window even if a display is available");
   int exitCode = EXIT_SUCCESS;
-  if (!parseOptions(argc, argv, options, exitCode)) {
+  if (!cmd.parse(argc, argv, exitCode)) {
     return exitCode;
   }
 
   try {
     //! [Robot setup]
     // ViSP's simulated Viper850; its external view (a window of its own) only when there is a display.
-    vpSimulatorViper850 robot(options.display);
+    vpSimulatorViper850 robot(display);
     const World world(robot);
-    setupRobot(robot, options.display);
+    setupRobot(robot, display);
     //! [Robot setup]
-
-    //! [Detailed run]
-    std::cout << "Non-metric visual servoing of ViSP's simulated Viper850 by an uncalibrated stereo rig on its hand\n";
-    const vpColVector qStart = degToRad(world.startDeg), qTarget = degToRad(world.targetDeg);
-    // The object is static: the hand's motion relative to it is its motion in the base frame.
-    const vpHomogeneousMatrix eMed = get_fMe(robot, qStart).inverse() * get_fMe(robot, qTarget);
-    printTask("the hand", eMed, qStart, qTarget);
-
-    std::cout << "\nSeed 1 at 0.5 px: acquisition and calibration\n";
-    vpGaussRand noise(1.0, 0.0, 1);
-    const vpProjectiveRobot model = acquireOrLoad(world, robot, 0.5, noise, options.modelFile);
-
-    LiveView view(world.rRig, options.display);
-    const unsigned int iterations = 30;
-    const ServoRun run = servo(world, robot, model, 0.5, noise, iterations, view.callback());
-    const vpHomogeneousMatrix poseError = get_fMe(robot, run.q.back()).inverse() * get_fMe(robot, qTarget);
-    printDetailedRun(run, "hand", poseError);
-    //! [Detailed run]
-
-    const std::vector<Study> studies = {study(world, robot, 0.5, options.seeds, iterations),
-                                        study(world, robot, 0.1, options.seeds, iterations)};
-    printTable(world, studies);
-    robot.setRobotState(vpRobot::STATE_STOP);
-    view.waitForClick();
-    return allConverged(run, studies) ? EXIT_SUCCESS : EXIT_FAILURE;
+    tutorial::LiveView view(world.rRig.getWidth(), world.rRig.getHeight(), display, 660, 0);
+    return runExperiment(world, robot, seeds, modelFile, view);
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getStringMessage() << std::endl;
     return EXIT_FAILURE;

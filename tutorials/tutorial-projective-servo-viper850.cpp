@@ -58,6 +58,8 @@
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
+#include "tutorial-command-line.h"
+#include "tutorial-projective-figures.h"
 #include "tutorial-projective-servo-viper850-common.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -76,6 +78,9 @@ namespace
   is expressed in the Viper's base frame f (z up, x forward).
 */
 struct World {
+  std::string title = "Non-metric visual servoing of ViSP's simulated Viper850 from a fixed, uncalibrated stereo rig";
+  std::string servoed = "the marker tree"; // what the task moves
+  std::string tool = "tool";               // whose pose error the detailed run prints
   // Zero reference of the projective model (where the acquisition starts): the arm raised, the flange 61 cm in front
   // of the base and 66 cm high, pointing 45 deg down, towards the rig.
   std::vector<double> qRefDeg = {0, -90, 180, 0, 45, 0};
@@ -106,6 +111,12 @@ struct World {
   vpSimulatorStereoRig rig;
 
   explicit World(const vpViper850 &viper) : rig(placeRig(get_fMe(viper, degToRad(qRefDeg)) * eMt)) {}
+
+  //! The pose of the servoed frame, the marker tree, when the joints are at q.
+  vpHomogeneousMatrix servoedPose(const vpViper850 &viper, const vpColVector &q) const
+  {
+    return get_fMe(viper, q) * eMt;
+  }
 
   unsigned int nbMarkers() const { return static_cast<unsigned int>(tMarkers.size()); }
 
@@ -146,45 +157,27 @@ struct World {
 
 int main(int argc, char **argv)
 {
-  Options options;
+  unsigned int seeds = 20;
+  std::string modelFile;
+  bool display = tutorial::hasDisplay();
+  tutorial::CommandLine cmd;
+  cmd.add("--seeds", seeds, "N", "noise seeds of the study at each noise level", 1)
+      .add("--model", modelFile, "FILE", "model file (.json): acquired and saved once, loaded by later runs")
+      .flag("--no-display", display, false, "no window even if a display is available");
   int exitCode = EXIT_SUCCESS;
-  if (!parseOptions(argc, argv, options, exitCode)) {
+  if (!cmd.parse(argc, argv, exitCode)) {
     return exitCode;
   }
 
   try {
     //! [Robot setup]
     // ViSP's simulated Viper850; its external view (a window of its own) only when there is a display.
-    vpSimulatorViper850 robot(options.display);
+    vpSimulatorViper850 robot(display);
     const World world(robot);
-    setupRobot(robot, options.display);
+    setupRobot(robot, display);
     //! [Robot setup]
-
-    //! [Detailed run]
-    std::cout << "Non-metric visual servoing of ViSP's simulated Viper850 from a fixed, uncalibrated stereo rig\n";
-    const vpColVector qStart = degToRad(world.startDeg), qTarget = degToRad(world.targetDeg);
-    const vpHomogeneousMatrix tMtd =
-        (get_fMe(robot, qStart) * world.eMt).inverse() * get_fMe(robot, qTarget) * world.eMt;
-    printTask("the marker tree", tMtd, qStart, qTarget);
-
-    std::cout << "\nSeed 1 at 0.5 px: acquisition and calibration\n";
-    vpGaussRand noise(1.0, 0.0, 1);
-    const vpProjectiveRobot model = acquireOrLoad(world, robot, 0.5, noise, options.modelFile);
-
-    LiveView view(world.rig, options.display);
-    const unsigned int iterations = 30;
-    const ServoRun run = servo(world, robot, model, 0.5, noise, iterations, view.callback());
-    const vpHomogeneousMatrix poseError =
-        (get_fMe(robot, run.q.back()) * world.eMt).inverse() * get_fMe(robot, qTarget) * world.eMt;
-    printDetailedRun(run, "tool", poseError);
-    //! [Detailed run]
-
-    const std::vector<Study> studies = {study(world, robot, 0.5, options.seeds, iterations),
-                                        study(world, robot, 0.1, options.seeds, iterations)};
-    printTable(world, studies);
-    robot.setRobotState(vpRobot::STATE_STOP);
-    view.waitForClick();
-    return allConverged(run, studies) ? EXIT_SUCCESS : EXIT_FAILURE;
+    tutorial::LiveView view(world.rig.getWidth(), world.rig.getHeight(), display, 660, 0);
+    return runExperiment(world, robot, seeds, modelFile, view);
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getStringMessage() << std::endl;
     return EXIT_FAILURE;
