@@ -219,6 +219,31 @@ private:
   std::vector<Option> m_options;
   std::vector<std::string> m_notes;
 };
+//! The options of the servo tutorials.
+struct ServoOptions {
+  unsigned int seeds = 20;     //!< noise seeds of the study
+  std::string modelFile;       //!< model file (.json): acquired and saved once, loaded by later runs
+  std::string output;          //!< where to write data and figures
+  bool display = hasDisplay(); //!< windows, if a display is available
+};
+
+/*!
+  Reads the options of a servo tutorial: --seeds N, --model FILE, --output DIR (only if \e withOutput; the default is
+  \e options.output as given), --no-display. Returns false if the program must stop with \e exitCode (see
+  CommandLine::parse()).
+*/
+inline bool parseServoOptions(int argc, char **argv, ServoOptions &options, int &exitCode, bool withOutput)
+{
+  CommandLine cmd;
+  cmd.add("--seeds", options.seeds, "N", "noise seeds of the study", 1)
+      .add("--model", options.modelFile, "FILE",
+           "model file (arm.json): acquired and saved once, loaded by later runs");
+  if (withOutput) {
+    cmd.add("--output", options.output, "DIR", "where to write the run's data and figures");
+  }
+  cmd.flag("--no-display", options.display, false, "no window even if a display is available");
+  return cmd.parse(argc, argv, exitCode);
+}
 } // namespace tutorial
 
 #endif

@@ -31,6 +31,7 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpIoTools.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpThetaUVector.h>
 
@@ -177,6 +178,35 @@ inline void printTable(const std::vector<Study> &studies, double rangeDeg)
   }
 }
 //! [Table]
+
+/*!
+  The model of a detailed run: loaded from \e modelFile if it exists (acquired by an earlier run: no trial motion
+  now), otherwise acquired by \e acquire and saved to \e modelFile if given. Prints how well it fits the acquisition
+  images and predicts the markers \e trueImages at random joint values within +-\e rangeDeg.
+*/
+inline vpProjectiveRobot loadOrAcquire(const std::string &modelFile, const std::function<vpProjectiveRobot()> &acquire,
+                                       const ImagesAt &trueImages, double rangeDeg)
+{
+  vpProjectiveRobot robot;
+  if (!modelFile.empty() && vpIoTools::checkFilename(modelFile)) {
+    robot.loadModel(modelFile);
+    std::cout << "    model loaded from " << modelFile << "\n";
+  } else {
+    robot = acquire();
+    std::cout << "    epipolar geometry from the " << robot.getStereoRig().getInliers().size()
+              << " marker matches of the acquisition images: RMS residual "
+              << robot.getStereoRig().getEstimationResidual() << " px\n";
+    if (!modelFile.empty()) {
+      robot.saveModel(modelFile);
+      std::cout << "    model saved to " << modelFile << "\n";
+    }
+  }
+  std::cout << "    algebraic generators: RMS error on the acquisition images " << robot.getAlgebraicResidual()
+            << " px; after the bundle adjustment " << robot.getCalibrationResidual() << " px\n";
+  std::cout << "    marker prediction at random q within +-" << rangeDeg
+            << " deg: " << predictionError(robot, trueImages, 1, rangeDeg) << " px RMS\n";
+  return robot;
+}
 
 //! Joint values (rad) as a line of degrees.
 inline std::string degrees(const vpColVector &q)

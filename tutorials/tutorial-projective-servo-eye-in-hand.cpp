@@ -59,18 +59,15 @@
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
-#include "tutorial-command-line.h"
-#include "tutorial-projective-figures.h"
 #include "tutorial-projective-servo-viper850-common.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
+using namespace viper850; // the machinery and program shared with tutorial-projective-servo-viper850.cpp
+
 #if defined(VISP_HAVE_MODULE_GUI) && defined(VISP_HAVE_PTHREAD)
-
-using namespace viper850; // the machinery shared with tutorial-projective-servo-viper850.cpp
-
 namespace
 {
 //! [World]
@@ -97,9 +94,10 @@ struct World {
   // tracked ones. It stands where the rig verges at the zero reference, turned by the rotation rMo. A large object
   // seen from close matters: with one three quarters this size seen from 1 m, the bundle adjustment of the
   // acquisition stopped in a local minimum (1 to 2.5 px RMS) for about one seed in six at 0.5 px.
-  std::vector<vpColVector> oMarkers = {
-      point3(-0.06, 0.18, -0.14), point3(-0.18, 0.00, 0.14),   point3(0.16, -0.04, 0.08), point3(-0.10, 0.16, 0.16),
-      point3(0.14, 0.08, -0.14),  point3(-0.02, -0.06, -0.18), point3(0.00, -0.12, 0.04)};
+  std::vector<vpColVector> oMarkers = {vpColVector({-0.06, 0.18, -0.14}), vpColVector({-0.18, 0.00, 0.14}),
+                                       vpColVector({0.16, -0.04, 0.08}),  vpColVector({-0.10, 0.16, 0.16}),
+                                       vpColVector({0.14, 0.08, -0.14}),  vpColVector({-0.02, -0.06, -0.18}),
+                                       vpColVector({0.00, -0.12, 0.04})};
   vpHomogeneousMatrix rMo = vpHomogeneousMatrix(0.0, 0.0, 0.0, 0.3, 0.2, 0.1);
   std::vector<unsigned int> tracked = {0, 1, 2};
   // Start and target of the servo task (deg): the hand moves by 34 cm and turns by 44 deg relative to the object.
@@ -144,40 +142,10 @@ struct World {
 };
 //! [World]
 } // namespace
+#endif
 
 int main(int argc, char **argv)
 {
-  unsigned int seeds = 20;
-  std::string modelFile;
-  bool display = tutorial::hasDisplay();
-  tutorial::CommandLine cmd;
-  cmd.add("--seeds", seeds, "N", "noise seeds of the study at each noise level", 1)
-      .add("--model", modelFile, "FILE", "model file (.json): acquired and saved once, loaded by later runs")
-      .flag("--no-display", display, false, "no window even if a display is available");
-  int exitCode = EXIT_SUCCESS;
-  if (!cmd.parse(argc, argv, exitCode)) {
-    return exitCode;
-  }
-
-  try {
-    //! [Robot setup]
-    // ViSP's simulated Viper850; its external view (a window of its own) only when there is a display.
-    vpSimulatorViper850 robot(display);
-    const World world(robot);
-    setupRobot(robot, display);
-    //! [Robot setup]
-    tutorial::LiveView view(world.rRig.getWidth(), world.rRig.getHeight(), display, 660, 0);
-    return runExperiment(world, robot, seeds, modelFile, view);
-  } catch (const vpException &e) {
-    std::cerr << "Error: " << e.getStringMessage() << std::endl;
-    return EXIT_FAILURE;
-  }
+  return runTutorial<World>(
+      argc, argv); // the program of the common header on this scene: the rig on the hand, looking at a static object
 }
-
-#else
-int main()
-{
-  std::cout << "This tutorial needs ViSP's threaded robot simulator (ViSP's gui module and pthread)" << std::endl;
-  return EXIT_SUCCESS;
-}
-#endif

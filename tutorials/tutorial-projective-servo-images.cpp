@@ -196,18 +196,13 @@ ServoRun servo(Session &session, const vpProjectiveRobot &robot, TrackingAccurac
 
 int main(int argc, char **argv)
 {
-  unsigned int seeds = 20;
-  std::string output, modelFile;
-  bool display = hasDisplay();
-  CommandLine cmd;
-  cmd.add("--seeds", seeds, "N", "number of seeds (about 1 s each)", 1)
-      .add("--model", modelFile, "FILE", "model file (.json): loaded if it exists, else acquired by seed 1 and saved")
-      .add("--output", output, "DIR", "writes the final images of seed 1 with the feature trajectories")
-      .flag("--no-display", display, false, "no window even if a display is available");
+  ServoOptions options; // --output: seed 1's final images; no --output: none
   int exitCode = EXIT_SUCCESS;
-  if (!cmd.parse(argc, argv, exitCode)) {
+  if (!parseServoOptions(argc, argv, options, exitCode, true)) {
     return exitCode;
   }
+  const unsigned int seeds = options.seeds;
+  const std::string &modelFile = options.modelFile, &output = options.output;
 
   try {
     const PaperWorld world;
@@ -230,7 +225,7 @@ int main(int argc, char **argv)
     std::unique_ptr<Viewer> viewer;
     for (unsigned int seed = 1; seed <= seeds; ++seed) {
       std::unique_ptr<Session> session(new Session(world, model, seed));
-      if (seed == 1 && display) {
+      if (seed == 1 && options.display) {
         viewer.reset(new Viewer(session->Ileft, session->Iright));
         session->viewer = viewer.get();
       }

@@ -57,6 +57,7 @@
 #include <visp3/projective/vpServoProjective.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
+#include "tutorial-command-line.h"
 #include "tutorial-projective-common.h"
 #include "tutorial-projective-figures.h"
 #include "tutorial-projective-report.h"
@@ -232,25 +233,9 @@ int runExperiment(const World &world, vpSimulatorViper850 &robot, unsigned int s
 
   std::cout << "\nSeed 1 at 0.5 px: acquisition and calibration\n";
   vpGaussRand noise(1.0, 0.0, 1);
-  vpProjectiveRobot model;
-  if (!modelFile.empty() && vpIoTools::checkFilename(modelFile)) {
-    model.loadModel(modelFile); // acquired by an earlier run: no trial motion now
-    std::cout << "    model loaded from " << modelFile << "\n";
-  } else {
-    model = acquire(world, robot, 0.5, noise, true);
-    std::cout << "    epipolar geometry from the " << model.getStereoRig().getInliers().size()
-              << " marker matches of the acquisition images: RMS residual "
-              << model.getStereoRig().getEstimationResidual() << " px\n";
-    if (!modelFile.empty()) {
-      model.saveModel(modelFile);
-      std::cout << "    model saved to " << modelFile << "\n";
-    }
-  }
-  std::cout << "    algebraic generators: RMS error on the acquisition images " << model.getAlgebraicResidual()
-            << " px; after the bundle adjustment " << model.getCalibrationResidual() << " px\n";
-  const tutorial::ImagesAt trueAll = imagesAt(world, robot, allMarkers(world), 0.0, nullptr, degToRad(world.qRefDeg));
-  std::cout << "    marker prediction at random q within +-" << world.predictionRangeDeg
-            << " deg: " << tutorial::predictionError(model, trueAll, 1, world.predictionRangeDeg) << " px RMS\n";
+  const vpProjectiveRobot model = tutorial::loadOrAcquire(
+      modelFile, [&] { return acquire(world, robot, 0.5, noise, true); },
+      imagesAt(world, robot, allMarkers(world), 0.0, nullptr, degToRad(world.qRefDeg)), world.predictionRangeDeg);
 
   const unsigned int iterations = 30;
   const tutorial::ServoRun run = servo(world, robot, model, 0.5, noise, iterations, view.callback());
@@ -267,7 +252,47 @@ int runExperiment(const World &world, vpSimulatorViper850 &robot, unsigned int s
   return converged ? EXIT_SUCCESS : EXIT_FAILURE;
 }
 //! [Experiment]
+
+/*!
+  The program of both tutorials: reads the options (--seeds N, --model FILE, --no-display), sets ViSP's simulated
+  Viper850 up (its external view, a window of its own, only with a display), builds the scene World around it, opens
+  the camera windows if there is a display, and runs the experiment. Returns the exit code.
+*/
+template <class World> int runTutorial(int argc, char **argv)
+{
+  tutorial::ServoOptions options;
+  int exitCode = EXIT_SUCCESS;
+  if (!tutorial::parseServoOptions(argc, argv, options, exitCode, false)) {
+    return exitCode;
+  }
+  try {
+    //! [Robot setup]
+    vpSimulatorViper850 robot(options.display);
+    const World world(robot);
+    setupRobot(robot, options.display);
+    //! [Robot setup]
+    const vpSimulatorStereoRig rig = world.rigAt(robot, degToRad(world.qRefDeg));
+    tutorial::LiveView view(rig.getWidth(), rig.getHeight(), options.display, 660, 0);
+    return runExperiment(world, robot, options.seeds, options.modelFile, view);
+  } catch (const vpException &e) {
+    std::cerr << "Error: " << e.getStringMessage() << std::endl;
+    return EXIT_FAILURE;
+  }
+}
 } // namespace viper850
 
+#else
+namespace viper850
+{
+//! Where ViSP has no threaded robot simulator: no scene.
+struct World {
+};
+//! Where ViSP has no threaded robot simulator: says so and succeeds.
+template <class Scene> int runTutorial(int, char **)
+{
+  std::cout << "This tutorial needs ViSP's threaded robot simulator (ViSP's gui module and pthread)" << std::endl;
+  return EXIT_SUCCESS;
+}
+} // namespace viper850
 #endif
 #endif

@@ -41,16 +41,6 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace viper850
 {
-//! A 3D point (3x1).
-inline vpColVector point3(double x, double y, double z)
-{
-  vpColVector p(3);
-  p[0] = x;
-  p[1] = y;
-  p[2] = z;
-  return p;
-}
-
 //! End-effector pose in the robot's base frame from ViSP's kinematic model of the Viper850.
 inline vpHomogeneousMatrix get_fMe(const vpViper850 &viper, const vpColVector &q)
 {

@@ -58,18 +58,15 @@
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
-#include "tutorial-command-line.h"
-#include "tutorial-projective-figures.h"
 #include "tutorial-projective-servo-viper850-common.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
+using namespace viper850; // the machinery and program shared with tutorial-projective-servo-eye-in-hand.cpp
+
 #if defined(VISP_HAVE_MODULE_GUI) && defined(VISP_HAVE_PTHREAD)
-
-using namespace viper850; // the machinery shared with tutorial-projective-servo-eye-in-hand.cpp
-
 namespace
 {
 //! [World]
@@ -88,10 +85,10 @@ struct World {
   // no 4 of them coplanar (each is at least 8.5 mm away from the plane through any other 3); markers 0-2, the
   // largest triangle (35 cm^2), are the tracked ones.
   vpHomogeneousMatrix eMt = vpHomogeneousMatrix(0.0, 0.0, 0.08, 0.0, 0.0, 0.0);
-  std::vector<vpColVector> tMarkers = {point3(-0.015, 0.045, -0.035), point3(-0.045, 0.000, 0.035),
-                                       point3(0.040, -0.010, 0.020),  point3(-0.025, 0.040, 0.040),
-                                       point3(0.035, 0.020, -0.035),  point3(-0.005, -0.015, -0.045),
-                                       point3(0.000, -0.030, 0.010)};
+  std::vector<vpColVector> tMarkers = {vpColVector({-0.015, 0.045, -0.035}), vpColVector({-0.045, 0.000, 0.035}),
+                                       vpColVector({0.040, -0.010, 0.020}),  vpColVector({-0.025, 0.040, 0.040}),
+                                       vpColVector({0.035, 0.020, -0.035}),  vpColVector({-0.005, -0.015, -0.045}),
+                                       vpColVector({0.000, -0.030, 0.010})};
   std::vector<unsigned int> tracked = {0, 1, 2};
   double predictionRangeDeg = 15.0; // model check at random q within +-15 deg of the zero reference (in view)
   // Start and target of the servo task (deg): the marker tree translates by 37 cm and rotates by 49 deg. The pair
@@ -154,40 +151,10 @@ struct World {
 };
 //! [World]
 } // namespace
+#endif
 
 int main(int argc, char **argv)
 {
-  unsigned int seeds = 20;
-  std::string modelFile;
-  bool display = tutorial::hasDisplay();
-  tutorial::CommandLine cmd;
-  cmd.add("--seeds", seeds, "N", "noise seeds of the study at each noise level", 1)
-      .add("--model", modelFile, "FILE", "model file (.json): acquired and saved once, loaded by later runs")
-      .flag("--no-display", display, false, "no window even if a display is available");
-  int exitCode = EXIT_SUCCESS;
-  if (!cmd.parse(argc, argv, exitCode)) {
-    return exitCode;
-  }
-
-  try {
-    //! [Robot setup]
-    // ViSP's simulated Viper850; its external view (a window of its own) only when there is a display.
-    vpSimulatorViper850 robot(display);
-    const World world(robot);
-    setupRobot(robot, display);
-    //! [Robot setup]
-    tutorial::LiveView view(world.rig.getWidth(), world.rig.getHeight(), display, 660, 0);
-    return runExperiment(world, robot, seeds, modelFile, view);
-  } catch (const vpException &e) {
-    std::cerr << "Error: " << e.getStringMessage() << std::endl;
-    return EXIT_FAILURE;
-  }
+  return runTutorial<World>(
+      argc, argv); // the program of the common header on this scene: the marker tree on the flange, seen by a fixed rig
 }
-
-#else
-int main()
-{
-  std::cout << "This tutorial needs ViSP's threaded robot simulator (ViSP's gui module and pthread)" << std::endl;
-  return EXIT_SUCCESS;
-}
-#endif

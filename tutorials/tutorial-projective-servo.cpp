@@ -159,22 +159,16 @@ tutorial::Study study(const tutorial::PaperWorld &world, double sigma, const std
 
 int main(int argc, char **argv)
 {
-  unsigned int seeds = 20;
-  std::string output = ".", modelFile;
-  bool display = tutorial::hasDisplay();
-  tutorial::CommandLine cmd;
-  cmd.add("--seeds", seeds, "N", "noise seeds of the study at each noise level", 1)
-      .add("--output", output, "DIR", "directory of the CSV data and PNG figures")
-      .add("--model", modelFile, "FILE", "model file (.json): acquired and saved once, loaded by later runs")
-      .flag("--no-display", display, false, "no window even if a display is available");
+  tutorial::ServoOptions options;
+  options.output = ".";
   int exitCode = EXIT_SUCCESS;
-  if (!cmd.parse(argc, argv, exitCode)) {
+  if (!tutorial::parseServoOptions(argc, argv, options, exitCode, true)) {
     return exitCode;
   }
 
   try {
     const tutorial::PaperWorld world;
-    vpIoTools::makeDirectory(output);
+    vpIoTools::makeDirectory(options.output);
 
     //! [Detailed run]
     std::cout << "Non-metric visual servoing of a PUMA-like arm from an uncalibrated stereo rig (Ruf & Horaud)\n";
@@ -184,38 +178,24 @@ int main(int argc, char **argv)
 
     std::cout << "\nSeed 1 at 0.5 px: acquisition and calibration\n";
     vpGaussRand noise(1.0, 0.0, 1);
-    vpProjectiveRobot robot;
-    if (!modelFile.empty() && vpIoTools::checkFilename(modelFile)) {
-      robot.loadModel(modelFile); // acquired by an earlier run: no trial motion now
-      std::cout << "    model loaded from " << modelFile << "\n";
-    } else {
-      robot = acquire(world, 0.5, noise, true);
-      std::cout << "    epipolar geometry from the " << robot.getStereoRig().getInliers().size()
-                << " marker matches of the acquisition images: RMS residual "
-                << robot.getStereoRig().getEstimationResidual() << " px\n";
-      if (!modelFile.empty()) {
-        robot.saveModel(modelFile);
-        std::cout << "    model saved to " << modelFile << "\n";
-      }
-    }
-    std::cout << "    algebraic generators: RMS error on the acquisition images " << robot.getAlgebraicResidual()
-              << " px; after the bundle adjustment " << robot.getCalibrationResidual() << " px\n";
-    std::cout << "    marker prediction at random q within +-30 deg: "
-              << tutorial::predictionError(robot, tutorial::trueMarkerImages(world.rig, world.arm), 1) << " px RMS\n";
+    const vpProjectiveRobot robot = tutorial::loadOrAcquire(
+        options.modelFile, [&] { return acquire(world, 0.5, noise, true); },
+        tutorial::trueMarkerImages(world.rig, world.arm), 30.0);
 
     const tutorial::ServoRun run = servo(world, robot, 0.5, noise, 40);
     tutorial::printDetailedRun(run, "tool", world.arm.get_wMt(run.q.back()).inverse() * world.arm.get_wMt(qTarget), 26);
-    tutorial::writeFigures(run, output);
+    tutorial::writeFigures(run, options.output);
     //! [Detailed run]
 
     //! [Monte Carlo table]
-    const std::vector<tutorial::Study> studies = {study(world, 0.5, {0.04, 0.15, 0.23, 0.31, 0.10, 1.5}, seeds),
-                                                  study(world, 0.1, {0.01, 0.04, 0.09, 0.19, 0.21, 0.35}, seeds)};
+    const std::vector<tutorial::Study> studies = {
+        study(world, 0.5, {0.04, 0.15, 0.23, 0.31, 0.10, 1.5}, options.seeds),
+        study(world, 0.1, {0.01, 0.04, 0.09, 0.19, 0.21, 0.35}, options.seeds)};
     tutorial::printTable(studies, 30.0);
     //! [Monte Carlo table]
 
     // With a display, seed 1's run again, live: both images with the feature trajectories, and the image error.
-    tutorial::LiveView view(world.rig.getWidth(), world.rig.getHeight(), display, 0, 0, true);
+    tutorial::LiveView view(world.rig.getWidth(), world.rig.getHeight(), options.display, 0, 0, true);
     for (size_t it = 1; view.isOpen() && it <= run.q.size(); ++it) {
       view.show(run, it);
       vpTime::wait(100);
