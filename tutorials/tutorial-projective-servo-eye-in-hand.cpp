@@ -65,10 +65,9 @@
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
+using namespace viper850; // the machinery and program shared with tutorial-projective-servo-viper850.cpp
+
 #if defined(VISP_HAVE_MODULE_GUI) && defined(VISP_HAVE_PTHREAD)
-
-using namespace viper850; // the machinery shared with tutorial-projective-servo-viper850.cpp
-
 namespace
 {
 //! [World]
@@ -77,6 +76,10 @@ namespace
   frame is expressed in the Viper's base frame f (z up, x forward).
 */
 struct World {
+  std::string title =
+      "Non-metric visual servoing of ViSP's simulated Viper850 by an uncalibrated stereo rig on its hand";
+  std::string servoed = "the hand"; // what the task moves
+  std::string tool = "hand";        // whose pose error the detailed run prints
   // Zero reference of the projective model (where the acquisition starts): the arm raised, the flange 64 cm in front
   // of the base and 70 cm high, pointing 30 deg down, towards the object.
   std::vector<double> qRefDeg = {0, -90, 180, 0, 30, 0};
@@ -91,9 +94,10 @@ struct World {
   // tracked ones. It stands where the rig verges at the zero reference, turned by the rotation rMo. A large object
   // seen from close matters: with one three quarters this size seen from 1 m, the bundle adjustment of the
   // acquisition stopped in a local minimum (1 to 2.5 px RMS) for about one seed in six at 0.5 px.
-  std::vector<vpColVector> oMarkers = {
-      point3(-0.06, 0.18, -0.14), point3(-0.18, 0.00, 0.14),   point3(0.16, -0.04, 0.08), point3(-0.10, 0.16, 0.16),
-      point3(0.14, 0.08, -0.14),  point3(-0.02, -0.06, -0.18), point3(0.00, -0.12, 0.04)};
+  std::vector<vpColVector> oMarkers = {vpColVector({-0.06, 0.18, -0.14}), vpColVector({-0.18, 0.00, 0.14}),
+                                       vpColVector({0.16, -0.04, 0.08}),  vpColVector({-0.10, 0.16, 0.16}),
+                                       vpColVector({0.14, 0.08, -0.14}),  vpColVector({-0.02, -0.06, -0.18}),
+                                       vpColVector({0.00, -0.12, 0.04})};
   vpHomogeneousMatrix rMo = vpHomogeneousMatrix(0.0, 0.0, 0.0, 0.3, 0.2, 0.1);
   std::vector<unsigned int> tracked = {0, 1, 2};
   // Start and target of the servo task (deg): the hand moves by 34 cm and turns by 44 deg relative to the object.
@@ -120,6 +124,10 @@ struct World {
   {
   }
 
+  //! The pose of the servoed frame, the hand (the object is static: its motion relative to the object is its motion
+  //! in the base frame), when the joints are at q.
+  vpHomogeneousMatrix servoedPose(const vpViper850 &viper, const vpColVector &q) const { return get_fMe(viper, q); }
+
   unsigned int nbMarkers() const { return static_cast<unsigned int>(fMarkers.size()); }
 
   //! The metric rig when the joints are at q: the same cameras, carried by the flange.
@@ -134,57 +142,10 @@ struct World {
 };
 //! [World]
 } // namespace
+#endif
 
 int main(int argc, char **argv)
 {
-  Options options;
-  int exitCode = EXIT_SUCCESS;
-  if (!parseOptions(argc, argv, options, exitCode)) {
-    return exitCode;
-  }
-
-  try {
-    //! [Robot setup]
-    // ViSP's simulated Viper850; its external view (a window of its own) only when there is a display.
-    vpSimulatorViper850 robot(options.display);
-    const World world(robot);
-    setupRobot(robot, options.display);
-    //! [Robot setup]
-
-    //! [Detailed run]
-    std::cout << "Non-metric visual servoing of ViSP's simulated Viper850 by an uncalibrated stereo rig on its hand\n";
-    const vpColVector qStart = degToRad(world.startDeg), qTarget = degToRad(world.targetDeg);
-    // The object is static: the hand's motion relative to it is its motion in the base frame.
-    const vpHomogeneousMatrix eMed = get_fMe(robot, qStart).inverse() * get_fMe(robot, qTarget);
-    printTask("the hand", eMed, qStart, qTarget);
-
-    std::cout << "\nSeed 1 at 0.5 px: acquisition and calibration\n";
-    vpGaussRand noise(1.0, 0.0, 1);
-    const vpProjectiveRobot model = acquireOrLoad(world, robot, 0.5, noise, options.modelFile);
-
-    LiveView view(world.rRig, options.display);
-    const unsigned int iterations = 30;
-    const ServoRun run = servo(world, robot, model, 0.5, noise, iterations, view.callback());
-    const vpHomogeneousMatrix poseError = get_fMe(robot, run.q.back()).inverse() * get_fMe(robot, qTarget);
-    printDetailedRun(run, "hand", poseError);
-    //! [Detailed run]
-
-    const std::vector<Study> studies = {study(world, robot, 0.5, options.seeds, iterations),
-                                        study(world, robot, 0.1, options.seeds, iterations)};
-    printTable(world, studies);
-    robot.setRobotState(vpRobot::STATE_STOP);
-    view.waitForClick();
-    return allConverged(run, studies) ? EXIT_SUCCESS : EXIT_FAILURE;
-  } catch (const vpException &e) {
-    std::cerr << "Error: " << e.getStringMessage() << std::endl;
-    return EXIT_FAILURE;
-  }
+  return runTutorial<World>(
+      argc, argv); // the program of the common header on this scene: the rig on the hand, looking at a static object
 }
-
-#else
-int main()
-{
-  std::cout << "This tutorial needs ViSP's threaded robot simulator (ViSP's gui module and pthread)" << std::endl;
-  return EXIT_SUCCESS;
-}
-#endif

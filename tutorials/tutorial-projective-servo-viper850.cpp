@@ -64,10 +64,9 @@
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
+using namespace viper850; // the machinery and program shared with tutorial-projective-servo-eye-in-hand.cpp
+
 #if defined(VISP_HAVE_MODULE_GUI) && defined(VISP_HAVE_PTHREAD)
-
-using namespace viper850; // the machinery shared with tutorial-projective-servo-eye-in-hand.cpp
-
 namespace
 {
 //! [World]
@@ -76,6 +75,9 @@ namespace
   is expressed in the Viper's base frame f (z up, x forward).
 */
 struct World {
+  std::string title = "Non-metric visual servoing of ViSP's simulated Viper850 from a fixed, uncalibrated stereo rig";
+  std::string servoed = "the marker tree"; // what the task moves
+  std::string tool = "tool";               // whose pose error the detailed run prints
   // Zero reference of the projective model (where the acquisition starts): the arm raised, the flange 61 cm in front
   // of the base and 66 cm high, pointing 45 deg down, towards the rig.
   std::vector<double> qRefDeg = {0, -90, 180, 0, 45, 0};
@@ -83,10 +85,10 @@ struct World {
   // no 4 of them coplanar (each is at least 8.5 mm away from the plane through any other 3); markers 0-2, the
   // largest triangle (35 cm^2), are the tracked ones.
   vpHomogeneousMatrix eMt = vpHomogeneousMatrix(0.0, 0.0, 0.08, 0.0, 0.0, 0.0);
-  std::vector<vpColVector> tMarkers = {point3(-0.015, 0.045, -0.035), point3(-0.045, 0.000, 0.035),
-                                       point3(0.040, -0.010, 0.020),  point3(-0.025, 0.040, 0.040),
-                                       point3(0.035, 0.020, -0.035),  point3(-0.005, -0.015, -0.045),
-                                       point3(0.000, -0.030, 0.010)};
+  std::vector<vpColVector> tMarkers = {vpColVector({-0.015, 0.045, -0.035}), vpColVector({-0.045, 0.000, 0.035}),
+                                       vpColVector({0.040, -0.010, 0.020}),  vpColVector({-0.025, 0.040, 0.040}),
+                                       vpColVector({0.035, 0.020, -0.035}),  vpColVector({-0.005, -0.015, -0.045}),
+                                       vpColVector({0.000, -0.030, 0.010})};
   std::vector<unsigned int> tracked = {0, 1, 2};
   double predictionRangeDeg = 15.0; // model check at random q within +-15 deg of the zero reference (in view)
   // Start and target of the servo task (deg): the marker tree translates by 37 cm and rotates by 49 deg. The pair
@@ -106,6 +108,12 @@ struct World {
   vpSimulatorStereoRig rig;
 
   explicit World(const vpViper850 &viper) : rig(placeRig(get_fMe(viper, degToRad(qRefDeg)) * eMt)) {}
+
+  //! The pose of the servoed frame, the marker tree, when the joints are at q.
+  vpHomogeneousMatrix servoedPose(const vpViper850 &viper, const vpColVector &q) const
+  {
+    return get_fMe(viper, q) * eMt;
+  }
 
   unsigned int nbMarkers() const { return static_cast<unsigned int>(tMarkers.size()); }
 
@@ -143,58 +151,10 @@ struct World {
 };
 //! [World]
 } // namespace
+#endif
 
 int main(int argc, char **argv)
 {
-  Options options;
-  int exitCode = EXIT_SUCCESS;
-  if (!parseOptions(argc, argv, options, exitCode)) {
-    return exitCode;
-  }
-
-  try {
-    //! [Robot setup]
-    // ViSP's simulated Viper850; its external view (a window of its own) only when there is a display.
-    vpSimulatorViper850 robot(options.display);
-    const World world(robot);
-    setupRobot(robot, options.display);
-    //! [Robot setup]
-
-    //! [Detailed run]
-    std::cout << "Non-metric visual servoing of ViSP's simulated Viper850 from a fixed, uncalibrated stereo rig\n";
-    const vpColVector qStart = degToRad(world.startDeg), qTarget = degToRad(world.targetDeg);
-    const vpHomogeneousMatrix tMtd =
-        (get_fMe(robot, qStart) * world.eMt).inverse() * get_fMe(robot, qTarget) * world.eMt;
-    printTask("the marker tree", tMtd, qStart, qTarget);
-
-    std::cout << "\nSeed 1 at 0.5 px: acquisition and calibration\n";
-    vpGaussRand noise(1.0, 0.0, 1);
-    const vpProjectiveRobot model = acquireOrLoad(world, robot, 0.5, noise, options.modelFile);
-
-    LiveView view(world.rig, options.display);
-    const unsigned int iterations = 30;
-    const ServoRun run = servo(world, robot, model, 0.5, noise, iterations, view.callback());
-    const vpHomogeneousMatrix poseError =
-        (get_fMe(robot, run.q.back()) * world.eMt).inverse() * get_fMe(robot, qTarget) * world.eMt;
-    printDetailedRun(run, "tool", poseError);
-    //! [Detailed run]
-
-    const std::vector<Study> studies = {study(world, robot, 0.5, options.seeds, iterations),
-                                        study(world, robot, 0.1, options.seeds, iterations)};
-    printTable(world, studies);
-    robot.setRobotState(vpRobot::STATE_STOP);
-    view.waitForClick();
-    return allConverged(run, studies) ? EXIT_SUCCESS : EXIT_FAILURE;
-  } catch (const vpException &e) {
-    std::cerr << "Error: " << e.getStringMessage() << std::endl;
-    return EXIT_FAILURE;
-  }
+  return runTutorial<World>(
+      argc, argv); // the program of the common header on this scene: the marker tree on the flange, seen by a fixed rig
 }
-
-#else
-int main()
-{
-  std::cout << "This tutorial needs ViSP's threaded robot simulator (ViSP's gui module and pthread)" << std::endl;
-  return EXIT_SUCCESS;
-}
-#endif

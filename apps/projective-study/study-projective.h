@@ -1,0 +1,136 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*!
+  \file study-projective.h
+  \brief The projective servo in the study: its acquisition and its controller (plain, or with vpServoProjective's
+  robustness API).
+*/
+
+#ifndef _study_study_projective_h_
+#define _study_study_projective_h_
+
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpGaussRand.h>
+#include <visp3/core/vpImagePoint.h>
+
+#include <visp3/projective/vpFeatureStereoPoint.h>
+#include <visp3/projective/vpProjectiveRobot.h>
+#include <visp3/projective/vpServoProjective.h>
+
+#include "study-control.h"
+#include "study-world.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+namespace study
+{
+//! [Acquisition]
+//! The main tutorial's acquisition: q = 0, then each joint alone both ways by the paper's trials (halved until in
+//! view); F from the same images with the inlier threshold max(1, 4 sigma); calibrate(). Throws a vpException on
+//! failure.
+vpProjectiveRobot acquire(const World &world, double sigma, vpGaussRand &noise);
+//! [Acquisition]
+
+//! RMS pixel error of the acquired model's prediction of the tracked markers at q (a diagnostic of failures).
+double modelPredictionError(const World &world, const vpProjectiveRobot &robot, const vpColVector &q);
+
+//! [Projective servo]
+/*!
+  The projective servo as in the main tutorial (vpServoProjective, gain 0.5, 15 deg, damping (30, 30)).
+  - Plain: when the tracker loses a point the task is rebuilt on the tracked ones (their rows only), as the
+    baselines do, and nothing else.
+  - Robust: the robustness API of vpServoProjective: the tracker's verdict through setFeatureTracked(), the image
+    window (setImageSize()), outlier rejection against the epipolar geometry and the model's prediction
+    (setOutlierThreshold()), and joint-limit avoidance (setJointLimits()).
+*/
+class ProjectiveServo : public Controller
+{
+public:
+  ProjectiveServo(const vpProjectiveRobot &robot, const std::vector<vpImagePoint> &leftTarget,
+                  const std::vector<vpImagePoint> &rightTarget, const ControlSettings &settings)
+      : m_task(), m_s(leftTarget.size()), m_sStar(leftTarget.size()), m_tracked(leftTarget.size(), true),
+        m_robust(false), m_rejected(leftTarget.size(), false)
+  {
+    m_task.setRobot(robot);
+    m_task.setLambda(settings.lambda);
+    m_task.setMaxJointVelocity(settings.qdotMax);
+    m_task.setDamping(settings.sigmaThreshold, settings.maxDamping);
+    for (size_t k = 0; k < m_s.size(); ++k) {
+      m_sStar[k].buildFrom(leftTarget[k], rightTarget[k]);
+      m_task.addFeature(m_s[k], m_sStar[k]);
+    }
+  }
+  ProjectiveServo(const ProjectiveServo &) = delete;
+  ProjectiveServo &operator=(const ProjectiveServo &) = delete;
+
+  //! Turns the robustness API on.
+  void setRobust(unsigned int width, unsigned int height, double outlierThreshold, const vpColVector &qmin,
+                 const vpColVector &qmax)
+  {
+    m_robust = true;
+    m_task.setImageSize(width, height);
+    m_task.setOutlierThreshold(outlierThreshold);
+    m_task.setJointLimits(qmin, qmax);
+  }
+
+  vpColVector velocity(const vpColVector &q, const std::vector<vpImagePoint> &left,
+                       const std::vector<vpImagePoint> &right, const std::vector<bool> &tracked) override
+  {
+    if (m_robust) {
+      for (unsigned int k = 0; k < m_s.size(); ++k) {
+        m_task.setFeatureTracked(k, tracked[k]);
+      }
+    } else if (tracked != m_tracked) {
+      m_task.clearFeatures();
+      for (size_t k = 0; k < m_s.size(); ++k) {
+        if (tracked[k]) {
+          m_task.addFeature(m_s[k], m_sStar[k]);
+        }
+      }
+      m_tracked = tracked;
+    }
+    for (size_t k = 0; k < m_s.size(); ++k) {
+      if (tracked[k]) {
+        m_s[k].buildFrom(left[k], right[k]);
+      }
+    }
+    const vpColVector qdot = m_task.computeControlLaw(q);
+    if (m_robust) {
+      for (unsigned int k = 0; k < m_s.size(); ++k) {
+        m_rejected[k] = m_task.getFeatureState(k) == vpServoProjective::FEATURE_OUTLIER;
+      }
+      m_stopped += m_task.getStatus() == vpServoProjective::SERVO_STOPPED;
+    }
+    return qdot;
+  }
+  void rejected(std::vector<bool> &flags) const override { flags = m_rejected; }
+  unsigned int getStoppedIterations() const { return m_stopped; }
+
+private:
+  vpServoProjective m_task;
+  std::vector<vpFeatureStereoPoint> m_s, m_sStar; // sized once: the task keeps references
+  std::vector<bool> m_tracked;
+  bool m_robust;
+  std::vector<bool> m_rejected;
+  unsigned int m_stopped = 0;
+};
+//! [Projective servo]
+} // namespace study
+
+#endif

@@ -1,0 +1,882 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*!
+  \file vpStereoDotTracker.cpp
+  \brief vpDot2 markers in both images of a stereo rig: prediction, checks, recovery, initialisation.
+*/
+
+#include <visp3/projective/vpStereoDotTracker.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+#include <visp3/core/vpDisplay.h>
+#include <visp3/core/vpRect.h>
+
+#include <visp3/projective/vpProjectiveException.h>
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+namespace
+{
+const char *const kImageName[2] = {"left", "right"};
+
+//! Radius (px) of a disc of area \e area.
+double radiusOf(double area)
+{
+  return std::sqrt(std::max(0.0, area) / M_PI);
+}
+
+//! A bright connected blob found by detectBlobs().
+struct Candidate {
+  vpImagePoint brightest; // its brightest pixel: where vpDot2 starts
+  vpImagePoint centroid;  // mean of its pixels
+  unsigned int area;      // pixels
+};
+
+/*!
+  The bright blobs of \e I: 8-connected pixels at least halfway between the median grey level (the scene) and the
+  brightest one, 4 pixels to 2 % of the image each, in raster order of their centroids. None if the brightest pixel
+  is not 40 grey levels above the median.
+*/
+std::vector<Candidate> detectBlobs(const vpImage<unsigned char> &I)
+{
+  std::vector<unsigned int> histogram(256, 0);
+  const unsigned int size = I.getSize();
+  for (unsigned int k = 0; k < size; ++k) {
+    ++histogram[I.bitmap[k]];
+  }
+  unsigned int median = 0, cumulated = 0, brightest = 0;
+  for (unsigned int g = 0; g < 256; ++g) {
+    if (cumulated < size / 2) {
+      median = g;
+    }
+    cumulated += histogram[g];
+    if (histogram[g] > 0) {
+      brightest = g;
+    }
+  }
+  std::vector<Candidate> blobs;
+  if (brightest < median + 40) {
+    return blobs;
+  }
+  const unsigned char threshold = static_cast<unsigned char>(median + (brightest - median) / 2);
+  const int width = static_cast<int>(I.getWidth()), height = static_cast<int>(I.getHeight());
+  std::vector<unsigned char> visited(size, 0);
+  std::vector<int> stack;
+  for (int start = 0; start < static_cast<int>(size); ++start) {
+    if (visited[start] || I.bitmap[start] < threshold) {
+      continue;
+    }
+    Candidate c{vpImagePoint(), vpImagePoint(), 0};
+    double su = 0.0, sv = 0.0;
+    unsigned char best = 0;
+    stack.assign(1, start);
+    visited[start] = 1;
+    while (!stack.empty()) {
+      const int p = stack.back();
+      stack.pop_back();
+      const int i = p / width, j = p % width;
+      ++c.area;
+      su += j;
+      sv += i;
+      if (I.bitmap[p] > best) {
+        best = I.bitmap[p];
+        c.brightest.set_ij(i, j);
+      }
+      for (int di = -1; di <= 1; ++di) {
+        for (int dj = -1; dj <= 1; ++dj) {
+          const int ni = i + di, nj = j + dj;
+          if (ni >= 0 && ni < height && nj >= 0 && nj < width) {
+            const int q = ni * width + nj;
+            if (!visited[q] && I.bitmap[q] >= threshold) {
+              visited[q] = 1;
+              stack.push_back(q);
+            }
+          }
+        }
+      }
+    }
+    if (c.area >= 4 && c.area <= size / 50) {
+      c.centroid.set_uv(su / c.area, sv / c.area);
+      blobs.push_back(c);
+    }
+  }
+  std::sort(blobs.begin(), blobs.end(), [](const Candidate &a, const Candidate &b) {
+    return a.centroid.get_v() < b.centroid.get_v() ||
+           (a.centroid.get_v() == b.centroid.get_v() && a.centroid.get_u() < b.centroid.get_u());
+  });
+  return blobs;
+}
+
+std::string pixel(const vpImagePoint &ip)
+{
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(1) << "(" << ip.get_u() << ", " << ip.get_v() << ")";
+  return os.str();
+}
+
+void addFailure(std::string &failure, const std::string &reason)
+{
+  failure += (failure.empty() ? "" : "; ") + reason;
+}
+} // namespace
+
+vpStereoDotTracker::vpStereoDotTracker()
+    : m_markers(), m_robot(nullptr), m_robotMarkers(), m_F(Eigen::Matrix3d::Zero()), m_hasF(false),
+      m_epipolarThreshold(2.0), m_minimumGap(3.0), m_searchRadius(10.0), m_largestMotion(0.0), m_width(0), m_height(0)
+{
+}
+
+void vpStereoDotTracker::setStereoRig(const vpProjectiveStereoRig &rig)
+{
+  if (!rig.isInitialized()) {
+    throw vpProjectiveException(vpProjectiveException::notInitializedError,
+                                "vpStereoDotTracker::setStereoRig(): the rig has no fundamental matrix yet; call its "
+                                "estimate() or setFundamentalMatrix() first.");
+  }
+  m_F = rig.fundamentalMatrix();
+  m_hasF = true;
+}
+
+void vpStereoDotTracker::setRobot(const vpProjectiveRobot &robot, const std::vector<unsigned int> &markers)
+{
+  if (!robot.isCalibrated()) {
+    throw vpProjectiveException(vpProjectiveException::notInitializedError,
+                                "vpStereoDotTracker::setRobot(): the robot has no model; calibrate() it or "
+                                "loadModel() first.");
+  }
+  const unsigned int nbModel = static_cast<unsigned int>(robot.getZeroReferencePoints().size());
+  std::vector<unsigned int> indices = markers;
+  if (indices.empty()) {
+    indices.resize(m_markers.empty() ? nbModel : m_markers.size());
+    std::iota(indices.begin(), indices.end(), 0u);
+  }
+  for (unsigned int index : indices) {
+    if (index >= nbModel) {
+      std::ostringstream os;
+      os << "vpStereoDotTracker::setRobot(): marker " << index << " is not one of the model's " << nbModel
+         << " markers; give indices of its zero-reference markers.";
+      throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
+    }
+  }
+  if (!m_markers.empty() && indices.size() != m_markers.size()) {
+    std::ostringstream os;
+    os << "vpStereoDotTracker::setRobot(): " << indices.size() << " model markers for " << m_markers.size()
+       << " tracked ones; give one model marker per tracked marker.";
+    throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
+  }
+  m_robot = &robot;
+  m_robotMarkers = indices;
+  m_F = robot.getStereoRig().fundamentalMatrix();
+  m_hasF = true;
+  for (size_t k = 0; k < m_markers.size(); ++k) {
+    m_markers[k].index = indices[k];
+    m_markers[k].blob[0].hasOffset = m_markers[k].blob[1].hasOffset = false;
+  }
+}
+
+void vpStereoDotTracker::setEpipolarThreshold(double pixels)
+{
+  if (!std::isfinite(pixels) || pixels <= 0.0) {
+    throw vpProjectiveException(vpProjectiveException::invalidValueError,
+                                "vpStereoDotTracker::setEpipolarThreshold(): give a positive number of pixels.");
+  }
+  m_epipolarThreshold = pixels;
+}
+
+void vpStereoDotTracker::setMinimumGap(double pixels)
+{
+  if (!std::isfinite(pixels) || pixels < 0.0) {
+    throw vpProjectiveException(vpProjectiveException::invalidValueError,
+                                "vpStereoDotTracker::setMinimumGap(): give a non-negative number of pixels.");
+  }
+  m_minimumGap = pixels;
+}
+
+void vpStereoDotTracker::setSearchRadius(double pixels)
+{
+  if (!std::isfinite(pixels) || pixels <= 0.0) {
+    throw vpProjectiveException(vpProjectiveException::invalidValueError,
+                                "vpStereoDotTracker::setSearchRadius(): give a positive number of pixels.");
+  }
+  m_searchRadius = pixels;
+}
+
+double vpStereoDotTracker::epipolarDistance(const vpImagePoint &left, const vpImagePoint &right) const
+{
+  const Eigen::Vector3d m(left.get_u(), left.get_v(), 1.0), mp(right.get_u(), right.get_v(), 1.0);
+  const Eigen::Vector3d l = m_F * m, lp = m_F.transpose() * mp;
+  const double r = std::abs(mp.dot(l));
+  return 0.5 * (r / std::hypot(l(0), l(1)) + r / std::hypot(lp(0), lp(1)));
+}
+
+void vpStereoDotTracker::startMarkers(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
+                                      const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right,
+                                      const std::vector<unsigned int> &indices, const char *method)
+{
+  const std::string where = std::string("vpStereoDotTracker::") + method + "(): ";
+  if (left.empty() || left.size() != right.size()) {
+    std::ostringstream os;
+    os << where << left.size() << " left and " << right.size()
+       << " right points; give one point per marker in each image, at least one.";
+    throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
+  }
+  if (Ileft.getSize() == 0 || Ileft.getWidth() != Iright.getWidth() || Ileft.getHeight() != Iright.getHeight()) {
+    throw vpProjectiveException(vpProjectiveException::dimensionError,
+                                where + "the images are empty or of different sizes; give the rig's two images.");
+  }
+  std::vector<unsigned int> modelIndices = indices;
+  if (m_robot != nullptr && modelIndices.empty()) {
+    modelIndices = m_robotMarkers;
+  }
+  if (m_robot != nullptr && modelIndices.size() != left.size()) {
+    std::ostringstream os;
+    os << where << left.size() << " markers for the " << modelIndices.size()
+       << " model markers of setRobot(); give as many, or call setRobot() again after initialising.";
+    throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
+  }
+  std::vector<Marker> markers(left.size());
+  const vpImage<unsigned char> *I[2] = {&Ileft, &Iright};
+  for (unsigned int c = 0; c < 2; ++c) {
+    for (size_t k = 0; k < markers.size(); ++k) {
+      Blob &b = markers[k].blob[c];
+      const vpImagePoint &ip = c == 0 ? left[k] : right[k];
+      b.dot.setGraphics(false);
+      bool ok = ip.get_i() >= 0 && ip.get_j() >= 0 && ip.get_i() <= I[c]->getHeight() - 1 &&
+                ip.get_j() <= I[c]->getWidth() - 1;
+      if (ok) {
+        try {
+          // vpDot2 takes its grey levels from the pixel under the point; a first track() on the same image adapts
+          // them to the blob's mean level, so that its area does not jump at the next frame.
+          b.dot.initTracking(*I[c], ip);
+          b.dot.track(*I[c]);
+          ok = b.dot.getArea() <= I[c]->getSize() / 50.0; // not the background
+        } catch (const vpException &) {
+          ok = false;
+        }
+      }
+      if (!ok) {
+        std::ostringstream os;
+        os << where << "point " << k << " " << pixel(ip) << " of the " << kImageName[c]
+           << " image is not on a blob; give a point inside each marker's blob.";
+        throw vpProjectiveException(vpProjectiveException::degenerateConfigurationError, os.str());
+      }
+      b.cog = b.dot.getCog();
+      b.area = b.dot.getArea();
+      b.grayMin = b.dot.getGrayLevelMin();
+      b.grayMax = b.dot.getGrayLevelMax();
+      b.found = true;
+    }
+    for (size_t k = 0; k < markers.size(); ++k) {
+      for (size_t l = k + 1; l < markers.size(); ++l) {
+        const Blob &a = markers[k].blob[c], &b = markers[l].blob[c];
+        const double gap = vpImagePoint::distance(a.cog, b.cog) - radiusOf(a.area) - radiusOf(b.area);
+        if (gap < m_minimumGap) {
+          std::ostringstream os;
+          os << where << "markers " << k << " and " << l << " are " << std::fixed << std::setprecision(1) << gap
+             << " px apart in the " << kImageName[c]
+             << " image (the same blob, or touching ones); give points on separate blobs.";
+          throw vpProjectiveException(vpProjectiveException::degenerateConfigurationError, os.str());
+        }
+      }
+    }
+  }
+  for (size_t k = 0; k < markers.size(); ++k) {
+    markers[k].index = modelIndices.empty() ? static_cast<unsigned int>(k) : modelIndices[k];
+    markers[k].state = MARKER_TRACKED;
+    if (m_hasF) {
+      const double d = epipolarDistance(markers[k].blob[0].cog, markers[k].blob[1].cog);
+      if (d > m_epipolarThreshold) {
+        std::ostringstream os;
+        os << where << "marker " << k << " " << pixel(markers[k].blob[0].cog) << ", " << pixel(markers[k].blob[1].cog)
+           << " is " << std::fixed << std::setprecision(1) << d
+           << " px from its epipolar lines; the two points are not images of one marker (check their order).";
+        throw vpProjectiveException(vpProjectiveException::estimationFailedError, os.str());
+      }
+    }
+  }
+  m_markers.swap(markers);
+  if (m_robot != nullptr) {
+    m_robotMarkers = modelIndices;
+  }
+  m_width = Ileft.getWidth();
+  m_height = Ileft.getHeight();
+  m_largestMotion = 0.0;
+}
+
+void vpStereoDotTracker::initTracking(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
+                                      const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right)
+{
+  startMarkers(Ileft, Iright, left, right, std::vector<unsigned int>(), "initTracking");
+}
+
+void vpStereoDotTracker::initTrackingByClick(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
+                                             unsigned int nbMarkers)
+{
+  if (Ileft.display == nullptr || Iright.display == nullptr || nbMarkers == 0) {
+    throw vpProjectiveException(vpProjectiveException::notInitializedError,
+                                "vpStereoDotTracker::initTrackingByClick(): attach a vpDisplay to both images and ask "
+                                "for at least one marker (without a display use initTracking() or "
+                                "initTrackingByDetection()).");
+  }
+  std::vector<vpImagePoint> left(nbMarkers), right(nbMarkers);
+  for (unsigned int k = 0; k < nbMarkers; ++k) {
+    for (unsigned int c = 0; c < 2; ++c) {
+      const vpImage<unsigned char> &I = c == 0 ? Ileft : Iright;
+      std::ostringstream os;
+      os << "Click marker " << k << " in the " << kImageName[c] << " image";
+      vpDisplay::display(I);
+      vpDisplay::displayText(I, 20, 20, os.str(), vpColor::red);
+      for (unsigned int j = 0; j < k; ++j) {
+        vpDisplay::displayCross(I, c == 0 ? left[j] : right[j], 10, vpColor::green, 2);
+      }
+      vpDisplay::flush(I);
+      vpDisplay::getClick(I, c == 0 ? left[k] : right[k]);
+    }
+  }
+  startMarkers(Ileft, Iright, left, right, std::vector<unsigned int>(), "initTrackingByClick");
+}
+
+void vpStereoDotTracker::initTrackingByDetection(const vpImage<unsigned char> &Ileft,
+                                                 const vpImage<unsigned char> &Iright, unsigned int nbMarkers)
+{
+  const std::string where = "vpStereoDotTracker::initTrackingByDetection(): ";
+  if (!m_hasF) {
+    throw vpProjectiveException(vpProjectiveException::notInitializedError,
+                                where + "the blobs are paired by the epipolar geometry: call setStereoRig() or "
+                                        "setRobot() first, or initialise by clicks.");
+  }
+  const std::vector<Candidate> blobs[2] = {detectBlobs(Ileft), detectBlobs(Iright)};
+  for (unsigned int c = 0; c < 2; ++c) {
+    if (blobs[c].size() != nbMarkers || nbMarkers == 0) {
+      std::ostringstream os;
+      os << where << blobs[c].size() << " bright blobs in the " << kImageName[c] << " image, " << nbMarkers
+         << " markers expected; light exactly the markers to track (or initialise by clicks).";
+      throw vpProjectiveException(vpProjectiveException::degenerateConfigurationError, os.str());
+    }
+  }
+  // The pairing of least total epipolar distance (every permutation up to 8 markers, greedy beyond), and the next
+  // best one: too close to it, the pairing is ambiguous.
+  const unsigned int n = nbMarkers;
+  std::vector<std::vector<double>> d(n, std::vector<double>(n));
+  for (unsigned int i = 0; i < n; ++i) {
+    for (unsigned int j = 0; j < n; ++j) {
+      d[i][j] = epipolarDistance(blobs[0][i].centroid, blobs[1][j].centroid);
+    }
+  }
+  std::vector<unsigned int> perm(n), best(n);
+  std::iota(perm.begin(), perm.end(), 0u);
+  double bestCost = std::numeric_limits<double>::max(), secondCost = std::numeric_limits<double>::max();
+  if (n <= 8) {
+    do {
+      double cost = 0.0;
+      for (unsigned int i = 0; i < n; ++i) {
+        cost += d[i][perm[i]];
+      }
+      if (cost < bestCost) {
+        secondCost = bestCost;
+        bestCost = cost;
+        best = perm;
+      } else if (cost < secondCost) {
+        secondCost = cost;
+      }
+    } while (std::next_permutation(perm.begin(), perm.end()));
+  } else {
+    std::vector<bool> used(n, false);
+    for (unsigned int i = 0; i < n; ++i) {
+      unsigned int jBest = 0;
+      double dBest = std::numeric_limits<double>::max();
+      for (unsigned int j = 0; j < n; ++j) {
+        if (!used[j] && d[i][j] < dBest) {
+          dBest = d[i][j];
+          jBest = j;
+        }
+      }
+      used[jBest] = true;
+      best[i] = jBest;
+    }
+  }
+  if (n > 1 && n <= 8 && secondCost - bestCost <= m_epipolarThreshold) {
+    throw vpProjectiveException(vpProjectiveException::degenerateConfigurationError,
+                                where + "two markers lie on nearly the same epipolar line, so that their left-right "
+                                        "pairing is ambiguous; move them, or initialise by clicks or with the model.");
+  }
+  std::vector<vpImagePoint> left(n), right(n);
+  for (unsigned int i = 0; i < n; ++i) {
+    left[i] = blobs[0][i].brightest;
+    right[i] = blobs[1][best[i]].brightest;
+  }
+  startMarkers(Ileft, Iright, left, right, std::vector<unsigned int>(), "initTrackingByDetection");
+}
+
+void vpStereoDotTracker::initTrackingByDetection(const vpImage<unsigned char> &Ileft,
+                                                 const vpImage<unsigned char> &Iright, const vpColVector &q)
+{
+  const std::string where = "vpStereoDotTracker::initTrackingByDetection(): ";
+  if (m_robot == nullptr) {
+    throw vpProjectiveException(vpProjectiveException::notInitializedError,
+                                where + "the markers are found where the model predicts them: call setRobot() first.");
+  }
+  checkJoints(q, "initTrackingByDetection");
+  const std::vector<Candidate> blobs[2] = {detectBlobs(Ileft), detectBlobs(Iright)};
+  const size_t n = m_robotMarkers.size();
+  std::vector<vpImagePoint> points[2] = {std::vector<vpImagePoint>(n), std::vector<vpImagePoint>(n)};
+  for (unsigned int c = 0; c < 2; ++c) {
+    std::vector<vpImagePoint> predicted(n);
+    for (size_t k = 0; k < n; ++k) {
+      vpImagePoint l, r;
+      m_robot->projectMarker(m_robotMarkers[k], q, l, r);
+      predicted[k] = c == 0 ? l : r;
+    }
+    // Greedy assignment: the closest (marker, blob) pair first, each blob used once.
+    std::vector<std::pair<double, std::pair<size_t, size_t>>> pairs;
+    for (size_t k = 0; k < n; ++k) {
+      for (size_t b = 0; b < blobs[c].size(); ++b) {
+        pairs.push_back(
+            std::make_pair(vpImagePoint::distance(predicted[k], blobs[c][b].centroid), std::make_pair(k, b)));
+      }
+    }
+    std::sort(pairs.begin(), pairs.end());
+    std::vector<bool> markerDone(n, false), blobUsed(blobs[c].size(), false);
+    for (const auto &p : pairs) {
+      const size_t k = p.second.first, b = p.second.second;
+      if (p.first <= m_searchRadius && !markerDone[k] && !blobUsed[b]) {
+        markerDone[k] = blobUsed[b] = true;
+        points[c][k] = blobs[c][b].brightest;
+      }
+    }
+    for (size_t k = 0; k < n; ++k) {
+      if (!markerDone[k]) {
+        std::ostringstream os;
+        os << where << "model marker " << m_robotMarkers[k] << " has no bright blob within " << m_searchRadius
+           << " px of its predicted image " << pixel(predicted[k]) << " in the " << kImageName[c]
+           << " image; check that it is lit and in view, or raise setSearchRadius().";
+        throw vpProjectiveException(vpProjectiveException::degenerateConfigurationError, os.str());
+      }
+    }
+  }
+  startMarkers(Ileft, Iright, points[0], points[1], m_robotMarkers, "initTrackingByDetection");
+}
+
+void vpStereoDotTracker::keepMarkers(const std::vector<unsigned int> &which)
+{
+  if (which.empty()) {
+    throw vpProjectiveException(vpProjectiveException::dimensionError,
+                                "vpStereoDotTracker::keepMarkers(): keep at least one marker.");
+  }
+  for (unsigned int k : which) {
+    checkMarker(k, "keepMarkers");
+  }
+  std::vector<Marker> kept;
+  for (unsigned int k : which) {
+    kept.push_back(m_markers[k]);
+  }
+  m_markers.swap(kept);
+  if (m_robot != nullptr) {
+    m_robotMarkers = getMarkerIndices();
+  }
+}
+
+void vpStereoDotTracker::checkInitialised(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
+                                          const char *method) const
+{
+  if (m_markers.empty()) {
+    throw vpProjectiveException(vpProjectiveException::notInitializedError,
+                                std::string("vpStereoDotTracker::") + method +
+                                    "(): no marker is tracked; call initTracking(), initTrackingByClick() or "
+                                    "initTrackingByDetection() first.");
+  }
+  for (const vpImage<unsigned char> *I : {&Ileft, &Iright}) {
+    if (I->getWidth() != m_width || I->getHeight() != m_height) {
+      std::ostringstream os;
+      os << "vpStereoDotTracker::" << method << "(): a " << I->getWidth() << " x " << I->getHeight()
+         << " image where the markers were initialised in " << m_width << " x " << m_height
+         << " images; give the rig's images.";
+      throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
+    }
+  }
+}
+
+void vpStereoDotTracker::checkMarker(unsigned int k, const char *method) const
+{
+  if (k >= m_markers.size()) {
+    std::ostringstream os;
+    os << "vpStereoDotTracker::" << method << "(): marker " << k << " does not exist; " << m_markers.size()
+       << " markers are tracked.";
+    throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
+  }
+}
+
+void vpStereoDotTracker::checkJoints(const vpColVector &q, const char *method) const
+{
+  if (m_robot == nullptr) {
+    throw vpProjectiveException(vpProjectiveException::notInitializedError,
+                                std::string("vpStereoDotTracker::") + method +
+                                    "(): joint values need a model to predict the markers; call setRobot() first.");
+  }
+  bool finite = true;
+  for (unsigned int i = 0; i < q.size(); ++i) {
+    finite = finite && std::isfinite(q[i]);
+  }
+  if (q.size() != m_robot->getNumberOfJoints() || !finite) {
+    std::ostringstream os;
+    os << "vpStereoDotTracker::" << method << "(): " << q.size() << " joint values for a "
+       << m_robot->getNumberOfJoints()
+       << "-joint model, or a non-finite one; give the encoder readings of every joint.";
+    throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
+  }
+}
+
+bool vpStereoDotTracker::track(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
+                               double motionRatio)
+{
+  checkInitialised(Ileft, Iright, "track");
+  if (!std::isfinite(motionRatio) || motionRatio < 0.0) {
+    throw vpProjectiveException(vpProjectiveException::invalidValueError,
+                                "vpStereoDotTracker::track(): the motion ratio must be non-negative (1: constant "
+                                "image velocity).");
+  }
+  std::vector<vpImagePoint> predicted[2];
+  for (unsigned int c = 0; c < 2; ++c) {
+    for (const Marker &m : m_markers) {
+      predicted[c].push_back(m.blob[c].cog + m.blob[c].motion * motionRatio);
+    }
+  }
+  const vpImage<unsigned char> *I[2] = {&Ileft, &Iright};
+  return trackFrame(I, predicted, nullptr);
+}
+
+bool vpStereoDotTracker::track(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
+                               const vpColVector &q)
+{
+  checkInitialised(Ileft, Iright, "track");
+  checkJoints(q, "track");
+  std::vector<vpImagePoint> model[2], predicted[2];
+  for (const Marker &m : m_markers) {
+    vpImagePoint ip[2];
+    m_robot->projectMarker(m.index, q, ip[0], ip[1]);
+    for (unsigned int c = 0; c < 2; ++c) {
+      model[c].push_back(ip[c]);
+      predicted[c].push_back(m.blob[c].hasOffset ? ip[c] + m.blob[c].offset : ip[c]);
+    }
+  }
+  const vpImage<unsigned char> *I[2] = {&Ileft, &Iright};
+  return trackFrame(I, predicted, model);
+}
+
+bool vpStereoDotTracker::trackFrame(const vpImage<unsigned char> *const I[2],
+                                    const std::vector<vpImagePoint> predicted[2],
+                                    const std::vector<vpImagePoint> *model)
+{
+  const size_t n = m_markers.size();
+  std::vector<Blob> next[2];
+  std::vector<bool> ok[2];
+  std::vector<std::string> failure(n);
+  for (unsigned int c = 0; c < 2; ++c) {
+    const vpImage<unsigned char> &image = *I[c];
+    const std::string in = std::string(" in the ") + kImageName[c] + " image";
+    const std::vector<vpImagePoint> &p = predicted[c];
+    ok[c].assign(n, true);
+    next[c].resize(n);
+    for (size_t k = 0; k < n; ++k) {
+      next[c][k] = m_markers[k].blob[c];
+    }
+    auto fail = [&](size_t k, const std::string &reason) {
+      if (ok[c][k]) {
+        addFailure(failure[k], reason);
+      }
+      ok[c][k] = false;
+    };
+    // Predictions at the border, or closer to each other than the gap: vpDot2 would merge or cut those blobs.
+    for (size_t k = 0; k < n; ++k) {
+      const double margin = radiusOf(next[c][k].area) + m_minimumGap;
+      if (p[k].get_u() < margin || p[k].get_v() < margin || p[k].get_u() > m_width - 1 - margin ||
+          p[k].get_v() > m_height - 1 - margin) {
+        fail(k, "predicted at the image border" + in + " (leaving the image)");
+      }
+    }
+    for (size_t k = 0; k < n; ++k) {
+      for (size_t l = k + 1; l < n; ++l) {
+        const double gap = vpImagePoint::distance(p[k], p[l]) - radiusOf(next[c][k].area) - radiusOf(next[c][l].area);
+        if (gap < m_minimumGap) {
+          std::ostringstream os;
+          os << std::fixed << std::setprecision(1) << "predicted " << gap << " px from marker " << m_markers[l].index
+             << in << " (about to merge)";
+          fail(k, os.str());
+          os.str("");
+          os << "predicted " << gap << " px from marker " << m_markers[k].index << in << " (about to merge)";
+          fail(l, os.str());
+        }
+      }
+    }
+    // Blobs found in the last frame: vpDot2::track() from the prediction.
+    for (size_t k = 0; k < n; ++k) {
+      Blob &b = next[c][k];
+      if (!ok[c][k] || !b.found) {
+        continue;
+      }
+      b.dot.setCog(p[k]);
+      try {
+        b.dot.track(image);
+      } catch (const vpException &e) {
+        fail(k, "lost by vpDot2" + in + " (" + e.getStringMessage() + ")");
+        continue;
+      }
+      const vpRect box = b.dot.getBBox();
+      const double area = b.dot.getArea(), miss = vpImagePoint::distance(b.dot.getCog(), p[k]);
+      std::ostringstream os;
+      os << std::fixed << std::setprecision(1);
+      if (box.getLeft() < 2 || box.getTop() < 2 || box.getRight() > m_width - 3 || box.getBottom() > m_height - 3) {
+        os << "at the image border" << in << " (leaving the image)";
+      } else if (std::abs(area - b.area) > 0.15 * b.area + 1.5 * std::sqrt(b.area)) {
+        os << "blob area jumped from " << b.area << " to " << area << " px" << in
+           << " (merged with another blob, or hidden by it)";
+      } else if (miss > radiusOf(area) + 0.5 * m_minimumGap) {
+        os << "found " << miss << " px from its predicted position" << in << " (the tracker may have jumped to "
+           << "another blob)";
+      }
+      if (!os.str().empty()) {
+        fail(k, os.str());
+      }
+    }
+    // Blobs lost in the last frame: the brightest pixel near the prediction, away from the blobs just found.
+    for (size_t k = 0; k < n; ++k) {
+      Blob &b = next[c][k];
+      if (!ok[c][k] || b.found) {
+        continue;
+      }
+      const int r = static_cast<int>(std::ceil(m_searchRadius));
+      const int i0 = static_cast<int>(std::round(p[k].get_i())), j0 = static_cast<int>(std::round(p[k].get_j()));
+      int bestI = -1, bestJ = -1;
+      unsigned char best = 0;
+      for (int i = std::max(0, i0 - r); i <= std::min(static_cast<int>(m_height) - 1, i0 + r); ++i) {
+        for (int j = std::max(0, j0 - r); j <= std::min(static_cast<int>(m_width) - 1, j0 + r); ++j) {
+          const vpImagePoint ip(i, j);
+          if (image[i][j] <= best || image[i][j] < b.grayMin || vpImagePoint::distance(ip, p[k]) > m_searchRadius) {
+            continue;
+          }
+          bool free = true;
+          for (size_t l = 0; l < n && free; ++l) {
+            free =
+                l == k || !ok[c][l] || !next[c][l].found ||
+                vpImagePoint::distance(ip, next[c][l].dot.getCog()) > radiusOf(next[c][l].dot.getArea()) + m_minimumGap;
+          }
+          if (free) {
+            best = image[i][j];
+            bestI = i;
+            bestJ = j;
+          }
+        }
+      }
+      bool found = bestI >= 0;
+      if (found) {
+        try {
+          b.dot.initTracking(image, vpImagePoint(bestI, bestJ), b.grayMin, b.grayMax);
+        } catch (const vpException &) {
+          found = false;
+        }
+      }
+      std::ostringstream os;
+      os << std::fixed << std::setprecision(1);
+      if (!found) {
+        os << "no blob within " << m_searchRadius << " px of its predicted position" << in;
+      } else {
+        const vpRect box = b.dot.getBBox();
+        const double area = b.dot.getArea(), miss = vpImagePoint::distance(b.dot.getCog(), p[k]);
+        if (box.getLeft() < 2 || box.getTop() < 2 || box.getRight() > m_width - 3 || box.getBottom() > m_height - 3) {
+          os << "found again at the image border" << in;
+        } else if (std::abs(area - b.area) > 0.5 * b.area + 1.5 * std::sqrt(b.area)) {
+          os << "a blob of " << area << " px near its prediction" << in << ", not its " << b.area << " px";
+        } else if (miss > m_searchRadius) {
+          os << "found again " << miss << " px from its predicted position" << in;
+        }
+      }
+      if (!os.str().empty()) {
+        fail(k, os.str());
+      } else {
+        b.found = true; // provisionally, for the checks below
+      }
+    }
+    // Blobs found closer to each other than the gap: merging.
+    for (size_t k = 0; k < n; ++k) {
+      for (size_t l = k + 1; l < n; ++l) {
+        if (!ok[c][k] || !ok[c][l]) {
+          continue;
+        }
+        const Blob &a = next[c][k], &b = next[c][l];
+        const double gap = vpImagePoint::distance(a.dot.getCog(), b.dot.getCog()) - radiusOf(a.dot.getArea()) -
+                           radiusOf(b.dot.getArea());
+        if (gap < m_minimumGap) {
+          std::ostringstream os;
+          os << std::fixed << std::setprecision(1) << "found " << gap << " px from marker " << m_markers[l].index << in
+             << " (about to merge)";
+          fail(k, os.str());
+          os.str("");
+          os << "found " << gap << " px from marker " << m_markers[k].index << in << " (about to merge)";
+          fail(l, os.str());
+        }
+      }
+    }
+  }
+  // Correspondences: the epipolar constraint.
+  if (m_hasF) {
+    for (size_t k = 0; k < n; ++k) {
+      if (ok[0][k] && ok[1][k]) {
+        const double d = epipolarDistance(next[0][k].dot.getCog(), next[1][k].dot.getCog());
+        if (d > m_epipolarThreshold) {
+          std::ostringstream os;
+          os << std::fixed << std::setprecision(1) << "left and right blobs " << d
+             << " px from their epipolar lines (not images of one marker)";
+          addFailure(failure[k], os.str());
+          ok[0][k] = ok[1][k] = false;
+        }
+      }
+    }
+  }
+  // The new state: measurements where found, predictions elsewhere.
+  m_largestMotion = 0.0;
+  for (size_t k = 0; k < n; ++k) {
+    Marker &m = m_markers[k];
+    const bool both = ok[0][k] && ok[1][k];
+    const bool wasFound = m.blob[0].found && m.blob[1].found && m.state != MARKER_LOST;
+    for (unsigned int c = 0; c < 2; ++c) {
+      Blob &b = next[c][k];
+      if (ok[c][k]) {
+        const vpImagePoint cog = b.dot.getCog();
+        if (m.blob[c].found) {
+          b.motion = cog - m.blob[c].cog;
+          m_largestMotion = std::max(m_largestMotion, vpImagePoint::distance(cog, m.blob[c].cog));
+        }
+        b.cog = cog;
+        b.area = b.dot.getArea();
+        b.found = true;
+        if (model != nullptr) {
+          b.offset = cog - model[c][k];
+          b.hasOffset = true;
+        }
+        m.blob[c] = b;
+      } else {
+        m.blob[c].cog = predicted[c][k]; // the dot itself stays as it was at its last detection
+        m.blob[c].found = false;
+      }
+    }
+    m.state = both ? (wasFound ? MARKER_TRACKED : MARKER_REDETECTED) : MARKER_LOST;
+    m.failure = both ? std::string() : failure[k];
+  }
+  return isTracked();
+}
+
+std::vector<unsigned int> vpStereoDotTracker::getMarkerIndices() const
+{
+  std::vector<unsigned int> indices;
+  for (const Marker &m : m_markers) {
+    indices.push_back(m.index);
+  }
+  return indices;
+}
+
+vpStereoDotTracker::vpMarkerState vpStereoDotTracker::getState(unsigned int k) const
+{
+  checkMarker(k, "getState");
+  return m_markers[k].state;
+}
+
+std::string vpStereoDotTracker::getFailure(unsigned int k) const
+{
+  checkMarker(k, "getFailure");
+  return m_markers[k].failure;
+}
+
+std::string vpStereoDotTracker::getReport() const
+{
+  std::ostringstream os;
+  for (const Marker &m : m_markers) {
+    if (m.state == MARKER_LOST) {
+      os << (os.str().empty() ? "" : "\n") << "marker " << m.index << ": " << m.failure;
+    }
+  }
+  return os.str();
+}
+
+bool vpStereoDotTracker::isTracked() const
+{
+  for (const Marker &m : m_markers) {
+    if (m.state == MARKER_LOST) {
+      return false;
+    }
+  }
+  return !m_markers.empty();
+}
+
+vpImagePoint vpStereoDotTracker::getLeftPoint(unsigned int k) const
+{
+  checkMarker(k, "getLeftPoint");
+  return m_markers[k].blob[0].cog;
+}
+
+vpImagePoint vpStereoDotTracker::getRightPoint(unsigned int k) const
+{
+  checkMarker(k, "getRightPoint");
+  return m_markers[k].blob[1].cog;
+}
+
+std::vector<vpImagePoint> vpStereoDotTracker::getLeftPoints() const
+{
+  std::vector<vpImagePoint> points;
+  for (const Marker &m : m_markers) {
+    points.push_back(m.blob[0].cog);
+  }
+  return points;
+}
+
+std::vector<vpImagePoint> vpStereoDotTracker::getRightPoints() const
+{
+  std::vector<vpImagePoint> points;
+  for (const Marker &m : m_markers) {
+    points.push_back(m.blob[1].cog);
+  }
+  return points;
+}
+
+double vpStereoDotTracker::getArea(unsigned int k, unsigned int camera) const
+{
+  checkMarker(k, "getArea");
+  if (camera > 1) {
+    throw vpProjectiveException(vpProjectiveException::dimensionError,
+                                "vpStereoDotTracker::getArea(): camera 0 is the left one, 1 the right one.");
+  }
+  return m_markers[k].blob[camera].area;
+}
+
+void vpStereoDotTracker::display(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
+                                 const vpColor &color) const
+{
+  for (const Marker &m : m_markers) {
+    for (unsigned int c = 0; c < 2; ++c) {
+      const vpImage<unsigned char> &I = c == 0 ? Ileft : Iright;
+      if (m.blob[c].found) {
+        m.blob[c].dot.display(I, color);
+      } else {
+        vpDisplay::displayCross(I, m.blob[c].cog, 12, vpColor::red, 2);
+      }
+    }
+  }
+}

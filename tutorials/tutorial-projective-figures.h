@@ -1,0 +1,233 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*!
+  \file tutorial-projective-figures.h
+  \brief What the servo tutorials show of a run: CSV data and PNG figures like the paper's Fig. 2, 4 and 5 (gnuplot,
+  headless), and a live view of both camera images with the features' trajectories and targets.
+*/
+
+#ifndef _tutorial_projective_figures_h_
+#define _tutorial_projective_figures_h_
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include <visp3/core/vpDisplay.h>
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpMath.h>
+#include <visp3/gui/vpDisplayX.h>
+#include <visp3/gui/vpPlot.h>
+
+#include "tutorial-projective-report.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+namespace tutorial
+{
+//! [Figures]
+//! CSV of seed 1's trajectory, and PNG figures like the paper's Fig. 2, 4 and 5 through gnuplot (headless).
+inline void writeFigures(const ServoRun &run, const std::string &dir)
+{
+  const std::string csv = dir + "/projective-servo-trajectory.csv";
+  std::ofstream out(csv.c_str());
+  out << "iteration";
+  for (unsigned int i = 0; i < run.q.front().size(); ++i) {
+    out << ",q" << i << "_deg";
+  }
+  for (unsigned int k = 0; k < run.left.front().size(); ++k) {
+    out << ",u" << k << ",v" << k << ",up" << k << ",vp" << k;
+  }
+  out << ",error_rms_px";
+  for (unsigned int r = 0; r < run.error.front().size(); ++r) {
+    out << ",abs_e" << r;
+  }
+  out << "\n";
+  for (size_t it = 0; it < run.q.size(); ++it) {
+    out << it;
+    for (unsigned int i = 0; i < run.q[it].size(); ++i) {
+      out << "," << vpMath::deg(run.q[it][i]);
+    }
+    for (size_t k = 0; k < run.left[it].size(); ++k) {
+      out << "," << run.left[it][k].get_u() << "," << run.left[it][k].get_v() << "," << run.right[it][k].get_u() << ","
+          << run.right[it][k].get_v();
+    }
+    out << "," << std::sqrt(run.error[it].sumSquare() / run.error[it].size());
+    for (unsigned int r = 0; r < run.error[it].size(); ++r) {
+      out << "," << std::max(1e-6, std::abs(run.error[it][r]));
+    }
+    out << "\n";
+  }
+  out.close();
+  const std::string targetCsv = dir + "/projective-servo-target.csv";
+  std::ofstream target(targetCsv.c_str());
+  target << "u,v,up,vp,u_initial,v_initial,up_initial,vp_initial\n";
+  for (size_t k = 0; k < run.leftTarget.size(); ++k) {
+    target << run.leftTarget[k].get_u() << "," << run.leftTarget[k].get_v() << "," << run.rightTarget[k].get_u() << ","
+           << run.rightTarget[k].get_v() << "," << run.left.front()[k].get_u() << "," << run.left.front()[k].get_v()
+           << "," << run.right.front()[k].get_u() << "," << run.right.front()[k].get_v() << "\n";
+  }
+  target.close();
+
+  const unsigned int n = run.q.front().size(), nbPoints = static_cast<unsigned int>(run.left.front().size());
+  std::ostringstream gp;
+  gp << "set datafile separator ','\nset key outside\n";
+  // Fig. 2: feature trajectories in both images (v axis downwards, as in the images).
+  gp << "set terminal png size 1300,520\nset output '" << dir << "/projective-servo-fig2-features.png'\n"
+     << "set multiplot layout 1,2\n";
+  for (int camera = 0; camera < 2; ++camera) {
+    gp << "set title '" << (camera == 0 ? "left" : "right") << " image'\nset xlabel 'u [px]'\nset ylabel 'v [px]'\n"
+       << "set xrange [0:640]\nset yrange [480:0]\nset size ratio -1\nplot ";
+    for (unsigned int k = 0; k < nbPoints; ++k) {
+      const unsigned int c = 2 + n + 4 * k + 2 * camera;
+      gp << "'" << csv << "' using " << c << ":" << c + 1 << " with linespoints pt 7 ps 0.5 title 'point " << k
+         << "', ";
+    }
+    gp << "'" << targetCsv << "' using " << 5 + 2 * camera << ":" << 6 + 2 * camera
+       << " with points pt 6 ps 2 lw 2 lc rgb 'black' title 'initial', '" << targetCsv << "' using " << 1 + 2 * camera
+       << ":" << 2 + 2 * camera << " with points pt 2 ps 2 lw 2 lc rgb 'red' title 'target'\n";
+  }
+  gp << "unset multiplot\nset terminal png size 1000,480\nset autoscale\nset yrange [*:*]\nset xrange [*:*]\n"
+     << "set size noratio\n";
+  // Fig. 4: joint trajectories.
+  gp << "set output '" << dir << "/projective-servo-fig4-joints.png'\nset title 'joint-space trajectory'\n"
+     << "set xlabel 'iteration'\nset ylabel 'q [deg]'\nplot ";
+  for (unsigned int i = 0; i < n; ++i) {
+    gp << "'" << csv << "' using 1:" << 2 + i << " with linespoints title 'q" << i << "'" << (i + 1 < n ? ", " : "\n");
+  }
+  // Fig. 5: image error components, log scale.
+  const unsigned int firstError = 2 + n + 4 * nbPoints + 1;
+  gp << "set output '" << dir << "/projective-servo-fig5-error.png'\nset title 'image error |s - s*|'\n"
+     << "set logscale y\nset ylabel '[px]'\nplot ";
+  for (unsigned int r = 0; r < 4 * nbPoints; ++r) {
+    gp << "'" << csv << "' using 1:" << firstError + r << " with lines notitle, ";
+  }
+  gp << "'" << csv << "' using 1:" << firstError - 1 << " with linespoints lw 2 title 'RMS'\n";
+  const std::string script = dir + "/projective-servo-figures.gp";
+  std::ofstream(script.c_str()) << gp.str();
+  if (std::system(("gnuplot '" + script + "' 2>/dev/null").c_str()) == 0) {
+    std::cout << "Figures written: " << dir << "/projective-servo-fig{2-features,4-joints,5-error}.png (data " << csv
+              << ")\n";
+  } else {
+    std::cout << "gnuplot is not available: only the data " << csv << " and the script " << script << " were written\n";
+  }
+}
+//! [Figures]
+
+//! [Live display]
+/*!
+  The two camera images of a servo run, if there is a display: the measured markers (green trajectories), their
+  targets (red crosses) and, if asked, the image error in a vpPlot. Without a display (or without X11) it does
+  nothing.
+*/
+class LiveView
+{
+public:
+  //! Windows for \e width x \e height images at (\e x, \e y) on the screen, if \e display; a plot if \e plot.
+  LiveView(unsigned int width, unsigned int height, bool display, int x = 0, int y = 0, bool plot = false)
+  {
+#if defined(VISP_HAVE_X11)
+    if (display) {
+      m_left.resize(height, width, 255);
+      m_right.resize(height, width, 255);
+      m_displayLeft.reset(new vpDisplayX(m_left, x, y, "Left camera"));
+      m_displayRight.reset(new vpDisplayX(m_right, x + static_cast<int>(width) + 20, y, "Right camera"));
+      if (plot) {
+        m_plot.reset(new vpPlot(1, 300, 500, x, y + static_cast<int>(height) + 60, "Image error RMS (px)"));
+        m_plot->initGraph(0, 1);
+      }
+    }
+#else
+    (void)width;
+    (void)height;
+    (void)display;
+    (void)x;
+    (void)y;
+    (void)plot;
+#endif
+  }
+
+  //! True if the windows are open.
+  bool isOpen() const
+  {
+    return m_displayLeft != nullptr;
+  }
+
+  //! The function for a servo loop to call at every iteration: empty if the windows are not open.
+  std::function<void(const ServoRun &)> callback()
+  {
+    if (!isOpen()) {
+      return std::function<void(const ServoRun &)>();
+    }
+    return [this](const ServoRun &run) { show(run); };
+  }
+
+  //! Draws the run so far (its first \e iterations iterations; all of them by default).
+  void show(const ServoRun &run, size_t iterations = 0)
+  {
+    if (!isOpen() || run.q.empty()) {
+      return;
+    }
+    const size_t n = iterations > 0 ? std::min(iterations, run.q.size()) : run.q.size();
+    vpDisplay::display(m_left);
+    vpDisplay::display(m_right);
+    for (size_t k = 0; k < run.leftTarget.size(); ++k) {
+      vpDisplay::displayCross(m_left, run.leftTarget[k], 12, vpColor::red, 2);
+      vpDisplay::displayCross(m_right, run.rightTarget[k], 12, vpColor::red, 2);
+      for (size_t it = 0; it < n; ++it) {
+        vpDisplay::displayPoint(m_left, run.left[it][k], vpColor::green, 2);
+        vpDisplay::displayPoint(m_right, run.right[it][k], vpColor::green, 2);
+      }
+    }
+    const double rms = std::sqrt(run.error[n - 1].sumSquare() / run.error[n - 1].size());
+    std::ostringstream os;
+    os << "iteration " << n - 1 << ", image error " << std::fixed << std::setprecision(2) << rms << " px RMS";
+    vpDisplay::displayText(m_left, 20, 20, os.str(), vpColor::blue);
+    vpDisplay::flush(m_left);
+    vpDisplay::flush(m_right);
+    if (m_plot) {
+      m_plot->plot(0, 0, static_cast<double>(n - 1), rms);
+    }
+  }
+
+  //! If the windows are open, waits for a click in the left one.
+  void waitForClick()
+  {
+    if (isOpen()) {
+      std::cout << "Click in the left image to quit" << std::endl;
+      vpDisplay::getClick(m_left);
+    }
+  }
+
+private:
+  vpImage<unsigned char> m_left, m_right;
+#if defined(VISP_HAVE_X11)
+  std::unique_ptr<vpDisplayX> m_displayLeft, m_displayRight;
+#else
+  std::unique_ptr<vpDisplay> m_displayLeft;
+#endif
+  std::unique_ptr<vpPlot> m_plot;
+};
+//! [Live display]
+} // namespace tutorial
+
+#endif
