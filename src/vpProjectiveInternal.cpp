@@ -71,17 +71,25 @@ std::vector<std::pair<size_t, double>> slopeWeights(const std::vector<double> &t
   if (last == first) {
     fail(vpProjectiveException::invalidValueError, where, "a velocity needs at least two samples");
   }
-  double sum = 0.0;
+  // Normal equations of x_j - x_k = a d_j + b d_j^2, d_j = t_j - t_k (a line through x_k when the window has one
+  // other sample): a = sum_j w_j (x_j - x_k).
+  double s2 = 0.0, s3 = 0.0, s4 = 0.0;
   for (size_t j = first; j <= last; ++j) {
     if (!std::isfinite(t[j]) || (j > first && !(t[j] > t[j - 1]))) {
       fail(vpProjectiveException::invalidValueError, where, "the times must be finite and strictly increasing");
     }
-    sum += (t[j] - t[k]) * (t[j] - t[k]);
+    const double d = t[j] - t[k];
+    s2 += d * d;
+    s3 += d * d * d;
+    s4 += d * d * d * d;
   }
+  const bool quadratic = last - first >= 2;
+  const double det = s2 * s4 - s3 * s3;
   std::vector<std::pair<size_t, double>> weights;
   for (size_t j = first; j <= last; ++j) {
     if (j != k) {
-      weights.emplace_back(j, (t[j] - t[k]) / sum);
+      const double d = t[j] - t[k];
+      weights.emplace_back(j, quadratic ? (s4 * d - s3 * d * d) / det : d / s2);
     }
   }
   return weights;

@@ -218,12 +218,14 @@ inline Eigen::Matrix3d hartleyNormalization(const std::vector<Eigen::Vector2d> &
 Eigen::Matrix4d whitening(const std::vector<Eigen::Vector4d> &points);
 
 /*!
-  The weights of the least-squares slope at sample \e k of a sequence sampled at times \e t: over the samples
-  \f$ |j - k| \le \f$ \e halfWindow (clipped at the ends), \f$ \dot x_k = \sum_j w_j (x_j - x_k) \f$ with
-  \f$ w_j = (t_j - t_k) / \sum_i (t_i - t_k)^2 \f$ (\f$ x_j - x_k \f$ being a difference in the group: joint values,
-  or \f$ \log(H_j H_k^{-1}) \f$). Returns the pairs (j, w_j), j != k. Throws (dimensionError, invalidValueError,
-  naming \e where) if \e k is out of range, \e halfWindow is 0, the window has one sample or its times are not finite
-  and strictly increasing.
+  The weights of the derivative at sample \e k of a sequence sampled at times \e t: over the samples
+  \f$ |j - k| \le \f$ \e halfWindow (clipped at the ends), the least-squares fit
+  \f$ x_j - x_k \approx a (t_j - t_k) + b (t_j - t_k)^2 \f$ (a line when the window holds one other sample) gives
+  \f$ \dot x_k = a = \sum_j w_j (x_j - x_k) \f$, \f$ x_j - x_k \f$ being a difference in the group (joint values, or
+  \f$ \log(H_j H_k^{-1}) \f$). The quadratic term removes the lag that a straight line has at the end of a window
+  (the real-time case, k the newest sample), at the price of more noise. Returns the pairs (j, w_j), j != k. Throws
+  (dimensionError, invalidValueError, naming \e where) if \e k is out of range, \e halfWindow is 0, the window has
+  one sample or its times are not finite and strictly increasing.
 */
 std::vector<std::pair<size_t, double>> slopeWeights(const std::vector<double> &t, size_t k, size_t halfWindow,
                                                     const std::string &where);

@@ -19,6 +19,8 @@
 
 #include <Eigen/Dense>
 
+#include <visp3/projective/vpMetricTwist.h>
+
 #include "vpProjection.h"
 #include "vpProjectiveInternal.h"
 
@@ -37,11 +39,25 @@ std::string at(const char *method)
 
 //! Beyond this RMS pixel error per coordinate, a warm-started fit is taken for a wrong minimum (a jump).
 const double kWarmStartResidual = 5.0;
+
+//! The rigid motion nearest to a 4x4 matrix of the metric frame: its rotation block projected on SO(3) (polar part).
+Eigen::Matrix4d nearestRigid(const Eigen::Matrix4d &A)
+{
+  const Eigen::Matrix4d B = A / A(3, 3);
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(B.topLeftCorner<3, 3>(), Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::Matrix3d D = Eigen::Matrix3d::Identity();
+  D(2, 2) = (svd.matrixU() * svd.matrixV().transpose()).determinant() < 0.0 ? -1.0 : 1.0;
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() = svd.matrixU() * D * svd.matrixV().transpose();
+  T.topRightCorner<3, 1>() = B.topRightCorner<3, 1>();
+  return T;
+}
 } // namespace
 
 vpProjectiveRigidBodyTracker::vpProjectiveRigidBodyTracker()
-    : m_rig(), m_M(), m_T(Eigen::Matrix4d::Identity()), m_Tinv(Eigen::Matrix4d::Identity()), m_H(), m_history(),
-      m_times(), m_window(4), m_residual(0.0), m_tracked(0)
+    : m_rig(), m_M(), m_T(Eigen::Matrix4d::Identity()), m_Tinv(Eigen::Matrix4d::Identity()), m_rigid(false),
+      m_G(Eigen::Matrix4d::Identity()), m_Ginv(Eigen::Matrix4d::Identity()), m_H(), m_history(), m_times(), m_window(4),
+      m_residual(0.0), m_tracked(0)
 {
 }
 
@@ -72,6 +88,24 @@ void vpProjectiveRigidBodyTracker::init(const vpProjectiveStereoRig &rig, const 
   m_times.assign(1, t0);
   m_residual = 0.0;
   m_tracked = static_cast<unsigned int>(s.size());
+}
+
+void vpProjectiveRigidBodyTracker::setProjectiveToMetric(const vpMatrix &G)
+{
+  const std::string where = at("setProjectiveToMetric()");
+  if (G.getRows() == 0 && G.getCols() == 0) {
+    m_rigid = false;
+    return;
+  }
+  const Eigen::Matrix4d Ge = toEigen<4, 4>(G, where, "G");
+  const Eigen::FullPivLU<Eigen::Matrix4d> lu(Ge);
+  if (!lu.isInvertible()) {
+    fail(vpProjectiveException::degenerateConfigurationError, where,
+         "G is singular; it must map the projective frame onto a metric one");
+  }
+  m_G = Ge;
+  m_Ginv = lu.inverse();
+  m_rigid = true;
 }
 
 void vpProjectiveRigidBodyTracker::setVelocityWindow(unsigned int frames)
@@ -168,6 +202,87 @@ bool vpProjectiveRigidBodyTracker::refine(const std::vector<Eigen::Vector4d> &s,
   return H.allFinite() && used >= 4;
 }
 
+bool vpProjectiveRigidBodyTracker::refineRigid(const std::vector<Eigen::Vector4d> &s, Eigen::Matrix4d &T, double &cost,
+                                               unsigned int &used) const
+{
+  // H = G^-1 T G, T updated by left increments exp(xi^) T, xi = (v, w) (6): d(H M)/d xi_k = G^-1 E_k T G M.
+  const vpProjectiveStereoRig::Projection cameras[2] = {m_rig.leftProjection() * m_Ginv,
+                                                        m_rig.rightProjection() * m_Ginv};
+  auto evaluate = [&](const Eigen::Matrix4d &Tc, Eigen::Matrix<double, 6, 6> *N, Eigen::Matrix<double, 6, 1> *g,
+                      double &c) {
+    c = 0.0;
+    used = 0;
+    if (N != nullptr) {
+      N->setZero();
+      g->setZero();
+    }
+    Eigen::Vector2d uv;
+    Eigen::Matrix<double, 2, 4> Jc;
+    Eigen::Matrix<double, 4, 6> dN = Eigen::Matrix<double, 4, 6>::Zero();
+    for (size_t j = 0; j < s.size(); ++j) {
+      if (!s[j].allFinite()) {
+        continue;
+      }
+      const Eigen::Vector4d N0 = Tc * (m_G * m_M[j]); // the marker in the metric frame, moved
+      if (N != nullptr) {
+        for (int i = 0; i < 3; ++i) {
+          dN.block<3, 1>(0, i) = N0(3) * Eigen::Vector3d::Unit(i);                 // translations
+          dN.block<3, 1>(0, 3 + i) = Eigen::Vector3d::Unit(i).cross(N0.head<3>()); // rotations
+        }
+      }
+      for (int k = 0; k < 2; ++k) {
+        if (!projectPoint(cameras[k], N0, uv, N != nullptr ? &Jc : nullptr)) {
+          return false;
+        }
+        const Eigen::Vector2d r = uv - s[j].segment<2>(2 * k);
+        c += r.squaredNorm();
+        if (N != nullptr) {
+          const Eigen::Matrix<double, 2, 6> A = Jc * dN;
+          N->noalias() += A.transpose() * A;
+          g->noalias() += A.transpose() * r;
+        }
+      }
+      ++used;
+    }
+    return std::isfinite(c);
+  };
+  Eigen::Matrix<double, 6, 6> N;
+  Eigen::Matrix<double, 6, 1> g;
+  if (!evaluate(T, &N, &g, cost)) {
+    return false;
+  }
+  double lambda = 1e-4;
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    bool accepted = false;
+    for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
+      Eigen::Matrix<double, 6, 6> S = N;
+      S.diagonal() *= 1.0 + lambda;
+      const Eigen::Matrix<double, 6, 1> xi = S.ldlt().solve(-g);
+      const Eigen::Matrix4d Tnew = vpProjectiveDisplacement::exp(
+                                       vpMetricTwist::hat(Eigen::Vector3d(xi.head<3>()), Eigen::Vector3d(xi.tail<3>())))
+                                       .matrix() *
+                                   T;
+      double costNew = 0.0;
+      if (xi.allFinite() && evaluate(Tnew, nullptr, nullptr, costNew) && costNew < cost) {
+        const bool converged = cost - costNew <= 1e-12 * cost;
+        T = Tnew;
+        evaluate(T, &N, &g, cost);
+        lambda = std::max(lambda / 10.0, 1e-12);
+        accepted = true;
+        if (converged) {
+          iteration = 30;
+        }
+      } else {
+        lambda *= 10.0;
+      }
+    }
+    if (!accepted) {
+      break;
+    }
+  }
+  return T.allFinite() && used >= 3;
+}
+
 const Eigen::Matrix4d &vpProjectiveRigidBodyTracker::track(const std::vector<Eigen::Vector4d> &s, double t)
 {
   const std::string where = at("track()");
@@ -189,15 +304,27 @@ const Eigen::Matrix4d &vpProjectiveRigidBodyTracker::track(const std::vector<Eig
   for (const Eigen::Vector4d &sj : s) {
     visible += sj.allFinite() ? 1 : 0;
   }
-  if (visible < 4) {
+  const unsigned int needed = m_rigid ? 3 : 4;
+  if (visible < needed) {
     std::ostringstream os;
-    os << "only " << visible << " markers are visible; a displacement of known points needs 4 in general position";
+    os << "only " << visible << " markers are visible; a " << (m_rigid ? "rigid motion" : "displacement")
+       << " of known points needs " << needed << " in general position";
     fail(vpProjectiveException::notEnoughPointsError, where, os.str());
   }
+  // One fit: projective (15 degrees of freedom), or rigid in the metric frame of G (6).
+  auto fit = [&](Eigen::Matrix4d &Hfit, double &c, unsigned int &u) {
+    if (!m_rigid) {
+      return refine(s, Hfit, c, u);
+    }
+    Eigen::Matrix4d T = nearestRigid(m_G * Hfit * m_Ginv);
+    const bool converged = refineRigid(s, T, c, u);
+    Hfit = m_Ginv * T * m_G;
+    return converged;
+  };
   Eigen::Matrix4d H = m_H.matrix();
   double cost = 0.0;
   unsigned int used = 0;
-  bool ok = refine(s, H, cost, used);
+  bool ok = fit(H, cost, used);
   if (!ok || std::sqrt(cost / (4.0 * used)) > kWarmStartResidual) {
     // A jump, or a wrong minimum: the maximum-likelihood displacement of the visible markers from their reference.
     if (visible < 5) {
@@ -222,7 +349,7 @@ const Eigen::Matrix4d &vpProjectiveRigidBodyTracker::track(const std::vector<Eig
     }
     double costFresh = 0.0;
     unsigned int usedFresh = 0;
-    if (refine(s, Hfresh, costFresh, usedFresh) && (!ok || costFresh < cost)) {
+    if (fit(Hfresh, costFresh, usedFresh) && (!ok || costFresh < cost)) {
       H = Hfresh;
       cost = costFresh;
       used = usedFresh;

@@ -26,6 +26,7 @@
 #include <Eigen/Core>
 
 #include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpProjectiveBodyVelocity.h>
 #include <visp3/projective/vpProjectiveDisplacement.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
@@ -42,10 +43,14 @@ BEGIN_VISP_NAMESPACE
   init() triangulates the markers' projective points \f$ M_j \f$ (4x1) at the reference. At each frame, track()
   minimises the pixel error \f$ \sum_j \| s_j(t) - \pi(H M_j) \|^2 \f$ of the visible markers over \f$ H \f$ (16
   entries on their unit sphere, in the frame whitened by the reference points, by Levenberg-Marquardt), warm-started
-  at the previous frame's \f$ H \f$: with the points fixed it needs 4 markers in general position. A marker the tracker
-  lost (flagged not visible, or with non-finite pixels) is left out of that frame. If the warm start does not converge
-  (the first frame, a jump), the maximum-likelihood estimate from the images (vpProjectiveDisplacement) of at least 5
-  visible markers starts it. The velocity is the least-squares slope of the logarithms over the last frames
+  at the previous frame's \f$ H \f$: with the points fixed it needs 4 markers in general position. A homography has 15
+  degrees of freedom where a rigid motion has 6, so with a few markers on a small object the projective estimate is
+  noisy; when the metric upgrade \f$ G \f$ of the rig is known (setProjectiveToMetric(), for instance
+  vpProjectiveArmModel::projectiveToMetric() of an arm acquired with the same rig), the tracker estimates the rigid
+  motion itself, \f$ H = G^{-1} T G \f$ with \f$ T \in SE(3) \f$ (6 degrees of freedom, 3 markers suffice). A marker the
+  tracker lost (flagged not visible, or with non-finite pixels) is left out of that frame. If the warm start does not
+  converge (the first frame, a jump), the maximum-likelihood estimate from the images (vpProjectiveDisplacement) of at
+  least 5 visible markers starts it. The velocity is the least-squares slope of the logarithms over the last frames
   (vpProjectiveBodyVelocity::fromSequence(), one-sided at the newest frame).
 */
 class VISP_EXPORT vpProjectiveRigidBodyTracker
@@ -61,6 +66,13 @@ public:
   */
   void init(const vpProjectiveStereoRig &rig, const std::vector<vpImagePoint> &left0,
             const std::vector<vpImagePoint> &right0, double t0 = 0.0);
+  /*!
+    The metric upgrade \f$ G \f$ (4x4) of the rig's projective frame (\f$ H_{PE} \f$ up to a similarity, e.g.
+    vpProjectiveArmModel::projectiveToMetric()): from the next frame on, the displacements are rigid,
+    \f$ H = G^{-1} T G \f$, \f$ T \in SE(3) \f$. An empty matrix returns to projective tracking.
+    \exception vpProjectiveException if \e G is not 4x4 (or empty), not finite or singular.
+  */
+  void setProjectiveToMetric(const vpMatrix &G);
   //! True once init() succeeded.
   bool isInitialized() const { return !m_M.empty(); }
 
@@ -70,8 +82,8 @@ public:
     Returns \f$ H(t) \f$, the displacement from the reference.
     \exception vpProjectiveException (notInitializedError) before init(); (dimensionError) on sizes that differ from
     the reference; (invalidValueError) if \e t is not after the previous frame; (notEnoughPointsError) if fewer than
-    4 markers are visible (5 when the warm start fails); (estimationFailedError) if no displacement explains them.
-    Nothing changes on failure.
+    4 markers are visible (3 in rigid tracking; 5 when the warm start fails); (estimationFailedError) if no displacement
+    explains them. Nothing changes on failure.
   */
   vpProjectiveDisplacement track(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right,
                                  double t, const std::vector<bool> &visible = std::vector<bool>());
@@ -103,10 +115,13 @@ public:
 
 private:
   bool refine(const std::vector<Eigen::Vector4d> &s, Eigen::Matrix4d &H, double &cost, unsigned int &used) const;
+  bool refineRigid(const std::vector<Eigen::Vector4d> &s, Eigen::Matrix4d &T, double &cost, unsigned int &used) const;
 
   vpProjectiveStereoRig m_rig;
   std::vector<Eigen::Vector4d> m_M; // reference points, unit norm
   Eigen::Matrix4d m_T, m_Tinv;      // whitening of the reference points
+  bool m_rigid;                     // H = G^-1 T G with T rigid
+  Eigen::Matrix4d m_G, m_Ginv;
   vpProjectiveDisplacement m_H;
   std::vector<vpProjectiveDisplacement> m_history;
   std::vector<double> m_times;
