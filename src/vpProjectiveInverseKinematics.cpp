@@ -77,33 +77,31 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solve(const vpP
          "a marker lies on a camera's focal plane at the starting joint values; start closer to the solution (q0)");
   }
   double lambda = 1e-3;
-  for (int iteration = 0; iteration < 100; ++iteration) {
-    bool accepted = false;
-    double costNew = 0.0;
-    for (int attempt = 0; attempt < 10 && !accepted; ++attempt) {
-      A = JtJ;
-      A.diagonal() += lambda * JtJ.diagonal().cwiseMax(1e-12 * JtJ.diagonal().maxCoeff());
-      step = A.ldlt().solve(-Jtr);
-      qNew = q + step;
-      JointMatrix JtJNew;
-      JointVector JtrNew;
-      if (step.allFinite() && normalEquations(model, s, indices, qNew, JtJNew, JtrNew, costNew) && costNew < cost) {
-        accepted = true;
-        const bool converged = cost - costNew <= 1e-15 * cost || step.norm() <= 1e-15 * (1.0 + q.norm());
-        q = qNew;
-        JtJ = JtJNew;
-        Jtr = JtrNew;
-        cost = costNew;
-        lambda = std::max(lambda / 10.0, 1e-12);
-        if (converged) {
-          iteration = 100;
-        }
-      } else {
-        lambda *= 10.0;
-      }
+  for (int evaluation = 0; evaluation < 100; ++evaluation) {
+    A = JtJ;
+    A.diagonal() += lambda * JtJ.diagonal().cwiseMax(1e-12 * JtJ.diagonal().maxCoeff());
+    step = A.ldlt().solve(-Jtr);
+    // The decrease the local quadratic model promises: below the rounding of the cost, the minimum is reached (this
+    // saves the evaluations that would only find it out).
+    const double promised = -Jtr.dot(step) - 0.5 * step.dot(JtJ * step);
+    if (!step.allFinite() || !(promised > 1e-15 * cost) || step.norm() <= 1e-14 * (1.0 + q.norm())) {
+      break;
     }
-    if (!accepted) {
-      break; // no step lowers the cost: a minimum to working precision
+    qNew = q + step;
+    JointMatrix JtJNew;
+    JointVector JtrNew;
+    double costNew = 0.0;
+    if (normalEquations(model, s, indices, qNew, JtJNew, JtrNew, costNew) && costNew < cost) {
+      q = qNew;
+      JtJ = JtJNew;
+      Jtr = JtrNew;
+      cost = costNew;
+      lambda = std::max(lambda / 10.0, 1e-12);
+    } else {
+      lambda *= 10.0;
+      if (lambda > 1e12) {
+        break; // no step lowers the cost: a minimum to working precision
+      }
     }
   }
   if (!q.allFinite()) {

@@ -44,6 +44,21 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace tutorial
 {
+/*!
+  Writes the gnuplot \e commands to \e script and runs gnuplot on it (headless PNG terminals): says on \e log which
+  figures (\e figures) were written, or, without gnuplot, that only the data \e data and the script were.
+*/
+inline void runGnuplot(const std::string &commands, const std::string &script, const std::string &figures,
+                       const std::string &data, std::ostream &log = std::cout)
+{
+  std::ofstream(script.c_str()) << commands;
+  if (std::system(("gnuplot '" + script + "' 2>/dev/null").c_str()) == 0) {
+    log << "Figures written: " << figures << " (data " << data << ")\n";
+  } else {
+    log << "gnuplot is not available: only the data " << data << " and the script " << script << " were written\n";
+  }
+}
+
 //! [Figures]
 //! CSV of seed 1's trajectory, and PNG figures like the paper's Fig. 2, 4 and 5 through gnuplot (headless).
 inline void writeFigures(const ServoRun &run, const std::string &dir)
@@ -122,14 +137,8 @@ inline void writeFigures(const ServoRun &run, const std::string &dir)
     gp << "'" << csv << "' using 1:" << firstError + r << " with lines notitle, ";
   }
   gp << "'" << csv << "' using 1:" << firstError - 1 << " with linespoints lw 2 title 'RMS'\n";
-  const std::string script = dir + "/projective-servo-figures.gp";
-  std::ofstream(script.c_str()) << gp.str();
-  if (std::system(("gnuplot '" + script + "' 2>/dev/null").c_str()) == 0) {
-    std::cout << "Figures written: " << dir << "/projective-servo-fig{2-features,4-joints,5-error}.png (data " << csv
-              << ")\n";
-  } else {
-    std::cout << "gnuplot is not available: only the data " << csv << " and the script " << script << " were written\n";
-  }
+  runGnuplot(gp.str(), dir + "/projective-servo-figures.gp",
+             dir + "/projective-servo-fig{2-features,4-joints,5-error}.png", csv);
 }
 //! [Figures]
 

@@ -19,6 +19,7 @@
 #include "study-report.h"
 
 #include "study-methods.h"
+#include "tutorial-projective-figures.h"
 
 #include <algorithm>
 #include <cmath>
@@ -219,13 +220,8 @@ void writeFigures(const World &world, const Results &results, const std::string 
          << world.sigmas[j] << " px'" << (j + 1 < world.sigmas.size() ? ", " : "\n");
     }
   }
-  const std::string script = dir + "/study-figures.gp";
-  std::ofstream(script.c_str()) << gp.str();
-  if (std::system(("gnuplot '" + script + "' 2>/dev/null").c_str()) == 0) {
-    log << "Figures: " << dir << "/study-success.png, " << dir << "/study-iterations.png (data " << csv << ")\n";
-  } else {
-    log << "gnuplot is not available: only the data " << csv << " and the script " << script << " were written\n";
-  }
+  tutorial::runGnuplot(gp.str(), dir + "/study-figures.gp",
+                       dir + "/study-success.png, " + dir + "/study-iterations.png", csv, log);
 }
 
 std::string summary(const World &world, const Results &results)
