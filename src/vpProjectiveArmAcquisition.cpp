@@ -252,11 +252,15 @@ vpProjectiveArmModel vpProjectiveArmAcquisition::calibrate()
   if (m_outlierThreshold > 0.0) {
     // Every trial observation, mismatches down-weighted by a robust loss; then least squares on exactly those the
     // model accepts, until that set no longer changes (at most 3 rounds).
+    // Each adjustment refines the rig too: the next one starts from its frame.
     model = bundleAdjust(data, M0, start, true, m_qRef, residual);
+    data.rig = model.getStereoRig();
     classifyTrialObservations(model, data);
     model = bundleAdjust(data, model.markers(), metricModelOf(model), false, m_qRef, residual);
+    data.rig = model.getStereoRig();
     for (int round = 0; round < 2 && classifyTrialObservations(model, data); ++round) {
       model = bundleAdjust(data, model.markers(), metricModelOf(model), false, m_qRef, residual);
+      data.rig = model.getStereoRig();
     }
   } else {
     model = bundleAdjust(data, M0, start, false, m_qRef, residual);
