@@ -38,36 +38,37 @@ std::string at(const char *method)
 }
 
 /*!
-  In-place Cholesky factorisation \f$ A = L L^T \f$ of a symmetric positive definite matrix (lower triangle read,
-  overwritten by L); false if A is not numerically positive definite (a pivot is not positive, or is NaN). Plain loops:
-  for the few joints of an arm they are several times faster than Eigen's dynamic-size LLT and LDLT, which dispatch
-  every column to matrix-vector kernels.
+  Cholesky factorisation \f$ L L^T = S + a I \f$ of a symmetric matrix \e S shifted by \e a on its diagonal (lower
+  triangle of S read, lower triangle of L written, L resized; S is not copied); false if \f$ S + a I \f$ is not
+  numerically positive definite (a pivot is not positive, or is NaN). Plain loops: for the few joints of an arm they are
+  several times faster than Eigen's dynamic-size LLT and LDLT, which dispatch every column to matrix-vector kernels.
 */
-template <typename Matrix> bool choleskyInPlace(Matrix &A)
+template <typename Matrix> bool choleskyShifted(const Matrix &S, double a, Matrix &L)
 {
-  const Eigen::Index n = A.rows();
+  const Eigen::Index n = S.rows();
+  L.resize(n, n);
   for (Eigen::Index j = 0; j < n; ++j) {
-    double d = A(j, j);
+    double d = S(j, j) + a;
     for (Eigen::Index k = 0; k < j; ++k) {
-      d -= A(j, k) * A(j, k);
+      d -= L(j, k) * L(j, k);
     }
     if (!(d > 0.0)) {
       return false;
     }
     const double ljj = std::sqrt(d);
-    A(j, j) = ljj;
+    L(j, j) = ljj;
     for (Eigen::Index i = j + 1; i < n; ++i) {
-      double x = A(i, j);
+      double x = S(i, j);
       for (Eigen::Index k = 0; k < j; ++k) {
-        x -= A(i, k) * A(j, k);
+        x -= L(i, k) * L(j, k);
       }
-      A(i, j) = x / ljj;
+      L(i, j) = x / ljj;
     }
   }
   return true;
 }
 
-//! Solves \f$ L L^T x = b \f$ in place (x holds b on entry), L from choleskyInPlace().
+//! Solves \f$ L L^T x = b \f$ in place (x holds b on entry), L from choleskyShifted().
 template <typename Matrix, typename Vector> void choleskySolveInPlace(const Matrix &L, Vector &x)
 {
   const Eigen::Index n = L.rows();
@@ -87,6 +88,20 @@ template <typename Matrix, typename Vector> void choleskySolveInPlace(const Matr
   }
 }
 
+//! The velocity saturation of setMaxJointVelocity() (0 disables it); true if it scaled \e qdot.
+bool saturateInPlace(double qdotMax, vpServoDampedLeastSquares::JointVector &qdot)
+{
+  if (!(qdotMax > 0.0) || qdot.size() == 0) {
+    return false;
+  }
+  const double largest = qdot.cwiseAbs().maxCoeff();
+  if (!(largest > qdotMax)) {
+    return false;
+  }
+  qdot *= qdotMax / largest;
+  return true;
+}
+
 /*!
   \f$ \mu^2 \f$ of the law for \f$ J^T J \f$; \e positiveDefinite is set when \f$ J^T J + \mu^2 I \f$ is known to be
   positive definite (\f$ \sigma_{min} > \sigma_0 > 0 \f$ proven, or \f$ \mu > 0 \f$).
@@ -99,9 +114,8 @@ double squaredDamping(const vpServoDampedLeastSquares::JointMatrix &JtJ, double 
   double mu2 = 0.0;
   positiveDefinite = false;
   if (sigmaThreshold > 0.0) {
-    vpServoDampedLeastSquares::JointMatrix shifted = JtJ;
-    shifted.diagonal().array() -= sigmaThreshold * sigmaThreshold;
-    positiveDefinite = choleskyInPlace(shifted);
+    vpServoDampedLeastSquares::JointMatrix L;
+    positiveDefinite = choleskyShifted(JtJ, -(sigmaThreshold * sigmaThreshold), L);
     if (!positiveDefinite) {
       Eigen::SelfAdjointEigenSolver<vpServoDampedLeastSquares::JointMatrix> eig(JtJ, Eigen::EigenvaluesOnly);
       const double sigmaMin = std::sqrt(std::max(0.0, eig.eigenvalues()(0)));
@@ -181,18 +195,17 @@ void vpServoDampedLeastSquares::computeVelocity(const JointMatrix &JtJ, const Jo
   const double mu2 = squaredDamping(JtJ, m_sigmaThreshold, m_maxDamping, positiveDefinite);
   // Cholesky where J^T J + mu^2 I is known to be positive definite; elsewhere (no damping configured, J possibly rank
   // deficient) the pivoting LDLT, which gives what it can of a singular system.
-  JointMatrix A = JtJ;
-  A.diagonal().array() += mu2;
-  JointVector x = Jte;
-  if (positiveDefinite && choleskyInPlace(A)) {
-    choleskySolveInPlace(A, x);
+  JointMatrix L;
+  qdot = Jte;
+  if (positiveDefinite && choleskyShifted(JtJ, mu2, L)) {
+    choleskySolveInPlace(L, qdot);
   } else {
-    A = JtJ;
+    JointMatrix A = JtJ;
     A.diagonal().array() += mu2;
-    x = A.ldlt().solve(Jte);
+    qdot = A.ldlt().solve(Jte);
   }
-  qdot = -lambda * x;
-  const bool saturated = saturate(qdot);
+  qdot *= -lambda;
+  const bool saturated = saturateInPlace(m_qdotMax, qdot);
   if (!qdot.allFinite()) {
     fail(vpProjectiveException::estimationFailedError, at("computeVelocity()"),
          "the control law gave a non-finite velocity (singular task Jacobian); increase the damping");
@@ -244,15 +257,7 @@ vpColVector vpServoDampedLeastSquares::computeVelocity(const vpMatrix &J, const 
 
 bool vpServoDampedLeastSquares::saturate(JointVector &qdot) const
 {
-  if (!(m_qdotMax > 0.0) || qdot.size() == 0) {
-    return false;
-  }
-  const double largest = qdot.cwiseAbs().maxCoeff();
-  if (!(largest > m_qdotMax)) {
-    return false;
-  }
-  qdot *= m_qdotMax / largest;
-  return true;
+  return saturateInPlace(m_qdotMax, qdot);
 }
 
 void vpServoDampedLeastSquares::addNullSpaceProjector(const JointMatrix &JtJ, double weight, JointMatrix &P) const

@@ -35,6 +35,15 @@ std::string at(const char *method)
   return std::string(kClass) + "::" + method;
 }
 
+//! Throws the message of a feature index out of range.
+[[noreturn]] void badIndex(unsigned int i, size_t size, const char *method)
+{
+  std::ostringstream os;
+  os << "feature index " << i << " is out of range; the task has " << size
+     << " features (indices in addFeature() order, from 0)";
+  fail(vpProjectiveException::dimensionError, at(method), os.str());
+}
+
 /*!
   Distance (pixels) of a point to the line \e l of an image, from the epipolar residual \f$ r = |m'^T F m| \f$ that
   every such distance shares. A line with a null normal is the epipolar line of an epipole: the distance is 0 if the
@@ -52,14 +61,14 @@ double lineDistance(double residual, const Eigen::Vector3d &l)
 
 vpServoFeatureHealth::vpServoFeatureHealth()
     : m_tracked(), m_records(), m_work(), m_nbActive(0), m_width(0), m_height(0), m_border(0.0),
-      m_outlierThreshold(0.0), m_inIteration(false), m_predict(false), m_rig(nullptr), m_H(Eigen::Matrix4d::Identity()),
-      m_Hlu()
+      m_outlierThreshold(0.0), m_iteration(0), m_classified(0), m_workActive(0), m_inIteration(false), m_predict(false),
+      m_rig(nullptr), m_H(Eigen::Matrix4d::Identity()), m_Hlu()
 {
 }
 
 void vpServoFeatureHealth::addFeature()
 {
-  const vpRecord fresh = {FEATURE_ACTIVE, -1.0, -1.0, Eigen::Vector4d::Zero(), false};
+  const vpRecord fresh = {FEATURE_ACTIVE, -1.0, -1.0, Eigen::Vector4d::Zero(), false, 0};
   m_tracked.push_back(1);
   m_records.push_back(fresh);
   m_work.push_back(fresh);
@@ -74,17 +83,15 @@ void vpServoFeatureHealth::clearFeatures()
   m_inIteration = false;
 }
 
-void vpServoFeatureHealth::checkIndex(unsigned int i, const char *method) const
+// The checks run in the control loop: inline, their messages built out of line, only when throwing.
+inline void vpServoFeatureHealth::checkIndex(unsigned int i, const char *method) const
 {
   if (i >= m_tracked.size()) {
-    std::ostringstream os;
-    os << "feature index " << i << " is out of range; the task has " << m_tracked.size()
-       << " features (indices in addFeature() order, from 0)";
-    fail(vpProjectiveException::dimensionError, at(method), os.str());
+    badIndex(i, m_tracked.size(), method);
   }
 }
 
-void vpServoFeatureHealth::checkIteration(const char *method) const
+inline void vpServoFeatureHealth::checkIteration(const char *method) const
 {
   if (!m_inIteration) {
     fail(vpProjectiveException::notInitializedError, at(method),
@@ -140,11 +147,12 @@ void vpServoFeatureHealth::setOutlierThreshold(double pixels)
 
 void vpServoFeatureHealth::startIteration(const vpProjectiveRobot &robot, const vpProjectiveRobot::JointVector &q)
 {
-  m_work = m_records; // same size: no allocation
+  ++m_iteration;
+  m_classified = 0;
+  m_workActive = 0;
   m_rig = &robot.getStereoRig();
   // Outlier rejection predicts each feature from its last acceptance: H(q) and its LU, for M(0) = H(q)^-1 M.
   m_predict = m_outlierThreshold > 0.0;
-  m_H.setIdentity();
   if (m_predict) {
     m_H = robot.displacement(q);
     m_Hlu.compute(m_H);
@@ -152,14 +160,52 @@ void vpServoFeatureHealth::startIteration(const vpProjectiveRobot &robot, const 
   m_inIteration = true;
 }
 
+//! The epipolar and prediction tests of an otherwise active feature; \e record receives the distances.
+inline vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::outlierTest(const Eigen::Vector4d &s,
+                                                                              vpRecord &record) const
+{
+  const Eigen::Matrix3d &F = m_rig->fundamentalMatrix();
+  const Eigen::Vector3d m(s(0), s(1), 1.0);
+  const Eigen::Vector3d mp(s(2), s(3), 1.0);
+  const Eigen::Vector3d lp = F * m;             // epipolar line of m in the right image
+  const Eigen::Vector3d l = F.transpose() * mp; // epipolar line of m' in the left image
+  const double residual = std::abs(mp.dot(lp));
+  const double dF = std::max(lineDistance(residual, l), lineDistance(residual, lp));
+  record.epipolarDistance = dF;
+  if (!(dF <= m_outlierThreshold)) {
+    return FEATURE_OUTLIER;
+  }
+  if (m_predict && record.hasM0) {
+    Eigen::Vector4d sHat;
+    if (m_rig->project(m_H * record.M0, sHat)) {
+      const double dP = std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm());
+      record.predictionDistance = dP;
+      if (!(dP <= m_outlierThreshold)) {
+        return FEATURE_OUTLIER;
+      }
+    }
+  }
+  return FEATURE_ACTIVE;
+}
+
 vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::classify(unsigned int i, const Eigen::Vector4d &s,
-                                                                    const Eigen::Vector4d &sStar)
+                                                                    const Eigen::Vector4d &sStar, Eigen::Vector4d &M)
 {
   checkIteration("classify()");
   checkIndex(i, "classify()");
   vpRecord &record = m_work[i];
+  if (record.iteration != m_iteration) {
+    record.iteration = m_iteration;
+    ++m_classified;
+  } else if (record.state == FEATURE_ACTIVE) {
+    --m_workActive; // classified again: the second outcome counts
+  }
+  const vpRecord &last = m_records[i];
+  record.M0 = last.M0; // the memory of the last completed iteration
+  record.hasM0 = last.hasM0;
   record.epipolarDistance = -1.0;
   record.predictionDistance = -1.0;
+  // The checks of the class documentation, in their order.
   record.state = FEATURE_ACTIVE;
   if (!m_tracked[i]) {
     record.state = FEATURE_NOT_TRACKED;
@@ -173,51 +219,31 @@ vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::classify(unsigned int
       record.state = FEATURE_OUT_OF_IMAGE;
     }
   }
-  if (record.state != FEATURE_ACTIVE || !(m_outlierThreshold > 0.0)) {
-    return record.state;
+  if (record.state == FEATURE_ACTIVE && m_outlierThreshold > 0.0) {
+    record.state = outlierTest(s, record);
   }
-  const Eigen::Matrix3d &F = m_rig->fundamentalMatrix();
-  const Eigen::Vector3d m(s(0), s(1), 1.0);
-  const Eigen::Vector3d mp(s(2), s(3), 1.0);
-  const Eigen::Vector3d lp = F * m;             // epipolar line of m in the right image
-  const Eigen::Vector3d l = F.transpose() * mp; // epipolar line of m' in the left image
-  const double residual = std::abs(mp.dot(lp));
-  const double dF = std::max(lineDistance(residual, l), lineDistance(residual, lp));
-  record.epipolarDistance = dF;
-  if (!(dF <= m_outlierThreshold)) {
-    record.state = FEATURE_OUTLIER;
-    return record.state;
-  }
-  if (m_predict && record.hasM0) {
-    Eigen::Vector4d sHat;
-    if (m_rig->project(m_H * record.M0, sHat)) {
-      const double dP = std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm());
-      record.predictionDistance = dP;
-      if (!(dP <= m_outlierThreshold)) {
-        record.state = FEATURE_OUTLIER;
-      }
+  if (record.state == FEATURE_ACTIVE) {
+    ++m_workActive;
+    M = m_rig->triangulateLinear(s.head<2>(), s.tail<2>());
+    if (m_predict) {
+      record.M0 = m_Hlu.solve(M).normalized(); // H(q_l)^-1 M_l, for the next predictions
+      record.hasM0 = true;
     }
   }
   return record.state;
 }
 
-void vpServoFeatureHealth::accept(unsigned int i, const Eigen::Vector4d &M)
-{
-  checkIteration("accept()");
-  checkIndex(i, "accept()");
-  if (m_predict) {
-    vpRecord &record = m_work[i];
-    record.M0 = m_Hlu.solve(M).normalized(); // H(q_l)^-1 M_l, for the next predictions
-    record.hasM0 = true;
-  }
-}
-
 void vpServoFeatureHealth::endIteration()
 {
   checkIteration("endIteration()");
+  if (m_classified != m_work.size()) {
+    std::ostringstream os;
+    os << "only " << m_classified << " of the " << m_work.size()
+       << " features were classified in this iteration; classify() every feature before endIteration()";
+    fail(vpProjectiveException::notInitializedError, at("endIteration()"), os.str());
+  }
   m_records.swap(m_work); // no allocation
-  m_nbActive = static_cast<unsigned int>(
-      std::count_if(m_records.begin(), m_records.end(), [](const vpRecord &r) { return r.state == FEATURE_ACTIVE; }));
+  m_nbActive = m_workActive;
   m_inIteration = false;
   m_rig = nullptr;
 }

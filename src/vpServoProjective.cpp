@@ -124,7 +124,7 @@ template <typename Vector> void printVector(std::ostream &os, const Vector &v)
 
 vpServoProjective::vpServoProjective()
     : m_robot(nullptr), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(),
-      m_jointLimits(), m_last(), m_next()
+      m_jointLimits(), m_iterations(), m_lastIteration(0)
 {
 }
 
@@ -259,8 +259,8 @@ void vpServoProjective::clearFeatures()
   m_features.clear();
   m_desired.clear();
   m_health.clearFeatures();
-  m_last.status = SERVO_RUNNING;
-  m_last.nbActive = 0;
+  m_iterations[m_lastIteration].status = SERVO_RUNNING;
+  m_iterations[m_lastIteration].nbActive = 0;
 }
 
 vpServoProjective::vpFeatureState vpServoProjective::getFeatureState(unsigned int i) const
@@ -281,7 +281,7 @@ double vpServoProjective::getPredictionDistance(unsigned int i) const
   return m_health.getPredictionDistance(i);
 }
 
-void vpServoProjective::check(const char *method) const
+inline void vpServoProjective::check(const char *method) const
 {
   if (m_robot == nullptr) {
     fail(vpProjectiveException::notInitializedError, at(method), "no robot model; call setRobot() first");
@@ -297,7 +297,9 @@ void vpServoProjective::check(const char *method) const
   }
 }
 
-void vpServoProjective::checkJoints(const JointVector &q, const char *method) const
+// The steps of computeControlLaw(), used only in this file: inline, so that the shared library runs them without a
+// call through its symbol table (a non-inline member of an exported class may be interposed, hence is never inlined).
+inline void vpServoProjective::checkJoints(const JointVector &q, const char *method) const
 {
   check(method);
   const Eigen::Index n = static_cast<Eigen::Index>(m_robot->getNumberOfJoints());
@@ -317,7 +319,7 @@ void vpServoProjective::checkJoints(const JointVector &q, const char *method) co
   }
 }
 
-void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, const char *method)
+inline void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, const char *method)
 {
   // Task Jacobian, eq. (46) stacked over the active points, at the current q and triangulated points; the rows of
   // the features set aside are zero.
@@ -329,7 +331,6 @@ void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, const c
   }
   Eigen::Matrix4d HhatKq[vpProjectiveRobot::maxJoints];
   m_robot->jointMotions(q, HhatKq);
-  const vpProjectiveStereoRig &rig = m_robot->getStereoRig();
   m_health.startIteration(*m_robot, q);
   vpProjectiveRobot::PointJacobian Ji;
   unsigned int active = 0;
@@ -337,12 +338,12 @@ void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, const c
     const Eigen::Vector4d s = m_features[i]->getFeature();
     const Eigen::Vector4d sStar = m_desired[i]->getFeature();
     const Eigen::Index r = 4 * static_cast<Eigen::Index>(i);
-    if (m_health.classify(i, s, sStar) != FEATURE_ACTIVE) {
+    Eigen::Vector4d M;
+    if (m_health.classify(i, s, sStar, M) != FEATURE_ACTIVE) {
       it.J.middleRows(r, 4).setZero();
       it.e.segment<4>(r).setZero();
       continue;
     }
-    const Eigen::Vector4d M = rig.triangulateLinear(s.head<2>(), s.tail<2>());
     if (!m_robot->imageJacobian(HhatKq, M, Ji)) {
       std::ostringstream os;
       os << "feature " << i << " triangulates onto a camera's focal plane; check that it is matched correctly";
@@ -350,7 +351,6 @@ void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, const c
     }
     it.J.middleRows(r, 4) = Ji;
     it.e.segment<4>(r) = s - sStar;
-    m_health.accept(i, M);
     ++active;
   }
   it.nbActive = active;
@@ -358,7 +358,7 @@ void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, const c
   it.errorNorm = it.e.norm();
 }
 
-vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vpIteration &it) const
+inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vpIteration &it) const
 {
   // With every feature active the task is the user's: a rank loss is left to the damping. With features set aside,
   // the remaining ones must constrain every joint: a stereo point gives at most 3 independent equations, then the
@@ -371,7 +371,7 @@ vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vpIterati
   return stopped ? SERVO_STOPPED : SERVO_REDUCED;
 }
 
-void vpServoProjective::stop(vpIteration &it, JointVector &qdot) const
+inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot) const
 {
   qdot.setZero(it.JtJ.rows());
   it.qdot2.setZero(it.JtJ.rows());
@@ -380,7 +380,7 @@ void vpServoProjective::stop(vpIteration &it, JointVector &qdot) const
   it.saturated = false;
 }
 
-void vpServoProjective::computePrimaryVelocity(vpIteration &it, JointVector &qdot)
+inline void vpServoProjective::computePrimaryVelocity(vpIteration &it, JointVector &qdot)
 {
   // qdot1 = -lambda (J^T J + mu^2 I)^-1 J^T e, saturated: the motion the arm really makes.
   it.lambda = m_lambda.value_const(it.e.cwiseAbs().maxCoeff());
@@ -389,7 +389,7 @@ void vpServoProjective::computePrimaryVelocity(vpIteration &it, JointVector &qdo
   it.saturated = m_law.isSaturated();
 }
 
-void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const
+inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const
 {
   it.qdot2.setZero(q.size());
   if (!m_jointLimits.hasJointLimits()) {
@@ -406,36 +406,26 @@ void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIteration
   }
 }
 
-void vpServoProjective::commit()
+inline void vpServoProjective::commit()
 {
-  // The large buffers are swapped, the fixed-capacity ones copied (n x n entries only): no allocation.
-  m_last.J.swap(m_next.J);
-  m_last.e.swap(m_next.e);
-  m_last.JtJ = m_next.JtJ;
-  m_last.Jte = m_next.Jte;
-  m_last.errorNorm = m_next.errorNorm;
-  m_last.nbActive = m_next.nbActive;
-  m_last.status = m_next.status;
-  m_last.lambda = m_next.lambda;
-  m_last.damping = m_next.damping;
-  m_last.saturated = m_next.saturated;
-  m_last.qdot2 = m_next.qdot2;
+  m_lastIteration = 1 - m_lastIteration;
   m_health.endIteration();
 }
 
 void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdot)
 {
-  // No allocation once the sizes are known: messages are built only when throwing. Every step works on m_next;
-  // commit() makes it the state that the getters read, so that a call that throws changes nothing.
+  // No allocation once the sizes are known: messages are built only when throwing. Every step works on the iteration
+  // in progress; commit() makes it the one that the getters read, so that a call that throws changes nothing.
   const char *const method = "computeControlLaw()";
   checkJoints(q, method);
-  buildTask(q, m_next, method);
-  m_next.status = decideStatus(m_next);
-  if (m_next.status == SERVO_STOPPED) {
-    stop(m_next, qdot);
+  vpIteration &it = m_iterations[1 - m_lastIteration];
+  buildTask(q, it, method);
+  it.status = decideStatus(it);
+  if (it.status == SERVO_STOPPED) {
+    stop(it, qdot);
   } else {
-    computePrimaryVelocity(m_next, qdot);
-    addJointLimitAvoidance(q, m_next, qdot);
+    computePrimaryVelocity(it, qdot);
+    addJointLimitAvoidance(q, it, qdot);
   }
   commit();
 }
@@ -458,46 +448,46 @@ vpColVector vpServoProjective::computeControlLaw(const vpColVector &q)
 
 vpColVector vpServoProjective::getError() const
 {
-  return toVispVector(m_last.e);
+  return toVispVector(last().e);
 }
 
 vpMatrix vpServoProjective::getTaskJacobian() const
 {
-  return toVisp(m_last.J);
+  return toVisp(last().J);
 }
 
 vpColVector vpServoProjective::getTaskSingularValues() const
 {
-  if (m_last.J.size() == 0) {
+  if (last().J.size() == 0) {
     return vpColVector();
   }
-  return toVispVector(Eigen::JacobiSVD<Eigen::MatrixXd>(m_last.J).singularValues());
+  return toVispVector(Eigen::JacobiSVD<Eigen::MatrixXd>(last().J).singularValues());
 }
 
 double vpServoProjective::getSingularValueRatio() const
 {
-  return equilibratedSingularValueRatio(m_last.JtJ, m_rankTolerance);
+  return equilibratedSingularValueRatio(last().JtJ, m_rankTolerance);
 }
 
 double vpServoProjective::getConditionNumber() const
 {
-  return conditionNumber(m_last.JtJ);
+  return conditionNumber(last().JtJ);
 }
 
 vpMatrix vpServoProjective::getLargeProjectionOperator() const
 {
-  if (m_last.JtJ.rows() == 0) {
+  if (last().JtJ.rows() == 0) {
     fail(vpProjectiveException::notInitializedError, at("getLargeProjectionOperator()"),
          "no task Jacobian yet; call computeControlLaw() first");
   }
   JointMatrix P;
-  m_jointLimits.computeLargeProjectionOperator(m_last.JtJ, m_last.Jte, m_last.errorNorm, m_law, P);
+  m_jointLimits.computeLargeProjectionOperator(last().JtJ, last().Jte, last().errorNorm, m_law, P);
   return toVisp(P);
 }
 
 vpColVector vpServoProjective::getJointLimitVelocity() const
 {
-  return toVispVector(m_last.qdot2);
+  return toVispVector(last().qdot2);
 }
 
 void vpServoProjective::print(std::ostream &os) const
@@ -509,7 +499,7 @@ void vpServoProjective::print(std::ostream &os) const
     os << "  Robot: " << m_robot->getNumberOfJoints() << " joints, "
        << (m_robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "eye-in-hand" : "eye-to-hand") << "\n";
   }
-  const bool computed = m_last.J.rows() == static_cast<Eigen::Index>(getDimension()) && m_last.J.rows() > 0;
+  const bool computed = last().J.rows() == static_cast<Eigen::Index>(getDimension()) && last().J.rows() > 0;
   os << "  Features: " << m_features.size() << " stereo points s = (u, v, u', v') (pixels), task dimension "
      << getDimension();
   if (computed) {
@@ -535,11 +525,11 @@ void vpServoProjective::print(std::ostream &os) const
   }
   if (computed) {
     os << "  Error e = s - s* (pixels, rows of the features set aside zero): ";
-    printVector(os, m_last.e);
-    os << ", |e| = " << m_last.errorNorm << "\n";
-    os << "  Status: " << statusName(m_last.status) << "\n";
-    os << "  Last step: gain " << m_last.lambda << ", damping " << m_last.damping << ", "
-       << (m_last.saturated ? "saturated" : "not saturated") << "\n";
+    printVector(os, last().e);
+    os << ", |e| = " << last().errorNorm << "\n";
+    os << "  Status: " << statusName(last().status) << "\n";
+    os << "  Last step: gain " << last().lambda << ", damping " << last().damping << ", "
+       << (last().saturated ? "saturated" : "not saturated") << "\n";
   } else {
     os << "  No computeControlLaw() yet\n";
   }

@@ -23,6 +23,8 @@
   - the memory exists only with outlier rejection on, and only from the second acceptance on;
   - an iteration interrupted before endIteration() changes neither the outcome nor the memories: a later iteration
     gives the same bits as in a twin that never saw it;
+  - classify() gives the linearly triangulated point of an active feature, nothing otherwise; endIteration() refuses
+    an iteration that left a feature unclassified;
   - misuse throws a vpProjectiveException naming what was wrong; failed setters change nothing.
 */
 
@@ -69,14 +71,17 @@ vpProjectiveRobot::JointVector toJoints(const vpColVector &q)
   return qe;
 }
 
-//! A health check of \e count features, one iteration at q on the given images: accepts every active feature.
+//! One iteration at q on the given images; checks the point given for every active feature.
 void iterate(H &health, const vpProjectiveRobot &robot, const vpColVector &q, const std::vector<Eigen::Vector4d> &s,
              const std::vector<Eigen::Vector4d> &sStar)
 {
   health.startIteration(robot, toJoints(q));
   for (unsigned int i = 0; i < s.size(); ++i) {
-    if (health.classify(i, s[i], sStar[i]) == H::FEATURE_ACTIVE) {
-      health.accept(i, robot.getStereoRig().triangulateLinear(s[i].head<2>(), s[i].tail<2>()));
+    Eigen::Vector4d M = Eigen::Vector4d::Zero();
+    if (health.classify(i, s[i], sStar[i], M) == H::FEATURE_ACTIVE) {
+      EXPECT_EQ(M, robot.getStereoRig().triangulateLinear(s[i].head<2>(), s[i].tail<2>())) << "feature " << i;
+    } else {
+      EXPECT_EQ(M, Eigen::Vector4d::Zero()) << "feature " << i;
     }
   }
   health.endIteration();
@@ -284,13 +289,13 @@ TEST(ServoFeatureHealth, InterruptedIterationChangesNothing)
   twin.setOutlierThreshold(5.0);
   iterate(interrupted, robot, q1, s1, s1);
   iterate(twin, robot, q1, s1, s1);
-  // An iteration at q2 that classifies and accepts (with wrong points: another marker's) but never ends.
+  // An iteration at q2 that classifies every feature (with the images of other markers: other memories) but never
+  // ends.
   interrupted.setFeatureTracked(2, false);
   interrupted.startIteration(robot, toJoints(q2));
   for (unsigned int k = 0; k < 4; ++k) {
-    if (interrupted.classify(k, s2[k], s1[k]) == H::FEATURE_ACTIVE) {
-      interrupted.accept(k, robot.getStereoRig().triangulateLinear(s2[3 - k].head<2>(), s2[3 - k].tail<2>()));
-    }
+    Eigen::Vector4d M;
+    interrupted.classify(k, s2[3 - k], s1[k], M);
   }
   EXPECT_EQ(interrupted.getFeatureState(2), H::FEATURE_ACTIVE); // still the outcome at q1
   interrupted.setFeatureTracked(2, true);
@@ -324,13 +329,23 @@ TEST(ServoFeatureHealth, MisuseThrowsAndChangesNothing)
   health.addFeature();
   health.addFeature();
   // Outside an iteration.
-  EXPECT_TRUE(throwsProjective([&] { health.classify(0, s, s); }, notInit, "call startIteration() first"));
-  EXPECT_TRUE(throwsProjective([&] { health.accept(0, Eigen::Vector4d(0, 0, 1, 1)); }, notInit, "startIteration"));
+  Eigen::Vector4d M;
+  EXPECT_TRUE(throwsProjective([&] { health.classify(0, s, s, M); }, notInit, "call startIteration() first"));
   EXPECT_TRUE(throwsProjective([&] { health.endIteration(); }, notInit, "no iteration in progress"));
   // Indices.
   health.startIteration(robot, toJoints(vpColVector(6, 0.0)));
-  EXPECT_TRUE(throwsProjective([&] { health.classify(2, s, s); }, dim, "feature index 2 is out of range"));
-  EXPECT_TRUE(throwsProjective([&] { health.accept(5, s); }, dim, "the task has 2 features"));
+  EXPECT_TRUE(throwsProjective([&] { health.classify(2, s, s, M); }, dim, "feature index 2 is out of range"));
+  EXPECT_TRUE(throwsProjective([&] { health.classify(5, s, s, M); }, dim, "the task has 2 features"));
+  // Every feature classified before the end: once one is missing, the iteration stays open.
+  health.setFeatureTracked(1, false);
+  health.classify(1, s, s, M);
+  EXPECT_TRUE(throwsProjective([&] { health.endIteration(); }, notInit, "only 1 of the 2 features were classified"));
+  health.classify(0, s, s, M);
+  health.classify(0, s, s, M); // twice: the second outcome counts once
+  EXPECT_NO_THROW(health.endIteration());
+  EXPECT_EQ(health.getNumberOfActiveFeatures(), 1u);
+  EXPECT_EQ(health.getFeatureState(1), H::FEATURE_NOT_TRACKED);
+  health.setFeatureTracked(1, true);
   EXPECT_TRUE(throwsProjective([&] { health.setFeatureTracked(2, false); }, dim, "feature index 2"));
   EXPECT_TRUE(throwsProjective([&] { health.isFeatureTracked(2); }, dim, "feature index 2"));
   EXPECT_TRUE(throwsProjective([&] { health.getFeatureState(2); }, dim, "feature index 2"));

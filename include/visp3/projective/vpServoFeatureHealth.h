@@ -58,9 +58,9 @@ BEGIN_VISP_NAMESPACE
   coordinate), so that each iteration needs one \f$ H(q) \f$. The prediction is tested once the feature has been
   accepted at least once.
 
-  <b>One iteration.</b> startIteration() at joints \f$ q \f$, classify() for every feature, accept() for the active
-  ones with their triangulated point, then endIteration(): only then do the states, distances and memories of the
-  iteration become those that the getters report and the next iteration predicts from. An iteration interrupted
+  <b>One iteration.</b> startIteration() at joints \f$ q \f$, classify() for every feature (which also triangulates
+  the active ones), then endIteration(): only then do the states, distances and memories of the iteration become
+  those that the getters report and the next iteration predicts from. An iteration interrupted
   between startIteration() and endIteration() (an exception of the caller) leaves the previous outcome as it was.
   endIteration() sees every feature's state and distances before they become the outcome: a check over the whole
   iteration or over consecutive ones (a model that no longer predicts any feature) belongs there.
@@ -142,20 +142,17 @@ public:
   void startIteration(const vpProjectiveRobot &robot, const vpProjectiveRobot::JointVector &q);
   /*!
     State of feature \e i in this iteration, of current value \e s and desired value \e sStar (4x1 each, pixels
-    \f$ (u, v, u', v') \f$); records its distances.
+    \f$ (u, v, u', v') \f$); records its distances. For an active feature, \e M (4x1, projective frame of the rig)
+    receives the point linearly triangulated from \e s (vpProjectiveStereoRig::triangulateLinear()), which the
+    iteration remembers as \f$ M_0 = H(q)^{-1} M \f$ (unit norm) for the next predictions; otherwise \e M is not
+    changed. Classifying a feature twice in an iteration keeps the second outcome.
     \exception vpProjectiveException (dimensionError, notInitializedError) on a bad index or outside an iteration.
   */
-  vpFeatureState classify(unsigned int i, const Eigen::Vector4d &s, const Eigen::Vector4d &sStar);
-  /*!
-    Records the projective point \e M (4x1, any non-zero scale, projective frame of the rig) triangulated from
-    feature \e i, found active, as its memory \f$ M_0 = H(q)^{-1} M \f$ for the next predictions (with outlier
-    rejection on).
-    \exception vpProjectiveException (dimensionError, notInitializedError) on a bad index or outside an iteration.
-  */
-  void accept(unsigned int i, const Eigen::Vector4d &M);
+  vpFeatureState classify(unsigned int i, const Eigen::Vector4d &s, const Eigen::Vector4d &sStar, Eigen::Vector4d &M);
   /*!
     Ends the iteration: its states, distances and memories become the outcome reported by the getters.
-    \exception vpProjectiveException (notInitializedError) outside an iteration.
+    \exception vpProjectiveException (notInitializedError) outside an iteration, or if a feature was not classified
+    in it (the iteration then stays open).
   */
   void endIteration();
   //@}
@@ -191,10 +188,12 @@ private:
     double predictionDistance; // -1: not evaluated
     Eigen::Vector4d M0;        // H(q_l)^-1 M_l at the last acceptance, unit norm
     bool hasM0;                // M0 is set
+    unsigned long iteration;   // the iteration that classified it (0: none)
   };
 
   void checkIndex(unsigned int i, const char *method) const;
   void checkIteration(const char *method) const;
+  vpFeatureState outlierTest(const Eigen::Vector4d &s, vpRecord &record) const;
 
   std::vector<char> m_tracked;
   std::vector<vpRecord> m_records; // outcome of the last completed iteration
@@ -206,6 +205,9 @@ private:
   double m_outlierThreshold;
 
   // The iteration in progress.
+  unsigned long m_iteration; // its number, from 1
+  unsigned int m_classified; // features classified in it
+  unsigned int m_workActive; // of which active
   bool m_inIteration;
   bool m_predict;
   const vpProjectiveStereoRig *m_rig;

@@ -313,7 +313,7 @@ public:
   vpColVector getTaskSingularValues() const;
 
   //! Outcome of the last computeControlLaw() (SERVO_RUNNING before the first one).
-  vpServoStatus getStatus() const { return m_last.status; }
+  vpServoStatus getStatus() const { return last().status; }
   /*!
     State of feature \e i (index in addFeature() order) at the last computeControlLaw() (FEATURE_ACTIVE before).
     \exception vpProjectiveException (dimensionError) on a bad index.
@@ -361,11 +361,11 @@ public:
   double getConditionNumber() const;
   //! Damping \f$ \mu \f$ (pixels per joint unit) used at the last computeControlLaw() (0 away from singularities,
   //! and when it stopped).
-  double getDamping() const { return m_last.damping; }
+  double getDamping() const { return last().damping; }
   //! Gain used at the last computeControlLaw() (0 when it stopped: SERVO_STOPPED).
-  double getLambda() const { return m_last.lambda; }
+  double getLambda() const { return last().lambda; }
   //! True if the last computeControlLaw() was scaled down by the velocity saturation.
-  bool isSaturated() const { return m_last.saturated; }
+  bool isSaturated() const { return last().saturated; }
   //@}
 
   /*! \name The parts of the task */
@@ -412,6 +412,7 @@ private:
   void addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const;
   void stop(vpIteration &it, JointVector &qdot) const;
   void commit();
+  const vpIteration &last() const { return m_iterations[m_lastIteration]; }
 
   const vpProjectiveRobot *m_robot;
   std::vector<vpFeatureStereoPoint *> m_features;
@@ -421,8 +422,10 @@ private:
   vpServoDampedLeastSquares m_law;
   vpServoFeatureHealth m_health;
   vpServoJointLimitAvoidance m_jointLimits;
-  vpIteration m_last; // the last successful computeControlLaw(): what the getters read
-  vpIteration m_next; // the one in progress
+  // Two iterations: m_iterations[m_lastIteration] is the last successful computeControlLaw(), the one the getters
+  // read; the other is the one in progress, which commit() makes the last by flipping the index (nothing is copied).
+  vpIteration m_iterations[2];
+  unsigned int m_lastIteration;
 };
 
 END_VISP_NAMESPACE
