@@ -52,7 +52,8 @@ BEGIN_VISP_NAMESPACE
   projection of
   \f[ \hat M_i = H(q)\, H(q_l)^{-1} M_l, \f]
   \f$ M_l \f$ the projective point (4x1, projective frame of the rig) triangulated when the feature was last
-  accepted, at joints \f$ q_l \f$, moved by the model's displacement (34) \f$ H(q) \f$ (4x4) since then.
+  accepted (found FEATURE_ACTIVE), at joints \f$ q_l \f$, moved by the model's displacement (34) \f$ H(q) \f$
+  (4x4) since then.
 
   <b>Memory.</b> The class keeps, per feature, \f$ M_0 = H(q_l)^{-1} M_l \f$ (unit norm, never divided by its last
   coordinate), so that each iteration needs one \f$ H(q) \f$. The prediction is tested once the feature has been
