@@ -29,13 +29,17 @@
     stops (qdot = 0 exactly) when the active points no longer constrain every joint (2 points: rank 5); gross outliers
     are flagged and the accuracy kept; ViSP's joint-limit avoidance with the large projection operator keeps a joint
     inside limits its unconstrained trajectory crosses, and P and q2 match vpServo's to 1e-15; with nothing to catch
-    the checks change no bit of the velocities.
+    the checks change no bit of the velocities;
+  - the parts of the task: its velocity is vpServoDampedLeastSquares' on its J, e and gain, to the bit; print(),
+    getDimension(), getTaskSingularValues() (an SVD's) and setPseudoInverseThreshold() (the projector I - J^+ J of
+    the large projection operator only); a call that throws leaves every getter and memory as it was; the const
+    getters write nothing and agree when two threads call them.
 
-  Settings of the convergence tests: lambda = 0.5, dt = 1, damping (sigma_0, mu_max) = (1, 10) px/rad, saturation
-  10 deg per step. Measured: 24-36 iterations for all 20 pairs. With the library's default damping (30, 30) the same
-  pairs need up to 223 iterations or stall (2 of 10 PUMA and 4 of 10 Viper pairs above 300 iterations): three tracked
-  markers 8 cm apart seen from 1 m give sigma_min of 1 to 50 px/rad in healthy configurations, so the default
-  threshold damps the last, small steps too (reported to the maintainers). Without damping and saturation one Viper
+  Settings of the convergence tests: lambda = 0.5, dt = 1, damping (sigma_0, mu_max) = (1, 10) px/rad (the library's
+  default since commit 6e8f9d6), saturation 10 deg per step. Measured: 24-36 iterations for all 20 pairs. With the
+  former default damping (30, 30) the same pairs need up to 223 iterations or stall (2 of 10 PUMA and 4 of 10 Viper
+  pairs above 300 iterations): three tracked markers 8 cm apart seen from 1 m give sigma_min of 1 to 50 px/rad in
+  healthy configurations, so that threshold damped the last, small steps too. Without damping and saturation one Viper
   pair crosses a near-singularity (condition 2700) and ends in another local minimum.
   Bounds: noise free, qdot must match the closed forms to rounding (1e-9 relative); the final joint error is bounded
   by the image error over sigma_min: 3.5e-6 px / 0.9 px/rad < 1e-5 rad. Every random number is seeded.
@@ -46,6 +50,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -60,6 +65,7 @@
 #include <visp3/projective/vpFeatureStereoPoint.h>
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveRobot.h>
+#include <visp3/projective/vpServoDampedLeastSquares.h>
 #include <visp3/projective/vpServoProjective.h>
 
 #include "vpProjectiveArmTestTools.h"
@@ -1389,4 +1395,190 @@ TEST(ServoProjective, BadRobustnessInputsThrow)
   early.setRobot(robot);
   EXPECT_TRUE(throwsProjective([&] { early.getLargeProjectionOperator(); }, notInit, "computeControlLaw() first"));
   EXPECT_TRUE(throwsProjective([&] { early.computeControlLaw(q); }, dim, "the joint limits have 5 entries"));
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The parts of the task (architecture issue, point 4): the law, the ViSP surface, failed calls, const getters.
+// ---------------------------------------------------------------------------------------------------------------
+
+TEST(ServoProjective, ItsVelocityIsTheDampedLeastSquaresLawOfItsTask)
+{
+  // The task's velocity is vpServoDampedLeastSquares::computeVelocity() on getTaskJacobian(), getError() and
+  // getLambda() with the task's settings (getDampedLeastSquares()), to the bit: undamped, damped and saturated.
+  const ArmSetup s = pumaEyeToHand();
+  const vpProjectiveRobot robot = calibratedRobot(s);
+  vpUniRand rng(81);
+  for (int p = 0; p < 3; ++p) {
+    vpColVector q, qStar;
+    randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(15.0), q, qStar);
+    Task t(s, robot, {0, 1, 2, 3}, q, qStar);
+    t.task.setLambda(2.0, 0.2, 0.05);
+    for (int c = 0; c < 3; ++c) {
+      t.task.setDamping(c == 0 ? 0.0 : 1e3, 50.0);
+      t.task.setMaxJointVelocity(c == 2 ? vpMath::rad(1.0) : 0.0);
+      const Eigen::VectorXd qdot = toEigenV(t.task.computeControlLaw(q));
+      vpServoDampedLeastSquares law = t.task.getDampedLeastSquares();
+      const Eigen::VectorXd expected =
+          toEigenV(law.computeVelocity(t.task.getTaskJacobian(), t.task.getError(), t.task.getLambda()));
+      EXPECT_EQ(qdot, expected) << "pair " << p << ", case " << c;
+      EXPECT_EQ(t.task.getDamping(), law.getDamping());
+      EXPECT_EQ(t.task.isSaturated(), law.isSaturated());
+      EXPECT_EQ(t.task.getDamping() > 0.0, c > 0);
+      EXPECT_EQ(t.task.isSaturated(), c == 2);
+    }
+  }
+}
+
+TEST(ServoProjective, PrintDimensionSingularValuesAndPseudoInverseThreshold)
+{
+  const ArmSetup s = pumaEyeToHand();
+  const vpProjectiveRobot robot = calibratedRobot(s);
+  vpUniRand rng(82);
+  vpColVector q, qStar;
+  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
+  Task t(s, robot, {0, 1, 2}, q, qStar);
+  configure(t.task);
+  EXPECT_EQ(t.task.getDimension(), 12u);
+  EXPECT_EQ(t.task.getTaskSingularValues().size(), 0u);
+  std::ostringstream before;
+  t.task.print(before);
+  EXPECT_NE(before.str().find("3 stereo points"), std::string::npos) << before.str();
+  EXPECT_NE(before.str().find("task dimension 12"), std::string::npos) << before.str();
+  EXPECT_NE(before.str().find("No computeControlLaw() yet"), std::string::npos) << before.str();
+
+  t.task.setFeatureTracked(1, false);
+  t.task.setImageSize(s.width, s.height, 5.0);
+  t.task.setJointLimits(vpColVector(6, -M_PI), vpColVector(6, M_PI));
+  const Eigen::VectorXd qdot = toEigenV(t.task.computeControlLaw(q));
+  // Singular values of the last J (here with feature 1's rows zero), decreasing, as an SVD gives them.
+  const Eigen::VectorXd sv = toEigenV(t.task.getTaskSingularValues());
+  const Eigen::VectorXd expected = singularValues(toEigenX(t.task.getTaskJacobian()));
+  ASSERT_EQ(sv.size(), 6);
+  EXPECT_LT((sv - expected).norm(), 1e-12 * expected(0));
+  EXPECT_LT(sv(5), 1e-9 * sv(0)); // 2 markers: rank 5
+  std::ostringstream after;
+  t.task.print(after);
+  for (const char *word : {"SERVO_STOPPED", "1: s = (", "not tracked", "|e| = ", "sigma_0 1, mu_max 10",
+                           "image window 640 x 480, border 5 px", "outlier threshold off", "qmin (-3.14159",
+                           "pseudo-inverse threshold 1e-06", "2 active at the last computeControlLaw()"}) {
+    EXPECT_NE(after.str().find(word), std::string::npos) << "no \"" << word << "\" in\n" << after.str();
+  }
+  EXPECT_TRUE(allZero(qdot)); // 2 markers: stopped
+
+  // The pseudo-inverse threshold changes the projector I - J^+ J of the large projection operator, not the law:
+  // below e0 (here ||e|| < e0 = 1e3 px) P = I - J^+ J, 0 for a full-rank J; at a threshold above sigma_min / sigma_max
+  // the right singular vector of sigma_min counts as a null direction.
+  t.task.setFeatureTracked(1, true);
+  t.task.setLargeProjectionThresholds(1e3, 2e3);
+  const Eigen::VectorXd qdotDefault = toEigenV(t.task.computeControlLaw(q));
+  EXPECT_EQ(toEigenX(t.task.getLargeProjectionOperator()).norm(), 0.0);
+  const Eigen::MatrixXd J = toEigenX(t.task.getTaskJacobian());
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
+  const double ratio = svd.singularValues()(5) / svd.singularValues()(0);
+  EXPECT_LT((toEigenV(t.task.getTaskSingularValues()) - svd.singularValues()).norm(), 1e-12 * svd.singularValues()(0));
+  EXPECT_NEAR(t.task.getConditionNumber(), 1.0 / ratio, 1e-6 / ratio);
+  t.task.setPseudoInverseThreshold(1.5 * ratio);
+  EXPECT_EQ(t.task.getDampedLeastSquares().getPseudoInverseThreshold(), 1.5 * ratio);
+  EXPECT_EQ(toEigenV(t.task.computeControlLaw(q)), qdotDefault);
+  const Eigen::VectorXd v = svd.matrixV().col(5);
+  EXPECT_LT((toEigenX(t.task.getLargeProjectionOperator()) - v * v.transpose()).norm(), 1e-6);
+  EXPECT_TRUE(throwsProjective([&] { t.task.setPseudoInverseThreshold(1.0); }, vpProjectiveException::invalidValueError,
+                               "[0, 1)"));
+  EXPECT_TRUE(throwsProjective([&] { t.task.setPseudoInverseThreshold(std::numeric_limits<double>::quiet_NaN()); },
+                               vpProjectiveException::nonFiniteValueError, "pseudo-inverse threshold"));
+  EXPECT_EQ(t.task.getDampedLeastSquares().getPseudoInverseThreshold(), 1.5 * ratio);
+}
+
+TEST(ServoProjective, AFailedCallLeavesTheTaskAsItWas)
+{
+  // Feature 2, set aside at the first call (so that it has no prediction yet), comes back with its right image
+  // 1e15 px along its epipolar line: it passes the epipolar test, and its triangulated point lies on the right
+  // camera's focal plane, so computeControlLaw() throws. Every getter then reports the first call, and the next
+  // call computes what a twin task that never saw the failure computes, to the bit (memories included).
+  const ArmSetup s = pumaEyeToHand();
+  const vpProjectiveRobot robot = calibratedRobot(s);
+  const Eigen::Matrix3d F = toEigen<3, 3>(robot.getStereoRig().getFundamentalMatrix());
+  vpUniRand rng(83);
+  vpColVector q, qStar;
+  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
+  const std::vector<unsigned int> tracked = {0, 1, 2, 3};
+  Task failing(s, robot, tracked, q, qStar), twin(s, robot, tracked, q, qStar);
+  for (Task *t : {&failing, &twin}) {
+    configure(t->task);
+    t->task.setOutlierThreshold(5.0);
+    t->task.setJointLimits(vpColVector(6, -M_PI), vpColVector(6, M_PI));
+    t->task.setFeatureTracked(2, false);
+    t->task.computeControlLaw(q);
+  }
+  const Eigen::VectorXd e = toEigenV(failing.task.getError());
+  const Eigen::MatrixXd J = toEigenX(failing.task.getTaskJacobian());
+  const double condition = failing.task.getConditionNumber(), ratio = failing.task.getSingularValueRatio();
+  const double damping = failing.task.getDamping(), lambda = failing.task.getLambda();
+  ASSERT_EQ(failing.task.getStatus(), vpServoProjective::SERVO_REDUCED);
+
+  const Eigen::Vector4d m = failing.s[2].getFeature();
+  const Eigen::Vector3d lp = F * Eigen::Vector3d(m(0), m(1), 1.0);
+  const Eigen::Vector2d along = Eigen::Vector2d(lp(1), -lp(0)).normalized();
+  failing.s[2].setRaw(m(0), m(1), m(2) + 1e15 * along(0), m(3) + 1e15 * along(1));
+  failing.task.setFeatureTracked(2, true);
+  EXPECT_TRUE(throwsProjective([&] { failing.task.computeControlLaw(q); }, vpProjectiveException::pointAtInfinityError,
+                               "feature 2 triangulates onto"));
+  EXPECT_EQ(toEigenV(failing.task.getError()), e);
+  EXPECT_EQ(toEigenX(failing.task.getTaskJacobian()), J);
+  EXPECT_EQ(failing.task.getStatus(), vpServoProjective::SERVO_REDUCED);
+  EXPECT_EQ(failing.task.getFeatureState(2), vpServoProjective::FEATURE_NOT_TRACKED);
+  EXPECT_EQ(failing.task.getNumberOfActiveFeatures(), 3u);
+  EXPECT_EQ(failing.task.getConditionNumber(), condition);
+  EXPECT_EQ(failing.task.getSingularValueRatio(), ratio);
+  EXPECT_EQ(failing.task.getDamping(), damping);
+  EXPECT_EQ(failing.task.getLambda(), lambda);
+  for (unsigned int k = 0; k < 4; ++k) {
+    EXPECT_EQ(failing.task.getEpipolarDistance(k), twin.task.getEpipolarDistance(k));
+    EXPECT_EQ(failing.task.getPredictionDistance(k), twin.task.getPredictionDistance(k));
+  }
+
+  // The next call, from the true images one step further.
+  failing.s[2].setRaw(m(0), m(1), m(2), m(3));
+  twin.task.setFeatureTracked(2, true);
+  const vpColVector qNext = s.arm.integrate(s.armJoints(q), twin.task.computeControlLaw(q), 1.0) - s.qRef;
+  failing.task.computeControlLaw(q); // as the twin: the first call after the failure, at q
+  setFeatures(s, qNext, tracked, failing.s);
+  setFeatures(s, qNext, tracked, twin.s);
+  EXPECT_EQ(toEigenV(failing.task.computeControlLaw(qNext)), toEigenV(twin.task.computeControlLaw(qNext)));
+  for (unsigned int k = 0; k < 4; ++k) {
+    EXPECT_EQ(failing.task.getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
+    EXPECT_GE(failing.task.getPredictionDistance(k), 0.0);
+    EXPECT_EQ(failing.task.getPredictionDistance(k), twin.task.getPredictionDistance(k)) << "feature " << k;
+  }
+}
+
+TEST(ServoProjective, ConstGettersWriteNothingAndCanBeSharedByThreads)
+{
+  // The getters that used to fill caches compute on demand: called from two threads at once they agree with the
+  // values read before, to the bit (run under ThreadSanitizer, this is also a race check).
+  const ArmSetup s = pumaEyeToHand();
+  const vpProjectiveRobot robot = calibratedRobot(s);
+  vpUniRand rng(84);
+  vpColVector q, qStar;
+  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
+  Task t(s, robot, {0, 1, 2, 3}, q, qStar);
+  configure(t.task);
+  t.task.setFeatureTracked(3, false);
+  t.task.computeControlLaw(q);
+  const vpServoProjective &task = t.task;
+  const double condition = task.getConditionNumber(), ratio = task.getSingularValueRatio();
+  const Eigen::MatrixXd P = toEigenX(task.getLargeProjectionOperator());
+  const Eigen::VectorXd sv = toEigenV(task.getTaskSingularValues());
+  bool agree[2] = {true, true};
+  auto reader = [&](int k) {
+    for (int it = 0; it < 200; ++it) {
+      agree[k] = agree[k] && task.getConditionNumber() == condition && task.getSingularValueRatio() == ratio &&
+                 toEigenX(task.getLargeProjectionOperator()) == P && toEigenV(task.getTaskSingularValues()) == sv;
+    }
+  };
+  std::thread a(reader, 0), b(reader, 1);
+  a.join();
+  b.join();
+  EXPECT_TRUE(agree[0]);
+  EXPECT_TRUE(agree[1]);
 }

@@ -21,6 +21,7 @@
 
 #include <visp3/projective/vpProjectiveConfig.h>
 
+#include <iostream>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,6 +30,9 @@
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpFeatureStereoPoint.h>
 #include <visp3/projective/vpProjectiveRobot.h>
+#include <visp3/projective/vpServoDampedLeastSquares.h>
+#include <visp3/projective/vpServoFeatureHealth.h>
+#include <visp3/projective/vpServoJointLimitAvoidance.h>
 #include <visp3/vs/vpAdaptiveGain.h>
 
 BEGIN_VISP_NAMESPACE
@@ -40,30 +44,29 @@ BEGIN_VISP_NAMESPACE
   point features, through the projective kinematic model of the arm. No intrinsics, rig geometry, robot geometry or
   hand-eye transform enter it.
 
-  For \f$ N \f$ stereo points the task error is \f$ e = s - s^* \f$ (4N), and the task Jacobian \f$ J \f$ (4N x n)
-  stacks, for each point, eq. (46) at the current joint values \f$ q \f$ and the point \f$ M \f$ triangulated from the
-  current features:
+  For \f$ N \f$ stereo points the task error is \f$ e = s - s^* \f$ (4N x 1, pixels, rows \f$ (u, v, u', v') \f$ per
+  point), and the task Jacobian \f$ J \f$ (4N x n, pixels per joint unit) stacks, for each point, eq. (46) at the
+  current joint values \f$ q \f$ (n x 1, the model's joint values: radians or the encoder's length unit) and the
+  point \f$ M \f$ (4x1, projective frame of the rig) triangulated from the current features:
   \f[ J_i = \begin{bmatrix} J_C(P M_i) P \\ J_C(P' M_i) P' \end{bmatrix} J_H(q, M_i). \f]
   The control law (47) is \f$ \dot q = -\lambda J^+ e \f$, with the pseudo-inverse damped near singular
   configurations: \f$ J^+ = (J^T J + \mu^2 I)^{-1} J^T \f$, \f$ \mu^2 = \mu_{max}^2 (1 - (\sigma_{min} /
-  \sigma_0)^2) \f$ when the smallest singular value \f$ \sigma_{min} \f$ of J falls below \f$ \sigma_0 \f$, 0 otherwise.
+  \sigma_0)^2) \f$ when the smallest singular value \f$ \sigma_{min} \f$ of J falls below \f$ \sigma_0 \f$, 0 otherwise,
+  then saturated (vpServoDampedLeastSquares, getDampedLeastSquares()).
 
   Like vpServo, the task keeps references to the features: the loop updates them and calls computeControlLaw().
 
   <b>Lost features, outliers and singularities.</b> At every computeControlLaw() each feature \f$ i \f$ gets a state
-  (getFeatureState()), tested in this order:
-  -# FEATURE_NOT_TRACKED: the tracker said so with setFeatureTracked(i, false);
-  -# FEATURE_NOT_FINITE: \f$ s_i \f$ or \f$ s^*_i \f$ holds a NaN or an infinity (a tracker that lost the point);
-  -# FEATURE_OUT_OF_IMAGE: outside the image window of setImageSize() in either image;
-  -# FEATURE_OUTLIER: with setOutlierThreshold(), too far from its epipolar line or from the model's prediction;
-  -# FEATURE_ACTIVE otherwise.
+  (getFeatureState(), vpServoFeatureHealth): FEATURE_NOT_TRACKED (setFeatureTracked()), FEATURE_NOT_FINITE,
+  FEATURE_OUT_OF_IMAGE (setImageSize()), FEATURE_OUTLIER (setOutlierThreshold()), tested in this order, or
+  FEATURE_ACTIVE.
 
   Features that are not active are set aside: their 4 rows of \f$ e \f$ and \f$ J \f$ are set to zero, so that
   getError() and getTaskJacobian() keep their sizes \f$ 4N \f$ and \f$ 4N \times n \f$, and the control law,
   its damping, its gain and getConditionNumber() all act on the reduced task (zero rows change neither
   \f$ J^T J \f$ nor \f$ J^T e \f$). getStatus() then tells what happened:
   - SERVO_RUNNING: every feature is active. Whatever the rank of \f$ J \f$: a singular task with all its features
-    (an arm singularity, a repeated feature) is left to the damped least squares, as before;
+    (an arm singularity, a repeated feature) is left to the damped least squares;
   - SERVO_REDUCED: some features are set aside and the active ones still constrain every joint; the task goes on
     with them;
   - SERVO_STOPPED: some features are set aside and the active ones no longer constrain every joint; then
@@ -73,13 +76,15 @@ BEGIN_VISP_NAMESPACE
     neither on the pixel unit nor on the joint units (radians, metres), when a column is below \f$ \tau \f$ times the
     largest, or when fewer than \f$ n/3 \f$ points are active (a stereo point gives at most 3 independent equations:
     its 4 x 4 \f$ [J_C(P M) P; J_C(P' M) P'] \f$ annihilates \f$ M \f$). Two points never suffice for 6 joints: the
-    rotation about the line through them moves neither (rank 5). Measured in the simulator: 3 to 7 markers of the
-    8 cm gripper give ratios of \f$ 10^{-4} \f$ (eye-in-hand) to \f$ 4 \cdot 10^{-2} \f$, 2 markers
-    \f$ 10^{-8} \f$ or less (the rounding of the eigenvalues).
+    rotation about the line through them moves neither (rank 5). Values measured in the simulator:
+    \ref page_servo_measurements.
 
   <b>Joint limits.</b> setJointLimits() adds ViSP's joint-limit avoidance (Marey and Chaumette 2010) as a secondary
-  task projected with the large projection operator, which acts even when \f$ J \f$ has full column rank (see
-  setJointLimits()).
+  task projected with the large projection operator, which acts even when \f$ J \f$ has full column rank
+  (vpServoJointLimitAvoidance).
+
+  Every getter is const and reads the state left by the last computeControlLaw() without writing anything: several
+  threads may read one task while none computes.
 
   \code
   vpServoProjective task;
@@ -98,19 +103,24 @@ BEGIN_VISP_NAMESPACE
     }
     // send qdot to the robot
   }
+  task.print();
   \endcode
 */
 class VISP_EXPORT vpServoProjective
 {
 public:
-  //! What happened to feature i at the last computeControlLaw().
-  enum vpFeatureState {
-    FEATURE_ACTIVE,       //!< Used by the control law.
-    FEATURE_NOT_TRACKED,  //!< Set aside: setFeatureTracked(i, false).
-    FEATURE_OUT_OF_IMAGE, //!< Set aside: outside the image window of setImageSize() in the left or right image.
-    FEATURE_NOT_FINITE,   //!< Set aside: a coordinate of \f$ s_i \f$ or \f$ s^*_i \f$ is NaN or infinite.
-    FEATURE_OUTLIER       //!< Set aside: farther than setOutlierThreshold() from its epipolar line or its prediction.
-  };
+  //! What happened to feature i at the last computeControlLaw() (see vpServoFeatureHealth::vpFeatureState).
+  typedef vpServoFeatureHealth::vpFeatureState vpFeatureState;
+  //! Used by the control law.
+  static constexpr vpFeatureState FEATURE_ACTIVE = vpServoFeatureHealth::FEATURE_ACTIVE;
+  //! Set aside: setFeatureTracked(i, false).
+  static constexpr vpFeatureState FEATURE_NOT_TRACKED = vpServoFeatureHealth::FEATURE_NOT_TRACKED;
+  //! Set aside: outside the image window of setImageSize() in the left or right image.
+  static constexpr vpFeatureState FEATURE_OUT_OF_IMAGE = vpServoFeatureHealth::FEATURE_OUT_OF_IMAGE;
+  //! Set aside: a coordinate of \f$ s_i \f$ or \f$ s^*_i \f$ is NaN or infinite.
+  static constexpr vpFeatureState FEATURE_NOT_FINITE = vpServoFeatureHealth::FEATURE_NOT_FINITE;
+  //! Set aside: farther than setOutlierThreshold() from its epipolar line or its prediction.
+  static constexpr vpFeatureState FEATURE_OUTLIER = vpServoFeatureHealth::FEATURE_OUTLIER;
 
   //! Outcome of the last computeControlLaw().
   enum vpServoStatus {
@@ -119,40 +129,74 @@ public:
     SERVO_STOPPED  //!< The active features no longer constrain every joint (rank < n): \f$ \dot q = 0 \f$.
   };
 
+  //! A task without robot or feature: gain 0.5, damping (1, 10), no saturation, no check, no joint limit.
   vpServoProjective();
 
+  /*! \name Model and gain */
+  //@{
   /*!
     The acquired projective model of the arm (calibrated or loaded). The task keeps a reference: the robot must
     outlive it.
+    \exception vpProjectiveException (notInitializedError) if the model is not acquired.
   */
   void setRobot(const vpProjectiveRobot &robot);
-  //! Constant gain \f$ \lambda > 0 \f$.
-  void setLambda(double lambda);
-  //! Adaptive gain, a function of the infinity norm of the error (see vpAdaptiveGain).
-  void setLambda(const vpAdaptiveGain &lambda);
-  //! Adaptive gain from its value at zero error, at infinite error and its slope at zero.
-  void setLambda(double gainAtZero, double gainAtInfinity, double slopeAtZero);
   /*!
-    Damped least squares: below \e sigmaThreshold (pixels per joint unit) for the smallest singular value of J, the
-    damping \f$ \mu \f$ rises to \e maxDamping. Defaults: 1 and 10. Three markers 8 cm apart seen from 1 m give
-    \f$ \sigma_{min} \f$ of 1 to 50 pixels per radian in healthy poses: a higher threshold keeps damping on near the
-    target, which does not move the fixed point (\f$ J^T e = 0 \f$) but slows the final convergence. For large
-    initial errors, combine a higher threshold with setMaxJointVelocity().
+    Constant gain \f$ \lambda > 0 \f$ (per call, or per second when \f$ \dot q \f$ is sent as a velocity).
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if it is not positive and finite.
+  */
+  void setLambda(double lambda);
+  //! Adaptive gain, a function of the infinity norm of the error in pixels (see vpAdaptiveGain).
+  void setLambda(const vpAdaptiveGain &lambda);
+  /*!
+    Adaptive gain from its value at zero error, at infinite error and its slope at zero (per pixel).
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) unless
+    \f$ gainAtZero \ge gainAtInfinity > 0 \f$, \f$ slopeAtZero \ge 0 \f$, all finite.
+  */
+  void setLambda(double gainAtZero, double gainAtInfinity, double slopeAtZero);
+  //@}
+
+  /*! \name Control law (forwarded to vpServoDampedLeastSquares) */
+  //@{
+  /*!
+    Damped least squares: below \e sigmaThreshold \f$ \sigma_0 \f$ (pixels per joint unit) for the smallest
+    singular value of \f$ J \f$, the damping \f$ \mu \f$ rises to \e maxDamping \f$ \mu_{max} \f$ (pixels per joint
+    unit). Defaults: 1 and 10. See vpServoDampedLeastSquares::setDamping().
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if a value is negative or not finite.
   */
   void setDamping(double sigmaThreshold, double maxDamping);
   /*!
-    Velocity saturation: when some \f$ |\dot q_i| \f$ exceeds \e qdotMax (joint units per call), the whole
-    \f$ \dot q \f$ is scaled down so that the largest one equals it, which keeps its direction. Large initial errors
-    otherwise ask for joint steps far beyond the validity of the linearisation. 0 (the default) disables it.
+    Velocity saturation at \e qdotMax (joint units per call, or per second), keeping the direction of
+    \f$ \dot q \f$; 0 (the default) disables it. See vpServoDampedLeastSquares::setMaxJointVelocity().
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if it is negative or not finite.
   */
   void setMaxJointVelocity(double qdotMax);
-
   /*!
-    Image size, for the detection of features that left the view. A feature is FEATURE_OUT_OF_IMAGE when
-    \f$ (u, v) \f$ or \f$ (u', v') \f$ lies outside
-    \f[ [b, w - 1 - b] \times [b, h - 1 - b] \f]
-    (\f$ u \f$ the column, \f$ v \f$ the row, \f$ b \f$ = \e border pixels, bounds included). Such a feature is
-    detected and set aside, never extrapolated. 0 x 0 (the default) disables the check.
+    Relative threshold \f$ \tau_+ \f$ of the pseudo-inverse, as vpServo::setPseudoInverseThreshold() (default
+    \f$ 10^{-6} \f$): singular values of \f$ J \f$ below \f$ \tau_+ \sigma_{max} \f$ count as zero in the projector
+    \f$ I_n - J^+ J \f$ of the large projection operator (getLargeProjectionOperator(), setJointLimits()). It changes
+    neither the primary law, which damps small singular values below \f$ \sigma_0 \f$ (setDamping()) instead of
+    truncating them, nor the test that stops the task when features are set aside (setRankTolerance(), on the
+    column-equilibrated \f$ J \f$). See vpServoDampedLeastSquares::setPseudoInverseThreshold().
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if it is not in [0, 1) or not finite.
+  */
+  void setPseudoInverseThreshold(double threshold);
+  /*!
+    Tolerance \f$ \tau \in (0, 1) \f$ of the rank test that stops the task when features are set aside (see the
+    class documentation). Default \f$ 10^{-6} \f$, the relative threshold of vpServo's pseudo-inverse: the
+    singular values come from the eigenvalues of \f$ D^{-1} J^T J D^{-1} \f$, which resolve \f$ \sigma_{min} /
+    \sigma_{max} \f$ down to about \f$ \sqrt{n \epsilon} \approx 4 \cdot 10^{-8} \f$; keep \f$ \tau \f$ above.
+    \exception vpProjectiveException if \e tolerance is not in (0, 1).
+  */
+  void setRankTolerance(double tolerance);
+  //@}
+
+  /*! \name Feature checks (forwarded to vpServoFeatureHealth) */
+  //@{
+  /*!
+    Image size (pixels), for the detection of features that left the view: a feature is FEATURE_OUT_OF_IMAGE when
+    \f$ (u, v) \f$ or \f$ (u', v') \f$ lies outside \f$ [b, w - 1 - b] \times [b, h - 1 - b] \f$ (\f$ b \f$ =
+    \e border pixels, bounds included). Such a feature is detected and set aside, never extrapolated. 0 x 0 (the
+    default) disables the check. See vpServoFeatureHealth::setImageSize().
     \exception vpProjectiveException if only one of \e width and \e height is 0, or \e border is negative, not finite
     or leaves no pixel (\f$ 2b > w - 1 \f$ or \f$ 2b > h - 1 \f$).
   */
@@ -166,74 +210,33 @@ public:
   //! The value given by setFeatureTracked() for feature \e i. \exception vpProjectiveException on a bad index.
   bool isFeatureTracked(unsigned int i) const;
   /*!
-    Outlier rejection: 0 (the default) disables it. Otherwise feature \e i is FEATURE_OUTLIER when one of these
-    pixel distances exceeds \e pixels:
-    - its epipolar distance, the larger of the distances of \f$ m \f$ to the line \f$ F^T m' \f$ and of
-      \f$ m' \f$ to the line \f$ F m \f$ (\f$ F \f$ of the rig),
-      \f[ d_F = \max\left( \frac{|m'^T F m|}{\|(F^T m')_{1,2}\|}, \frac{|m'^T F m|}{\|(F m)_{1,2}\|} \right); \f]
-    - its prediction distance, the larger over both images of the pixel distance between \f$ s_i \f$ and
-      the projection of
-      \f[ \hat M_i = H(q)\, H(q_l)^{-1} M_l, \f]
-      the point \f$ M_l \f$ triangulated when the feature was last accepted (at joints \f$ q_l \f$) moved by the
-      model's displacement (34) since then. The task keeps \f$ H(q_l)^{-1} M_l \f$ (unit norm), so that each
-      iteration needs one \f$ H(q) \f$; the 4-vectors are never divided by their last coordinate. The prediction is
-      tested once the feature has been accepted at least once (from its second appearance on).
+    Outlier rejection: 0 (the default) disables it. Otherwise feature \e i is FEATURE_OUTLIER when its epipolar
+    distance \f$ d_F \f$ or, from its second acceptance on, its prediction distance exceeds \e pixels. The prediction
+    is the projection of \f$ \hat M_i = H(q)\, H(q_l)^{-1} M_l \f$, the point \f$ M_l \f$ triangulated when the
+    feature was last accepted (at joints \f$ q_l \f$) moved by the model's displacement (34) since then (formulas:
+    vpServoFeatureHealth).
 
     The prediction catches what the epipolar test cannot: an error along the epipolar line, a tracker that jumped to
     another marker, a feature that reappears elsewhere after a loss. Choose the threshold well above the noise:
     at \f$ \sigma \f$ px per coordinate the epipolar distance has a standard deviation of about \f$ \sqrt 2 \sigma
-    \f$ and the prediction distance includes the model's own prediction error (0.3 px RMS for a model acquired at
-    0.5 px). Measured in the simulator (PUMA, 7 markers, 0.3 px noise, 5 % of the features shifted by 30 px in one
-    image): a 5 px threshold flagged every shifted feature and none of some 3000 others, and the servo kept the
-    accuracy it has without outliers (0.09 to 0.11 deg RMS), against 0.67 to 0.91 deg without the rejection.
+    \f$ and the prediction distance includes the model's own prediction error (figures:
+    \ref page_servo_measurements).
     \exception vpProjectiveException if \e pixels is negative or not finite.
   */
   void setOutlierThreshold(double pixels);
-  /*!
-    Tolerance \f$ \tau \in (0, 1) \f$ of the rank test that stops the task when features are set aside (see the
-    class documentation). Default \f$ 10^{-6} \f$, the relative threshold of vpServo's pseudo-inverse: the
-    singular values come from the eigenvalues of \f$ D^{-1} J^T J D^{-1} \f$, which resolve \f$ \sigma_{min} /
-    \sigma_{max} \f$ down to about \f$ \sqrt{n \epsilon} \approx 4 \cdot 10^{-8} \f$; keep \f$ \tau \f$ above.
-    \exception vpProjectiveException if \e tolerance is not in (0, 1).
-  */
-  void setRankTolerance(double tolerance);
+  //@}
 
+  /*! \name Joint limits (forwarded to vpServoJointLimitAvoidance) */
+  //@{
   /*!
     Joint-limit avoidance as a secondary task, as ViSP's vpServo::secondaryTaskJointLimitAvoidance() with
-    vpServo::secondaryTask(..., useLargeProjectionOperator = true) (Marey and Chaumette, ICRA 2010). With
-    \f$ \Delta_i = q_i^{max} - q_i^{min} \f$, joint \f$ i \f$ is left alone inside
-    \f$ ]q_{l_0,i}^{min}, q_{l_0,i}^{max}[ \f$,
-    \f[ q_{l_0,i}^{min} = q_i^{min} + \rho \Delta_i, \quad q_{l_0,i}^{max} = q_i^{max} - \rho \Delta_i, \quad
-       q_{l_1,i}^{min} = q_{l_0,i}^{min} - \rho \rho_1 \Delta_i, \quad
-       q_{l_1,i}^{max} = q_{l_0,i}^{max} + \rho \rho_1 \Delta_i. \f]
-    Outside it, with \f$ g_i = -u_i \f$ below \f$ q_{l_0,i}^{min} \f$ and \f$ g_i = +u_i \f$ above
-    \f$ q_{l_0,i}^{max} \f$ (\f$ u_i \f$ the i-th basis vector of the joint space), \f$ \dot q_1 \f$ the primary
-    velocity (the damped law, after the velocity saturation: the motion the arm really makes, vpServo's \e dq) and \f$
-    b_i = |\dot q_{1,i}| / |(P g_i)_i| \f$, joint \f$ i \f$ adds, when \f$ b_i < 1 \f$ (vpServo: a larger ratio does not
-    activate it), \f[ \dot q_{2}^{(i)} = -\lambda_{l,i} (1 + \lambda_t)\, b_i\, P g_i, \qquad \lambda_{l,i} = \frac{1}{1
-    + \exp\left(-12 \frac{q_i - q_{l_0,i}}{q_{l_1,i} - q_{l_0,i}} + 6\right)} \f] between \f$ q_{l_0,i} \f$ and \f$
-    q_{l_1,i} \f$ (of the side it is on) and \f$ \lambda_{l,i} = 1 \f$ beyond, and \f$ \dot q_2 = \sum_i \dot q_2^{(i)}
-    \f$. Since \f$ (P g_i)_i = \pm P_{ii} \f$, joint \f$ i \f$ then moves at \f$ \dot q_{1,i} - \lambda_{l,i} (1 +
-    \lambda_t) |\dot q_{1,i}| \f$ toward its limit: it stops where \f$ \lambda_{l,i} = 1 / (1 + \lambda_t) \f$ and turns
-    back beyond, the other joints compensating within \f$ P \f$. The large projection operator is \f[ P =
-    \bar\lambda(\|e\|)\, P_{\|e\|} + (1 - \bar\lambda(\|e\|)) (I_n - J^+ J), \qquad P_{\|e\|} = I_n - \frac{J^T e\, e^T
-    J}{e^T J J^T e}, \f] \f$ \bar\lambda = 1 \f$ above \f$ \|e\| = e_1 \f$, 0 below \f$ e_0 \f$ and \f$ 1 / (1 +
-    \exp(-12 (\|e\| - e_0) / (e_1 - e_0) + 6)) \f$ between (setLargeProjectionThresholds(), default vpServo's 0.1 and
-    0.7), \f$ J^+ J \f$ the projector on the row space of the (reduced) \f$ J \f$, singular values below \f$ 10^{-6}
-    \sigma_{max} \f$ counting as zero as in vpServo. Since \f$ P_{\|e\|} J^T e = 0 \f$ and \f$ (I_n - J^+ J) J^T e = 0
-    \f$, \f$ P J^T e = 0 \f$: the secondary task does not change \f$ \|e\|^2 \f$ to first order, and acts although \f$ J
-    \f$ (4N x n) has full column rank, where \f$ I_n - J^+ J = 0 \f$ and the classical projection would leave nothing.
-    When \f$ J^T e = 0 \f$ exactly, \f$ P = I_n - J^+ J \f$. Then \f$ \dot q = \dot q_1 + \dot q_2 \f$ goes through the
-    velocity saturation again; a stopped task (SERVO_STOPPED) returns 0.
-
-    vpServo's scheme is a continuous-time one: it needs several control periods inside the activation band, and
-    \f$ P_{\|e\|} \f$ only keeps \f$ \|e\| \f$ from growing to first order. Measured in the simulator (PUMA and
-    Viper850, 3 markers, joints overshooting by 3 to 30 deg, bands of 1 to 12 deg, 5 seeds): at 10 Hz with
-    \f$ \lambda = 0.5 \f$/s and 10 deg/s at most, the limit held in 111 of 111 runs and 98 converged, the other 13
-    held in their band by the conflict between the avoidance and the task; with one 10 deg step per call
-    (\f$ \lambda = 0.5 \f$ per call, as tutorial-projective-servo.cpp) the joints jump across such bands and the
-    limit held in only 33 of 125 runs (3 seeds). Keep \f$ \dot q_{max}\, \Delta t \f$ well below
-    \f$ \rho \rho_1 \Delta_i \f$.
+    vpServo::secondaryTask(..., useLargeProjectionOperator = true) (Marey and Chaumette, ICRA 2010); formulas in
+    vpServoJointLimitAvoidance. The primary velocity \f$ \dot q_1 \f$ is the damped law after the velocity
+    saturation (the motion the arm really makes, vpServo's \e dq); \f$ J \f$ and \f$ e \f$ those of the active
+    features; \f$ \dot q = \dot q_1 + \dot q_2 \f$ then goes through the velocity saturation again; a stopped task
+    (SERVO_STOPPED) returns 0. The scheme is a continuous-time one: it needs several control periods inside the
+    activation band; keep \f$ \dot q_{max}\, \Delta t \f$ well below \f$ \rho \rho_1 \Delta_i \f$
+    (\ref page_servo_measurements).
 
     \param qmin, qmax : limits (n x 1), \f$ q_i^{min} < q_i^{max} \f$, in the model's joint values (those of q).
     \param rho : \f$ \rho \in ]0, 1/2] \f$, the relative width of the activation band at each end (0.1: the last
@@ -250,19 +253,20 @@ public:
   /*!
     The error norms \f$ 0 \le e_0 < e_1 \f$ (pixels) of the switch \f$ \bar\lambda(\|e\|) \f$ between the large
     projection operator \f$ P_{\|e\|} \f$ (above \f$ e_1 \f$) and the classical \f$ I_n - J^+ J \f$ (below
-    \f$ e_0 \f$), see setJointLimits(). Default: vpServo's 0.1 and 0.7, taken in pixels. \f$ P_{\|e\|} \f$ turns with
-    the direction of \f$ J^T e \f$, which follows the image noise once \f$ \|e\| \f$ is down to it: raise
+    \f$ e_0 \f$), see vpServoJointLimitAvoidance. Default: vpServo's 0.1 and 0.7, taken in pixels. Raise
     \f$ e_0 \f$ above the noise level of \f$ \|e\| \f$ (about \f$ \sqrt{8N} \sigma \f$ for N points and a noisy
-    \f$ s \f$ and \f$ s^* \f$ of \f$ \sigma \f$ px) if a joint may rest in its activation band at the target. Larger
-    values switch the avoidance off sooner: with a full-rank task \f$ I_n - J^+ J = 0 \f$.
+    \f$ s \f$ and \f$ s^* \f$ of \f$ \sigma \f$ px) if a joint may rest in its activation band at the target.
     \exception vpProjectiveException if they are not finite or not \f$ 0 \le e_0 < e_1 \f$.
   */
   void setLargeProjectionThresholds(double e0, double e1);
   //! Removes the joint limits set by setJointLimits().
   void clearJointLimits();
   //! True if setJointLimits() is in effect.
-  bool hasJointLimits() const { return m_jointLimits; }
+  bool hasJointLimits() const { return m_jointLimits.hasJointLimits(); }
+  //@}
 
+  /*! \name Features */
+  //@{
   /*!
     Adds a stereo point and its desired value. Both are kept by reference, like vpServo::addFeature().
   */
@@ -271,42 +275,60 @@ public:
   void clearFeatures();
   //! Number of stereo point features \f$ N \f$ added.
   unsigned int getNumberOfFeatures() const { return static_cast<unsigned int>(m_features.size()); }
+  //! Dimension \f$ 4N \f$ of the task: the rows of \f$ e \f$ and \f$ J \f$, as vpServo::getDimension().
+  unsigned int getDimension() const { return 4 * getNumberOfFeatures(); }
+  //@}
 
+  /*! \name The control law */
+  //@{
   /*!
     \f$ \dot q = -\lambda J^+ (s - s^*) \f$ at joint values \e q, on the active features (see the class
     documentation), plus the joint-limit avoidance of setJointLimits() if set, then saturated.
     A lost, non-finite, out-of-image or outlying feature never throws: it is set aside and reported by
     getFeatureState() and getStatus(); when the active features no longer constrain every joint, \f$ \dot q = 0 \f$.
+    \param q : joint values (n x 1), the model's (radians, or the encoder's length unit).
+    \return \f$ \dot q \f$ (n x 1), joint units per call (or per second, following \f$ \lambda \f$).
     \exception vpProjectiveException if the robot or the features are missing, q has the wrong size or is not
     finite, fewer than n equations were added, the joint limits do not match the robot, or an active feature
-    cannot be triangulated (it lies on a camera's focal plane).
+    cannot be triangulated (it lies on a camera's focal plane). The task is then left as it was (its getters report
+    the last successful call).
   */
   vpColVector computeControlLaw(const vpColVector &q);
   //! The same on Eigen types, without allocation once the sizes are known.
   void computeControlLaw(const vpProjectiveRobot::JointVector &q, vpProjectiveRobot::JointVector &qdot);
+  //@}
 
-  //! \f$ e = s - s^* \f$ (4N) of the last computeControlLaw(); the 4 rows of a feature set aside are zero.
+  /*! \name State of the last computeControlLaw() */
+  //@{
+  //! \f$ e = s - s^* \f$ (4N, pixels) of the last computeControlLaw(); the 4 rows of a feature set aside are zero.
   vpColVector getError() const;
-  //! \f$ J \f$ (4N x n) of the last computeControlLaw(); the 4 rows of a feature set aside are zero.
+  //! \f$ J \f$ (4N x n, pixels per joint unit) of the last computeControlLaw(); the 4 rows of a feature set aside are
+  //! zero.
   vpMatrix getTaskJacobian() const;
+  /*!
+    Singular values of the \f$ J \f$ of the last computeControlLaw() (n x 1, pixels per joint unit, decreasing), as
+    vpServo::getTaskSingularValues(); empty before the first computeControlLaw(). Computed on demand by an SVD of
+    \f$ J \f$.
+  */
+  vpColVector getTaskSingularValues() const;
 
   //! Outcome of the last computeControlLaw() (SERVO_RUNNING before the first one).
-  vpServoStatus getStatus() const { return m_status; }
+  vpServoStatus getStatus() const { return last().status; }
   /*!
     State of feature \e i (index in addFeature() order) at the last computeControlLaw() (FEATURE_ACTIVE before).
     \exception vpProjectiveException (dimensionError) on a bad index.
   */
   vpFeatureState getFeatureState(unsigned int i) const;
   //! Number of features used by the last computeControlLaw().
-  unsigned int getNumberOfActiveFeatures() const { return m_nbActive; }
+  unsigned int getNumberOfActiveFeatures() const { return m_health.getNumberOfActiveFeatures(); }
   /*!
-    Epipolar distance \f$ d_F \f$ (pixels, see setOutlierThreshold()) of feature \e i at the last
+    Epipolar distance \f$ d_F \f$ (pixels, see vpServoFeatureHealth) of feature \e i at the last
     computeControlLaw(); -1 if it was not evaluated (outlier rejection off, or the feature set aside before the test).
     \exception vpProjectiveException on a bad index.
   */
   double getEpipolarDistance(unsigned int i) const;
   /*!
-    Prediction distance (pixels, see setOutlierThreshold()) of feature \e i at the last computeControlLaw(); -1 if it
+    Prediction distance (pixels, see vpServoFeatureHealth) of feature \e i at the last computeControlLaw(); -1 if it
     was not evaluated (outlier rejection off, no earlier acceptance, the feature set aside before the test, or the
     prediction on a camera's focal plane).
     \exception vpProjectiveException on a bad index.
@@ -315,13 +337,12 @@ public:
   /*!
     \f$ \sigma_{min}(J D^{-1}) / \sigma_{max}(J D^{-1}) \f$ of the reduced \f$ J \f$ of the last
     computeControlLaw(), \f$ D \f$ its column norms (0 if a column is below the rank tolerance times the largest):
-    the quantity compared with setRankTolerance(). Computed by the rank test when features were set aside, on demand
-    otherwise.
+    the quantity compared with setRankTolerance(). Computed on demand from the \f$ J^T J \f$ of that call.
   */
   double getSingularValueRatio() const;
   /*!
-    Large projection operator \f$ P \f$ (n x n, see setJointLimits()) of the \f$ J \f$ and \f$ e \f$ of the last
-    computeControlLaw(), whether or not joint limits are set.
+    Large projection operator \f$ P \f$ (n x n, see vpServoJointLimitAvoidance) of the \f$ J \f$ and \f$ e \f$ of the
+    last computeControlLaw(), whether or not joint limits are set.
     \exception vpProjectiveException (notInitializedError) before the first computeControlLaw().
   */
   vpMatrix getLargeProjectionOperator() const;
@@ -333,81 +354,78 @@ public:
   vpColVector getJointLimitVelocity() const;
   /*!
     Condition number \f$ \sigma_{max} / \sigma_{min} \f$ of \f$ J \f$ (reduced to the active features) at the last
-    computeControlLaw() (infinite if \f$ J \f$ is rank deficient). Computed on the first call after computeControlLaw()
-    from the \f$ J^T J \f$ it kept, so that the control loop does not pay for an eigen-decomposition it needs only near
-    singularities.
+    computeControlLaw() (infinite if \f$ J \f$ is rank deficient, 0 before the first call). Computed on demand from
+    the eigenvalues of the \f$ J^T J \f$ of that call, so that the control loop does not pay for an
+    eigen-decomposition it needs only near singularities.
   */
   double getConditionNumber() const;
-  //! Damping \f$ \mu \f$ used at the last computeControlLaw() (0 away from singularities, and when it stopped).
-  double getDamping() const { return m_damping; }
+  //! Damping \f$ \mu \f$ (pixels per joint unit) used at the last computeControlLaw() (0 away from singularities,
+  //! and when it stopped).
+  double getDamping() const { return last().damping; }
   //! Gain used at the last computeControlLaw() (0 when it stopped: SERVO_STOPPED).
-  double getLambda() const { return m_lambdaUsed; }
+  double getLambda() const { return last().lambda; }
   //! True if the last computeControlLaw() was scaled down by the velocity saturation.
-  bool isSaturated() const { return m_saturated; }
+  bool isSaturated() const { return last().saturated; }
+  //@}
+
+  /*! \name The parts of the task */
+  //@{
+  //! The control law and its settings (setDamping(), setMaxJointVelocity(), setPseudoInverseThreshold()).
+  const vpServoDampedLeastSquares &getDampedLeastSquares() const { return m_law; }
+  //! The feature checks and their settings (setImageSize(), setOutlierThreshold(), setFeatureTracked()).
+  const vpServoFeatureHealth &getFeatureHealth() const { return m_health; }
+  //! The joint-limit avoidance and its settings (setJointLimits(), setLargeProjectionThresholds()).
+  const vpServoJointLimitAvoidance &getJointLimitAvoidance() const { return m_jointLimits; }
+  //@}
+
+  /*!
+    Prints the task as vpServo::print() does: the robot, the features (current and desired values, state,
+    distances), the error, the status and the settings of the gain, the law, the checks and the joint limits.
+  */
+  void print(std::ostream &os = std::cout) const;
 
 private:
-  //! Square matrices of joint size, in fixed storage (no allocation).
-  typedef Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, vpProjectiveRobot::maxJoints,
-                        vpProjectiveRobot::maxJoints>
-      JointMatrix;
+  typedef vpProjectiveArmModel::JointMatrix JointMatrix;
+  typedef vpProjectiveArmModel::JointVector JointVector;
+
+  //! What one computeControlLaw() computes; kept only when it succeeds.
+  struct vpIteration {
+    Eigen::MatrixXd J;                    // 4N x n, zero rows for the features set aside
+    Eigen::VectorXd e;                    // 4N
+    JointMatrix JtJ;                      // J^T J
+    JointVector Jte;                      // J^T e
+    double errorNorm = 0.0;               // ||e||
+    unsigned int nbActive = 0;            // features used
+    vpServoStatus status = SERVO_RUNNING; // outcome
+    double lambda = 0.0;                  // gain used
+    double damping = 0.0;                 // mu used
+    bool saturated = false;               // scaled down by the saturation
+    JointVector qdot2;                    // secondary task
+  };
 
   void check(const char *method) const;
   void checkFeatureIndex(unsigned int i, const char *method) const;
-  void checkJointLimitSize(unsigned int n, const char *method) const;
-  void computeSpectrum() const;
-  void computeSingularValueRatio() const;
-  vpFeatureState classify(size_t i, const Eigen::Vector4d &s, const Eigen::Vector4d &sStar, bool predict,
-                          const Eigen::Matrix4d &H);
-  void largeProjectionOperator(JointMatrix &P) const;
-  void jointLimitAvoidance(const vpProjectiveRobot::JointVector &q, const vpProjectiveRobot::JointVector &dq,
-                           vpProjectiveRobot::JointVector &q2) const;
+  void checkJoints(const JointVector &q, const char *method) const;
+  void buildTask(const JointVector &q, vpIteration &it, const char *method);
+  vpServoStatus decideStatus(const vpIteration &it) const;
+  void computePrimaryVelocity(vpIteration &it, JointVector &qdot);
+  void addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const;
+  void stop(vpIteration &it, JointVector &qdot) const;
+  void commit();
+  const vpIteration &last() const { return m_iterations[m_lastIteration]; }
 
   const vpProjectiveRobot *m_robot;
   std::vector<vpFeatureStereoPoint *> m_features;
   std::vector<vpFeatureStereoPoint *> m_desired;
   vpAdaptiveGain m_lambda;
-  double m_sigmaThreshold;
-  double m_maxDamping;
-  double m_qdotMax;
-  Eigen::MatrixXd m_J;
-  Eigen::VectorXd m_e;
-  JointMatrix m_JtJ;            // J^T J of the last computeControlLaw(), for getConditionNumber()
-  mutable bool m_spectrumValid; // m_sigmaMin and m_condition are those of m_JtJ
-  mutable double m_sigmaMin;
-  mutable double m_condition;
-  double m_damping;
-  double m_lambdaUsed;
-  bool m_saturated;
-
-  // Robustness (per feature, sized by addFeature(): no allocation in the loop).
-  std::vector<vpFeatureState> m_states;
-  std::vector<char> m_tracked;
-  std::vector<Eigen::Vector4d> m_M0;        // H(q_l)^-1 M_l at the last acceptance, unit norm
-  std::vector<char> m_hasM0;                // m_M0[i] is set
-  std::vector<double> m_epipolarDistance;   // -1: not evaluated
-  std::vector<double> m_predictionDistance; // -1: not evaluated
-  unsigned int m_width;
-  unsigned int m_height;
-  double m_border;
-  double m_outlierThreshold;
   double m_rankTolerance;
-  vpServoStatus m_status;
-  unsigned int m_nbActive;
-  mutable bool m_ratioValid; // m_ratio is that of m_JtJ
-  mutable double m_ratio;
-  vpProjectiveRobot::JointVector m_b; // J^T e of the last computeControlLaw()
-  double m_errorNorm;                 // ||e|| of the last computeControlLaw()
-
-  // Joint limits.
-  bool m_jointLimits;
-  vpProjectiveRobot::JointVector m_qmin;
-  vpProjectiveRobot::JointVector m_qmax;
-  double m_rho;
-  double m_rho1;
-  double m_lambdaTune;
-  double m_e0;
-  double m_e1;
-  vpProjectiveRobot::JointVector m_qdot2; // secondary task of the last computeControlLaw()
+  vpServoDampedLeastSquares m_law;
+  vpServoFeatureHealth m_health;
+  vpServoJointLimitAvoidance m_jointLimits;
+  // Two iterations: m_iterations[m_lastIteration] is the last successful computeControlLaw(), the one the getters
+  // read; the other is the one in progress, which commit() makes the last by flipping the index (nothing is copied).
+  vpIteration m_iterations[2];
+  unsigned int m_lastIteration;
 };
 
 END_VISP_NAMESPACE
