@@ -29,6 +29,7 @@
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpMatrix.h>
+#include <visp3/projective/vpServoDampedLeastSquares.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -51,29 +52,14 @@ struct ControlSettings {
   double maxDamping = 30.0;           // mu_max, px/rad
 };
 
-//! The control law of vpServoProjective::computeControlLaw() on a given Jacobian J (px/rad) and error e (px).
-// replaced by vpServoDampedLeastSquares once merged
+//! The control law of vpServoProjective::computeControlLaw() on a given Jacobian J (px/rad) and error e (px): the
+//! plugin's one damped least-squares law, with the study's settings.
 inline vpColVector dampedLeastSquares(const vpMatrix &J, const vpColVector &e, const ControlSettings &settings)
 {
-  const vpMatrix JtJ = J.AtA();
-  const vpColVector b = J.t() * e;
-  const vpColVector eigenvalues = JtJ.eigenValues(); // symmetric: real, ascending
-  const double sigmaMin = std::sqrt(std::max(0.0, eigenvalues[0]));
-  double mu2 = 0.0;
-  if (sigmaMin < settings.sigmaThreshold) {
-    const double ratio = sigmaMin / settings.sigmaThreshold;
-    mu2 = settings.maxDamping * settings.maxDamping * (1.0 - ratio * ratio);
-  }
-  vpMatrix A = JtJ;
-  for (unsigned int i = 0; i < A.getRows(); ++i) {
-    A[i][i] += mu2;
-  }
-  vpColVector qdot = A.solveBySVD(b) * (-settings.lambda);
-  const double largest = qdot.getMaxValue() > -qdot.getMinValue() ? qdot.getMaxValue() : -qdot.getMinValue();
-  if (largest > settings.qdotMax) {
-    qdot *= settings.qdotMax / largest;
-  }
-  return qdot;
+  vpServoDampedLeastSquares law;
+  law.setDamping(settings.sigmaThreshold, settings.maxDamping);
+  law.setMaxJointVelocity(settings.qdotMax);
+  return law.computeVelocity(J, e, settings.lambda);
 }
 //! [Control settings]
 
