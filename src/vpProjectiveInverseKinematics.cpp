@@ -13,9 +13,12 @@
 
 #include <visp3/projective/vpProjectiveInverseKinematics.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Dense>
+
+#include <visp3/core/vpUniRand.h>
 
 #include "vpProjectiveInternal.h"
 
@@ -29,12 +32,15 @@ namespace
 {
 /*!
   The normal equations of the pixel error at \e q: \f$ J^T J \f$ (n x n), \f$ J^T r \f$ and the cost \f$ r^T r \f$,
-  accumulated marker by marker (4 rows of \f$ J \f$, eq. (46), at a time: nothing is allocated). False if a marker
-  is on a camera's focal plane at \e q.
+  accumulated marker by marker (4 rows of \f$ J \f$, eq. (46), at a time: nothing is allocated), plus the prior's
+  \f$ w^2 \| q - q_p \|^2 \f$ if \e prior is not null (\e pixelCost: the pixel part alone). False if a marker is on a
+  camera's focal plane at \e q.
 */
 bool normalEquations(const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
-                     const std::vector<unsigned int> &indices, const vpProjectiveArmModel::JointVector &q,
-                     vpProjectiveArmModel::JointMatrix &JtJ, vpProjectiveArmModel::JointVector &Jtr, double &cost)
+                     const std::vector<Eigen::Vector4d> &points, const vpProjectiveArmModel::JointVector &q,
+                     const vpProjectiveArmModel::JointVector *prior, double weight,
+                     vpProjectiveArmModel::JointMatrix &JtJ, vpProjectiveArmModel::JointVector &Jtr, double &cost,
+                     double &pixelCost)
 {
   const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
   const Eigen::Matrix4d H = model.displacement(q);
@@ -45,7 +51,7 @@ bool normalEquations(const vpProjectiveArmModel &model, const std::vector<Eigen:
   cost = 0.0;
   vpProjectiveArmModel::PointJacobian J;
   for (size_t k = 0; k < s.size(); ++k) {
-    const Eigen::Vector4d M = H * model.markers()[indices[k]];
+    const Eigen::Vector4d M = H * points[k];
     Eigen::Vector4d sM;
     if (!model.getStereoRig().project(M, sM) || !model.imageJacobian(HhatKq, M, J)) {
       return false;
@@ -54,6 +60,13 @@ bool normalEquations(const vpProjectiveArmModel &model, const std::vector<Eigen:
     JtJ.noalias() += J.transpose() * J;
     Jtr.noalias() += J.transpose() * r;
     cost += r.squaredNorm();
+  }
+  pixelCost = cost;
+  if (prior != nullptr) {
+    const double w2 = weight * weight;
+    JtJ.diagonal().array() += w2;
+    Jtr.noalias() += w2 * (q - *prior);
+    cost += w2 * (q - *prior).squaredNorm();
   }
   return std::isfinite(cost);
 }
@@ -65,14 +78,27 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solve(const vpP
                                                                        const vpProjectiveArmModel::JointVector &q0,
                                                                        double *residual)
 {
+  std::vector<Eigen::Vector4d> points(indices.size());
+  for (size_t k = 0; k < indices.size(); ++k) {
+    points[k] = model.markers()[indices[k]];
+  }
+  return solve(model, s, points, q0, residual);
+}
+
+vpProjectiveArmModel::JointVector
+vpProjectiveInverseKinematics::solve(const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
+                                     const std::vector<Eigen::Vector4d> &points,
+                                     const vpProjectiveArmModel::JointVector &q0, double *residual,
+                                     const vpProjectiveArmModel::JointVector *prior, double priorWeight)
+{
   // Levenberg-Marquardt on the normal equations, damping relative to their diagonal (Marquardt's scaling, so that
   // radians and length units mix): a few iterations from a nearby start (motion capture), more from afar.
   typedef vpProjectiveArmModel::JointMatrix JointMatrix;
   typedef vpProjectiveArmModel::JointVector JointVector;
   JointMatrix JtJ, A;
   JointVector Jtr, q = q0, qNew, step;
-  double cost = 0.0;
-  if (!normalEquations(model, s, indices, q, JtJ, Jtr, cost)) {
+  double cost = 0.0, pixelCost = 0.0;
+  if (!normalEquations(model, s, points, q, prior, priorWeight, JtJ, Jtr, cost, pixelCost)) {
     fail(vpProjectiveException::estimationFailedError, "vpProjectiveInverseKinematics::solve()",
          "a marker lies on a camera's focal plane at the starting joint values; start closer to the solution (q0)");
   }
@@ -90,12 +116,14 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solve(const vpP
     qNew = q + step;
     JointMatrix JtJNew;
     JointVector JtrNew;
-    double costNew = 0.0;
-    if (normalEquations(model, s, indices, qNew, JtJNew, JtrNew, costNew) && costNew < cost) {
+    double costNew = 0.0, pixelCostNew = 0.0;
+    if (normalEquations(model, s, points, qNew, prior, priorWeight, JtJNew, JtrNew, costNew, pixelCostNew) &&
+        costNew < cost) {
       q = qNew;
       JtJ = JtJNew;
       Jtr = JtrNew;
       cost = costNew;
+      pixelCost = pixelCostNew;
       lambda = std::max(lambda / 10.0, 1e-12);
     } else {
       lambda *= 10.0;
@@ -109,7 +137,76 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solve(const vpP
          "the inverse kinematics did not converge; start closer to the solution (q0) or check the marker images");
   }
   if (residual != nullptr) {
-    *residual = std::sqrt(cost / static_cast<double>(4 * s.size()));
+    *residual = std::sqrt(pixelCost / static_cast<double>(4 * s.size()));
   }
   return q;
+}
+
+std::vector<vpProjectiveArmModel::JointVector> vpProjectiveInverseKinematics::solveAll(
+    const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
+    const std::vector<Eigen::Vector4d> &points, const vpProjectiveArmModel::JointVector &q0,
+    const vpProjectiveArmModel::JointVector &qmin, const vpProjectiveArmModel::JointVector &qmax, unsigned int starts,
+    std::vector<double> *residuals)
+{
+  typedef vpProjectiveArmModel::JointVector JointVector;
+  const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
+  // Two joint vectors are the same configuration when every joint agrees, revolute ones modulo a turn.
+  const auto distance = [&](const JointVector &a, const JointVector &b) {
+    double d = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double di = model.jointType(static_cast<unsigned int>(i)) == vpProjectiveJoint::REVOLUTE
+                            ? std::remainder(a(i) - b(i), 2.0 * M_PI)
+                            : a(i) - b(i);
+      d = std::max(d, std::abs(di));
+    }
+    return d;
+  };
+  std::vector<JointVector> found;
+  std::vector<double> cost;
+  vpUniRand uniform(0x5eedULL);
+  for (unsigned int k = 0; k <= starts; ++k) {
+    JointVector start = q0;
+    for (Eigen::Index i = 0; k > 0 && i < n; ++i) {
+      start(i) = uniform.uniform(qmin(i), qmax(i));
+    }
+    double rms = 0.0;
+    JointVector q;
+    try {
+      q = solve(model, s, points, start, &rms);
+    } catch (const vpProjectiveException &) {
+      continue; // a start from which a point is on a focal plane
+    }
+    size_t same = found.size();
+    for (size_t b = 0; b < found.size() && same == found.size(); ++b) {
+      same = distance(found[b], q) < 1e-3 ? b : same;
+    }
+    if (same == found.size()) {
+      found.push_back(q);
+      cost.push_back(rms);
+    } else if (rms < cost[same]) {
+      found[same] = q;
+      cost[same] = rms;
+    }
+  }
+  // The branches: the minima that explain the images nearly as well as the best (a wrong local minimum leaves pixels
+  // far off), sorted by their residual.
+  const double best = cost.empty() ? 0.0 : *std::min_element(cost.begin(), cost.end());
+  std::vector<size_t> order;
+  for (size_t b = 0; b < found.size(); ++b) {
+    if (cost[b] <= std::max(1.0, 2.0 * best)) {
+      order.push_back(b);
+    }
+  }
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cost[a] < cost[b]; });
+  std::vector<JointVector> branches;
+  if (residuals != nullptr) {
+    residuals->clear();
+  }
+  for (size_t b : order) {
+    branches.push_back(found[b]);
+    if (residuals != nullptr) {
+      residuals->push_back(cost[b]);
+    }
+  }
+  return branches;
 }

@@ -108,6 +108,8 @@ const char *statusName(vpServoProjective::vpServoStatus status)
     return "SERVO_REDUCED (some features set aside, every joint still constrained)";
   case vpServoProjective::SERVO_STOPPED:
     return "SERVO_STOPPED (the active features no longer constrain every joint: qdot = 0)";
+  case vpServoProjective::SERVO_NO_PLAN:
+    return "SERVO_NO_PLAN (path planning found no plan for the target: qdot = 0)";
   }
   return "?";
 }
@@ -124,7 +126,8 @@ template <typename Vector> void printVector(std::ostream &os, const Vector &v)
 
 vpServoProjective::vpServoProjective()
     : m_robot(nullptr), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(),
-      m_jointLimits(), m_iterations(), m_lastIteration(0)
+      m_jointLimits(), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
+      m_pathSample(0), m_following(false), m_followGain(1.0)
 {
 }
 
@@ -252,6 +255,8 @@ void vpServoProjective::addFeature(vpFeatureStereoPoint &s, vpFeatureStereoPoint
   m_features.push_back(&s);
   m_desired.push_back(&s_star);
   m_health.addFeature();
+  m_plannedFor.clear(); // another task: plan anew
+  m_following = false;
 }
 
 void vpServoProjective::clearFeatures()
@@ -259,6 +264,8 @@ void vpServoProjective::clearFeatures()
   m_features.clear();
   m_desired.clear();
   m_health.clearFeatures();
+  m_plannedFor.clear();
+  m_following = false;
   m_iterations[m_lastIteration].status = SERVO_RUNNING;
   m_iterations[m_lastIteration].nbActive = 0;
 }
@@ -336,7 +343,7 @@ inline void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, 
   unsigned int active = 0;
   for (unsigned int i = 0; i < m_features.size(); ++i) {
     const Eigen::Vector4d s = m_features[i]->getFeature();
-    const Eigen::Vector4d sStar = m_desired[i]->getFeature();
+    const Eigen::Vector4d sStar = desired(i);
     const Eigen::Index r = 4 * static_cast<Eigen::Index>(i);
     Eigen::Vector4d M;
     if (m_health.classify(i, s, sStar, M) != FEATURE_ACTIVE) {
@@ -382,9 +389,15 @@ inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot) const
 
 inline void vpServoProjective::computePrimaryVelocity(vpIteration &it, JointVector &qdot)
 {
-  // qdot1 = -lambda (J^T J + mu^2 I)^-1 J^T e, saturated: the motion the arm really makes.
-  it.lambda = m_lambda.value_const(it.e.cwiseAbs().maxCoeff());
+  // qdot1 = -lambda (J^T J + mu^2 I)^-1 J^T e, saturated: the motion the arm really makes. Along a planned path it is
+  // the path's step to the next sample (feedforward) plus the law on the error to the current sample (feedback, with
+  // the follower's gain), saturated as a whole.
+  it.lambda = m_following ? m_followGain : m_lambda.value_const(it.e.cwiseAbs().maxCoeff());
   m_law.computeVelocity(it.JtJ, it.Jte, it.lambda, qdot);
+  if (m_following) {
+    qdot += m_planner.getPath()[m_pathSample] - m_planner.getPath()[m_pathSample - 1];
+    m_law.saturate(qdot);
+  }
   it.damping = m_law.getDamping();
   it.saturated = m_law.isSaturated();
 }
@@ -410,6 +423,76 @@ inline void vpServoProjective::commit()
 {
   m_lastIteration = 1 - m_lastIteration;
   m_health.endIteration();
+  if (m_following) {
+    ++m_pathSample; // the next call aims at the next sample
+  }
+}
+
+Eigen::Vector4d vpServoProjective::desired(unsigned int i) const
+{
+  // Following, the arm should be at the sample before the one it moves to: its predicted features are the reference
+  // of the image feedback.
+  return m_following ? m_planner.getPredictedFeatures()[m_pathSample - 1][i] : m_desired[i]->getFeature();
+}
+
+bool vpServoProjective::planIfNeeded(const JointVector &q)
+{
+  // Plan once per target: again only when a desired feature changed.
+  bool changed = m_plannedFor.size() != m_desired.size();
+  for (size_t i = 0; i < m_desired.size() && !changed; ++i) {
+    changed = !(m_desired[i]->getFeature() == m_plannedFor[i]);
+  }
+  if (changed) {
+    // The features' points, triangulated at q and carried to the zero reference by H(q)^-1.
+    const vpProjectiveArmModel &model = m_robot->getModel();
+    const Eigen::PartialPivLU<Eigen::Matrix4d> H(model.displacement(q));
+    std::vector<Eigen::Vector4d> points, sStar;
+    for (size_t i = 0; i < m_features.size(); ++i) {
+      const Eigen::Vector4d s = m_features[i]->getFeature();
+      if (!s.allFinite()) {
+        return false; // a feature lost at planning time: plan at the next call
+      }
+      points.push_back(H.solve(model.getStereoRig().triangulate(s.head<2>(), s.tail<2>())).normalized());
+      sStar.push_back(m_desired[i]->getFeature());
+    }
+    vpProjectivePathPlanner::JointVector qmin, qmax;
+    if (m_jointLimits.hasJointLimits()) {
+      qmin = toEigenVector<JointVector>(m_jointLimits.getLowerLimits(), q.size(), at("computeControlLaw()"), "qmin");
+      qmax = toEigenVector<JointVector>(m_jointLimits.getUpperLimits(), q.size(), at("computeControlLaw()"), "qmax");
+    }
+    m_planner.setJointLimits(qmin, qmax);
+    m_planner.setImageSize(m_health.getImageWidth(), m_health.getImageHeight(), m_health.getImageBorder());
+    m_planner.plan(model, q, points, sStar);
+    m_plannedFor = sStar;
+    m_pathSample = 1; // sample 0 is q
+  }
+  return m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND;
+}
+
+void vpServoProjective::setPathPlanning(bool planning)
+{
+  m_planning = planning;
+  m_plannedFor.clear(); // plan anew
+  m_following = false;
+}
+
+void vpServoProjective::setPathFollowingGain(double gain)
+{
+  if (!std::isfinite(gain) || !(gain > 0.0) || gain > 1.0) {
+    fail(vpProjectiveException::invalidValueError, at("setPathFollowingGain()"),
+         "the path-following gain is the fraction of the way to the next sample covered per call: in (0, 1]");
+  }
+  m_followGain = gain;
+}
+
+vpColVector vpServoProjective::getPlannedTarget() const
+{
+  if (!m_planning || m_planner.getStatus() != vpProjectivePathPlanner::PLAN_FOUND) {
+    fail(vpProjectiveException::notInitializedError, at("getPlannedTarget()"),
+         "no plan: call setPathPlanning(true) and computeControlLaw(), and check getStatus() != SERVO_NO_PLAN (" +
+             m_planner.getDescription() + ")");
+  }
+  return toVispVector(m_planner.getTarget());
 }
 
 void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdot)
@@ -419,9 +502,11 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
   const char *const method = "computeControlLaw()";
   checkJoints(q, method);
   vpIteration &it = m_iterations[1 - m_lastIteration];
+  const bool planned = !m_planning || planIfNeeded(q);
+  m_following = m_planning && planned && m_pathSample < m_planner.getPath().size();
   buildTask(q, it, method);
-  it.status = decideStatus(it);
-  if (it.status == SERVO_STOPPED) {
+  it.status = planned ? decideStatus(it) : SERVO_NO_PLAN;
+  if (it.status == SERVO_STOPPED || it.status == SERVO_NO_PLAN) {
     stop(it, qdot);
   } else {
     computePrimaryVelocity(it, qdot);

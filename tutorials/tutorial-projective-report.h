@@ -56,10 +56,12 @@ struct ServoRun {
   int convergedAt = -1;                               // first iteration with RMS(s - s*) under the threshold
   bool inView = true;                                 // the tracked markers stayed in both images
   std::string failure;                                // a tracking failure, if any
+  std::string plan;                                   // the task's plan, when it planned
   vpColVector finalJointError;                        // q - q_target at the end (rad)
   double finalImageError = 0.0;                       // RMS(s - s*) at the end (px)
 
-  //! Accounts iteration \e it: joint values, measurements and error; convergence below \e threshold px RMS.
+  //! Accounts iteration \e it: joint values, measurements and error s - s* (not the error to a planned path's
+  //! intermediate features); convergence below \e threshold px RMS.
   void record(unsigned int it, const vpColVector &qIt, const std::vector<vpImagePoint> &l,
               const std::vector<vpImagePoint> &r, const vpColVector &e, double threshold)
   {
@@ -245,6 +247,9 @@ inline void printDetailedRun(const ServoRun &run, const std::string &what, const
 {
   std::cout << "Seed 1 servo: " << (run.inView ? "markers kept in view" : "markers LOST") << ", converged after "
             << run.convergedAt << " iterations, final image error " << run.finalImageError << " px RMS\n";
+  if (!run.plan.empty()) {
+    std::cout << "    plan: " << run.plan << "\n";
+  }
   std::cout << "    final joint error (deg) " << (run.finalJointError * (180.0 / M_PI)).t() << "\n";
   std::cout << "    final " << what << " pose error: " << 1000 * poseError.getTranslationVector().frobeniusNorm()
             << " mm, " << vpMath::deg(vpThetaUVector(poseError.getRotationMatrix()).getTheta()) << " deg\n";

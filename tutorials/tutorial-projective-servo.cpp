@@ -101,6 +101,12 @@ tutorial::ServoRun servo(const tutorial::PaperWorld &world, const vpProjectiveRo
   // singular value of J falls below 30 px/rad, so that no step leaves the domain where J is a good linearisation.
   task.setMaxJointVelocity(vpMath::rad(15.0));
   task.setDamping(30.0, 30.0);
+  // Global servoing: the model plans the task once (inverse kinematics of s*, a path inside the joint limits that
+  // keeps the markers 10 px inside the images), the task follows it, and law (47) finishes.
+  task.setJointLimits(world.arm.getJointMin(), world.arm.getJointMax());
+  task.setImageSize(world.rig.getWidth(), world.rig.getHeight(), 10.0);
+  task.setPathPlanning(true);
+  task.getPathPlanner().setMaxJointStep(vpMath::rad(10.0));
   const std::vector<vpColVector> targetMarkers = world.arm.getMarkers(qTarget);
   for (unsigned int k = 0; k < nbPoints; ++k) {
     vpImagePoint l, r;
@@ -124,7 +130,14 @@ tutorial::ServoRun servo(const tutorial::PaperWorld &world, const vpProjectiveRo
       break;
     }
     const vpColVector qdot = task.computeControlLaw(q); // eq. (47), J from the model at q
-    run.record(it, q, left, right, task.getError(), std::max(2.0 * sigma, 1e-6));
+    if (it == 0) {
+      run.plan = task.getPathPlanner().getDescription();
+    }
+    vpColVector e; // s - s*, whatever intermediate features a planned path aims at
+    for (unsigned int k = 0; k < nbPoints; ++k) {
+      e.stack(s[k].error(s_star[k]));
+    }
+    run.record(it, q, left, right, e, std::max(2.0 * sigma, 1e-6));
     if (it < iterations) {
       q = world.arm.integrate(q, qdot, 1.0); // one control period
     }

@@ -60,6 +60,30 @@ public:
                                                  const std::vector<unsigned int> &indices,
                                                  const vpProjectiveArmModel::JointVector &q0,
                                                  double *residual = nullptr);
+  /*!
+    The same for any points \e points of the moving end (4x1 projective points at the zero reference, such as a servo
+    task's features carried there by \f$ H(q)^{-1} \f$), \e s[k] the observed pixels of points[k]; with a \e prior
+    (n x 1, not null) the cost gains \f$ w^2 \| q - q_p \|^2 \f$ (\e priorWeight \f$ w \f$ in pixels per joint unit),
+    which settles the joints the pixels leave free (fewer than 3 points, a singular configuration) and keeps a
+    tracked path from jumping there. \e residual is that of the pixels alone.
+  */
+  static vpProjectiveArmModel::JointVector
+  solve(const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
+        const std::vector<Eigen::Vector4d> &points, const vpProjectiveArmModel::JointVector &q0,
+        double *residual = nullptr, const vpProjectiveArmModel::JointVector *prior = nullptr, double priorWeight = 0.0);
+  /*!
+    Every branch of the inverse kinematics it can find (multi-start): the minimisation of solve() from \e q0 and from
+    \e starts configurations drawn uniformly between \e qmin and \e qmax (n x 1 each, with a fixed seed: equal
+    inputs give equal outputs). Two minima are one branch when every joint agrees within 1e-3 (revolute joints modulo
+    a turn). A branch explains the pixels: its RMS residual per coordinate is at most the larger of 1 px and twice the
+    best one found (a wrong local minimum leaves them far off). Returns the branches sorted by residual (the best
+    first), their residuals in \e residuals if not null; none if no start converged.
+  */
+  static std::vector<vpProjectiveArmModel::JointVector>
+  solveAll(const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
+           const std::vector<Eigen::Vector4d> &points, const vpProjectiveArmModel::JointVector &q0,
+           const vpProjectiveArmModel::JointVector &qmin, const vpProjectiveArmModel::JointVector &qmax,
+           unsigned int starts, std::vector<double> *residuals = nullptr);
 };
 
 END_VISP_NAMESPACE

@@ -29,6 +29,7 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpFeatureStereoPoint.h>
+#include <visp3/projective/vpProjectivePathPlanner.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpServoDampedLeastSquares.h>
 #include <visp3/projective/vpServoFeatureHealth.h>
@@ -126,7 +127,9 @@ public:
   enum vpServoStatus {
     SERVO_RUNNING, //!< Every feature used.
     SERVO_REDUCED, //!< Some features set aside, the remaining ones keep rank n: the task continues on them.
-    SERVO_STOPPED  //!< The active features no longer constrain every joint (rank < n): \f$ \dot q = 0 \f$.
+    SERVO_STOPPED, //!< The active features no longer constrain every joint (rank < n): \f$ \dot q = 0 \f$.
+    SERVO_NO_PLAN  //!< Path planning is on and no plan exists for the target (getPathPlanner() says why):
+                   //!< \f$ \dot q = 0 \f$.
   };
 
   //! A task without robot or feature: gain 0.5, damping (1, 10), no saturation, no check, no joint limit.
@@ -368,6 +371,46 @@ public:
   bool isSaturated() const { return last().saturated; }
   //@}
 
+  /*! \name Global servoing: plan with the acquired model, follow the plan, finish with law (47) */
+  //@{
+  /*!
+    Path planning (default off: law (47) alone, as before). On, the first computeControlLaw() for a target (and again
+    whenever a desired feature changes) plans the task with vpProjectivePathPlanner: the features are triangulated
+    at the current joints and carried to the zero reference by \f$ H(q)^{-1} \f$ (no marker identity is needed), the
+    inverse kinematics of \f$ s^* \f$ gives every branch it can find, the target is the one inside the joint limits
+    (setJointLimits()) nearest to \f$ q \f$, and the path keeps the features' predicted images inside the image window
+    (setImageSize()) and the joints within their limits. The task then follows the path, one sample (no joint more than
+    vpProjectivePathPlanner::setMaxJointStep() away) per call, with image feedback: \f$ \dot q \f$ is the path's step
+    \f$ q_{k+1} - q_k \f$ plus law (47) with the gain setPathFollowingGain() on the error to the model's predicted
+    images at sample \f$ k \f$ (getError() then returns that error), saturated as a whole; after the last sample law
+    (47) toward \f$ s^* \f$ with the task's gain finishes the
+    motion, so the final accuracy is the law's. When no plan exists the status is SERVO_NO_PLAN and \f$ \dot q = 0
+    \f$. Planning allocates and takes a few milliseconds; following is as cheap as the law.
+  */
+  void setPathPlanning(bool planning);
+  //! True if path planning is on.
+  bool getPathPlanning() const { return m_planning; }
+  /*!
+    The joint values (n x 1, encoder readings) the plan ends at: the inverse kinematics of \f$ s^* \f$.
+    \exception vpProjectiveException (notInitializedError) when no plan was found (planning off, no call yet, or
+    SERVO_NO_PLAN).
+  */
+  vpColVector getPlannedTarget() const;
+  /*!
+    Gain of the path following's feedback (default 1): the fraction of the error to the current sample's predicted
+    features corrected by one call, in the unit of the task's gain (per call when the loop applies \f$ \dot q \f$ as
+    the step of one call, as the tutorials do).
+    \exception vpProjectiveException if it is not in (0, 1].
+  */
+  void setPathFollowingGain(double gain);
+  //! True while the last computeControlLaw() followed the planned path (before the final law (47)).
+  bool isFollowingPath() const { return m_following; }
+  //! The planner, its settings and its last plan (target, branches, path, description).
+  const vpProjectivePathPlanner &getPathPlanner() const { return m_planner; }
+  //! The planner, to change its settings (setMaxJointStep(), setNumberOfStarts()).
+  vpProjectivePathPlanner &getPathPlanner() { return m_planner; }
+  //@}
+
   /*! \name The parts of the task */
   //@{
   //! The control law and its settings (setDamping(), setMaxJointVelocity(), setPseudoInverseThreshold()).
@@ -413,6 +456,8 @@ private:
   void stop(vpIteration &it, JointVector &qdot) const;
   void commit();
   const vpIteration &last() const { return m_iterations[m_lastIteration]; }
+  bool planIfNeeded(const JointVector &q);
+  Eigen::Vector4d desired(unsigned int i) const;
 
   const vpProjectiveRobot *m_robot;
   std::vector<vpFeatureStereoPoint *> m_features;
@@ -426,6 +471,14 @@ private:
   // read; the other is the one in progress, which commit() makes the last by flipping the index (nothing is copied).
   vpIteration m_iterations[2];
   unsigned int m_lastIteration;
+
+  // Path planning: the plan of the desired features m_plannedFor, followed sample by sample.
+  bool m_planning;
+  vpProjectivePathPlanner m_planner;
+  std::vector<Eigen::Vector4d> m_plannedFor;
+  size_t m_pathSample; // the sample the next call aims at
+  bool m_following;    // the last call followed the path
+  double m_followGain;
 };
 
 END_VISP_NAMESPACE

@@ -1,0 +1,173 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*!
+  \file vpProjectivePathPlanner.h
+  \brief Global servoing: the joint target of a servo task found by the projective model, and a path to it that keeps
+  the features in view and the joints within their limits.
+*/
+
+#ifndef _vpProjectivePathPlanner_h_
+#define _vpProjectivePathPlanner_h_
+
+#include <visp3/projective/vpProjectiveConfig.h>
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include <visp3/projective/vpProjectiveArmModel.h>
+
+BEGIN_VISP_NAMESPACE
+
+/*!
+  \class vpProjectivePathPlanner
+  \ingroup group_projective
+  \brief Plans a servo task with the acquired model: the model is global (Ruf & Horaud: the Jacobian is "an analytic
+  expression in q, sound over the robot's entire configuration space"), so the task's target can be solved for and a
+  path to it chosen before moving, where the local law (47) alone meets local minima, joint limits and lost features.
+
+  The task: points \f$ M_k(0) \f$ of the moving end (4x1 projective points at the zero reference, e.g. a servo
+  task's features triangulated at the current joints \f$ q \f$ and carried there by \f$ H(q)^{-1} \f$, which needs no
+  marker identity) and their desired pixels \f$ s^*_k = (u, v, u', v') \f$. plan()
+  -# solves the inverse kinematics of \f$ s^* \f$ from many starts (vpProjectiveInverseKinematics::solveAll()): every
+     branch it finds;
+  -# chooses the target \f$ q^* \f$: among the branches, the representative (revolute joints modulo a turn) inside the
+     joint limits nearest to \f$ q \f$ in joint space;
+  -# plans the joint path from \f$ q \f$ to \f$ q^* \f$, sampled so that no joint moves more than setMaxJointStep()
+     between samples, and keeps it only if at every sample the joints are inside their limits and the features'
+     predicted images inside the image window (setImageSize()). Candidates, in this order:
+     - the points' centre on a straight line: their metric centroid \f$ c \f$ (a projective point; no metric model
+       needed, only the plane at infinity \f$ \pi \f$ of the acquisition) moves straight to \f$ D c \f$,
+       \f$ D = H^* H^{-1} \f$, by the p-translation \f$ T(t) = I + t\, a \pi^T / \pi^T c \f$, while the end turns about
+       it: \f$ H(t) = T(t) \exp(t \log(T(1)^{-1} D)) H \f$. The centre's images move on straight lines, the points'
+       around them;
+     - the screw motion of the moving end, the straight line of the projective motion group
+       \f$ H(t) = \exp(t \log D) H \f$;
+     these two are tracked by the inverse kinematics in fine steps and kept if they end at \f$ q^* \f$ without a jump
+     and no joint goes beyond its [start, target] interval by more than twice the joint step (no wrist spin near a
+     singular configuration);
+     - the straight line in joint space;
+     - two straight lines through a waypoint, drawn (with a fixed seed) among the configurations inside the limits
+       with the features in view: the shortest feasible;
+  -# fails with a status (vpPlanStatus) when no branch exists, none is inside the limits, or no path keeps the
+     features in view.
+
+  Joint values are encoder readings (radians for revolute joints, the encoder's length unit for prismatic ones) as
+  everywhere in the model. vpServoProjective::setPathPlanning() runs it once per target and follows the path.
+*/
+class VISP_EXPORT vpProjectivePathPlanner
+{
+public:
+  //! Joint values without heap allocation.
+  typedef vpProjectiveArmModel::JointVector JointVector;
+
+  //! Outcome of plan().
+  enum vpPlanStatus {
+    PLAN_NONE,                  //!< plan() not called yet.
+    PLAN_FOUND,                 //!< A path to a target inside the limits, the features in view all along.
+    PLAN_NO_INVERSE_KINEMATICS, //!< No joint values explain the desired features.
+    PLAN_OUTSIDE_JOINT_LIMITS,  //!< Every branch of the inverse kinematics is outside the joint limits.
+    PLAN_NO_VISIBLE_PATH        //!< No candidate path keeps the features in view and the joints within their limits.
+  };
+  //! The kind of path of a plan.
+  enum vpPathKind {
+    PATH_IMAGE_LINE, //!< Straight image lines from the current to the desired pixels.
+    PATH_JOINT_LINE, //!< The straight line in joint space.
+    PATH_WAYPOINT    //!< Two straight joint-space lines through a waypoint.
+  };
+
+  vpProjectivePathPlanner();
+
+  /*!
+    Joint limits (n x 1 each, encoder readings): the target and the path stay within \f$ [q_{min}, q_{max}] \f$, and
+    the inverse kinematics starts from configurations drawn there. Empty vectors remove them (then the starts are
+    drawn within a turn of the current revolute joints and 0.5 encoder units of the prismatic ones).
+    \exception vpProjectiveException if the sizes differ, a value is not finite or some \f$ q_{min} \ge q_{max} \f$.
+  */
+  void setJointLimits(const JointVector &qmin, const JointVector &qmax);
+  /*!
+    The image window \f$ [b, w - 1 - b] \times [b, h - 1 - b] \f$ (pixels, \f$ u \f$ the column) the features' predicted
+    images must stay in along the path, as vpServoProjective::setImageSize(); 0 x 0 disables the check.
+    \exception vpProjectiveException on a border that leaves no pixel or is negative, or one zero side.
+  */
+  void setImageSize(unsigned int width, unsigned int height, double border = 0.0);
+  /*!
+    The largest motion of a joint between two samples of the path (radians for revolute joints, encoder units for
+    prismatic ones; default 5 deg): the follower moves by one sample per iteration at most.
+    \exception vpProjectiveException if it is not positive and finite.
+  */
+  void setMaxJointStep(double step);
+  /*!
+    The number of random starts of the inverse kinematics (default 24), besides the current joint values.
+    \exception vpProjectiveException (invalidValueError) if 0.
+  */
+  void setNumberOfStarts(unsigned int starts);
+
+  /*!
+    Plans the task (see the class documentation) from the joint values \e q (n x 1) for the points \e points (4x1
+    each, zero reference) and their desired pixels \e sStar (same size, at least 2 points, finite).
+    \return the status, PLAN_FOUND when the path exists; the plan is then given by the getters.
+    \exception vpProjectiveException (dimensionError, nonFiniteValueError, notEnoughPointsError) on bad sizes or values.
+  */
+  vpPlanStatus plan(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
+                    const std::vector<Eigen::Vector4d> &sStar);
+
+  //! Outcome of the last plan().
+  vpPlanStatus getStatus() const { return m_status; }
+  //! Every branch of the inverse kinematics found by the last plan() (joint values as found).
+  const std::vector<JointVector> &getBranches() const { return m_branches; }
+  //! Index in getBranches() of the branch the target belongs to (meaningful with PLAN_FOUND).
+  unsigned int getChosenBranch() const { return m_branch; }
+  //! The target \f$ q^* \f$ (n x 1) the path ends at (meaningful with PLAN_FOUND).
+  const JointVector &getTarget() const { return m_target; }
+  //! The joint values of the path's samples, from \e q (first) to the target (last).
+  const std::vector<JointVector> &getPath() const { return m_path; }
+  //! The points' predicted pixels (u, v, u', v') at every sample of the path: getPredictedFeatures()[sample][point].
+  const std::vector<std::vector<Eigen::Vector4d>> &getPredictedFeatures() const { return m_features; }
+  //! The kind of the planned path.
+  vpPathKind getPathKind() const { return m_kind; }
+  //! A sentence describing the last plan (branches, target, path kind) or why there is none.
+  const std::string &getDescription() const { return m_description; }
+
+private:
+  bool inside(const JointVector &q) const;
+  bool visible(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
+               std::vector<Eigen::Vector4d> &s) const;
+  bool feasible(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
+                const std::vector<Eigen::Vector4d> &points, std::vector<std::vector<Eigen::Vector4d>> &features) const;
+  std::vector<JointVector> jointLine(const JointVector &from, const JointVector &to) const;
+  bool imagePath(const vpProjectiveArmModel &model, const JointVector &q, const JointVector &target,
+                 const std::vector<Eigen::Vector4d> &points, std::vector<JointVector> &path) const;
+
+  bool m_hasLimits;
+  JointVector m_qmin, m_qmax;
+  unsigned int m_width, m_height;
+  double m_border;
+  double m_maxStep;
+  unsigned int m_starts;
+
+  vpPlanStatus m_status;
+  std::vector<JointVector> m_branches;
+  unsigned int m_branch;
+  JointVector m_target;
+  std::vector<JointVector> m_path;
+  std::vector<std::vector<Eigen::Vector4d>> m_features;
+  vpPathKind m_kind;
+  std::string m_description;
+};
+
+END_VISP_NAMESPACE
+
+#endif

@@ -1,0 +1,335 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+#include <visp3/projective/vpProjectivePathPlanner.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <Eigen/Dense>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpUniRand.h>
+#include <visp3/projective/vpProjectiveDisplacement.h>
+#include <visp3/projective/vpProjectiveInverseKinematics.h>
+
+#include "vpProjectiveInternal.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveInternal;
+
+namespace
+{
+std::string at(const char *method)
+{
+  return std::string("vpProjectivePathPlanner::") + method;
+}
+
+//! Number of configurations drawn in the search of a waypoint.
+const unsigned int kWaypointDraws = 200;
+//! Weight of the joint-space line in the tracking of straight image lines (pixels per radian).
+const double kPriorWeight = 30.0;
+} // namespace
+
+vpProjectivePathPlanner::vpProjectivePathPlanner()
+    : m_hasLimits(false), m_qmin(), m_qmax(), m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0),
+      m_starts(24), m_status(PLAN_NONE), m_branches(), m_branch(0), m_target(), m_path(), m_features(),
+      m_kind(PATH_JOINT_LINE), m_description("no plan yet")
+{
+}
+
+void vpProjectivePathPlanner::setJointLimits(const JointVector &qmin, const JointVector &qmax)
+{
+  const std::string where = at("setJointLimits()");
+  if (qmin.size() != qmax.size()) {
+    fail(vpProjectiveException::dimensionError, where, "qmin and qmax must have the same size");
+  }
+  if (!qmin.allFinite() || !qmax.allFinite()) {
+    fail(vpProjectiveException::nonFiniteValueError, where, "a joint limit is not finite");
+  }
+  for (Eigen::Index i = 0; i < qmin.size(); ++i) {
+    if (!(qmin(i) < qmax(i))) {
+      std::ostringstream os;
+      os << "joint " << i << ": qmin (" << qmin(i) << ") must be below qmax (" << qmax(i) << ")";
+      fail(vpProjectiveException::invalidValueError, where, os.str());
+    }
+  }
+  m_hasLimits = qmin.size() > 0;
+  m_qmin = qmin;
+  m_qmax = qmax;
+}
+
+void vpProjectivePathPlanner::setImageSize(unsigned int width, unsigned int height, double border)
+{
+  const std::string where = at("setImageSize()");
+  requireFinite(border, where, "the border");
+  if ((width == 0) != (height == 0) || border < 0.0 ||
+      (width > 0 && (2.0 * border > width - 1.0 || 2.0 * border > height - 1.0))) {
+    std::ostringstream os;
+    os << "the image " << width << " x " << height << " with a border of " << border
+       << " px has no pixel; give both sides (0 x 0 disables the check) and a border that leaves some";
+    fail(vpProjectiveException::invalidValueError, where, os.str());
+  }
+  m_width = width;
+  m_height = height;
+  m_border = border;
+}
+
+void vpProjectivePathPlanner::setMaxJointStep(double step)
+{
+  if (!std::isfinite(step) || !(step > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, at("setMaxJointStep()"),
+         "the largest joint step between samples must be positive and finite");
+  }
+  m_maxStep = step;
+}
+
+void vpProjectivePathPlanner::setNumberOfStarts(unsigned int starts)
+{
+  if (starts == 0) {
+    fail(vpProjectiveException::invalidValueError, at("setNumberOfStarts()"),
+         "the inverse kinematics needs at least one random start to look for other branches");
+  }
+  m_starts = starts;
+}
+
+bool vpProjectivePathPlanner::inside(const JointVector &q) const
+{
+  return !m_hasLimits || ((q.array() >= m_qmin.array()).all() && (q.array() <= m_qmax.array()).all());
+}
+
+bool vpProjectivePathPlanner::visible(const vpProjectiveArmModel &model, const JointVector &q,
+                                      const std::vector<Eigen::Vector4d> &points, std::vector<Eigen::Vector4d> &s) const
+{
+  const Eigen::Matrix4d H = model.displacement(q);
+  s.resize(points.size());
+  const double uMax = m_width - 1.0 - m_border, vMax = m_height - 1.0 - m_border;
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (!model.getStereoRig().project(Eigen::Vector4d(H * points[k]), s[k])) {
+      return false;
+    }
+    if (m_width > 0 && (s[k](0) < m_border || s[k](0) > uMax || s[k](1) < m_border || s[k](1) > vMax ||
+                        s[k](2) < m_border || s[k](2) > uMax || s[k](3) < m_border || s[k](3) > vMax)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool vpProjectivePathPlanner::feasible(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
+                                       const std::vector<Eigen::Vector4d> &points,
+                                       std::vector<std::vector<Eigen::Vector4d>> &features) const
+{
+  features.resize(path.size());
+  for (size_t j = 0; j < path.size(); ++j) {
+    if (!inside(path[j]) || !visible(model, path[j], points, features[j])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::vector<vpProjectivePathPlanner::JointVector> vpProjectivePathPlanner::jointLine(const JointVector &from,
+                                                                                     const JointVector &to) const
+{
+  const double largest = (to - from).cwiseAbs().maxCoeff();
+  const int samples = std::max(1, static_cast<int>(std::ceil(largest / m_maxStep)));
+  std::vector<JointVector> path;
+  for (int j = 0; j <= samples; ++j) {
+    path.push_back(from + (static_cast<double>(j) / samples) * (to - from));
+  }
+  return path;
+}
+
+bool vpProjectivePathPlanner::imagePath(const vpProjectiveArmModel &model, const JointVector &q,
+                                        const JointVector &target, const std::vector<Eigen::Vector4d> &points,
+                                        std::vector<JointVector> &path) const
+{
+  // s_k(t) = (1 - t) s_k(q) + t s_k(q*) for every point, tracked by the inverse kinematics warm-started at the previous
+  // sample, with the joint-space line as a weak prior: it settles what the pixels leave free (a singular wrist, two
+  // points) and costs as much as one pixel for 1/kPriorWeight rad off the line.
+  const Eigen::Matrix4d H0 = model.displacement(q), Hstar = model.displacement(target);
+  std::vector<Eigen::Vector4d> s0(points.size()), s1(points.size()), s(points.size());
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (!model.getStereoRig().project(Eigen::Vector4d(H0 * points[k]), s0[k]) ||
+        !model.getStereoRig().project(Eigen::Vector4d(Hstar * points[k]), s1[k])) {
+      return false;
+    }
+  }
+  // Tracked in steps four times finer than the path's, then thinned to steps of at most setMaxJointStep().
+  const size_t samples = 4 * (jointLine(q, target).size() - 1);
+  std::vector<JointVector> tracked(1, q);
+  for (size_t j = 1; j <= samples; ++j) {
+    const double t = static_cast<double>(j) / samples;
+    for (size_t k = 0; k < points.size(); ++k) {
+      s[k] = (1.0 - t) * s0[k] + t * s1[k];
+    }
+    const JointVector line = q + t * (target - q);
+    try {
+      tracked.push_back(
+          vpProjectiveInverseKinematics::solve(model, s, points, tracked.back(), nullptr, &line, kPriorWeight));
+    } catch (const vpProjectiveException &) {
+      return false;
+    }
+    if ((tracked[j] - tracked[j - 1]).cwiseAbs().maxCoeff() > m_maxStep) {
+      return false; // a jump between fine samples: the tracked joints left the branch
+    }
+  }
+  // It must end at the target, and no joint may swing beyond its [start, target] interval (a wrist spinning near a
+  // singular configuration reaches the same pose the long way).
+  if ((tracked.back() - target).cwiseAbs().maxCoeff() > 1e-3) {
+    return false;
+  }
+  for (const JointVector &p : tracked) {
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      if (p(i) < std::min(q(i), target(i)) - 2.0 * m_maxStep || p(i) > std::max(q(i), target(i)) + 2.0 * m_maxStep) {
+        return false;
+      }
+    }
+  }
+  path.assign(1, q);
+  for (size_t j = 1; j < tracked.size(); ++j) {
+    if (j + 1 == tracked.size() || (tracked[j + 1] - path.back()).cwiseAbs().maxCoeff() > m_maxStep) {
+      path.push_back(tracked[j]);
+    }
+  }
+  return true;
+}
+
+vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProjectiveArmModel &model,
+                                                                    const JointVector &q,
+                                                                    const std::vector<Eigen::Vector4d> &points,
+                                                                    const std::vector<Eigen::Vector4d> &sStar)
+{
+  const std::string where = at("plan()");
+  const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
+  if (q.size() != n || (m_hasLimits && m_qmin.size() != n) || points.size() != sStar.size()) {
+    std::ostringstream os;
+    os << "q has " << q.size() << " entries and the limits " << m_qmin.size() << " for " << n << " joints; "
+       << points.size() << " points for " << sStar.size() << " desired features";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  if (points.size() < 2) {
+    fail(vpProjectiveException::notEnoughPointsError, where, "a task needs at least 2 points");
+  }
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (!points[k].allFinite() || !sStar[k].allFinite() || !q.allFinite()) {
+      fail(vpProjectiveException::nonFiniteValueError, where, "a point, a desired feature or q is not finite");
+    }
+  }
+  // 1. Every branch of the inverse kinematics.
+  JointVector qmin = m_qmin, qmax = m_qmax;
+  if (!m_hasLimits) {
+    qmin.resize(n);
+    qmax.resize(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double range = model.jointType(static_cast<unsigned int>(i)) == vpProjectiveJoint::REVOLUTE ? M_PI : 0.5;
+      qmin(i) = q(i) - range;
+      qmax(i) = q(i) + range;
+    }
+  }
+  m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, points, q, qmin, qmax, m_starts);
+  m_path.clear();
+  m_features.clear();
+  std::ostringstream os;
+  if (m_branches.empty()) {
+    m_status = PLAN_NO_INVERSE_KINEMATICS;
+    m_description = "no joint values explain the desired features";
+    return m_status;
+  }
+  // 2. The target: each branch's representative (revolute joints modulo a turn) nearest to q inside the limits, and
+  // of those the nearest.
+  double bestDistance = std::numeric_limits<double>::infinity();
+  for (size_t b = 0; b < m_branches.size(); ++b) {
+    JointVector t = m_branches[b];
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (model.jointType(static_cast<unsigned int>(i)) != vpProjectiveJoint::REVOLUTE) {
+        continue;
+      }
+      t(i) = q(i) + std::remainder(t(i) - q(i), 2.0 * M_PI);
+      for (double turn : {-2.0 * M_PI, 2.0 * M_PI}) { // the nearest may be outside the limits, another turn inside
+        if (m_hasLimits && (t(i) < m_qmin(i) || t(i) > m_qmax(i)) && t(i) + turn >= m_qmin(i) &&
+            t(i) + turn <= m_qmax(i)) {
+          t(i) += turn;
+        }
+      }
+    }
+    const double d = (t - q).norm();
+    if (inside(t) && d < bestDistance) {
+      bestDistance = d;
+      m_target = t;
+      m_branch = static_cast<unsigned int>(b);
+    }
+  }
+  os << m_branches.size() << " inverse-kinematic branch" << (m_branches.size() > 1 ? "es" : "") << " found";
+  if (!(bestDistance < std::numeric_limits<double>::infinity())) {
+    m_status = PLAN_OUTSIDE_JOINT_LIMITS;
+    os << ", none inside the joint limits";
+    m_description = os.str();
+    return m_status;
+  }
+  os << "; target: branch " << m_branch << ", " << vpMath::deg((m_target - q).cwiseAbs().maxCoeff())
+     << " deg away at most per joint";
+  // 3. A path keeping the features in view and the joints within their limits.
+  std::vector<JointVector> path;
+  std::vector<std::vector<Eigen::Vector4d>> features;
+  if (imagePath(model, q, m_target, points, path) && feasible(model, path, points, features)) {
+    m_kind = PATH_IMAGE_LINE;
+    os << "; path: straight image lines";
+  } else if (feasible(model, path = jointLine(q, m_target), points, features)) {
+    m_kind = PATH_JOINT_LINE;
+    os << "; path: the straight joint-space line";
+  } else {
+    // A waypoint among configurations inside the limits with the features in view: the shortest feasible.
+    vpUniRand uniform(0x5eedULL);
+    double shortest = std::numeric_limits<double>::infinity();
+    std::vector<Eigen::Vector4d> s;
+    for (unsigned int draw = 0; draw < kWaypointDraws; ++draw) {
+      JointVector w(n);
+      for (Eigen::Index i = 0; i < n; ++i) {
+        w(i) = uniform.uniform(qmin(i), qmax(i));
+      }
+      const double length = (w - q).norm() + (m_target - w).norm();
+      if (!(length < shortest) || !inside(w) || !visible(model, w, points, s)) {
+        continue;
+      }
+      std::vector<JointVector> candidate = jointLine(q, w), second = jointLine(w, m_target);
+      candidate.insert(candidate.end(), second.begin() + 1, second.end());
+      std::vector<std::vector<Eigen::Vector4d>> candidateFeatures;
+      if (feasible(model, candidate, points, candidateFeatures)) {
+        shortest = length;
+        path = candidate;
+        features = candidateFeatures;
+      }
+    }
+    if (!(shortest < std::numeric_limits<double>::infinity())) {
+      m_status = PLAN_NO_VISIBLE_PATH;
+      os << "; no path keeps the features in view within the joint limits";
+      m_description = os.str();
+      return m_status;
+    }
+    m_kind = PATH_WAYPOINT;
+    os << "; path: through a waypoint";
+  }
+  os << " in " << path.size() - 1 << " steps";
+  m_path = path;
+  m_features = features;
+  m_status = PLAN_FOUND;
+  m_description = os.str();
+  return m_status;
+}
