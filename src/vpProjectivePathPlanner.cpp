@@ -48,8 +48,8 @@ const double kPriorWeight = 30.0;
 
 vpProjectivePathPlanner::vpProjectivePathPlanner()
     : m_hasLimits(false), m_qmin(), m_qmax(), m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0),
-      m_starts(24), m_status(PLAN_NONE), m_branches(), m_branch(0), m_target(), m_path(), m_features(),
-      m_kind(PATH_JOINT_LINE), m_description("no plan yet")
+      m_starts(24), m_maxResidual(5.0), m_front(), m_status(PLAN_NONE), m_branches(), m_branch(0), m_target(), m_path(),
+      m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
 {
 }
 
@@ -99,6 +99,15 @@ void vpProjectivePathPlanner::setMaxJointStep(double step)
   m_maxStep = step;
 }
 
+void vpProjectivePathPlanner::setMaxResidual(double pixels)
+{
+  if (!std::isfinite(pixels) || !(pixels > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, at("setMaxResidual()"),
+         "the largest RMS pixel residual of a target must be positive and finite");
+  }
+  m_maxResidual = pixels;
+}
+
 void vpProjectivePathPlanner::setNumberOfStarts(unsigned int starts)
 {
   if (starts == 0) {
@@ -117,10 +126,15 @@ bool vpProjectivePathPlanner::visible(const vpProjectiveArmModel &model, const J
                                       const std::vector<Eigen::Vector4d> &points, std::vector<Eigen::Vector4d> &s) const
 {
   const Eigen::Matrix4d H = model.displacement(q);
+  const vpProjectiveStereoRig &rig = model.getStereoRig();
   s.resize(points.size());
   const double uMax = m_width - 1.0 - m_border, vMax = m_height - 1.0 - m_border;
   for (size_t k = 0; k < points.size(); ++k) {
-    if (!model.getStereoRig().project(Eigen::Vector4d(H * points[k]), s[k])) {
+    const Eigen::Vector4d M = H * points[k];
+    // In front of both cameras: the depths keep the signs they have where the points are seen (a projective camera
+    // also images the points behind it; H(q) is continuous in q, so a sign change means the point went behind).
+    if (!rig.project(M, s[k]) || !(rig.leftProjection().row(2).dot(M) * m_front[k](0) > 0.0) ||
+        !(rig.rightProjection().row(2).dot(M) * m_front[k](1) > 0.0)) {
       return false;
     }
     if (m_width > 0 && (s[k](0) < m_border || s[k](0) > uMax || s[k](1) < m_border || s[k](1) > vMax ||
@@ -186,22 +200,20 @@ bool vpProjectivePathPlanner::imagePath(const vpProjectiveArmModel &model, const
     } catch (const vpProjectiveException &) {
       return false;
     }
-    if ((tracked[j] - tracked[j - 1]).cwiseAbs().maxCoeff() > m_maxStep) {
-      return false; // a jump between fine samples: the tracked joints left the branch
+    // No jump between fine samples (the tracked joints left the branch), and no joint beyond its [start, target]
+    // interval by more than twice the step (a wrist spinning near a singular configuration reaches the same pose the
+    // long way): checked as it goes, to give up early.
+    if ((tracked[j] - tracked[j - 1]).cwiseAbs().maxCoeff() > m_maxStep ||
+        ((tracked[j] - q.cwiseMin(target)).array() < -2.0 * m_maxStep).any() ||
+        ((tracked[j] - q.cwiseMax(target)).array() > 2.0 * m_maxStep).any()) {
+      return false;
     }
   }
-  // It must end at the target, and no joint may swing beyond its [start, target] interval (a wrist spinning near a
-  // singular configuration reaches the same pose the long way).
+  // It must end at the target.
   if ((tracked.back() - target).cwiseAbs().maxCoeff() > 1e-3) {
     return false;
   }
-  for (const JointVector &p : tracked) {
-    for (Eigen::Index i = 0; i < q.size(); ++i) {
-      if (p(i) < std::min(q(i), target(i)) - 2.0 * m_maxStep || p(i) > std::max(q(i), target(i)) + 2.0 * m_maxStep) {
-        return false;
-      }
-    }
-  }
+  tracked.back() = target; // the same configuration up to the inverse kinematics' convergence
   path.assign(1, q);
   for (size_t j = 1; j < tracked.size(); ++j) {
     if (j + 1 == tracked.size() || (tracked[j + 1] - path.back()).cwiseAbs().maxCoeff() > m_maxStep) {
@@ -209,6 +221,42 @@ bool vpProjectivePathPlanner::imagePath(const vpProjectiveArmModel &model, const
     }
   }
   return true;
+}
+
+bool vpProjectivePathPlanner::chooseTarget(const vpProjectiveArmModel &model, const JointVector &q,
+                                           const std::vector<Eigen::Vector4d> &points, bool &anyInside)
+{
+  // Each branch's representative nearest to q (revolute joints modulo a turn; another turn if the nearest is outside
+  // the limits and that one inside), then of those inside the limits with the features in view the nearest.
+  double bestDistance = std::numeric_limits<double>::infinity();
+  std::vector<Eigen::Vector4d> s;
+  anyInside = false;
+  for (size_t b = 0; b < m_branches.size(); ++b) {
+    JointVector t = m_branches[b];
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      if (model.jointType(static_cast<unsigned int>(i)) != vpProjectiveJoint::REVOLUTE) {
+        continue;
+      }
+      t(i) = q(i) + std::remainder(t(i) - q(i), 2.0 * M_PI);
+      for (double turn : {-2.0 * M_PI, 2.0 * M_PI}) {
+        if (m_hasLimits && (t(i) < m_qmin(i) || t(i) > m_qmax(i)) && t(i) + turn >= m_qmin(i) &&
+            t(i) + turn <= m_qmax(i)) {
+          t(i) += turn;
+        }
+      }
+    }
+    if (!inside(t)) {
+      continue;
+    }
+    anyInside = true;
+    const double d = (t - q).norm();
+    if (d < bestDistance && visible(model, t, points, s)) {
+      bestDistance = d;
+      m_target = t;
+      m_branch = static_cast<unsigned int>(b);
+    }
+  }
+  return bestDistance < std::numeric_limits<double>::infinity();
 }
 
 vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProjectiveArmModel &model,
@@ -243,43 +291,38 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
       qmax(i) = q(i) + range;
     }
   }
-  m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, points, q, qmin, qmax, m_starts);
+  std::vector<double> residuals;
+  m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, points, q, qmin, qmax, m_starts, &residuals);
   m_path.clear();
   m_features.clear();
   std::ostringstream os;
-  if (m_branches.empty()) {
+  if (m_branches.empty() || residuals.front() > m_maxResidual) {
     m_status = PLAN_NO_INVERSE_KINEMATICS;
-    m_description = "no joint values explain the desired features";
+    os << "no joint values explain the desired features (";
+    if (m_branches.empty()) {
+      os << "the inverse kinematics failed from every start)";
+    } else {
+      os << "the best leaves " << residuals.front() << " px RMS, more than " << m_maxResidual << " px)";
+    }
+    m_branches.clear();
+    m_description = os.str();
     return m_status;
   }
-  // 2. The target: each branch's representative (revolute joints modulo a turn) nearest to q inside the limits, and
-  // of those the nearest.
-  double bestDistance = std::numeric_limits<double>::infinity();
-  for (size_t b = 0; b < m_branches.size(); ++b) {
-    JointVector t = m_branches[b];
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (model.jointType(static_cast<unsigned int>(i)) != vpProjectiveJoint::REVOLUTE) {
-        continue;
-      }
-      t(i) = q(i) + std::remainder(t(i) - q(i), 2.0 * M_PI);
-      for (double turn : {-2.0 * M_PI, 2.0 * M_PI}) { // the nearest may be outside the limits, another turn inside
-        if (m_hasLimits && (t(i) < m_qmin(i) || t(i) > m_qmax(i)) && t(i) + turn >= m_qmin(i) &&
-            t(i) + turn <= m_qmax(i)) {
-          t(i) += turn;
-        }
-      }
-    }
-    const double d = (t - q).norm();
-    if (inside(t) && d < bestDistance) {
-      bestDistance = d;
-      m_target = t;
-      m_branch = static_cast<unsigned int>(b);
-    }
+  // The depth signs where the points are seen, at q: the reference of "in front of the cameras".
+  const Eigen::Matrix4d H = model.displacement(q);
+  m_front.resize(points.size());
+  for (size_t k = 0; k < points.size(); ++k) {
+    const Eigen::Vector4d M = H * points[k];
+    m_front[k] << model.getStereoRig().leftProjection().row(2).dot(M),
+        model.getStereoRig().rightProjection().row(2).dot(M);
   }
+  // 2. The target.
   os << m_branches.size() << " inverse-kinematic branch" << (m_branches.size() > 1 ? "es" : "") << " found";
-  if (!(bestDistance < std::numeric_limits<double>::infinity())) {
-    m_status = PLAN_OUTSIDE_JOINT_LIMITS;
-    os << ", none inside the joint limits";
+  bool anyInside = false;
+  if (!chooseTarget(model, q, points, anyInside)) {
+    m_status = anyInside ? PLAN_NO_VISIBLE_PATH : PLAN_OUTSIDE_JOINT_LIMITS;
+    os << (anyInside ? "; at every one inside the joint limits a feature is out of the image window or behind a camera"
+                     : ", none inside the joint limits");
     m_description = os.str();
     return m_status;
   }

@@ -428,6 +428,46 @@ void BM_vpServoProjective_Eigen_Robust(benchmark::State &state)
 }
 
 /*!
+  Global servoing (setPathPlanning): (d) the planning of the tutorial's task, once per target (the inverse kinematics
+  from 24 starts, the target, the path: straight image lines, tracked), timed as setPathPlanning(true) followed by the
+  computeControlLaw() that plans; (e) one control iteration while following the path (the sample's predicted features
+  as the reference, the path step as feedforward), with a path of steps of 0.03 deg so that every timed iteration
+  follows it (the fixed number of iterations below stays within it).
+*/
+void BM_vpServoProjective_Planning(benchmark::State &state)
+{
+  ProjectiveTask t(paperRobot());
+  t.task.setPathPlanning(true);
+  for (auto _ : state) {
+    t.task.setPathPlanning(true);
+    vpColVector qdot = t.task.computeControlLaw(t.q);
+    benchmark::DoNotOptimize(qdot.data);
+  }
+  state.SetLabel(t.task.getPathPlanner().getDescription());
+}
+
+void BM_vpServoProjective_Eigen_Following(benchmark::State &state)
+{
+  ProjectiveTask t(paperRobot());
+  t.task.setPathPlanning(true);
+  t.task.getPathPlanner().setMaxJointStep(vpMath::rad(0.03));
+  vpProjectiveRobot::JointVector q(6), qdot(6);
+  for (unsigned int i = 0; i < 6; ++i) {
+    q(i) = t.q[i];
+  }
+  t.task.computeControlLaw(q, qdot); // plans
+  const unsigned long long before = mallocCalls();
+  for (auto _ : state) {
+    t.task.computeControlLaw(q, qdot);
+    benchmark::DoNotOptimize(qdot.data());
+    benchmark::ClobberMemory();
+  }
+  reportAllocations(state, before);
+  state.SetLabel(std::string(t.task.isFollowingPath() ? "following, " : "NOT following, ") +
+                 std::to_string(t.task.getPathPlanner().getPath().size()) + " samples");
+}
+
+/*!
   ViSP's metric eye-in-hand servo of the same size: 6 image points (x, y, Z), a 12 x 6 task Jacobian
   L cVe eJe with eJe = vpViper850::get_eJe(q) (the metric counterpart of the projective model Jacobian) computed in
   the loop, and the pseudo-inverse control law.
@@ -698,6 +738,22 @@ void printSummary(const MedianReporter &reporter)
   printRatio("Eigen API", metric, projectiveEigen);
   printRatio("Eigen API, every check on", metric, robust, false);
 
+  const Median planning = reporter.median("BM_vpServoProjective_Planning");
+  const Median following = reporter.median("BM_vpServoProjective_Eigen_Following");
+  if (planning.valid()) {
+    std::printf("(d) global servoing: planning the task (6 joints, 3 features)   %9.3f ms (%.3f)\n",
+                planning.real / 1000.0, planning.cpu / 1000.0);
+  }
+  if (following.valid()) {
+    std::printf("    one control iteration following the path, Eigen API %9.3f us (%.3f)", following.real,
+                following.cpu);
+    if (projectiveEigen.valid()) {
+      std::printf(": %.2f x the iteration of law (47) (target <= 2: %s)", following.real / projectiveEigen.real,
+                  following.real <= 2.0 * projectiveEigen.real ? "met" : "NOT met");
+    }
+    std::printf("\n");
+  }
+
   const Median calibrate = reporter.median("BM_Calibrate_6joints_7markers");
   const Median withRig = reporter.median("BM_RigEstimateAndCalibrate_6joints_7markers");
   if (calibrate.valid() || withRig.valid()) {
@@ -780,6 +836,12 @@ BENCHMARK(BM_vpServoProjective_Eigen_Robust)
     ->ArgName("near_target")
     ->Arg(0)
     ->Arg(1)
+    ->Repetitions(10)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_vpServoProjective_Planning)->Repetitions(10)->ReportAggregatesOnly(true)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_vpServoProjective_Eigen_Following)
+    ->Iterations(2000)
     ->Repetitions(10)
     ->ReportAggregatesOnly(true)
     ->Unit(benchmark::kMicrosecond);

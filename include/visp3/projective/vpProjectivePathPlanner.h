@@ -42,27 +42,28 @@ BEGIN_VISP_NAMESPACE
   task's features triangulated at the current joints \f$ q \f$ and carried there by \f$ H(q)^{-1} \f$, which needs no
   marker identity) and their desired pixels \f$ s^*_k = (u, v, u', v') \f$. plan()
   -# solves the inverse kinematics of \f$ s^* \f$ from many starts (vpProjectiveInverseKinematics::solveAll()): every
-     branch it finds;
-  -# chooses the target \f$ q^* \f$: among the branches, the representative (revolute joints modulo a turn) inside the
-     joint limits nearest to \f$ q \f$ in joint space;
+     branch it finds; none if the best leaves more than setMaxResidual() pixels;
+  -# chooses the target \f$ q^* \f$: among the branches, the representative (revolute joints modulo a turn) nearest
+     to \f$ q \f$ in joint space that is inside the joint limits with the features in view (inside the image window,
+     and in front of both cameras: their depths keep the signs they have at \f$ q \f$, where they are seen);
   -# plans the joint path from \f$ q \f$ to \f$ q^* \f$, sampled so that no joint moves more than setMaxJointStep()
-     between samples, and keeps it only if at every sample the joints are inside their limits and the features'
-     predicted images inside the image window (setImageSize()). Candidates, in this order:
-     - the points' centre on a straight line: their metric centroid \f$ c \f$ (a projective point; no metric model
-       needed, only the plane at infinity \f$ \pi \f$ of the acquisition) moves straight to \f$ D c \f$,
-       \f$ D = H^* H^{-1} \f$, by the p-translation \f$ T(t) = I + t\, a \pi^T / \pi^T c \f$, while the end turns about
-       it: \f$ H(t) = T(t) \exp(t \log(T(1)^{-1} D)) H \f$. The centre's images move on straight lines, the points'
-       around them;
-     - the screw motion of the moving end, the straight line of the projective motion group
-       \f$ H(t) = \exp(t \log D) H \f$;
-     these two are tracked by the inverse kinematics in fine steps and kept if they end at \f$ q^* \f$ without a jump
-     and no joint goes beyond its [start, target] interval by more than twice the joint step (no wrist spin near a
-     singular configuration);
+     between samples, and keeps it only if at every sample the joints are inside their limits and the features in
+     view. Candidates, in this order:
+     - straight image lines \f$ s_k(t) = (1 - t) s_k(q) + t s_k(q^*) \f$ (which stay inside a window that holds both
+       ends), tracked by the inverse kinematics in steps four times finer, warm-started at the previous sample and
+       with the joint-space line as a weak prior (30 px per radian: it settles the joints the pixels hardly see near a
+       singular configuration); kept if it ends at \f$ q^* \f$, no fine step moves a joint by more than
+       setMaxJointStep() (a jump to another branch) and no joint goes beyond its [start, target] interval by more than
+       twice that step (no wrist spin);
      - the straight line in joint space;
      - two straight lines through a waypoint, drawn (with a fixed seed) among the configurations inside the limits
        with the features in view: the shortest feasible;
-  -# fails with a status (vpPlanStatus) when no branch exists, none is inside the limits, or no path keeps the
-     features in view.
+  -# fails with a status (vpPlanStatus) when no branch explains \f$ s^* \f$, none is inside the limits, none
+     inside them has the features in view, or no path keeps them in view.
+
+  The straight line of the projective motion group, \f$ H(t) = \exp(t \log(H^* H^{-1})) H \f$ (a screw motion of the
+  gripper), was tried as the first candidate and dropped: its image paths are helices, not lines, and on the main
+  tutorial's task (a start near the wrist singularity) its tracked joints jump to the other wrist branch.
 
   Joint values are encoder readings (radians for revolute joints, the encoder's length unit for prismatic ones) as
   everywhere in the model. vpServoProjective::setPathPlanning() runs it once per target and follows the path.
@@ -79,7 +80,7 @@ public:
     PLAN_FOUND,                 //!< A path to a target inside the limits, the features in view all along.
     PLAN_NO_INVERSE_KINEMATICS, //!< No joint values explain the desired features.
     PLAN_OUTSIDE_JOINT_LIMITS,  //!< Every branch of the inverse kinematics is outside the joint limits.
-    PLAN_NO_VISIBLE_PATH        //!< No candidate path keeps the features in view and the joints within their limits.
+    PLAN_NO_VISIBLE_PATH        //!< No target inside the limits has the features in view, or no path keeps them there.
   };
   //! The kind of path of a plan.
   enum vpPathKind {
@@ -114,6 +115,13 @@ public:
     \exception vpProjectiveException (invalidValueError) if 0.
   */
   void setNumberOfStarts(unsigned int starts);
+  /*!
+    The largest RMS pixel residual per coordinate of the best inverse-kinematic solution for the target to exist
+    (default 5 px: noise and model error leave well under a pixel); above it plan() reports
+    PLAN_NO_INVERSE_KINEMATICS.
+    \exception vpProjectiveException if it is not positive and finite.
+  */
+  void setMaxResidual(double pixels);
 
   /*!
     Plans the task (see the class documentation) from the joint values \e q (n x 1) for the points \e points (4x1
@@ -143,6 +151,8 @@ public:
 
 private:
   bool inside(const JointVector &q) const;
+  bool chooseTarget(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
+                    bool &anyInside);
   bool visible(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
                std::vector<Eigen::Vector4d> &s) const;
   bool feasible(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
@@ -157,6 +167,8 @@ private:
   double m_border;
   double m_maxStep;
   unsigned int m_starts;
+  double m_maxResidual;
+  std::vector<Eigen::Vector2d> m_front; // per point: its depths in both cameras at the planning q
 
   vpPlanStatus m_status;
   std::vector<JointVector> m_branches;
