@@ -48,8 +48,8 @@ const double kPriorWeight = 30.0;
 
 vpProjectivePathPlanner::vpProjectivePathPlanner()
     : m_hasLimits(false), m_qmin(), m_qmax(), m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0),
-      m_starts(24), m_maxResidual(5.0), m_front(), m_status(PLAN_NONE), m_branches(), m_branch(0), m_target(), m_path(),
-      m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
+      m_starts(24), m_maxResidual(20.0), m_front(), m_status(PLAN_NONE), m_branches(), m_residuals(), m_branch(0),
+      m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
 {
 }
 
@@ -291,20 +291,20 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
       qmax(i) = q(i) + range;
     }
   }
-  std::vector<double> residuals;
-  m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, points, q, qmin, qmax, m_starts, &residuals);
+  m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, points, q, qmin, qmax, m_starts, &m_residuals);
   m_path.clear();
   m_features.clear();
   std::ostringstream os;
-  if (m_branches.empty() || residuals.front() > m_maxResidual) {
+  if (m_branches.empty() || m_residuals.front() > m_maxResidual) {
     m_status = PLAN_NO_INVERSE_KINEMATICS;
     os << "no joint values explain the desired features (";
     if (m_branches.empty()) {
       os << "the inverse kinematics failed from every start)";
     } else {
-      os << "the best leaves " << residuals.front() << " px RMS, more than " << m_maxResidual << " px)";
+      os << "the best leaves " << m_residuals.front() << " px RMS, more than " << m_maxResidual << " px)";
     }
     m_branches.clear();
+    m_residuals.clear();
     m_description = os.str();
     return m_status;
   }

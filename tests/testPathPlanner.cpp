@@ -320,9 +320,9 @@ TEST(PathPlanner, SaysWhenThereIsNoPlan)
   EXPECT_TRUE(planner.getPath().empty());
   planner.setJointLimits(JointVector(), JointVector());
 
-  // Desired features no configuration shows: one of them 80 px off its place in both images.
+  // Desired features no configuration shows: one of them 150 px off its place in both images.
   std::vector<Eigen::Vector4d> impossible = sStar;
-  impossible[2] += Eigen::Vector4d(80.0, 0.0, 80.0, 0.0);
+  impossible[2] += Eigen::Vector4d(150.0, 0.0, 150.0, 0.0);
   EXPECT_EQ(planner.plan(robot.getModel(), toJoints(qStart), points, impossible),
             vpProjectivePathPlanner::PLAN_NO_INVERSE_KINEMATICS)
       << planner.getDescription();
