@@ -66,7 +66,7 @@ class VISP_EXPORT vpProjectiveModelFile
 {
 public:
   //! The format version this build writes and reads.
-  static const int version = 2;
+  static constexpr int version = 2;
 
   /*!
     Writes \e model and its calibration residuals (pixels; see vpProjectiveArmAcquisition) to \e filename.
