@@ -28,7 +28,7 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-const char *const kClass = "vpFeatureStereoPoint";
+const vpErrorSite at("vpFeatureStereoPoint");
 const char *const kNames[4] = {"u", "v", "u'", "v'"};
 } // namespace
 
@@ -52,7 +52,7 @@ void vpFeatureStereoPoint::init()
 
 void vpFeatureStereoPoint::buildFrom(double u, double v, double up, double vp)
 {
-  const std::string where = std::string(kClass) + "::buildFrom()";
+  const std::string where = at("buildFrom()");
   const double values[4] = {u, v, up, vp};
   for (unsigned int i = 0; i < 4; ++i) {
     requireFinite(values[i], where, std::string("the coordinate ") + kNames[i]);
@@ -86,8 +86,7 @@ vpColVector vpFeatureStereoPoint::error(const vpBasicFeature &s_star, unsigned i
 {
   const vpFeatureStereoPoint *desired = dynamic_cast<const vpFeatureStereoPoint *>(&s_star);
   if (desired == nullptr) {
-    fail(vpProjectiveException::invalidValueError, std::string(kClass) + "::error()",
-         "the desired feature is not a vpFeatureStereoPoint");
+    fail(vpProjectiveException::invalidValueError, at("error()"), "the desired feature is not a vpFeatureStereoPoint");
   }
   vpColVector e(getDimension(select));
   unsigned int row = 0;
@@ -101,7 +100,7 @@ vpColVector vpFeatureStereoPoint::error(const vpBasicFeature &s_star, unsigned i
 
 vpMatrix vpFeatureStereoPoint::interaction(unsigned int select)
 {
-  const std::string where = std::string(kClass) + "::interaction()";
+  const std::string where = at("interaction()");
   if (m_rig == nullptr || !m_rig->isInitialized()) {
     fail(vpProjectiveException::notInitializedError, where,
          "the interaction matrix needs the weakly calibrated rig; call setStereoRig() first");

@@ -27,13 +27,10 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
+const vpErrorSite at("vpProjectiveArmAcquisition");
+
 namespace
 {
-std::string at(const char *method)
-{
-  return std::string("vpProjectiveArmAcquisition::") + method;
-}
-
 /*!
   Flags the trial observations of \e data that \e model places within the outlier threshold (RMS over the two
   images); true if a flag changed.

@@ -28,13 +28,7 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
-namespace
-{
-std::string at(const char *method)
-{
-  return std::string("vpProjectiveBodyVelocity::") + method;
-}
-} // namespace
+const vpErrorSite at("vpProjectiveBodyVelocity");
 
 vpProjectiveBodyVelocity::vpProjectiveBodyVelocity() : m_Hhat(Eigen::Matrix4d::Zero()) {}
 

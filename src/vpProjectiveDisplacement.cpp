@@ -29,13 +29,13 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-const char *const kClass = "vpProjectiveDisplacement";
+const vpErrorSite at("vpProjectiveDisplacement");
 } // namespace
 
 vpProjectiveDisplacement::vpProjectiveDisplacement() : m_H(Eigen::Matrix4d::Identity()) {}
 
 vpProjectiveDisplacement::vpProjectiveDisplacement(const vpMatrix &H)
-    : m_H(normalize(toEigen<4, 4>(H, std::string(kClass) + "()", "H")))
+    : m_H(normalize(toEigen<4, 4>(H, at("vpProjectiveDisplacement()"), "H")))
 {
 }
 
@@ -43,7 +43,7 @@ vpProjectiveDisplacement::vpProjectiveDisplacement(const Eigen::Matrix4d &H) : m
 
 Eigen::Matrix4d vpProjectiveDisplacement::normalize(const Eigen::Matrix4d &H)
 {
-  const std::string where = std::string(kClass) + "::normalize()";
+  const std::string where = at("normalize()");
   if (!H.allFinite()) {
     fail(vpProjectiveException::nonFiniteValueError, where, "H has a NaN or infinite entry");
   }
@@ -114,7 +114,7 @@ Eigen::Matrix4d vpProjectiveDisplacement::logarithm() const
   const double theta = std::acos(c);
   const double s = std::sin(theta);
   if (c < 0.0 && s < 1e-6) {
-    fail(vpProjectiveException::degenerateConfigurationError, std::string(kClass) + "::log()",
+    fail(vpProjectiveException::degenerateConfigurationError, at("log()"),
          "the rotation angle is pi: the logarithm of a half turn is not unique (the axis direction is); compose two "
          "smaller displacements instead");
   }
@@ -143,8 +143,7 @@ vpMatrix vpProjectiveDisplacement::log() const
 vpProjectiveDisplacement vpProjectiveDisplacement::exp(const Eigen::Matrix4d &Hhat)
 {
   if (!Hhat.allFinite()) {
-    fail(vpProjectiveException::nonFiniteValueError, std::string(kClass) + "::exp()",
-         "Hhat has a NaN or infinite entry");
+    fail(vpProjectiveException::nonFiniteValueError, at("exp()"), "Hhat has a NaN or infinite entry");
   }
   const Eigen::Matrix4d H2 = Hhat * Hhat;
   const double theta2 = std::max(0.0, -0.5 * H2.trace());
@@ -163,5 +162,5 @@ vpProjectiveDisplacement vpProjectiveDisplacement::exp(const Eigen::Matrix4d &Hh
 
 vpProjectiveDisplacement vpProjectiveDisplacement::exp(const vpMatrix &Hhat)
 {
-  return exp(toEigen<4, 4>(Hhat, std::string(kClass) + "::exp()", "Hhat"));
+  return exp(toEigen<4, 4>(Hhat, at("exp()"), "Hhat"));
 }

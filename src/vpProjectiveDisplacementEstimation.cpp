@@ -35,7 +35,7 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-const char *const kClass = "vpProjectiveDisplacement";
+const vpErrorSite at("vpProjectiveDisplacement");
 
 // Rejects point sets that cannot determine a homography of P^3: all coplanar, or 4 coplanar among a minimal 5.
 void checkGeneralPosition(const std::vector<Eigen::Vector4d> &M, const std::string &where, const char *which)
@@ -88,7 +88,7 @@ std::vector<Eigen::Vector4d> toEigenPoints(const std::vector<vpColVector> &M, co
 Eigen::Matrix4d vpProjectiveDisplacement::estimateLinear(const std::vector<Eigen::Vector4d> &M0,
                                                          const std::vector<Eigen::Vector4d> &M1)
 {
-  const std::string where = std::string(kClass) + "::estimate()";
+  const std::string where = at("estimate()");
   if (M0.size() != M1.size()) {
     std::ostringstream os;
     os << "got " << M0.size() << " points before the motion but " << M1.size() << " after; pass matched pairs";
@@ -143,7 +143,7 @@ Eigen::Matrix4d vpProjectiveDisplacement::estimateLinear(const std::vector<Eigen
 vpProjectiveDisplacement vpProjectiveDisplacement::estimate(const std::vector<vpColVector> &M0,
                                                             const std::vector<vpColVector> &M1)
 {
-  const std::string where = std::string(kClass) + "::estimate()";
+  const std::string where = at("estimate()");
   return vpProjectiveDisplacement(
       estimateLinear(toEigenPoints(M0, where, "the first set"), toEigenPoints(M1, where, "the second set")));
 }
@@ -153,7 +153,7 @@ vpProjectiveDisplacement vpProjectiveDisplacement::estimate(const vpProjectiveSt
                                                             const std::vector<vpImagePoint> &left1,
                                                             const std::vector<vpImagePoint> &right1)
 {
-  const std::string where = std::string(kClass) + "::estimate()";
+  const std::string where = at("estimate()");
   if (!rig.isInitialized()) {
     fail(vpProjectiveException::notInitializedError, where,
          "the stereo rig has no fundamental matrix; estimate it or set it before estimating displacements");

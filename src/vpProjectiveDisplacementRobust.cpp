@@ -40,7 +40,7 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-const char *const kClass = "vpProjectiveDisplacement";
+const vpErrorSite at("vpProjectiveDisplacement");
 // Largest rigidity statistic (DisplacementAdjustment::rigidityStatistic()) of a robust estimate.
 const double kRigidityBound = 8.0;
 
@@ -301,7 +301,7 @@ vpProjectiveDisplacement vpProjectiveDisplacement::estimate(const vpProjectiveSt
                                                             const std::vector<vpImagePoint> &right1,
                                                             double inlierThreshold, std::vector<bool> &inliers)
 {
-  const std::string where = std::string(kClass) + "::estimate()";
+  const std::string where = at("estimate()");
   std::vector<Eigen::Vector4d> s0, s1;
   stackImagePairs(left0, right0, left1, right1, where, s0, s1);
   return vpProjectiveDisplacement(estimateRobust(rig, s0, s1, inlierThreshold, inliers));
@@ -311,7 +311,7 @@ Eigen::Matrix4d vpProjectiveDisplacement::estimateRobust(const vpProjectiveStere
                                                          const std::vector<Eigen::Vector4d> &s1, double inlierThreshold,
                                                          std::vector<bool> &inliers, int maxIterations)
 {
-  const std::string where = std::string(kClass) + "::estimateRobust()";
+  const std::string where = at("estimateRobust()");
   if (!rig.isInitialized()) {
     fail(vpProjectiveException::notInitializedError, where,
          "the stereo rig has no fundamental matrix; estimate it or set it before estimating displacements");

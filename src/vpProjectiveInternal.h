@@ -47,6 +47,20 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace vpProjectiveInternal
 {
+/*!
+  Where an error comes from, "Class::method()": a source names its class once, `const vpErrorSite at("vpFoo");`, and
+  its errors say `at("bar()")`.
+*/
+class vpErrorSite
+{
+public:
+  explicit vpErrorSite(const char *className) : m_className(className) {}
+  std::string operator()(const char *method) const { return std::string(m_className) + "::" + method; }
+
+private:
+  const char *m_className;
+};
+
 //! Throws a vpProjectiveException with code and a message built from \e where and \e what.
 [[noreturn]] inline void fail(int code, const std::string &where, const std::string &what)
 {

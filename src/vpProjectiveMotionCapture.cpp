@@ -27,13 +27,7 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
-namespace
-{
-std::string at(const char *method)
-{
-  return std::string("vpProjectiveMotionCapture::") + method;
-}
-} // namespace
+const vpErrorSite at("vpProjectiveMotionCapture");
 
 vpProjectiveMotionCapture::vpProjectiveMotionCapture(const vpProjectiveArmModel &model,
                                                      const std::vector<unsigned int> &indices)

@@ -33,13 +33,10 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
+const vpErrorSite at("vpProjectivePathPlanner");
+
 namespace
 {
-std::string at(const char *method)
-{
-  return std::string("vpProjectivePathPlanner::") + method;
-}
-
 //! Number of configurations drawn in the search of a waypoint.
 const unsigned int kWaypointDraws = 200;
 //! Weight of the joint-space line in the tracking of straight image lines (pixels per radian).

@@ -30,13 +30,10 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
+const vpErrorSite at("vpProjectiveRigidBodyTracker");
+
 namespace
 {
-std::string at(const char *method)
-{
-  return std::string("vpProjectiveRigidBodyTracker::") + method;
-}
-
 //! Beyond this RMS pixel error per coordinate, a warm-started fit is taken for a wrong minimum (a jump).
 const double kWarmStartResidual = 5.0;
 

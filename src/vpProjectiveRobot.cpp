@@ -28,13 +28,7 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
-namespace
-{
-std::string at(const char *method)
-{
-  return std::string("vpProjectiveRobot::") + method;
-}
-} // namespace
+const vpErrorSite at("vpProjectiveRobot");
 
 vpProjectiveRobot::vpProjectiveRobot()
     : m_acquisition(), m_model(), m_calibrated(false), m_residual(0.0), m_algebraicResidual(0.0)

@@ -31,7 +31,7 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-const char *const kClass = "vpProjectiveRotation";
+const vpErrorSite at("vpProjectiveRotation");
 
 void checkGenerator(const Eigen::Matrix4d &Hhat, double tolerance, const std::string &where)
 {
@@ -83,11 +83,11 @@ vpProjectiveRotation::vpProjectiveRotation() : m_Hhat(Eigen::Matrix4d::Zero()) {
 
 vpProjectiveRotation::vpProjectiveRotation(const Eigen::Matrix4d &Hhat, double tolerance) : m_Hhat(Hhat)
 {
-  checkGenerator(Hhat, tolerance, std::string(kClass) + "()");
+  checkGenerator(Hhat, tolerance, at("vpProjectiveRotation()"));
 }
 
 vpProjectiveRotation::vpProjectiveRotation(const vpMatrix &Hhat, double tolerance)
-    : vpProjectiveRotation(toEigen<4, 4>(Hhat, std::string(kClass) + "()", "Hhat"), tolerance)
+    : vpProjectiveRotation(toEigen<4, 4>(Hhat, at("vpProjectiveRotation()"), "Hhat"), tolerance)
 {
 }
 
@@ -102,7 +102,7 @@ double vpProjectiveRotation::generatorResidual(const Eigen::Matrix4d &Hhat)
 
 vpProjectiveRotation vpProjectiveRotation::log(const vpProjectiveDisplacement &H, double amount)
 {
-  const std::string where = std::string(kClass) + "::log()";
+  const std::string where = at("log()");
   if (!std::isfinite(amount)) {
     fail(vpProjectiveException::nonFiniteValueError, where, "the encoder amount is not finite");
   }

@@ -30,7 +30,7 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-const char *const kClass = "vpProjectiveSelfCalibration";
+const vpErrorSite at("vpProjectiveSelfCalibration");
 
 //! A camera \f$ \lambda K [R | t] \f$ of the metric frame, decomposed.
 struct MetricCamera {
@@ -157,7 +157,7 @@ double vpProjectiveSelfCalibration::metricStereoRig(const vpProjectiveArmModel &
                                                     Eigen::Matrix3d &Kr, Eigen::Matrix4d &lMr, vpScale scale,
                                                     unsigned int markerA, unsigned int markerB, double distance)
 {
-  const MetricRig m = metricRig(model, scale, markerA, markerB, distance, std::string(kClass) + "::metricStereoRig()");
+  const MetricRig m = metricRig(model, scale, markerA, markerB, distance, at("metricStereoRig()"));
   Kl = m.left.K;
   Kr = m.right.K;
   const Eigen::Matrix3d R = m.left.R * m.right.R.transpose();
@@ -171,7 +171,7 @@ void vpProjectiveSelfCalibration::jointAxes(const vpProjectiveArmModel &model, s
                                             std::vector<Eigen::Vector3d> &point, vpScale scale, unsigned int markerA,
                                             unsigned int markerB, double distance)
 {
-  const MetricRig m = metricRig(model, scale, markerA, markerB, distance, std::string(kClass) + "::jointAxes()");
+  const MetricRig m = metricRig(model, scale, markerA, markerB, distance, at("jointAxes()"));
   // Twists of E' carried to the left camera's frame, lengths scaled to the output unit: C That C^-1.
   Eigen::Matrix4d C = m.lMe;
   C.topRows<3>() *= m.s;

@@ -37,7 +37,7 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-const char *const kClass = "vpProjectiveStereoRig";
+const vpErrorSite at("vpProjectiveStereoRig");
 
 Eigen::Vector2d dehomogenize(const Eigen::Vector3d &m)
 {
@@ -218,14 +218,14 @@ vpProjectiveStereoRig::vpProjectiveStereoRig()
 void vpProjectiveStereoRig::checkInitialized(const char *where) const
 {
   if (!m_initialized) {
-    fail(vpProjectiveException::notInitializedError, std::string(kClass) + "::" + where,
+    fail(vpProjectiveException::notInitializedError, at("") + where,
          "the rig has no fundamental matrix yet; call estimate() with >= 8 matches or setFundamentalMatrix() first");
   }
 }
 
 void vpProjectiveStereoRig::setFundamentalMatrix(const vpMatrix &F)
 {
-  const std::string where = std::string(kClass) + "::setFundamentalMatrix()";
+  const std::string where = at("setFundamentalMatrix()");
   const Eigen::Matrix3d Fin = toEigen<3, 3>(F, where, "F");
   Eigen::JacobiSVD<Eigen::Matrix3d> svd(Fin, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::Vector3d sigma = svd.singularValues();
@@ -258,7 +258,7 @@ void vpProjectiveStereoRig::setFundamentalMatrix(const vpMatrix &F)
 void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right,
                                      double inlierThreshold)
 {
-  const std::string where = std::string(kClass) + "::estimate()";
+  const std::string where = at("estimate()");
   if (left.size() != right.size()) {
     std::ostringstream os;
     os << "got " << left.size() << " left points but " << right.size() << " right points; pass matched pairs";
@@ -502,7 +502,7 @@ Eigen::Vector4d vpProjectiveStereoRig::triangulate(const Eigen::Vector2d &left, 
 
 vpColVector vpProjectiveStereoRig::triangulate(const vpImagePoint &ipLeft, const vpImagePoint &ipRight) const
 {
-  const std::string where = std::string(kClass) + "::triangulate()";
+  const std::string where = at("triangulate()");
   checkInitialized("triangulate()");
   const Eigen::Vector2d l = toEigen(ipLeft, where, "the left image point");
   const Eigen::Vector2d r = toEigen(ipRight, where, "the right image point");
@@ -516,7 +516,7 @@ bool vpProjectiveStereoRig::project(const Eigen::Vector4d &M, Eigen::Vector4d &s
 
 void vpProjectiveStereoRig::project(const vpColVector &M, vpImagePoint &ipLeft, vpImagePoint &ipRight) const
 {
-  const std::string where = std::string(kClass) + "::project()";
+  const std::string where = at("project()");
   checkInitialized("project()");
   const Eigen::Vector4d Me = toEigen<4>(M, where, "the projective point M");
   if (Me.norm() == 0.0) {

@@ -30,14 +30,14 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-const char *const kClass = "vpProjectiveTranslation";
+const vpErrorSite at("vpProjectiveTranslation");
 }
 
 vpProjectiveTranslation::vpProjectiveTranslation() : m_Hhat(Eigen::Matrix4d::Zero()) {}
 
 vpProjectiveTranslation::vpProjectiveTranslation(const Eigen::Matrix4d &Hhat, double tolerance) : m_Hhat(Hhat)
 {
-  const std::string where = std::string(kClass) + "()";
+  const std::string where = at("vpProjectiveTranslation()");
   if (!Hhat.allFinite()) {
     fail(vpProjectiveException::nonFiniteValueError, where, "the generator has a NaN or infinite entry");
   }
@@ -54,7 +54,7 @@ vpProjectiveTranslation::vpProjectiveTranslation(const Eigen::Matrix4d &Hhat, do
 }
 
 vpProjectiveTranslation::vpProjectiveTranslation(const vpMatrix &Hhat, double tolerance)
-    : vpProjectiveTranslation(toEigen<4, 4>(Hhat, std::string(kClass) + "()", "Hhat"), tolerance)
+    : vpProjectiveTranslation(toEigen<4, 4>(Hhat, at("vpProjectiveTranslation()"), "Hhat"), tolerance)
 {
 }
 
@@ -69,7 +69,7 @@ double vpProjectiveTranslation::generatorResidual(const Eigen::Matrix4d &Hhat)
 
 vpProjectiveTranslation vpProjectiveTranslation::log(const vpProjectiveDisplacement &H, double amount)
 {
-  const std::string where = std::string(kClass) + "::log()";
+  const std::string where = at("log()");
   if (!std::isfinite(amount)) {
     fail(vpProjectiveException::nonFiniteValueError, where, "the encoder amount tau is not finite");
   }

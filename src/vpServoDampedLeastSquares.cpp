@@ -27,16 +27,10 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
+const vpErrorSite at("vpServoDampedLeastSquares");
+
 namespace
 {
-const char *const kClass = "vpServoDampedLeastSquares";
-
-//! "vpServoDampedLeastSquares::method": built only when an error is thrown, never on the control loop's path.
-std::string at(const char *method)
-{
-  return std::string(kClass) + "::" + method;
-}
-
 /*!
   Cholesky factorisation \f$ L L^T = S + a I \f$ of a symmetric matrix \e S shifted by \e a on its diagonal (lower
   triangle of S read, lower triangle of L written, L resized; S is not copied); false if \f$ S + a I \f$ is not

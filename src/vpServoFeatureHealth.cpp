@@ -26,15 +26,10 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
+const vpErrorSite at("vpServoFeatureHealth");
+
 namespace
 {
-const char *const kClass = "vpServoFeatureHealth";
-
-std::string at(const char *method)
-{
-  return std::string(kClass) + "::" + method;
-}
-
 //! Throws the message of a feature index out of range.
 [[noreturn]] void badIndex(unsigned int i, size_t size, const char *method)
 {

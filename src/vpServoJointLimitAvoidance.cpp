@@ -24,15 +24,10 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
+const vpErrorSite at("vpServoJointLimitAvoidance");
+
 namespace
 {
-const char *const kClass = "vpServoJointLimitAvoidance";
-
-std::string at(const char *method)
-{
-  return std::string(kClass) + "::" + method;
-}
-
 //! The primary task of the ViSP-typed entry points, checked, as normal equations.
 void primaryTask(const vpMatrix &J, const vpColVector &e, const std::string &where,
                  vpServoJointLimitAvoidance::JointMatrix &JtJ, vpServoJointLimitAvoidance::JointVector &Jte,

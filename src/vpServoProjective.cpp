@@ -28,16 +28,10 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
+const vpErrorSite at("vpServoProjective");
+
 namespace
 {
-const char *const kClass = "vpServoProjective";
-
-//! "vpServoProjective::method": built only when an error is thrown, never on the control loop's path.
-std::string at(const char *method)
-{
-  return std::string(kClass) + "::" + method;
-}
-
 /*!
   \f$ \sigma_{min}(J D^{-1}) / \sigma_{max}(J D^{-1}) \f$, \f$ D = \mathrm{diag}(\|J_{:,k}\|) \f$, from \f$ J^T J \f$:
   the singular values squared are the eigenvalues of \f$ D^{-1} J^T J D^{-1} \f$, the Gram matrix with unit diagonal.
