@@ -32,6 +32,45 @@ using namespace vpProjectiveInternal;
 
 const vpErrorSite at("vpProjectiveRigidBodyTracker");
 
+/*
+  Levenberg-Marquardt on D parameters: evaluate(x, &N, &g, cost) gives the normal equations N = J^T J, g = J^T r and
+  the cost at x (false where the model is undefined); update(x, S, g, xNew) solves the damped system S (N with its
+  diagonal scaled by 1 + lambda) for the step and applies it on the state's manifold. At most 30 accepted steps, 8
+  dampings each; stops at a relative decrease below 1e-12. Returns false if the cost is undefined at the start.
+*/
+template <int D, typename State, typename Evaluate, typename Update>
+bool levenbergMarquardt(State &x, double &cost, const Evaluate &evaluate, const Update &update)
+{
+  Eigen::Matrix<double, D, D> N;
+  Eigen::Matrix<double, D, 1> g;
+  if (!evaluate(x, &N, &g, cost)) {
+    return false;
+  }
+  double lambda = 1e-4;
+  State xNew;
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    bool accepted = false, converged = false;
+    for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
+      Eigen::Matrix<double, D, D> S = N;
+      S.diagonal() *= 1.0 + lambda;
+      double costNew = 0.0;
+      if (update(x, S, g, xNew) && evaluate(xNew, nullptr, nullptr, costNew) && costNew < cost) {
+        converged = cost - costNew <= 1e-12 * cost;
+        x = xNew;
+        evaluate(x, &N, &g, cost);
+        lambda = std::max(lambda / 10.0, 1e-12);
+        accepted = true;
+      } else {
+        lambda *= 10.0;
+      }
+    }
+    if (!accepted || converged) {
+      break;
+    }
+  }
+  return true;
+}
+
 namespace
 {
 //! Beyond this RMS pixel error per coordinate, a warm-started fit is taken for a wrong minimum (a jump).
@@ -158,42 +197,19 @@ bool vpProjectiveRigidBodyTracker::refine(const std::vector<Eigen::Vector4d> &s,
   };
   RowMajor4 Hw = m_T * H * m_Tinv;
   Hw /= Hw.norm();
-  Eigen::Matrix<double, 16, 16> N;
-  Eigen::Matrix<double, 16, 1> g;
-  if (!evaluate(Hw, &N, &g, cost)) {
+  // The residuals ignore the scale of Hw (J h = 0): a term along h fixes the step on its unit sphere.
+  auto update = [](const RowMajor4 &Hc, Eigen::Matrix<double, 16, 16> &S, const Eigen::Matrix<double, 16, 1> &g,
+                   RowMajor4 &HNew) {
+    const Eigen::Map<const Eigen::Matrix<double, 16, 1>> h(Hc.data());
+    S.noalias() += std::max(S.trace() / 16.0, 1e-300) * h * h.transpose();
+    const Eigen::Matrix<double, 16, 1> step = S.ldlt().solve(-g);
+    HNew = Hc;
+    Eigen::Map<Eigen::Matrix<double, 16, 1>>(HNew.data()) += step;
+    HNew /= HNew.norm();
+    return step.allFinite();
+  };
+  if (!levenbergMarquardt<16>(Hw, cost, evaluate, update)) {
     return false;
-  }
-  double lambda = 1e-4;
-  for (int iteration = 0; iteration < 30; ++iteration) {
-    const Eigen::Map<const Eigen::Matrix<double, 16, 1>> h(Hw.data());
-    // The residuals ignore the scale of Hw (J h = 0): a term along h fixes the step on its unit sphere.
-    const double gauge = std::max(N.trace() / 16.0, 1e-300);
-    bool accepted = false;
-    for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
-      Eigen::Matrix<double, 16, 16> S = N;
-      S.diagonal() *= 1.0 + lambda;
-      S.noalias() += gauge * h * h.transpose();
-      const Eigen::Matrix<double, 16, 1> step = S.ldlt().solve(-g);
-      RowMajor4 HwNew = Hw;
-      Eigen::Map<Eigen::Matrix<double, 16, 1>>(HwNew.data()) += step;
-      HwNew /= HwNew.norm();
-      double costNew = 0.0;
-      if (step.allFinite() && evaluate(HwNew, nullptr, nullptr, costNew) && costNew < cost) {
-        const bool converged = cost - costNew <= 1e-12 * cost;
-        Hw = HwNew;
-        evaluate(Hw, &N, &g, cost);
-        lambda = std::max(lambda / 10.0, 1e-12);
-        accepted = true;
-        if (converged) {
-          iteration = 30;
-        }
-      } else {
-        lambda *= 10.0;
-      }
-    }
-    if (!accepted) {
-      break;
-    }
   }
   H = m_Tinv * Eigen::Matrix4d(Hw) * m_T;
   return H.allFinite() && used >= 4;
@@ -243,39 +259,18 @@ bool vpProjectiveRigidBodyTracker::refineRigid(const std::vector<Eigen::Vector4d
     }
     return std::isfinite(c);
   };
-  Eigen::Matrix<double, 6, 6> N;
-  Eigen::Matrix<double, 6, 1> g;
-  if (!evaluate(T, &N, &g, cost)) {
+  // Left increments on SE(3): T <- exp(xi^) T.
+  auto update = [](const Eigen::Matrix4d &Tc, Eigen::Matrix<double, 6, 6> &S, const Eigen::Matrix<double, 6, 1> &g,
+                   Eigen::Matrix4d &TNew) {
+    const Eigen::Matrix<double, 6, 1> xi = S.ldlt().solve(-g);
+    TNew =
+        vpProjectiveDisplacement::exp(vpMetricTwist::hat(Eigen::Vector3d(xi.head<3>()), Eigen::Vector3d(xi.tail<3>())))
+            .matrix() *
+        Tc;
+    return xi.allFinite();
+  };
+  if (!levenbergMarquardt<6>(T, cost, evaluate, update)) {
     return false;
-  }
-  double lambda = 1e-4;
-  for (int iteration = 0; iteration < 30; ++iteration) {
-    bool accepted = false;
-    for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
-      Eigen::Matrix<double, 6, 6> S = N;
-      S.diagonal() *= 1.0 + lambda;
-      const Eigen::Matrix<double, 6, 1> xi = S.ldlt().solve(-g);
-      const Eigen::Matrix4d Tnew = vpProjectiveDisplacement::exp(
-                                       vpMetricTwist::hat(Eigen::Vector3d(xi.head<3>()), Eigen::Vector3d(xi.tail<3>())))
-                                       .matrix() *
-                                   T;
-      double costNew = 0.0;
-      if (xi.allFinite() && evaluate(Tnew, nullptr, nullptr, costNew) && costNew < cost) {
-        const bool converged = cost - costNew <= 1e-12 * cost;
-        T = Tnew;
-        evaluate(T, &N, &g, cost);
-        lambda = std::max(lambda / 10.0, 1e-12);
-        accepted = true;
-        if (converged) {
-          iteration = 30;
-        }
-      } else {
-        lambda *= 10.0;
-      }
-    }
-    if (!accepted) {
-      break;
-    }
   }
   return T.allFinite() && used >= 3;
 }

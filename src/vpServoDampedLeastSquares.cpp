@@ -233,15 +233,9 @@ vpColVector vpServoDampedLeastSquares::computeVelocity(const vpMatrix &J, const 
     fail(vpProjectiveException::invalidValueError, where, "the gain must be non-negative");
   }
   Eigen::MatrixXd JE(J.getRows(), J.getCols());
-  for (unsigned int r = 0; r < J.getRows(); ++r) {
-    for (unsigned int c = 0; c < J.getCols(); ++c) {
-      JE(r, c) = J[r][c];
-    }
-  }
-  Eigen::VectorXd eE(e.getRows());
-  for (unsigned int r = 0; r < e.getRows(); ++r) {
-    eE(r) = e[r];
-  }
+  Eigen::VectorXd eE;
+  conversion::visp2eigen(J, JE);
+  conversion::visp2eigen(e, eE);
   JointMatrix JtJ;
   JointVector Jte, qdot;
   computeNormalEquations(JE, eE, JtJ, Jte);

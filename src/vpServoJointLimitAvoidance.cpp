@@ -48,15 +48,9 @@ void primaryTask(const vpMatrix &J, const vpColVector &e, const std::string &whe
     fail(vpProjectiveException::nonFiniteValueError, where, "J or e has a NaN or infinite entry");
   }
   Eigen::MatrixXd JE(J.getRows(), J.getCols());
-  for (unsigned int r = 0; r < J.getRows(); ++r) {
-    for (unsigned int c = 0; c < J.getCols(); ++c) {
-      JE(r, c) = J[r][c];
-    }
-  }
-  Eigen::VectorXd eE(e.getRows());
-  for (unsigned int r = 0; r < e.getRows(); ++r) {
-    eE(r) = e[r];
-  }
+  Eigen::VectorXd eE;
+  conversion::visp2eigen(J, JE);
+  conversion::visp2eigen(e, eE);
   vpServoDampedLeastSquares::computeNormalEquations(JE, eE, JtJ, Jte);
   errorNorm = eE.norm();
 }
