@@ -62,8 +62,8 @@ BEGIN_VISP_NAMESPACE
      inside them has the features in view, or no path keeps them in view.
 
   The straight line of the projective motion group, \f$ H(t) = \exp(t \log(H^* H^{-1})) H \f$ (a screw motion of the
-  gripper), was tried as the first candidate and dropped: its image paths are helices, not lines, and on the main
-  tutorial's task (a start near the wrist singularity) its tracked joints jump to the other wrist branch.
+  gripper), is not a candidate: its image paths are helices, not lines (\ref servo_meas_planning says what was
+  measured with it).
 
   Joint values are encoder readings (radians for revolute joints, the encoder's length unit for prismatic ones) as
   everywhere in the model. vpServoProjective::setPathPlanning() runs it once per target and follows the path.
@@ -119,8 +119,8 @@ public:
     The largest RMS pixel residual per coordinate of the best inverse-kinematic solution for the target to exist
     (default 20 px); above it plan() reports PLAN_NO_INVERSE_KINEMATICS. The residual of the true target is not that
     of the images' noise: the task's points are triangulated at the start from noisy pixels, and the depth error of a
-    point becomes an image error once the motion turns it sideways (5.5 px RMS for the main tutorial's 58-degree
-    task at 0.5 px noise; the law (47) that finishes the task does not suffer from it).
+    point becomes an image error once the motion turns it sideways (\ref servo_meas_planning gives measured values;
+    the law (47) that finishes the task does not suffer from it).
     \exception vpProjectiveException if it is not positive and finite.
   */
   void setMaxResidual(double pixels);
