@@ -52,18 +52,6 @@ using namespace vpProjectiveTest;
 
 namespace
 {
-//! m x n matrix of uniform entries in [-1, 1].
-Eigen::MatrixXd randomMatrix(vpUniRand &rng, Eigen::Index m, Eigen::Index n)
-{
-  Eigen::MatrixXd A(m, n);
-  for (Eigen::Index i = 0; i < m; ++i) {
-    for (Eigen::Index j = 0; j < n; ++j) {
-      A(i, j) = rng.uniform(-1.0, 1.0);
-    }
-  }
-  return A;
-}
-
 //! A Jacobian of known SVD: J = U diag(sigma) V^T, U (m x n) and V (n x n) with orthonormal columns.
 struct KnownSvd {
   Eigen::MatrixXd U, V, J;

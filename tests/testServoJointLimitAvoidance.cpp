@@ -55,17 +55,6 @@ using namespace vpProjectiveTest;
 
 namespace
 {
-Eigen::MatrixXd randomMatrix(vpUniRand &rng, Eigen::Index m, Eigen::Index n)
-{
-  Eigen::MatrixXd A(m, n);
-  for (Eigen::Index i = 0; i < m; ++i) {
-    for (Eigen::Index j = 0; j < n; ++j) {
-      A(i, j) = rng.uniform(-1.0, 1.0);
-    }
-  }
-  return A;
-}
-
 vpColVector toVispV(const Eigen::VectorXd &v)
 {
   vpColVector r(static_cast<unsigned int>(v.size()));

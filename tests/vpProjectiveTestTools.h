@@ -233,6 +233,18 @@ struct Scene {
   }
 };
 
+//! m x n matrix of uniform entries in [-1, 1].
+inline Eigen::MatrixXd randomMatrix(vpUniRand &rng, Eigen::Index m, Eigen::Index n)
+{
+  Eigen::MatrixXd A(m, n);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    for (Eigen::Index j = 0; j < n; ++j) {
+      A(i, j) = rng.uniform(-1.0, 1.0);
+    }
+  }
+  return A;
+}
+
 //! A random unit 3-vector (world frame).
 inline vpColVector randomDirection(vpUniRand &rng)
 {
