@@ -199,6 +199,14 @@ void expectConvergence(const ArmSetup &s, long seed, int pairs, double targetRan
 }
 } // namespace
 
+//! The tests on the PUMA-like arm watched by the paper's rig: its model, acquired noise-free, for each test.
+class ServoProjectivePuma : public ::testing::Test
+{
+protected:
+  const ArmSetup s = pumaEyeToHand();
+  const vpProjectiveRobot robot = calibratedRobot(s);
+};
+
 TEST(ServoProjective, ConvergesNoiseFreePuma)
 {
   expectConvergence(pumaEyeToHand(), 1, 10, vpMath::rad(20.0), vpMath::rad(15.0));
@@ -219,10 +227,8 @@ TEST(ServoProjective, ConvergesNoiseFreeEyeInHand)
   expectConvergence(pumaEyeInHand(), 3, 10, vpMath::rad(3.0), vpMath::rad(2.0), 0.1, {0, 1, 2, 3, 4, 5, 6});
 }
 
-TEST(ServoProjective, ControlLawIsPseudoInverseAwayFromSingularities)
+TEST_F(ServoProjectivePuma, ControlLawIsPseudoInverseAwayFromSingularities)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   const vpProjectiveStereoRig &rig = robot.getStereoRig();
   const std::vector<unsigned int> tracked = {0, 1, 2, 3, 4, 5, 6};
   vpUniRand rng(4);
@@ -270,10 +276,8 @@ TEST(ServoProjective, ControlLawIsPseudoInverseAwayFromSingularities)
   }
 }
 
-TEST(ServoProjective, AdaptiveGain)
+TEST_F(ServoProjectivePuma, AdaptiveGain)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   const std::vector<unsigned int> tracked = {0, 1, 2, 3, 4, 5, 6};
   vpUniRand rng(5);
   vpColVector qStar, qFar;
@@ -302,10 +306,8 @@ TEST(ServoProjective, AdaptiveGain)
   EXPECT_LT(lambdaFar, 1.0);
 }
 
-TEST(ServoProjective, VelocitySaturationKeepsDirection)
+TEST_F(ServoProjectivePuma, VelocitySaturationKeepsDirection)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   vpUniRand rng(6);
   vpColVector q, qStar;
   randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(15.0), q, qStar);
@@ -389,10 +391,8 @@ TEST(ServoProjective, DampingKeepsSingularTasksFinite)
   EXPECT_GT(undamped, 100.0 * damped);
 }
 
-TEST(ServoProjective, EigenOverloadAndFeatureReferences)
+TEST_F(ServoProjectivePuma, EigenOverloadAndFeatureReferences)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   vpUniRand rng(8);
   vpColVector q, qStar;
   randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
@@ -416,10 +416,8 @@ TEST(ServoProjective, EigenOverloadAndFeatureReferences)
                                "addFeature"));
 }
 
-TEST(ServoProjective, BadInputsThrow)
+TEST_F(ServoProjectivePuma, BadInputsThrow)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   const int notInit = vpProjectiveException::notInitializedError;
   const int invalid = vpProjectiveException::invalidValueError;
   const int nonFinite = vpProjectiveException::nonFiniteValueError;
@@ -598,13 +596,11 @@ TEST(ServoProjective, LostFeatureIsSetAsideThenUsedAgain)
   }
 }
 
-TEST(ServoProjective, ReducedTaskIsTheDampedLawOfTheActiveFeatures)
+TEST_F(ServoProjectivePuma, ReducedTaskIsTheDampedLawOfTheActiveFeatures)
 {
   // A task on markers 0-3 with marker 2 set aside computes what a task on markers 0, 1, 3 computes: same gain (the
   // set-aside feature carries the largest error, which must not reach the adaptive gain), same damping (from the
   // reduced J's sigma_min), same condition number, same step, and that step is the closed form on the active rows.
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   vpUniRand rng(62);
   const vpAdaptiveGain gain(2.0, 0.2, 0.05);
   for (int p = 0; p < 5; ++p) {
@@ -723,10 +719,8 @@ TEST(ServoProjective, StopsWhenTheActiveFeaturesNoLongerConstrainEveryJoint)
   }
 }
 
-TEST(ServoProjective, FeatureOutsideTheImageIsDetectedNotExtrapolated)
+TEST_F(ServoProjectivePuma, FeatureOutsideTheImageIsDetectedNotExtrapolated)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   const double w = s.width, h = s.height, border = 5.0;
   vpUniRand rng(64);
   vpColVector q, qStar;
@@ -838,10 +832,8 @@ TEST(ServoProjective, FeatureOutsideTheImageIsDetectedNotExtrapolated)
   EXPECT_EQ(runs, 3) << "fewer than 3 starts with exactly one marker outside the image were found";
 }
 
-TEST(ServoProjective, NonFiniteFeatureIsSetAsideWithoutNaN)
+TEST_F(ServoProjectivePuma, NonFiniteFeatureIsSetAsideWithoutNaN)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
   vpUniRand rng(65);
@@ -893,13 +885,11 @@ TEST(ServoProjective, NonFiniteFeatureIsSetAsideWithoutNaN)
                                "q has a NaN"));
 }
 
-TEST(ServoProjective, OutlierDistancesAreTheDocumentedOnes)
+TEST_F(ServoProjectivePuma, OutlierDistancesAreTheDocumentedOnes)
 {
   // d_F is the larger of the two point-to-epipolar-line distances; the prediction distance is that of the features
   // to the projections of H(q) H(q_l)^-1 M_l. Noise free with an exact model, an accepted feature is predicted to
   // rounding; a feature moved along its epipolar line keeps d_F but not its prediction distance.
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   const Eigen::Matrix3d F = toEigen<3, 3>(robot.getStereoRig().getFundamentalMatrix());
   vpUniRand rng(66);
   vpColVector q, qStar;
@@ -954,7 +944,7 @@ TEST(ServoProjective, OutlierDistancesAreTheDocumentedOnes)
   EXPECT_LT(t.task.getPredictionDistance(1), 1e-5);
 }
 
-TEST(ServoProjective, GrossOutliersAreRejected)
+TEST_F(ServoProjectivePuma, GrossOutliersAreRejected)
 {
   // All 7 markers, Gaussian noise sigma = 0.3 px on the current features (s* exact), and from the second iteration
   // on 5 % of the features per iteration shifted by 30 px in a random direction in one image (seeded). Three runs
@@ -962,8 +952,6 @@ TEST(ServoProjective, GrossOutliersAreRejected)
   // threshold. Accuracy: RMS of q - q* over the last 50 of 150 iterations. B must flag every injected outlier (the
   // first iteration is left clean: a feature seen for the first time has no prediction yet), flag at most 1 % of
   // the clean features, and be as accurate as A; C is visibly disturbed.
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   const std::vector<unsigned int> tracked = {0, 1, 2, 3, 4, 5, 6};
   const double sigma = 0.3, offset = 30.0, rate = 0.05, threshold = 5.0;
   const int iterations = 150, tail = 50;
@@ -1192,15 +1180,13 @@ vpColVector toVispX(const Eigen::VectorXd &v)
 }
 } // namespace
 
-TEST(ServoProjective, LargeProjectionOperatorAndJointLimitTaskMatchViSP)
+TEST_F(ServoProjectivePuma, LargeProjectionOperatorAndJointLimitTaskMatchViSP)
 {
   // The operator P and the secondary task q2 of setJointLimits() against ViSP 3.5's own vpServo on the same J and e
   // (a vpGenericFeature with L = J and s - s* = e, EYEINHAND_CAMERA: J1 = J), with our primary velocity as ViSP's dq:
   // (a) ||e|| > e1: P = P_e (idempotent, rank n - 1); (b) e0 < ||e|| < e1: the blend sig P_e, J of full rank so
   // I - J^+ J = 0; (c) the same blend with marker 0 used three times (rank 3): (1 - sig)(I - J^+ J) != 0. Each joint
   // sits somewhere in its range: beyond l1, between l0 and l1, or free, at both ends. In every case P J^T e = 0.
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   vpUniRand rng(68);
   const double rho = 0.1, rho1 = 0.3, range = vpMath::rad(100.0);
   const double positions[6] = {0.02, 0.085, 0.5, 0.915, 0.98, 0.3}; // fraction of [qmin, qmax] where q_i sits
@@ -1286,12 +1272,10 @@ TEST(ServoProjective, LargeProjectionOperatorAndJointLimitTaskMatchViSP)
   }
 }
 
-TEST(ServoProjective, NewChecksChangeNothingWhenThereIsNothingToCatch)
+TEST_F(ServoProjectivePuma, NewChecksChangeNothingWhenThereIsNothingToCatch)
 {
   // Defaults, then every check switched on with nothing to catch (markers 10 px inside the images, no outlier,
   // joints far from wide limits): the same velocities, bit for bit, along a whole run.
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   vpUniRand rng(69);
   vpColVector q, qTarget;
   randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(15.0), q, qTarget);
@@ -1322,10 +1306,8 @@ TEST(ServoProjective, NewChecksChangeNothingWhenThereIsNothingToCatch)
   }
 }
 
-TEST(ServoProjective, BadRobustnessInputsThrow)
+TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   const int dim = vpProjectiveException::dimensionError;
   const int invalid = vpProjectiveException::invalidValueError;
   const int nonFinite = vpProjectiveException::nonFiniteValueError;
@@ -1401,12 +1383,10 @@ TEST(ServoProjective, BadRobustnessInputsThrow)
 // The parts of the task (architecture issue, point 4): the law, the ViSP surface, failed calls, const getters.
 // ---------------------------------------------------------------------------------------------------------------
 
-TEST(ServoProjective, ItsVelocityIsTheDampedLeastSquaresLawOfItsTask)
+TEST_F(ServoProjectivePuma, ItsVelocityIsTheDampedLeastSquaresLawOfItsTask)
 {
   // The task's velocity is vpServoDampedLeastSquares::computeVelocity() on getTaskJacobian(), getError() and
   // getLambda() with the task's settings (getDampedLeastSquares()), to the bit: undamped, damped and saturated.
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   vpUniRand rng(81);
   for (int p = 0; p < 3; ++p) {
     vpColVector q, qStar;
@@ -1429,10 +1409,8 @@ TEST(ServoProjective, ItsVelocityIsTheDampedLeastSquaresLawOfItsTask)
   }
 }
 
-TEST(ServoProjective, PrintDimensionSingularValuesAndPseudoInverseThreshold)
+TEST_F(ServoProjectivePuma, PrintDimensionSingularValuesAndPseudoInverseThreshold)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   vpUniRand rng(82);
   vpColVector q, qStar;
   randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
@@ -1489,14 +1467,12 @@ TEST(ServoProjective, PrintDimensionSingularValuesAndPseudoInverseThreshold)
   EXPECT_EQ(t.task.getDampedLeastSquares().getPseudoInverseThreshold(), 1.5 * ratio);
 }
 
-TEST(ServoProjective, AFailedCallLeavesTheTaskAsItWas)
+TEST_F(ServoProjectivePuma, AFailedCallLeavesTheTaskAsItWas)
 {
   // Feature 2, set aside at the first call (so that it has no prediction yet), comes back with its right image
   // 1e15 px along its epipolar line: it passes the epipolar test, and its triangulated point lies on the right
   // camera's focal plane, so computeControlLaw() throws. Every getter then reports the first call, and the next
   // call computes what a twin task that never saw the failure computes, to the bit (memories included).
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   const Eigen::Matrix3d F = toEigen<3, 3>(robot.getStereoRig().getFundamentalMatrix());
   vpUniRand rng(83);
   vpColVector q, qStar;
@@ -1552,12 +1528,10 @@ TEST(ServoProjective, AFailedCallLeavesTheTaskAsItWas)
   }
 }
 
-TEST(ServoProjective, ConstGettersWriteNothingAndCanBeSharedByThreads)
+TEST_F(ServoProjectivePuma, ConstGettersWriteNothingAndCanBeSharedByThreads)
 {
   // The getters that used to fill caches compute on demand: called from two threads at once they agree with the
   // values read before, to the bit (run under ThreadSanitizer, this is also a race check).
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
   vpUniRand rng(84);
   vpColVector q, qStar;
   randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
