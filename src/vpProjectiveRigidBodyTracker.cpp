@@ -30,6 +30,8 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
+namespace
+{
 const vpErrorSite at("vpProjectiveRigidBodyTracker");
 
 /*
@@ -71,8 +73,50 @@ bool levenbergMarquardt(State &x, double &cost, const Evaluate &evaluate, const 
   return true;
 }
 
-namespace
+/*
+  Cost and normal equations (N = A^T A, g = A^T r, A the 4-row Jacobian of the residuals r) of the reprojection error
+  of the finite observations s_j = (u, v, u', v') of points Z_j(x) in both cameras: point(j, Z, dZ) gives Z_j (4x1)
+  and, when dZ is not null, its 4 x D derivative in x. N and g null: the cost only. False if a point lies on a
+  camera's focal plane.
+*/
+template <int D, typename Point>
+bool reprojectionNormalEquations(const vpProjectiveStereoRig::Projection (&cameras)[2],
+                                 const std::vector<Eigen::Vector4d> &s, const Point &point,
+                                 Eigen::Matrix<double, D, D> *N, Eigen::Matrix<double, D, 1> *g, double &cost,
+                                 unsigned int &used)
 {
+  cost = 0.0;
+  used = 0;
+  if (N != nullptr) {
+    N->setZero();
+    g->setZero();
+  }
+  Eigen::Vector2d uv;
+  Eigen::Matrix<double, 2, 4> Jc;
+  Eigen::Vector4d Z;
+  Eigen::Matrix<double, 4, D> dZ;
+  for (size_t j = 0; j < s.size(); ++j) {
+    if (!s[j].allFinite()) {
+      continue;
+    }
+    point(j, Z, N != nullptr ? &dZ : nullptr);
+    for (int k = 0; k < 2; ++k) {
+      if (!projectPoint(cameras[k], Z, uv, N != nullptr ? &Jc : nullptr)) {
+        return false;
+      }
+      const Eigen::Vector2d r = uv - s[j].segment<2>(2 * k);
+      cost += r.squaredNorm();
+      if (N != nullptr) {
+        const Eigen::Matrix<double, 2, D> A = Jc * dZ;
+        N->noalias() += A.transpose() * A;
+        g->noalias() += A.transpose() * r;
+      }
+    }
+    ++used;
+  }
+  return std::isfinite(cost);
+}
+
 //! Beyond this RMS pixel error per coordinate, a warm-started fit is taken for a wrong minimum (a jump).
 const double kWarmStartResidual = 5.0;
 
@@ -162,38 +206,17 @@ bool vpProjectiveRigidBodyTracker::refine(const std::vector<Eigen::Vector4d> &s,
                                                         m_rig.rightProjection() * m_Tinv};
   auto evaluate = [&](const RowMajor4 &Hw, Eigen::Matrix<double, 16, 16> *N, Eigen::Matrix<double, 16, 1> *g,
                       double &c) {
-    c = 0.0;
-    used = 0;
-    if (N != nullptr) {
-      N->setZero();
-      g->setZero();
-    }
-    Eigen::Vector2d uv;
-    Eigen::Matrix<double, 2, 4> G;
-    Eigen::Matrix<double, 2, 16> A;
-    for (size_t j = 0; j < s.size(); ++j) {
-      if (!s[j].allFinite()) {
-        continue;
-      }
+    auto point = [&](size_t j, Eigen::Vector4d &Z, Eigen::Matrix<double, 4, 16> *dZ) {
       const Eigen::Vector4d X = (m_T * m_M[j]).normalized();
-      const Eigen::Vector4d Z = Hw * X;
-      for (int k = 0; k < 2; ++k) {
-        if (!projectPoint(cameras[k], Z, uv, N != nullptr ? &G : nullptr)) {
-          return false;
-        }
-        const Eigen::Vector2d r = uv - s[j].segment<2>(2 * k);
-        c += r.squaredNorm();
-        if (N != nullptr) {
-          for (int row = 0; row < 4; ++row) { // d(Hw X)_row / dHw(row, col) = X(col)
-            A.block<2, 4>(0, 4 * row) = G.col(row) * X.transpose();
-          }
-          N->noalias() += A.transpose() * A;
-          g->noalias() += A.transpose() * r;
+      Z = Hw * X;
+      if (dZ != nullptr) {
+        dZ->setZero();
+        for (int row = 0; row < 4; ++row) { // d(Hw X)_row / dHw(row, col) = X(col), Hw stored row by row
+          dZ->block<1, 4>(row, 4 * row) = X.transpose();
         }
       }
-      ++used;
-    }
-    return std::isfinite(c);
+    };
+    return reprojectionNormalEquations<16>(cameras, s, point, N, g, c, used);
   };
   RowMajor4 Hw = m_T * H * m_Tinv;
   Hw /= Hw.norm();
@@ -223,41 +246,17 @@ bool vpProjectiveRigidBodyTracker::refineRigid(const std::vector<Eigen::Vector4d
                                                         m_rig.rightProjection() * m_Ginv};
   auto evaluate = [&](const Eigen::Matrix4d &Tc, Eigen::Matrix<double, 6, 6> *N, Eigen::Matrix<double, 6, 1> *g,
                       double &c) {
-    c = 0.0;
-    used = 0;
-    if (N != nullptr) {
-      N->setZero();
-      g->setZero();
-    }
-    Eigen::Vector2d uv;
-    Eigen::Matrix<double, 2, 4> Jc;
-    Eigen::Matrix<double, 4, 6> dN = Eigen::Matrix<double, 4, 6>::Zero();
-    for (size_t j = 0; j < s.size(); ++j) {
-      if (!s[j].allFinite()) {
-        continue;
-      }
-      const Eigen::Vector4d N0 = Tc * (m_G * m_M[j]); // the marker in the metric frame, moved
-      if (N != nullptr) {
+    auto point = [&](size_t j, Eigen::Vector4d &Z, Eigen::Matrix<double, 4, 6> *dZ) {
+      Z = Tc * (m_G * m_M[j]); // the marker in the metric frame, moved
+      if (dZ != nullptr) {
+        dZ->row(3).setZero();
         for (int i = 0; i < 3; ++i) {
-          dN.block<3, 1>(0, i) = N0(3) * Eigen::Vector3d::Unit(i);                 // translations
-          dN.block<3, 1>(0, 3 + i) = Eigen::Vector3d::Unit(i).cross(N0.head<3>()); // rotations
+          dZ->block<3, 1>(0, i) = Z(3) * Eigen::Vector3d::Unit(i);                 // translations
+          dZ->block<3, 1>(0, 3 + i) = Eigen::Vector3d::Unit(i).cross(Z.head<3>()); // rotations
         }
       }
-      for (int k = 0; k < 2; ++k) {
-        if (!projectPoint(cameras[k], N0, uv, N != nullptr ? &Jc : nullptr)) {
-          return false;
-        }
-        const Eigen::Vector2d r = uv - s[j].segment<2>(2 * k);
-        c += r.squaredNorm();
-        if (N != nullptr) {
-          const Eigen::Matrix<double, 2, 6> A = Jc * dN;
-          N->noalias() += A.transpose() * A;
-          g->noalias() += A.transpose() * r;
-        }
-      }
-      ++used;
-    }
-    return std::isfinite(c);
+    };
+    return reprojectionNormalEquations<6>(cameras, s, point, N, g, c, used);
   };
   // Left increments on SE(3): T <- exp(xi^) T.
   auto update = [](const Eigen::Matrix4d &Tc, Eigen::Matrix<double, 6, 6> &S, const Eigen::Matrix<double, 6, 1> &g,
