@@ -189,10 +189,7 @@ TEST(FeatureStereoPoint, InteractionTimesPointJacobianIsImageJacobian)
 {
   // What vpServoProjective computes: L_s(M) J_H(q, M) = J(q, M), eq. (46), with M triangulated from s.
   const ArmSetup setup = pumaEyeToHand();
-  vpProjectiveRobot robot(setup.jointTypes());
-  vpGaussRand noise(1.0, 0.0, 1);
-  ASSERT_TRUE(setup.acquire(robot, 0.0, noise));
-  robot.calibrate();
+  const vpProjectiveRobot robot = calibratedRobot(setup);
   const vpProjectiveStereoRig &rig = robot.getStereoRig();
   vpUniRand rng(17);
   for (int t = 0; t < 5; ++t) {

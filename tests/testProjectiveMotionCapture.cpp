@@ -177,10 +177,7 @@ TEST(vpProjectiveMotionCapture, ArmAtTheNoiseFloor)
 TEST(vpProjectiveMotionCapture, NoiseFreeJointsAndVelocities)
 {
   const ArmSetup s = pumaEyeToHand();
-  vpProjectiveRobot robot(s.jointTypes());
-  vpGaussRand noise(1.0, 0.0, 1);
-  ASSERT_TRUE(s.acquire(robot, 0.0, noise));
-  robot.calibrate();
+  const vpProjectiveRobot robot = calibratedRobot(s);
   vpProjectiveMotionCapture capture(robot.getModel());
   const std::vector<double> amplitude = {vpMath::rad(6.0),  vpMath::rad(5.0),  vpMath::rad(6.0),
                                          vpMath::rad(20.0), vpMath::rad(20.0), vpMath::rad(30.0)};
@@ -207,10 +204,7 @@ TEST(vpProjectiveMotionCapture, NoiseFreeJointsAndVelocities)
 TEST(vpProjectiveMotionCapture, BadInputs)
 {
   const ArmSetup s = pumaEyeToHand();
-  vpProjectiveRobot robot(s.jointTypes());
-  vpGaussRand noise(1.0, 0.0, 1);
-  ASSERT_TRUE(s.acquire(robot, 0.0, noise));
-  robot.calibrate();
+  const vpProjectiveRobot robot = calibratedRobot(s);
   EXPECT_TRUE(throwsProjective(
       [&] {
         vpProjectiveMotionCapture(robot.getModel(), {0, 99});

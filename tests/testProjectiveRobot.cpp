@@ -69,16 +69,6 @@ using namespace vpProjectiveTest;
 
 namespace
 {
-//! Acquisition with the setup's trials (both ways) and calibration.
-vpProjectiveRobot calibratedRobot(const ArmSetup &s, double sigma = 0.0, long seed = 1)
-{
-  vpProjectiveRobot robot(s.jointTypes());
-  vpGaussRand noise(1.0, 0.0, seed);
-  EXPECT_TRUE(s.acquire(robot, sigma, noise)) << s.name << ": a marker left the view during the acquisition";
-  robot.calibrate();
-  return robot;
-}
-
 //! RMS and worst pixel error of the model's marker images P H(q) M_j(0) against the true noise-free ones, over 50
 //! random configurations within +-range (per joint) of the zero reference with every marker in view.
 double predictionRms(const ArmSetup &s, const vpProjectiveRobot &robot, const std::vector<double> &range, long seed,

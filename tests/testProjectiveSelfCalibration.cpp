@@ -128,10 +128,7 @@ class SelfCalibrationSetup : public ::testing::TestWithParam<SetupCase>
 TEST_P(SelfCalibrationSetup, NoiseFreeGivesTheTruth)
 {
   const ArmSetup s = GetParam().make();
-  vpProjectiveRobot robot(s.jointTypes());
-  vpGaussRand noise(1.0, 0.0, 1);
-  ASSERT_TRUE(s.acquire(robot, 0.0, noise));
-  robot.calibrate();
+  const vpProjectiveRobot robot = calibratedRobot(s);
   vpMatrix Kl, Kr;
   vpHomogeneousMatrix lMr;
   robot.getMetricStereoRig(Kl, Kr, lMr);

@@ -53,15 +53,6 @@ namespace
 {
 typedef vpServoFeatureHealth H;
 
-vpProjectiveRobot calibratedRobot(const ArmSetup &s)
-{
-  vpProjectiveRobot robot(s.jointTypes());
-  vpGaussRand noise(1.0, 0.0, 1);
-  EXPECT_TRUE(s.acquire(robot, 0.0, noise)) << s.name;
-  robot.calibrate();
-  return robot;
-}
-
 vpProjectiveRobot::JointVector toJoints(const vpColVector &q)
 {
   vpProjectiveRobot::JointVector qe(q.getRows());

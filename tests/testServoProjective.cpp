@@ -78,15 +78,6 @@ using namespace vpProjectiveTest;
 
 namespace
 {
-vpProjectiveRobot calibratedRobot(const ArmSetup &s)
-{
-  vpProjectiveRobot robot(s.jointTypes());
-  vpGaussRand noise(1.0, 0.0, 1);
-  EXPECT_TRUE(s.acquire(robot, 0.0, noise)) << s.name;
-  robot.calibrate();
-  return robot;
-}
-
 /*!
   A stereo feature written as a tracker that lost its point may write it: NaN and infinity allowed
   (vpFeatureStereoPoint::buildFrom() refuses them), for the tests of FEATURE_NOT_FINITE.

@@ -406,6 +406,19 @@ inline ArmSetup viperEyeToHand()
   return s;
 }
 
+/*!
+  The setup's acquisition (its trials, both ways) at pixel noise \e sigma drawn from \e seed, then calibrate(): the
+  robot every servo, capture and self-calibration test starts from. A marker leaving the view fails the test.
+*/
+inline vpProjectiveRobot calibratedRobot(const ArmSetup &s, double sigma = 0.0, long seed = 1)
+{
+  vpProjectiveRobot robot(s.jointTypes());
+  vpGaussRand noise(1.0, 0.0, seed);
+  EXPECT_TRUE(s.acquire(robot, sigma, noise)) << s.name << ": a marker left the view during the acquisition";
+  robot.calibrate();
+  return robot;
+}
+
 } // namespace vpProjectiveTest
 
 #endif
