@@ -145,6 +145,29 @@ void reportAllocations(benchmark::State &state, unsigned long long before)
 #endif
 }
 
+//! Times task.computeControlLaw(q, qdot) (the Eigen API) over the benchmark's iterations and counts allocations.
+void timeControlLaw(benchmark::State &state, vpServoProjective &task, const vpProjectiveRobot::JointVector &q)
+{
+  vpProjectiveRobot::JointVector qdot(q.size());
+  const unsigned long long before = mallocCalls();
+  for (auto _ : state) {
+    task.computeControlLaw(q, qdot);
+    benchmark::DoNotOptimize(qdot.data());
+    benchmark::ClobberMemory();
+  }
+  reportAllocations(state, before);
+}
+
+//! The joint values of a vpColVector as the Eigen API's joint vector.
+vpProjectiveRobot::JointVector jointVector(const vpColVector &q)
+{
+  vpProjectiveRobot::JointVector v(q.getRows());
+  for (unsigned int i = 0; i < q.getRows(); ++i) {
+    v(i) = q[i];
+  }
+  return v;
+}
+
 const double kNoiseSigma = 0.5; // px, work order (b)
 
 vpColVector degToRad(const std::vector<double> &deg)
@@ -336,17 +359,7 @@ void BM_vpServoProjective_vpColVector(benchmark::State &state)
 void BM_vpServoProjective_Eigen(benchmark::State &state)
 {
   ProjectiveTask t(paperRobot());
-  vpProjectiveRobot::JointVector q(6), qdot(6);
-  for (unsigned int i = 0; i < 6; ++i) {
-    q(i) = t.q[i];
-  }
-  const unsigned long long before = mallocCalls();
-  for (auto _ : state) {
-    t.task.computeControlLaw(q, qdot);
-    benchmark::DoNotOptimize(qdot.data());
-    benchmark::ClobberMemory();
-  }
-  reportAllocations(state, before);
+  timeControlLaw(state, t.task, jointVector(t.q));
   state.SetLabel(taskLabel(t.task));
 }
 
@@ -416,14 +429,7 @@ std::string robustLabel(const vpServoProjective &task)
 void BM_vpServoProjective_Eigen_Robust(benchmark::State &state)
 {
   RobustTask t(paperRobot(), state.range(0) != 0);
-  vpProjectiveRobot::JointVector qdot(6);
-  const unsigned long long before = mallocCalls();
-  for (auto _ : state) {
-    t.task.computeControlLaw(t.q, qdot);
-    benchmark::DoNotOptimize(qdot.data());
-    benchmark::ClobberMemory();
-  }
-  reportAllocations(state, before);
+  timeControlLaw(state, t.task, t.q);
   state.SetLabel(robustLabel(t.task));
 }
 
@@ -451,18 +457,10 @@ void BM_vpServoProjective_Eigen_Following(benchmark::State &state)
   ProjectiveTask t(paperRobot());
   t.task.setPathPlanning(true);
   t.task.getPathPlanner().setMaxJointStep(vpMath::rad(0.03));
-  vpProjectiveRobot::JointVector q(6), qdot(6);
-  for (unsigned int i = 0; i < 6; ++i) {
-    q(i) = t.q[i];
-  }
+  const vpProjectiveRobot::JointVector q = jointVector(t.q);
+  vpProjectiveRobot::JointVector qdot(6);
   t.task.computeControlLaw(q, qdot); // plans
-  const unsigned long long before = mallocCalls();
-  for (auto _ : state) {
-    t.task.computeControlLaw(q, qdot);
-    benchmark::DoNotOptimize(qdot.data());
-    benchmark::ClobberMemory();
-  }
-  reportAllocations(state, before);
+  timeControlLaw(state, t.task, q);
   state.SetLabel(std::string(t.task.isFollowingPath() ? "following, " : "NOT following, ") +
                  std::to_string(t.task.getPathPlanner().getPath().size()) + " samples");
 }
