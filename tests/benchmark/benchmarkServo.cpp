@@ -606,7 +606,7 @@ void BM_Scaling(benchmark::State &state)
   }
   const vpSimulatorStereoRig &simRig = paperWorld().rig;
   vpUniRand uniform(static_cast<long>(100 * n + N));
-  vpProjectiveRobot::JointVector q(n), qdot(n);
+  vpProjectiveRobot::JointVector q(n);
   vpColVector qv(n);
   for (unsigned int i = 0; i < n; ++i) {
     q(i) = qv[i] = vpMath::rad(uniform.uniform(-5.0, 5.0));
@@ -632,13 +632,7 @@ void BM_Scaling(benchmark::State &state)
     sStar[k].buildFrom(l, r);
     task.addFeature(s[k], sStar[k]);
   }
-  const unsigned long long before = mallocCalls();
-  for (auto _ : state) {
-    task.computeControlLaw(q, qdot);
-    benchmark::DoNotOptimize(qdot.data());
-    benchmark::ClobberMemory();
-  }
-  reportAllocations(state, before);
+  timeControlLaw(state, task, q);
   state.SetLabel(taskLabel(task));
 }
 
