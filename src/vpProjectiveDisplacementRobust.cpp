@@ -22,6 +22,8 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -205,6 +207,16 @@ struct RobustScore {
   size_t support = 0;
 };
 
+//! A fit of the robust estimation: its score, the homography, the points' squared errors and best-fitting points,
+//! and the points it was fitted to (empty for a 5-point hypothesis).
+struct RobustFit {
+  RobustScore score;
+  Eigen::Matrix4d H = Eigen::Matrix4d::Zero();
+  std::vector<double> errors;
+  std::vector<Eigen::Vector4d> points;
+  std::vector<bool> fitted;
+};
+
 RobustScore msac(const std::vector<double> &d2, double threshold)
 {
   const double t2 = threshold * threshold;
@@ -229,19 +241,18 @@ std::vector<bool> within(const std::vector<double> &d2, double threshold)
   Local optimisation of a hypothesis (LO-RANSAC, Chum, Matas and Kittler 2003): a 5-point hypothesis predicts the
   other points far less accurately than a fit on all of its inliers (an exact fit amplifies the noise), so it is
   refitted by maximum likelihood on the points \e rough, then on those within \e threshold of that fit, until the
-  inliers are stable; a fit that is no rigid displacement (rigidityStatistic()) ends it. Returns the best fit by the
-  MSAC cost at \e threshold (or the hypothesis itself) with its errors and best-fitting points, and in \e fitted the
-  points it was fitted to (empty for the hypothesis itself).
+  inliers are stable; a fit that is no rigid displacement (rigidityStatistic()) ends it. \e fit holds the hypothesis
+  (H, errors, points) and gets the best fit by the MSAC cost at \e threshold (or the hypothesis itself, with empty
+  fitted points).
 */
-RobustScore localOptimisation(const DisplacementData &data, const DisplacementAdjustment &adjustment, double threshold,
-                              const std::vector<bool> &rough, Eigen::Matrix4d &H, std::vector<double> &d2,
-                              std::vector<Eigen::Vector4d> &points, std::vector<bool> &fitted)
+void localOptimisation(const DisplacementData &data, const DisplacementAdjustment &adjustment, double threshold,
+                       const std::vector<bool> &rough, RobustFit &fit)
 {
-  RobustScore best = msac(d2, threshold);
-  fitted.clear();
+  fit.score = msac(fit.errors, threshold);
+  fit.fitted.clear();
   std::vector<bool> flags = rough;
-  Eigen::Matrix4d Hcurrent = H;
-  std::vector<Eigen::Vector4d> current = points;
+  Eigen::Matrix4d Hcurrent = fit.H;
+  std::vector<Eigen::Vector4d> current = fit.points;
   for (int round = 0; round < 3 && std::count(flags.begin(), flags.end(), true) >= 5; ++round) {
     if (!adjustment.refine(flags, Hcurrent, current, 15, 1e-6)) {
       break;
@@ -249,15 +260,15 @@ RobustScore localOptimisation(const DisplacementData &data, const DisplacementAd
     std::vector<double> e2;
     pointErrors(data, Hcurrent, e2, &current);
     const RobustScore score = msac(e2, threshold);
-    if (score.cost < best.cost) {
+    if (score.cost < fit.score.cost) {
       if (!(adjustment.rigidityStatistic(flags, Hcurrent, current, 0.1 * threshold) <= kRigidityBound)) {
         break; // a homography that absorbed mismatches, not a displacement
       }
-      best = score;
-      H = Hcurrent;
-      d2 = e2;
-      points = current;
-      fitted = flags;
+      fit.score = score;
+      fit.H = Hcurrent;
+      fit.errors = e2;
+      fit.points = current;
+      fit.fitted = flags;
     }
     const std::vector<bool> next = within(e2, threshold);
     if (next == flags) {
@@ -265,7 +276,6 @@ RobustScore localOptimisation(const DisplacementData &data, const DisplacementAd
     }
     flags = next;
   }
-  return best;
 }
 //! Adds to \e flags the points of smallest finite error until at least \e count are flagged.
 void nearestFirst(const std::vector<double> &d2, size_t count, std::vector<bool> &flags)
@@ -355,10 +365,7 @@ Eigen::Matrix4d vpProjectiveDisplacement::estimateRobust(const vpProjectiveStere
   vpUniRand rng(0x5eedULL);
   size_t subset[5] = {0, 1, 2, 3, 4};
   size_t needed = budget;
-  Eigen::Matrix4d best = Eigen::Matrix4d::Zero();
-  std::vector<double> bestErrors;
-  std::vector<Eigen::Vector4d> bestPoints, points(n);
-  std::vector<bool> bestFitted, fitted;
+  RobustFit best;
   std::vector<std::vector<bool>> tried; // the rough inlier sets already locally optimised
   struct Rival {
     std::vector<bool> inliers;
@@ -366,7 +373,6 @@ Eigen::Matrix4d vpProjectiveDisplacement::estimateRobust(const vpProjectiveStere
   };
   std::vector<Rival> rivals; // the rigid fits found by the local optimisation
   const size_t required = n >= 6 ? 6 : 5;
-  RobustScore bestScore;
   bool found = false, reversed = false;
   for (size_t iteration = 0; iteration < needed; ++iteration) {
     if (enumerate) {
@@ -401,40 +407,36 @@ Eigen::Matrix4d vpProjectiveDisplacement::estimateRobust(const vpProjectiveStere
       reversed = reversed || minimal == MinimalReversed;
       continue; // 4 coplanar (or repeated) points among the 5 in one view, or no displacement
     }
-    Eigen::Matrix4d H = data.unwhiten(Hw);
-    std::vector<double> d2;
-    pointErrors(data, H, d2, &points);
-    RobustScore score = msac(d2, inlierThreshold);
-    fitted.clear();
+    RobustFit fit;
+    fit.H = data.unwhiten(Hw);
+    fit.points.resize(n);
+    pointErrors(data, fit.H, fit.errors, &fit.points);
+    fit.score = msac(fit.errors, inlierThreshold);
     // The points to refit on: those within the loose threshold, and at least the `required` best predicted (with few
     // points a 5-point fit may predict every other one far beyond it).
-    std::vector<bool> rough = within(d2, loose);
-    nearestFirst(d2, required, rough);
+    std::vector<bool> rough = within(fit.errors, loose);
+    nearestFirst(fit.errors, required, rough);
     const size_t roughSupport = static_cast<size_t>(std::count(rough.begin(), rough.end(), true));
-    if (n > 5 && roughSupport >= bestScore.support) {
+    if (n > 5 && roughSupport >= best.score.support) {
       // Skip rough sets already optimised, and those within the inliers of the best fit (nothing to gain).
       bool news = !found;
       for (size_t j = 0; j < n && !news; ++j) {
-        news = rough[j] && !(bestErrors[j] <= inlierThreshold * inlierThreshold);
+        news = rough[j] && !(best.errors[j] <= inlierThreshold * inlierThreshold);
       }
       if (news && std::find(tried.begin(), tried.end(), rough) == tried.end()) {
         tried.push_back(rough);
-        score = localOptimisation(data, adjustment, inlierThreshold, rough, H, d2, points, fitted);
-        if (!fitted.empty()) {
-          rivals.push_back(Rival{within(d2, inlierThreshold), score.cost});
+        localOptimisation(data, adjustment, inlierThreshold, rough, fit);
+        if (!fit.fitted.empty()) {
+          rivals.push_back(Rival{within(fit.errors, inlierThreshold), fit.score.cost});
         }
       }
     }
-    if (score.cost < bestScore.cost) {
-      bestScore = score;
-      best = H;
-      bestErrors = d2;
-      bestPoints = points;
-      bestFitted = fitted;
+    if (fit.score.cost < best.score.cost) {
+      best = std::move(fit);
       found = true;
       if (!enumerate) {
         // Draws needed to pick a set of inliers only with probability 0.9999, at the best inlier ratio so far.
-        const double clean = std::pow(static_cast<double>(score.support) / static_cast<double>(n), 5.0);
+        const double clean = std::pow(static_cast<double>(best.score.support) / static_cast<double>(n), 5.0);
         if (clean >= 1.0) {
           needed = iteration + 1;
         } else if (clean > 0.0) {
@@ -458,12 +460,11 @@ Eigen::Matrix4d vpProjectiveDisplacement::estimateRobust(const vpProjectiveStere
   }
 
   // Too few points agree with every hypothesis: one more local optimisation, from all the points.
-  if (bestScore.support < required) {
-    const RobustScore score = localOptimisation(data, adjustment, inlierThreshold, std::vector<bool>(n, true), best,
-                                                bestErrors, bestPoints, fitted);
-    if (!fitted.empty()) {
-      bestScore = score;
-      bestFitted = fitted;
+  if (best.score.support < required) {
+    RobustFit all = best;
+    localOptimisation(data, adjustment, inlierThreshold, std::vector<bool>(n, true), all);
+    if (!all.fitted.empty()) {
+      best = std::move(all);
     }
   }
 
@@ -471,52 +472,46 @@ Eigen::Matrix4d vpProjectiveDisplacement::estimateRobust(const vpProjectiveStere
   // consistent, it is the answer (two correct points near the threshold). Otherwise the better fit wins if it is
   // 1000 times more likely (its MSAC cost, in squared pixels per image point, is lower by 2 ln(1000) sigma^2 / 4,
   // sigma = t / 3 the noise the threshold is meant for); else the data are ambiguous.
-  std::vector<bool> bestFlags = within(bestErrors, inlierThreshold);
+  std::vector<bool> bestFlags = within(best.errors, inlierThreshold);
   const double sigma2 = inlierThreshold * inlierThreshold / 9.0;
   for (const Rival &rival : rivals) {
     if (std::count(rival.inliers.begin(), rival.inliers.end(), true) <
-            static_cast<long>(std::max(bestScore.support, required)) ||
-        rival.inliers == bestFlags || 4.0 * (rival.cost - bestScore.cost) >= 2.0 * std::log(1000.0) * sigma2) {
+            static_cast<long>(std::max(best.score.support, required)) ||
+        rival.inliers == bestFlags || 4.0 * (rival.cost - best.score.cost) >= 2.0 * std::log(1000.0) * sigma2) {
       continue;
     }
     std::vector<bool> both(n);
     for (size_t j = 0; j < n; ++j) {
       both[j] = rival.inliers[j] || bestFlags[j];
     }
-    Eigen::Matrix4d H = best;
-    std::vector<double> d2 = bestErrors;
-    std::vector<Eigen::Vector4d> fittedPoints = bestPoints;
-    const RobustScore score = localOptimisation(data, adjustment, inlierThreshold, both, H, d2, fittedPoints, fitted);
-    const std::vector<bool> flagsBoth = within(d2, inlierThreshold);
-    bool covers = !fitted.empty();
+    RobustFit joint = best;
+    localOptimisation(data, adjustment, inlierThreshold, both, joint);
+    const std::vector<bool> flagsBoth = within(joint.errors, inlierThreshold);
+    bool covers = !joint.fitted.empty();
     for (size_t j = 0; j < n && covers; ++j) {
       covers = !both[j] || flagsBoth[j];
     }
     if (!covers) {
       std::ostringstream os;
-      os << "two different sets of " << bestScore.support << " of the " << n << " points each agree with a rigid "
+      os << "two different sets of " << best.score.support << " of the " << n << " points each agree with a rigid "
          << "displacement within " << inlierThreshold << " px, and not with one another: the mismatched points "
          << "cannot be told from the others; check the point tracking or add points";
       fail(vpProjectiveException::estimationFailedError, where, os.str());
     }
-    bestScore = score;
-    best = H;
-    bestErrors = d2;
-    bestPoints = fittedPoints;
-    bestFitted = fitted;
+    best = std::move(joint);
     bestFlags = flagsBoth;
   }
 
   // Maximum-likelihood refit on the inliers, from their best-fitting points, until the inliers are stable (the
   // local optimisation has usually done it, with a capped number of iterations: this converges it).
-  Eigen::Matrix4d H = best;
-  std::vector<bool> flags = within(bestErrors, inlierThreshold);
-  points = bestPoints;
-  for (int round = 0; round < 3 && (round == 0 || flags != bestFitted) && bestScore.support >= 5; ++round) {
+  Eigen::Matrix4d H = best.H;
+  std::vector<bool> flags = within(best.errors, inlierThreshold);
+  std::vector<Eigen::Vector4d> points = best.points;
+  for (int round = 0; round < 3 && (round == 0 || flags != best.fitted) && best.score.support >= 5; ++round) {
     if (!adjustment.refine(flags, H, points, 100)) {
       break;
     }
-    bestFitted = flags;
+    best.fitted = flags;
     std::vector<double> d2;
     pointErrors(data, H, d2, &points);
     flags = within(d2, inlierThreshold);
@@ -534,7 +529,7 @@ Eigen::Matrix4d vpProjectiveDisplacement::estimateRobust(const vpProjectiveStere
   }
   // A homography may fit a mismatched set within the threshold by distorting space (few points leave it the freedom):
   // then it is no rigid displacement.
-  const double rigidity = adjustment.rigidityStatistic(bestFitted, H, points, 0.1 * inlierThreshold);
+  const double rigidity = adjustment.rigidityStatistic(best.fitted, H, points, 0.1 * inlierThreshold);
   if (!(rigidity <= kRigidityBound)) {
     std::ostringstream os;
     os << "the " << support << " of " << n << " points that agree within " << inlierThreshold << " px are fitted by a "
