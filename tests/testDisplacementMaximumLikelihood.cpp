@@ -43,6 +43,20 @@ using namespace vpProjectiveTest;
 
 namespace
 {
+//! Ceres' own solver (Schur complement on the points), converged to the rounding: the reference the library is checked
+//! against.
+ceres::Solver::Summary solveTight(ceres::Problem &problem, int maxIterations)
+{
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_SCHUR;
+  options.function_tolerance = options.parameter_tolerance = 1e-15;
+  options.gradient_tolerance = 1e-17;
+  options.max_num_iterations = maxIterations;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  return summary;
+}
+
 //! The pixel error of one rigid point in the four images (before: P, P'; after: P H, P' H), 8 residuals.
 struct FourImageError {
   FourImageError(const Eigen::Matrix<double, 3, 4> &P, const Eigen::Matrix<double, 3, 4> &Pp, const Eigen::Vector4d &s0,
@@ -96,14 +110,7 @@ double costOf(const vpProjectiveStereoRig &rig, const std::vector<Eigen::Vector4
     problem.SetManifold(M0[j].data(), new ceres::SphereManifold<4>());
   }
   problem.SetParameterBlockConstant(Hr.data());
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::DENSE_SCHUR;
-  options.function_tolerance = options.parameter_tolerance = 1e-15;
-  options.gradient_tolerance = 1e-17;
-  options.max_num_iterations = 50;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  return 2.0 * summary.final_cost;
+  return 2.0 * solveTight(problem, 50).final_cost;
 }
 } // namespace
 
@@ -152,13 +159,7 @@ TEST(vpProjectiveDisplacement, MaximumLikelihoodEqualsCeres)
       problem.SetManifold(points[j].data(), new ceres::SphereManifold<4>());
     }
     problem.SetManifold(H.data(), new ceres::SphereManifold<16>());
-    ceres::Solver::Options options;
-    options.linear_solver_type = ceres::DENSE_SCHUR;
-    options.function_tolerance = options.parameter_tolerance = 1e-15;
-    options.gradient_tolerance = 1e-17;
-    options.max_num_iterations = 500;
-    ceres::Solver::Summary summary;
-    ceres::Solve(options, &problem, &summary);
+    const ceres::Solver::Summary summary = solveTight(problem, 500);
     ASSERT_TRUE(summary.IsSolutionUsable());
     const Eigen::Matrix4d Hceres = vpProjectiveDisplacement::normalize(Eigen::Matrix4d(H));
 
