@@ -62,6 +62,15 @@ struct World {
       rig.project(X[k], left[k], right[k]);
     }
   }
+  //! Renders the arm's markers at joints \e q into Il, Ir and gives their true pixels; returns the markers (world).
+  std::vector<vpColVector> renderArm(vpSimulatorMarkerRenderer &renderer, const vpColVector &q,
+                                     std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right)
+  {
+    const std::vector<vpColVector> X = arm.getMarkers(q);
+    renderer.render(X, Il, Ir);
+    truth(X, left, right);
+    return X;
+  }
 };
 
 //! Joint values along a smooth path: q(t) = t * qEnd (deg), t in [0, 1].
@@ -292,10 +301,8 @@ TEST(StereoDotTracker, DetectionPairsTheBlobsByTheEpipolarGeometry)
 {
   World w;
   vpSimulatorMarkerRenderer renderer(w.rig, 6);
-  const std::vector<vpColVector> X = w.arm.getMarkers(vpColVector(6, 0.0));
-  renderer.render(X, w.Il, w.Ir);
   std::vector<vpImagePoint> left, right;
-  w.truth(X, left, right);
+  const std::vector<vpColVector> X = w.renderArm(renderer, vpColVector(6, 0.0), left, right);
   vpStereoDotTracker tracker;
   tracker.setStereoRig(w.trueRig);
   tracker.initTrackingByDetection(w.Il, w.Ir, 7);
@@ -326,10 +333,8 @@ TEST(StereoDotTracker, DetectionWithTheModelNumbersTheMarkersAsTheModel)
   const vpProjectiveRobot robot = calibratedModel(w);
   vpSimulatorMarkerRenderer renderer(w.rig, 8);
   const vpColVector q = along(0.7);
-  const std::vector<vpColVector> X = w.arm.getMarkers(q);
-  renderer.render(X, w.Il, w.Ir);
   std::vector<vpImagePoint> left, right;
-  w.truth(X, left, right);
+  const std::vector<vpColVector> X = w.renderArm(renderer, q, left, right);
   vpStereoDotTracker tracker;
   tracker.setRobot(robot, {4, 0, 2});
   tracker.initTrackingByDetection(w.Il, w.Ir, q); // the 4 other lit markers are ignored
@@ -349,10 +354,8 @@ TEST(StereoDotTracker, MisuseThrowsAndLeavesTheTrackerAsItWas)
 {
   World w;
   vpSimulatorMarkerRenderer renderer(w.rig, 9);
-  const std::vector<vpColVector> X = w.arm.getMarkers(vpColVector(6, 0.0));
-  renderer.render(X, w.Il, w.Ir);
   std::vector<vpImagePoint> left, right;
-  w.truth(X, left, right);
+  const std::vector<vpColVector> X = w.renderArm(renderer, vpColVector(6, 0.0), left, right);
   vpStereoDotTracker tracker;
   EXPECT_TRUE(
       throwsProjective([&] { tracker.track(w.Il, w.Ir); }, vpProjectiveException::notInitializedError, "initTracking"));
