@@ -141,6 +141,9 @@ void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
          "the robot model is not acquired; call calibrate() or loadModel() on it first");
   }
   m_robot = &robot;
+  for (vpTarget &t : m_targets) {
+    t.valid = false; // another robot's frame: take the user's s* anew
+  }
 }
 
 void vpServoProjective::setLambda(double lambda)
@@ -714,6 +717,12 @@ void vpServoProjective::print(std::ostream &os) const
   os << "; outlier threshold ";
   if (m_health.getOutlierThreshold() > 0.0) {
     os << m_health.getOutlierThreshold() << " px";
+  } else {
+    os << "off";
+  }
+  os << "; model-mismatch threshold ";
+  if (m_mismatch.getThreshold() > 0.0) {
+    os << m_mismatch.getThreshold() << " px over " << m_mismatch.getConsecutiveIterations() << " calls";
   } else {
     os << "off";
   }

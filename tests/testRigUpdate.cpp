@@ -602,6 +602,50 @@ TEST(RigUpdate, BumpDetectedReRegisteredAndTaskFinished)
   }
 }
 
+// SERVO_MODEL_MISMATCH takes precedence over single-feature outliers, a single outlier is not a mismatch, qdot = 0,
+// and a threshold of 0 turns the detection off.
+TEST(RigUpdate, MismatchPrecedenceAndSwitch)
+{
+  const ArmSetup s = pumaEyeToHand();
+  vpUniRand rng(31);
+  vpGaussRand noise(1.0, 0.0, 31);
+  vpProjectiveRobot robot(s.jointTypes());
+  ASSERT_TRUE(s.acquire(robot, 0.0, noise));
+  robot.calibrate();
+  const ArmSetup b = bumped(s, BUMP_LEFT, rng);
+  const vpColVector qTarget = jointsNear({&s, &b}, rng, vpColVector(s.n(), 0.0), vpMath::rad(20.0));
+  const vpColVector qStart = jointsNear({&s, &b}, rng, qTarget, vpMath::rad(8.0));
+  for (double threshold : {5.0, 0.0}) {
+    ServoRun run(s, robot, qTarget, 0.0, noise);
+    run.task.setOutlierThreshold(3.0);
+    run.task.setModelMismatchThreshold(threshold);
+    vpColVector q = qStart;
+    for (int it = 0; it < 3; ++it) {
+      EXPECT_EQ(run.step(s, q, 0.0, noise), vpServoProjective::SERVO_RUNNING);
+    }
+    // One feature jumps by 20 px: an outlier, not a mismatch.
+    ServoRun::measure(s, q, 0.0, noise, run.s);
+    const Eigen::Vector4d s2 = run.s[2].getFeature();
+    run.s[2].buildFrom(s2(0) + 20.0, s2(1), s2(2), s2(3));
+    run.task.computeControlLaw(q);
+    EXPECT_EQ(run.task.getFeatureState(2), vpServoProjective::FEATURE_OUTLIER);
+    EXPECT_EQ(run.task.getStatus(), vpServoProjective::SERVO_REDUCED);
+    // The camera moves: every feature is an outlier for the health, and a mismatch at the second call.
+    vpServoProjective::vpServoStatus first = run.step(b, q, 0.0, noise);
+    ServoRun::measure(b, q, 0.0, noise, run.s);
+    const vpColVector qdot = run.task.computeControlLaw(q);
+    if (threshold > 0.0) {
+      EXPECT_NE(first, vpServoProjective::SERVO_MODEL_MISMATCH);
+      EXPECT_EQ(run.task.getStatus(), vpServoProjective::SERVO_MODEL_MISMATCH);
+      EXPECT_EQ(qdot.frobeniusNorm(), 0.0);
+      EXPECT_GT(run.task.getModelMismatch().getDistance(0), threshold);
+    } else {
+      EXPECT_NE(run.task.getStatus(), vpServoProjective::SERVO_MODEL_MISMATCH);
+      EXPECT_EQ(run.task.getModelMismatch().getDisagreeingIterations(), 0u);
+    }
+  }
+}
+
 // The task's own s*: re-expressed after updateRig(), the user's objects unchanged, a new s* taken as given.
 TEST(RigUpdate, TaskReExpressesItsDesiredFeatures)
 {
