@@ -163,7 +163,15 @@ std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, d
   }
   m["joints"] = joints;
   m["zero_reference_joints"] = vectorToJson(model.zeroReferenceJoints());
-  m["rig"] = json{{"fundamental_matrix", matrixToJson(model.getStereoRig().fundamentalMatrix())}};
+  const vpProjectiveStereoRig &rig = model.getStereoRig();
+  if (rig.isCanonical()) {
+    m["rig"] = json{{"camera_pair", "canonical"}, {"fundamental_matrix", matrixToJson(rig.fundamentalMatrix())}};
+  } else {
+    m["rig"] = json{{"camera_pair", "general"},
+                    {"fundamental_matrix", matrixToJson(rig.fundamentalMatrix())},
+                    {"left_projection", matrixToJson(rig.leftProjection())},
+                    {"right_projection", matrixToJson(rig.rightProjection())}};
+  }
   m["G"] = matrixToJson(model.projectiveToMetric());
   m["twists"] = twists;
   m["markers"] = markers;
@@ -220,9 +228,11 @@ vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, 
     reader.bad(std::string("it is not a ") + kFormat + " file (its 'format' entry differs)");
   }
   const json &v = reader.member(file, "version");
-  if (!v.is_number_integer() || v.get<long long>() != version) {
-    reader.bad("it has format version " + v.dump() + ", this build reads version " + std::to_string(version));
+  if (!v.is_number_integer() || (v.get<long long>() != version && v.get<long long>() != 2)) {
+    reader.bad("it has format version " + v.dump() + ", this build reads versions 2 and " + std::to_string(version) +
+               "; save the model again with the build that wrote it, or acquire it again");
   }
+  const bool version2 = v.get<long long>() == 2; // before re-registration: always the canonical pair of F
   const json &m = reader.member(file, "model");
   const json &checksum = reader.member(file, "checksum");
   if (!checksum.is_string() || checksum.get<std::string>() != checksumOf(m.dump())) {
@@ -250,8 +260,21 @@ vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, 
   for (size_t i = 0; i < n; ++i) {
     qRef(static_cast<Eigen::Index>(i)) = reader.number(qRefJson[i], "zero_reference_joints");
   }
-  const Eigen::Matrix3d F =
-      reader.matrix<3, 3>(reader.member(reader.member(m, "rig"), "fundamental_matrix"), "the fundamental matrix");
+  const json &rigJson = reader.member(m, "rig");
+  const Eigen::Matrix3d F = reader.matrix<3, 3>(reader.member(rigJson, "fundamental_matrix"), "the fundamental matrix");
+  bool general = false;
+  Eigen::Matrix<double, 3, 4> P, Pp;
+  if (!version2) {
+    const json &pair = reader.member(rigJson, "camera_pair");
+    if (!pair.is_string() || (pair != "canonical" && pair != "general")) {
+      reader.bad("the rig's camera_pair is neither canonical nor general");
+    }
+    general = pair == "general";
+    if (general) {
+      P = reader.matrix<3, 4>(reader.member(rigJson, "left_projection"), "the left projection");
+      Pp = reader.matrix<3, 4>(reader.member(rigJson, "right_projection"), "the right projection");
+    }
+  }
   const Eigen::Matrix4d G = reader.matrix<4, 4>(reader.member(m, "G"), "G");
   const json &twists = reader.array(reader.member(m, "twists"), "the twist list", n, n);
   std::vector<Eigen::Vector3d> axis(n), point(n);
@@ -270,7 +293,11 @@ vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, 
   vpProjectiveArmModel model;
   try {
     vpProjectiveStereoRig rig;
-    rig.setFundamentalMatrix(toVisp(F));
+    if (general) {
+      rig.setProjections(P, Pp);
+    } else {
+      rig.setFundamentalMatrix(toVisp(F));
+    }
     model = vpProjectiveArmModel(
         types, mounting == "eye-to-hand" ? vpProjectiveArmModel::EYE_TO_HAND : vpProjectiveArmModel::EYE_IN_HAND, rig,
         G, axis, point, markers, qRef);

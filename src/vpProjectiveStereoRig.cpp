@@ -211,7 +211,7 @@ Eigen::Matrix3d goldStandardFundamental(const std::vector<Eigen::Vector2d> &l, c
 
 vpProjectiveStereoRig::vpProjectiveStereoRig()
     : m_F(Eigen::Matrix3d::Zero()), m_P(Projection::Zero()), m_Pp(Projection::Zero()), m_e(Eigen::Vector3d::Zero()),
-      m_ep(Eigen::Vector3d::Zero()), m_inliers(), m_residual(0.0), m_initialized(false)
+      m_ep(Eigen::Vector3d::Zero()), m_inliers(), m_residual(0.0), m_initialized(false), m_canonical(true)
 {
 }
 
@@ -253,6 +253,59 @@ void vpProjectiveStereoRig::setFundamentalMatrix(const vpMatrix &F)
   m_P.leftCols<3>().setIdentity();
   m_Pp = canonicalRightProjection(m_F, m_ep);
   m_initialized = true;
+  m_canonical = true;
+}
+
+void vpProjectiveStereoRig::setProjections(const vpMatrix &P, const vpMatrix &Pp)
+{
+  const std::string where = std::string(kClass) + "::setProjections()";
+  setProjections(Projection(toEigen<3, 4>(P, where, "P")), Projection(toEigen<3, 4>(Pp, where, "P'")));
+}
+
+void vpProjectiveStereoRig::setProjections(const Projection &P, const Projection &Pp)
+{
+  const std::string where = std::string(kClass) + "::setProjections()";
+  if (!P.allFinite() || !Pp.allFinite()) {
+    fail(vpProjectiveException::nonFiniteValueError, where, "a camera matrix has a NaN or infinite entry");
+  }
+  Eigen::Vector4d centre[2];
+  const Projection *cameras[2] = {&P, &Pp};
+  for (int c = 0; c < 2; ++c) {
+    Eigen::JacobiSVD<Eigen::Matrix4d> svd(
+        Eigen::Matrix4d((Eigen::Matrix4d() << *cameras[c], Eigen::RowVector4d::Zero()).finished()),
+        Eigen::ComputeFullV);
+    const Eigen::Vector4d sigma = svd.singularValues();
+    if (!(sigma(0) > 0.0) || sigma(2) < 1e-12 * sigma(0)) {
+      fail(vpProjectiveException::degenerateConfigurationError, where,
+           std::string(c == 0 ? "P" : "P'") + " has rank below 3, which is no camera; pass a 3x4 camera matrix");
+    }
+    centre[c] = svd.matrixV().col(3);
+  }
+  const Projection Pn = P / P.norm(), Ppn = Pp / Pp.norm();
+  Eigen::Vector3d ep = Ppn * centre[0];
+  Eigen::Vector3d e = Pn * centre[1];
+  if (!(ep.norm() > 1e-9) || !(e.norm() > 1e-9)) {
+    fail(vpProjectiveException::degenerateConfigurationError, where,
+         "the two cameras have the same centre (no baseline): they give no epipolar geometry");
+  }
+  const Eigen::Matrix<double, 4, 3> Pplus = Pn.transpose() * (Pn * Pn.transpose()).inverse();
+  Eigen::Matrix3d F = vpMetricTwist::skew(ep) * Ppn * Pplus;
+  if (!F.allFinite() || !(F.norm() > 0.0)) {
+    fail(vpProjectiveException::degenerateConfigurationError, where, "the camera pair gives no fundamental matrix");
+  }
+  F /= F.norm();
+  canonicalSign(F);
+  e.normalize();
+  ep.normalize();
+  canonicalSign(e);
+  canonicalSign(ep);
+  m_F = F;
+  m_e = e;
+  m_ep = ep;
+  m_P = Pn;
+  m_Pp = Ppn;
+  m_initialized = true;
+  m_canonical = false;
 }
 
 void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right,

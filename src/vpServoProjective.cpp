@@ -104,6 +104,8 @@ const char *statusName(vpServoProjective::vpServoStatus status)
     return "SERVO_STOPPED (the active features no longer constrain every joint: qdot = 0)";
   case vpServoProjective::SERVO_NO_PLAN:
     return "SERVO_NO_PLAN (path planning found no plan for the target: qdot = 0)";
+  case vpServoProjective::SERVO_MODEL_MISMATCH:
+    return "SERVO_MODEL_MISMATCH (every feature disagrees with the model: re-register the rig; qdot = 0)";
   }
   return "?";
 }
@@ -120,7 +122,8 @@ template <typename Vector> void printVector(std::ostream &os, const Vector &v)
 
 vpServoProjective::vpServoProjective()
     : m_robot(nullptr), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(),
-      m_jointLimits(), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
+      m_jointLimits(), m_mismatch(), m_targets(), m_mismatchRigGeneration(0), m_mismatchModelGeneration(0),
+      m_mismatchRobot(nullptr), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
       m_pathSample(0), m_following(false), m_followGain(1.0)
 {
 }
@@ -132,6 +135,9 @@ void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
          "the robot model is not acquired; call calibrate() or loadModel() on it first");
   }
   m_robot = &robot;
+  for (vpTarget &t : m_targets) {
+    t.valid = false; // another robot's frame: take the user's s* anew
+  }
 }
 
 void vpServoProjective::setLambda(double lambda)
@@ -249,6 +255,8 @@ void vpServoProjective::addFeature(vpFeatureStereoPoint &s, vpFeatureStereoPoint
   m_features.push_back(&s);
   m_desired.push_back(&s_star);
   m_health.addFeature();
+  m_mismatch.resize(static_cast<unsigned int>(m_features.size()));
+  m_targets.push_back(vpTarget());
   m_plannedFor.clear(); // another task: plan anew
   m_following = false;
 }
@@ -258,6 +266,8 @@ void vpServoProjective::clearFeatures()
   m_features.clear();
   m_desired.clear();
   m_health.clearFeatures();
+  m_mismatch.resize(0);
+  m_targets.clear();
   m_plannedFor.clear();
   m_following = false;
   m_iterations[m_lastIteration].status = SERVO_RUNNING;
@@ -426,7 +436,74 @@ Eigen::Vector4d vpServoProjective::desired(unsigned int i) const
 {
   // Following, the arm should be at the sample before the one it moves to: its predicted features are the reference
   // of the image feedback.
-  return m_following ? m_planner.getPredictedFeatures()[m_pathSample - 1][i] : m_desired[i]->getFeature();
+  return m_following ? m_planner.getPredictedFeatures()[m_pathSample - 1][i] : m_targets[i].effective;
+}
+
+void vpServoProjective::refreshTargets()
+{
+  // The task's copy of s*: the user's value, triangulated once through the rig it was given with; after a
+  // re-registration of the rig (a new rig generation of the same model), that point's image in the new rig.
+  const unsigned long rigGeneration = m_robot->getRigGeneration();
+  const unsigned long modelGeneration = m_robot->getModelGeneration();
+  const vpProjectiveStereoRig &rig = m_robot->getModel().getStereoRig();
+  for (size_t i = 0; i < m_targets.size(); ++i) {
+    vpTarget &t = m_targets[i];
+    const Eigen::Vector4d user = m_desired[i]->getFeature();
+    if (!t.valid || t.modelGeneration != modelGeneration || !(user == t.user)) {
+      t.user = user;
+      t.effective = user;
+      t.hasPoint = user.allFinite();
+      if (t.hasPoint) {
+        t.point = rig.triangulate(user.head<2>(), user.tail<2>());
+      }
+      t.rigGeneration = rigGeneration;
+      t.modelGeneration = modelGeneration;
+      t.valid = true;
+    } else if (t.rigGeneration != rigGeneration) {
+      Eigen::Vector4d s;
+      if (t.hasPoint && rig.project(t.point, s)) {
+        t.effective = s;
+      } else {
+        t.effective = user; // no point: the user's value, which the health then judges
+      }
+      t.rigGeneration = rigGeneration;
+    }
+  }
+}
+
+bool vpServoProjective::detectMismatch(const JointVector &q)
+{
+  // Memories of the features' points belong to one rig of one model: start anew when either changed.
+  if (m_mismatchRobot != m_robot || m_mismatchRigGeneration != m_robot->getRigGeneration() ||
+      m_mismatchModelGeneration != m_robot->getModelGeneration()) {
+    m_mismatch.reset();
+    m_mismatchRobot = m_robot;
+    m_mismatchRigGeneration = m_robot->getRigGeneration();
+    m_mismatchModelGeneration = m_robot->getModelGeneration();
+  }
+  const double w = m_health.getImageWidth(), h = m_health.getImageHeight(), b = m_health.getImageBorder();
+  m_mismatch.startIteration(m_robot->getModel(), q);
+  for (unsigned int i = 0; i < m_features.size(); ++i) {
+    const Eigen::Vector4d s = m_features[i]->getFeature();
+    bool usable = m_health.isFeatureTracked(i) && s.allFinite();
+    if (usable && w > 0.0) {
+      usable = s(0) >= b && s(0) <= w - 1.0 - b && s(1) >= b && s(1) <= h - 1.0 - b && s(2) >= b &&
+               s(2) <= w - 1.0 - b && s(3) >= b && s(3) <= h - 1.0 - b;
+    }
+    m_mismatch.observe(i, s, usable);
+  }
+  return m_mismatch.endIteration();
+}
+
+void vpServoProjective::setModelMismatchThreshold(double pixels)
+{
+  m_mismatch.setThreshold(pixels);
+}
+
+vpColVector vpServoProjective::getDesiredFeature(unsigned int i) const
+{
+  checkFeatureIndex(i, "getDesiredFeature()");
+  return toVispVector(m_targets[i].valid ? m_targets[i].effective : m_desired[i]->getFeature());
 }
 
 bool vpServoProjective::planIfNeeded(const JointVector &q)
@@ -434,7 +511,7 @@ bool vpServoProjective::planIfNeeded(const JointVector &q)
   // Plan once per target: again only when a desired feature changed.
   bool changed = m_plannedFor.size() != m_desired.size();
   for (size_t i = 0; i < m_desired.size() && !changed; ++i) {
-    changed = !(m_desired[i]->getFeature() == m_plannedFor[i]);
+    changed = !(m_targets[i].effective == m_plannedFor[i]);
   }
   if (changed) {
     // The features' points, triangulated at q and carried to the zero reference by H(q)^-1.
@@ -447,7 +524,7 @@ bool vpServoProjective::planIfNeeded(const JointVector &q)
         return false; // a feature lost at planning time: plan at the next call
       }
       points.push_back(H.solve(model.getStereoRig().triangulate(s.head<2>(), s.tail<2>())).normalized());
-      sStar.push_back(m_desired[i]->getFeature());
+      sStar.push_back(m_targets[i].effective);
     }
     vpProjectivePathPlanner::JointVector qmin, qmax;
     if (m_jointLimits.hasJointLimits()) {
@@ -496,11 +573,13 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
   const char *const method = "computeControlLaw()";
   checkJoints(q, method);
   vpIteration &it = m_iterations[1 - m_lastIteration];
+  refreshTargets();
   const bool planned = !m_planning || planIfNeeded(q);
   m_following = m_planning && planned && m_pathSample < m_planner.getPath().size();
   buildTask(q, it, method);
-  it.status = planned ? decideStatus(it) : SERVO_NO_PLAN;
-  if (it.status == SERVO_STOPPED || it.status == SERVO_NO_PLAN) {
+  const bool mismatch = detectMismatch(q); // after the last step that may throw
+  it.status = mismatch ? SERVO_MODEL_MISMATCH : (planned ? decideStatus(it) : SERVO_NO_PLAN);
+  if (it.status == SERVO_STOPPED || it.status == SERVO_NO_PLAN || it.status == SERVO_MODEL_MISMATCH) {
     stop(it, qdot);
   } else {
     computePrimaryVelocity(it, qdot);
@@ -632,6 +711,12 @@ void vpServoProjective::print(std::ostream &os) const
   os << "; outlier threshold ";
   if (m_health.getOutlierThreshold() > 0.0) {
     os << m_health.getOutlierThreshold() << " px";
+  } else {
+    os << "off";
+  }
+  os << "; model-mismatch threshold ";
+  if (m_mismatch.getThreshold() > 0.0) {
+    os << m_mismatch.getThreshold() << " px over " << m_mismatch.getConsecutiveIterations() << " calls";
   } else {
     os << "off";
   }

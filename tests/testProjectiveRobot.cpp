@@ -814,9 +814,9 @@ TEST(ProjectiveRobot, ModelFileErrors)
   writeFile(bad, edited.dump(2));
   EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "checksum"));
   nlohmann::json version = file;
-  version["version"] = 3;
+  version["version"] = 4;
   writeFile(bad, version.dump(2));
-  EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "version 3"));
+  EXPECT_TRUE(throwsProjective([&] { target.loadModel(bad); }, code, "version 4"));
 
   // Re-signed but inconsistent content: another format, a non-finite value, a joint type, too few markers, a missing
   // entry, a singular G.

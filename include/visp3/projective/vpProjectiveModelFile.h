@@ -37,12 +37,12 @@ BEGIN_VISP_NAMESPACE
   \code{.json}
   {
     "format": "visp_projective_robot_model",
-    "version": 2,
+    "version": 3,
     "model": {
       "mounting": "eye-to-hand",
       "joints": ["revolute", "revolute", "prismatic"],
       "zero_reference_joints": [0.0, 0.0, 0.0],
-      "rig": { "fundamental_matrix": [[...], [...], [...]] },
+      "rig": { "camera_pair": "canonical", "fundamental_matrix": [[...], [...], [...]] },
       "G": [[...], [...], [...], [...]],
       "twists": [ { "axis": [x, y, z], "point": [x, y, z] }, ... ],
       "markers": [ [x, y, z, w], ... ],
@@ -52,7 +52,12 @@ BEGIN_VISP_NAMESPACE
     "checksum": "fnv1a64:0123456789abcdef"
   }
   \endcode
-  with matrices as arrays of rows, values in the units of vpProjectiveArmModel (G maps the projective frame to the
+  A rig re-registered by vpProjectiveRobot::updateRig() is a general camera pair: its "rig" entry is then
+  <tt>{ "camera_pair": "general", "fundamental_matrix": ..., "left_projection": [3 rows of 4], "right_projection":
+  [3 rows of 4] }</tt>, the projections being what the model uses. Version 2 files (no camera_pair: always the
+  canonical pair of F) are still read.
+
+  Matrices are arrays of rows, values in the units of vpProjectiveArmModel (G maps the projective frame to the
   metric one; axes and points in that metric frame; joint values in radians or encoder length units; residuals in
   pixels). The checksum is FNV-1a (64 bits) of the "model" member written compactly (<tt>dump()</tt> of
   nlohmann-json): a value edited or damaged on disk is detected on load. Doubles are written with 17 significant
@@ -66,7 +71,7 @@ class VISP_EXPORT vpProjectiveModelFile
 {
 public:
   //! The format version this build writes and reads.
-  static constexpr int version = 2;
+  static constexpr int version = 3;
 
   /*!
     Writes \e model and its calibration residuals (pixels; see vpProjectiveArmAcquisition) to \e filename.

@@ -33,6 +33,7 @@
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpProjectiveArmAcquisition.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpProjectiveRigRegistration.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
 BEGIN_VISP_NAMESPACE
@@ -253,6 +254,62 @@ public:
                                 double *residual = nullptr) const;
   //@}
 
+  /*! \name The rig moved: prediction error and re-registration (see vpProjectiveRigRegistration) */
+  //@{
+  /*!
+    RMS per coordinate (pixels) of the difference between the measured images \e left, \e right of every marker
+    (in the zero reference's order) and the model's predictions at joints \e q (n x 1):
+    \f$ \sqrt{\frac{1}{4K} \sum_j \|s_j - \hat s_j(q)\|^2} \f$ over the K markers and their 4 coordinates
+    \f$ (u, v, u', v') \f$.
+    \exception vpProjectiveException (notInitializedError) before calibrate() or loadModel(); (dimensionError) if a
+    marker is missing or the sizes differ; (nonFiniteValueError) on a non-finite value; (pointAtInfinityError) if a
+    marker's prediction is on a camera's focal plane.
+  */
+  double getPredictionError(const vpColVector &q, const std::vector<vpImagePoint> &left,
+                            const std::vector<vpImagePoint> &right) const;
+  /*!
+    Records the images of all zero-reference markers (same order) at joints \e q (n x 1) for the next updateRig().
+    Nothing is recorded on error.
+    \exception vpProjectiveException (notInitializedError) before calibrate() or loadModel(); (dimensionError) if a
+    marker is missing or the sizes differ; (nonFiniteValueError) on a non-finite value; (degenerateConfigurationError)
+    if \e q equals (within 1e-6 joint units) the joints of an observation already recorded: move the arm between
+    observations.
+  */
+  void addRigObservation(const vpColVector &q, const std::vector<vpImagePoint> &left,
+                         const std::vector<vpImagePoint> &right);
+  //! Number of observations recorded since the last updateRig().
+  unsigned int getNumberOfRigObservations() const { return static_cast<unsigned int>(m_rigJoints.size()); }
+  //! Forgets the observations recorded since the last updateRig().
+  void clearRigObservations();
+  /*!
+    Re-estimates both cameras in the model's projective frame from the observations recorded since the last
+    update (at least 3; vpProjectiveRigRegistration::registerRig() with getRigRegistrationMode()), then forgets them.
+    The arm model (generators, \f$ G \f$, markers) is kept; the rig becomes a general camera pair
+    (vpProjectiveStereoRig::isCanonical() false) that saveModel() writes. getRigGeneration() increases by one: the
+    servo tasks on this robot then re-express their desired features in the new images.
+    \exception vpProjectiveException (notInitializedError) before calibrate() or loadModel(); (notEnoughPointsError)
+    with fewer than 3 observations; and those of registerRig(). On failure the model, the rig and the observations
+    are left as they were.
+  */
+  void updateRig();
+  //! Which cameras are estimated by updateRig() (default vpProjectiveRigRegistration::FIXED_INTRINSICS).
+  void setRigRegistrationMode(vpProjectiveRigRegistration::vpRegistrationMode mode) { m_rigMode = mode; }
+  //! The mode of setRigRegistrationMode().
+  vpProjectiveRigRegistration::vpRegistrationMode getRigRegistrationMode() const { return m_rigMode; }
+  //! RMS reprojection error per coordinate (pixels) of the last successful updateRig() over its observations.
+  double getRigRegistrationResidual() const { return m_rigResidual; }
+  /*!
+    Counts the successful updateRig() calls since the model was computed or loaded: a task that saw another
+    generation re-expresses its desired features (see vpServoProjective).
+  */
+  unsigned long getRigGeneration() const { return m_rigGeneration; }
+  /*!
+    Counts the models computed or loaded (calibrate(), loadModel()): the projective frame changes with each, and a
+    task's points of another model are meaningless.
+  */
+  unsigned long getModelGeneration() const { return m_modelGeneration; }
+  //@}
+
   /*! \name Model file (see vpProjectiveModelFile) */
   //@{
   //! Writes the acquired model to a versioned, checksummed JSON file (e.g. "arm.json").
@@ -296,6 +353,12 @@ private:
   bool m_calibrated;
   double m_residual;
   double m_algebraicResidual;
+  std::vector<JointVector> m_rigJoints;                  // observations since the last updateRig()
+  std::vector<std::vector<Eigen::Vector4d>> m_rigImages; // their marker images (u, v, u', v')
+  vpProjectiveRigRegistration::vpRegistrationMode m_rigMode;
+  double m_rigResidual;
+  unsigned long m_rigGeneration;
+  unsigned long m_modelGeneration;
 };
 
 END_VISP_NAMESPACE

@@ -97,11 +97,31 @@ public:
   */
   void setFundamentalMatrix(const vpMatrix &F);
 
+  /*!
+    Sets a general camera pair \f$ P \f$, \f$ P' \f$ (3x4 each, rank 3, any non-zero scale), as left by a
+    re-registration of the cameras in a model's projective frame (vpProjectiveRigRegistration): the frame is then that
+    of the model, no longer the canonical frame of \f$ F \f$. With \f$ C \f$, \f$ C' \f$ the camera centres
+    (\f$ P C = 0 \f$, \f$ P' C' = 0 \f$), the epipoles are \f$ e = P C' \f$, \f$ e' = P' C \f$ and
+    \f$ F = [e']_\times P' P^+ \f$ (then unit Frobenius norm and canonical sign, as setFundamentalMatrix()).
+    Triangulation and projection use \f$ P \f$ and \f$ P' \f$ as given (scaled to unit Frobenius norm).
+    \exception vpProjectiveException (dimensionError, nonFiniteValueError) on a wrong size or a non-finite entry;
+    (degenerateConfigurationError) if a matrix has rank below 3 or both centres coincide (no baseline). Nothing is
+    changed then.
+  */
+  void setProjections(const vpMatrix &P, const vpMatrix &Pp);
+  //! The same with Eigen types (see the other overload).
+  void setProjections(const Projection &P, const Projection &Pp);
+  /*!
+    True if the pair is the canonical pair of \f$ F \f$ (estimate(), setFundamentalMatrix()); false after
+    setProjections().
+  */
+  bool isCanonical() const { return m_canonical; }
+
   //! \f$ F \f$ of unit Frobenius norm (3x3).
   vpMatrix getFundamentalMatrix() const;
-  //! \f$ P = [I | 0] \f$ (3x4).
+  //! \f$ P \f$ (3x4): \f$ [I | 0] \f$ for the canonical pair, else the one of setProjections().
   vpMatrix getLeftProjection() const;
-  //! \f$ P' = [[e']_\times F + e' e'^T | e'] \f$ (3x4).
+  //! \f$ P' \f$ (3x4): \f$ [[e']_\times F + e' e'^T | e'] \f$ for the canonical pair, else that of setProjections().
   vpMatrix getRightProjection() const;
   //! Left epipole \f$ e \f$, \f$ F e = 0 \f$, unit norm (3x1, homogeneous pixels).
   vpColVector getLeftEpipole() const;
@@ -132,7 +152,7 @@ public:
 
   /*! \name Eigen access for hot paths (no allocation) */
   //@{
-  //! \f$ P = [I | 0] \f$.
+  //! \f$ P \f$ (\f$ [I | 0] \f$ for the canonical pair).
   const Projection &leftProjection() const { return m_P; }
   //! \f$ P' \f$.
   const Projection &rightProjection() const { return m_Pp; }
@@ -168,6 +188,7 @@ private:
   std::vector<bool> m_inliers;
   double m_residual;
   bool m_initialized;
+  bool m_canonical;
 };
 
 END_VISP_NAMESPACE

@@ -34,6 +34,7 @@
 #include <visp3/projective/vpServoDampedLeastSquares.h>
 #include <visp3/projective/vpServoFeatureHealth.h>
 #include <visp3/projective/vpServoJointLimitAvoidance.h>
+#include <visp3/projective/vpServoModelMismatch.h>
 #include <visp3/vs/vpAdaptiveGain.h>
 
 BEGIN_VISP_NAMESPACE
@@ -125,11 +126,14 @@ public:
 
   //! Outcome of the last computeControlLaw().
   enum vpServoStatus {
-    SERVO_RUNNING, //!< Every feature used.
-    SERVO_REDUCED, //!< Some features set aside, the remaining ones keep rank n: the task continues on them.
-    SERVO_STOPPED, //!< The active features no longer constrain every joint (rank < n): \f$ \dot q = 0 \f$.
-    SERVO_NO_PLAN  //!< Path planning is on and no plan exists for the target (getPathPlanner() says why):
-                   //!< \f$ \dot q = 0 \f$.
+    SERVO_RUNNING,       //!< Every feature used.
+    SERVO_REDUCED,       //!< Some features set aside, the remaining ones keep rank n: the task continues on them.
+    SERVO_STOPPED,       //!< The active features no longer constrain every joint (rank < n): \f$ \dot q = 0 \f$.
+    SERVO_NO_PLAN,       //!< Path planning is on and no plan exists for the target (getPathPlanner() says why):
+                         //!< \f$ \dot q = 0 \f$.
+    SERVO_MODEL_MISMATCH //!< Every usable feature disagrees with the model's prediction, over consecutive
+                         //!< iterations (a moved camera, slipped markers; see setModelMismatchThreshold()):
+                         //!< \f$ \dot q = 0 \f$. Re-register the rig (vpProjectiveRobot::updateRig()).
   };
 
   //! A task without robot or feature: gain 0.5, damping (1, 10), no saturation, no check, no joint limit.
@@ -227,6 +231,32 @@ public:
     \exception vpProjectiveException if \e pixels is negative or not finite.
   */
   void setOutlierThreshold(double pixels);
+  //@}
+
+  /*! \name Model mismatch (forwarded to vpServoModelMismatch) and re-registered rigs */
+  //@{
+  /*!
+    Threshold (pixels, default 5) of the model-mismatch detection, on by default: the status is SERVO_MODEL_MISMATCH
+    and \f$ \dot q = 0 \f$ when every feature that is tracked, finite and in the image (at least two) lies farther
+    than \e pixels from the model's prediction, over 2 consecutive calls (vpServoModelMismatch: the prediction is the
+    image of the feature's point, remembered at the zero reference from the calls where it agreed, moved by
+    \f$ H(q) \f$). It takes precedence over every other status. 0 disables it.
+    \exception vpProjectiveException if \e pixels is negative or not finite.
+  */
+  void setModelMismatchThreshold(double pixels);
+  //! The threshold of setModelMismatchThreshold() (pixels; 0: off).
+  double getModelMismatchThreshold() const { return m_mismatch.getThreshold(); }
+  //! The detector, its settings and its last distances.
+  const vpServoModelMismatch &getModelMismatch() const { return m_mismatch; }
+  /*!
+    The desired value (4x1, pixels \f$ (u, v, u', v') \f$) that the task uses for feature \e i: the user's
+    \f$ s^*_i \f$, or after the robot's rig was re-registered (vpProjectiveRobot::updateRig()) the new rig's image of
+    the point that \f$ s^*_i \f$ showed through the rig it was given with (the task's own copy: the user's feature is
+    not rewritten), so that the task goes on to the same joint target. A desired feature changed by the user is
+    taken as given, in the current rig's images. Read at the last computeControlLaw(); the user's value before.
+    \exception vpProjectiveException (dimensionError) on a bad index.
+  */
+  vpColVector getDesiredFeature(unsigned int i) const;
   //@}
 
   /*! \name Joint limits (forwarded to vpServoJointLimitAvoidance) */
@@ -458,6 +488,19 @@ private:
   const vpIteration &last() const { return m_iterations[m_lastIteration]; }
   bool planIfNeeded(const JointVector &q);
   Eigen::Vector4d desired(unsigned int i) const;
+  void refreshTargets();
+  bool detectMismatch(const JointVector &q);
+
+  //! The task's copy of a desired feature.
+  struct vpTarget {
+    Eigen::Vector4d user;            // the user's s* when last read
+    Eigen::Vector4d effective;       // the s* the task uses
+    Eigen::Vector4d point;           // the point (model frame) that user showed through its rig
+    bool hasPoint = false;           // point is set
+    bool valid = false;              // user and effective are set
+    unsigned long rigGeneration = 0; // the rig effective is expressed in
+    unsigned long modelGeneration = 0;
+  };
 
   const vpProjectiveRobot *m_robot;
   std::vector<vpFeatureStereoPoint *> m_features;
@@ -467,6 +510,11 @@ private:
   vpServoDampedLeastSquares m_law;
   vpServoFeatureHealth m_health;
   vpServoJointLimitAvoidance m_jointLimits;
+  vpServoModelMismatch m_mismatch;
+  std::vector<vpTarget> m_targets;
+  unsigned long m_mismatchRigGeneration;
+  unsigned long m_mismatchModelGeneration;
+  const vpProjectiveRobot *m_mismatchRobot;
   // Two iterations: m_iterations[m_lastIteration] is the last successful computeControlLaw(), the one the getters
   // read; the other is the one in progress, which commit() makes the last by flipping the index (nothing is copied).
   vpIteration m_iterations[2];

@@ -1,0 +1,125 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*!
+  \file vpServoModelMismatch.h
+  \brief Detection of a model that no longer predicts the features of a servo task (a moved camera, slipped markers).
+*/
+
+#ifndef _vpServoModelMismatch_h_
+#define _vpServoModelMismatch_h_
+
+#include <visp3/projective/vpProjectiveConfig.h>
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <visp3/projective/vpProjectiveArmModel.h>
+
+BEGIN_VISP_NAMESPACE
+
+/*!
+  \class vpServoModelMismatch
+  \ingroup group_projective
+  \brief Tells when every feature of a servo task disagrees with the model's prediction, consistently over
+  consecutive iterations: the cameras moved (a bumped camera, a moved rig) or the markers slipped, so that the model
+  no longer describes what the cameras see. It complements vpServoFeatureHealth, which sets single features aside.
+
+  <b>Prediction.</b> Each feature \f$ i \f$ (current value \f$ s_i = (u, v, u', v') \f$, pixels) is a point of the
+  moving end. The detector remembers it at the zero reference as the unit-norm mean
+  \f[ \bar M_i \propto \sum_k \pm H(q_k)^{-1} M_{ik}, \f]
+  \f$ M_{ik} \f$ the point linearly triangulated (vpProjectiveStereoRig::triangulateLinear()) at the iterations
+  \f$ k \f$ where the feature agreed with the model, each term of unit norm with the sign of the sum (no coordinate is
+  divided by). Its prediction at joints \f$ q \f$ is the image \f$ \hat s_i \f$ of \f$ H(q) \bar M_i \f$ (4x1,
+  model frame), and its distance (pixels) the larger over both images of \f$ \|\hat s_i - s_i\| \f$ per image.
+
+  <b>Decision.</b> An iteration disagrees when at least two features have a prediction and every one of them is
+  farther than the threshold (setThreshold(), default 5 px: well above the noise of a tracked feature and the
+  prediction error of an acquired model, well below the image motion of a camera turned by 1 degree or moved by
+  5 mm at 1 m with a 12.5 mm lens). The model mismatches when the last setConsecutiveIterations() iterations (default
+  2) all disagreed. Memories are updated only by the features that agree, never in an iteration that disagrees.
+
+  Usage: startIteration(), observe() for every feature, endIteration(); reset() when the rig or the model changed.
+  No allocation once the features are added.
+*/
+class VISP_EXPORT vpServoModelMismatch
+{
+public:
+  //! No feature, threshold 5 px, 2 consecutive iterations.
+  vpServoModelMismatch();
+
+  /*!
+    Distance (pixels) beyond which a feature disagrees with its prediction; 0 disables the detection.
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if it is negative or not finite.
+  */
+  void setThreshold(double pixels);
+  //! The threshold (pixels; 0: detection off).
+  double getThreshold() const { return m_threshold; }
+  /*!
+    Number of consecutive disagreeing iterations that make a mismatch (default 2).
+    \exception vpProjectiveException (invalidValueError) if it is 0.
+  */
+  void setConsecutiveIterations(unsigned int iterations);
+  //! The number of setConsecutiveIterations().
+  unsigned int getConsecutiveIterations() const { return m_iterations; }
+
+  //! Sets the number of features; forgets every memory.
+  void resize(unsigned int features);
+  //! Forgets every memory (the model or its rig changed): the next iteration starts anew.
+  void reset();
+  //! Number of features.
+  unsigned int getNumberOfFeatures() const { return static_cast<unsigned int>(m_records.size()); }
+
+  /*!
+    Starts an iteration at joints \e q (n x 1, the model's) of \e model, which must outlive the iteration.
+  */
+  void startIteration(const vpProjectiveArmModel &model, const vpProjectiveArmModel::JointVector &q);
+  /*!
+    Feature \e i (no index check) of current value \e s (4x1, pixels); \e usable false for a feature that is not
+    tracked, not finite or out of the image (it neither votes nor updates its memory).
+  */
+  void observe(unsigned int i, const Eigen::Vector4d &s, bool usable);
+  //! Ends the iteration: true if the model mismatches (see the class documentation).
+  bool endIteration();
+
+  //! True if the last endIteration() found a mismatch.
+  bool isMismatch() const { return m_mismatch; }
+  //! Prediction distance (pixels) of feature \e i at the last iteration, -1 if not evaluated (no check of \e i).
+  double getDistance(unsigned int i) const { return m_records[i].distance; }
+  //! Number of consecutive disagreeing iterations so far.
+  unsigned int getDisagreeingIterations() const { return m_disagreeing; }
+
+private:
+  struct vpRecord {
+    Eigen::Vector4d sum; // sum of the sign-aligned unit points at the zero reference
+    Eigen::Vector4d s;   // this iteration's value
+    double distance;     // this iteration's distance, -1: not evaluated
+    bool usable;         // this iteration
+    bool hasMemory;      // sum is set
+  };
+
+  std::vector<vpRecord> m_records;
+  double m_threshold;
+  unsigned int m_iterations;
+  unsigned int m_disagreeing;
+  bool m_mismatch;
+  const vpProjectiveArmModel *m_model;
+  Eigen::Matrix4d m_H;
+  Eigen::PartialPivLU<Eigen::Matrix4d> m_Hlu;
+};
+
+END_VISP_NAMESPACE
+
+#endif
