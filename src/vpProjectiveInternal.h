@@ -130,6 +130,18 @@ Eigen::Matrix<double, R, C> toEigen(const vpMatrix &A, const std::string &where,
   return E;
 }
 
+/*!
+  The entries of a vpColVector seen as an Eigen vector (no copy). Not ViSP's visp2eigen(const vpColVector &,
+  Eigen::VectorXd &): that one is compiled in libvisp_core and allocates the Eigen vector there, and a vector allocated
+  under one Eigen configuration and freed under another breaks (with AddressSanitizer Eigen uses its own aligned
+  allocator, whose free reads a header that ViSP's malloc never wrote). ViSP's matrix conversions are templates
+  compiled here: they are used as they are.
+*/
+inline Eigen::Map<const Eigen::VectorXd> eigenMap(const vpColVector &v)
+{
+  return Eigen::Map<const Eigen::VectorXd>(v.data, static_cast<Eigen::Index>(v.getRows()));
+}
+
 //! A vpColVector of exactly N finite entries, as an Eigen fixed-size vector.
 template <int N>
 Eigen::Matrix<double, N, 1> toEigen(const vpColVector &v, const std::string &where, const std::string &what)
@@ -142,9 +154,7 @@ Eigen::Matrix<double, N, 1> toEigen(const vpColVector &v, const std::string &whe
   if (!allFinite(v)) {
     fail(vpProjectiveException::nonFiniteValueError, where, what + " is not finite (NaN or infinity)");
   }
-  Eigen::VectorXd E;
-  conversion::visp2eigen(v, E);
-  return E;
+  return eigenMap(v);
 }
 
 /*!

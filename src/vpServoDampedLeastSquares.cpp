@@ -233,9 +233,8 @@ vpColVector vpServoDampedLeastSquares::computeVelocity(const vpMatrix &J, const 
     fail(vpProjectiveException::invalidValueError, where, "the gain must be non-negative");
   }
   Eigen::MatrixXd JE(J.getRows(), J.getCols());
-  Eigen::VectorXd eE;
   conversion::visp2eigen(J, JE);
-  conversion::visp2eigen(e, eE);
+  const Eigen::VectorXd eE = eigenMap(e);
   JointMatrix JtJ;
   JointVector Jte, qdot;
   computeNormalEquations(JE, eE, JtJ, Jte);

@@ -48,9 +48,8 @@ void primaryTask(const vpMatrix &J, const vpColVector &e, const std::string &whe
     fail(vpProjectiveException::nonFiniteValueError, where, "J or e has a NaN or infinite entry");
   }
   Eigen::MatrixXd JE(J.getRows(), J.getCols());
-  Eigen::VectorXd eE;
   conversion::visp2eigen(J, JE);
-  conversion::visp2eigen(e, eE);
+  const Eigen::VectorXd eE = eigenMap(e);
   vpServoDampedLeastSquares::computeNormalEquations(JE, eE, JtJ, Jte);
   errorNorm = eE.norm();
 }

@@ -32,7 +32,7 @@ vpServoModelMismatch::vpServoModelMismatch()
 
 void vpServoModelMismatch::setThreshold(double pixels)
 {
-  const std::string where = "vpServoModelMismatch::setThreshold()";
+  const std::string where = vpErrorSite("vpServoModelMismatch")("setThreshold()");
   requireFinite(pixels, where, "the model-mismatch threshold");
   if (pixels < 0.0) {
     fail(vpProjectiveException::invalidValueError, where,

@@ -84,9 +84,9 @@ inline Eigen::MatrixXd toEigenX(const vpHomogeneousMatrix &M)
 //! A vpColVector as a dynamic Eigen vector (test comparisons).
 inline Eigen::VectorXd toEigenV(const vpColVector &v)
 {
-  Eigen::VectorXd E(v.getRows());
-  conversion::visp2eigen(v, E);
-  return E;
+  // Not ViSP's compiled visp2eigen(vpColVector, VectorXd): it allocates inside libvisp_core, under another Eigen
+  // allocator than this code's in the sanitizer build (see src/vpProjectiveInternal.h, eigenMap()).
+  return Eigen::Map<const Eigen::VectorXd>(v.data, static_cast<Eigen::Index>(v.getRows()));
 }
 
 //! \overload

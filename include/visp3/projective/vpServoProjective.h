@@ -493,12 +493,12 @@ private:
 
   //! The task's copy of a desired feature.
   struct vpTarget {
-    Eigen::Vector4d user;            // the user's s* when last read
-    Eigen::Vector4d effective;       // the s* the task uses
-    Eigen::Vector4d point;           // the point (model frame) that user showed through its rig
-    bool hasPoint = false;           // point is set
-    bool valid = false;              // user and effective are set
-    unsigned long rigGeneration = 0; // the rig effective is expressed in
+    Eigen::Vector4d user = Eigen::Vector4d::Zero();      // the user's s* when last read
+    Eigen::Vector4d effective = Eigen::Vector4d::Zero(); // the s* the task uses
+    Eigen::Vector4d point = Eigen::Vector4d::Zero();     // the point (model frame) that user showed through its rig
+    bool hasPoint = false;                               // point is set
+    bool valid = false;                                  // user and effective are set
+    unsigned long rigGeneration = 0;                     // the rig effective is expressed in
     unsigned long modelGeneration = 0;
   };
 
