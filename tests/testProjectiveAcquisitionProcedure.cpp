@@ -1,0 +1,267 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*
+  vpProjectiveAcquisitionProcedure on a minimal vpRobot wrapping the plugin's vpSimulatorArm (PUMA, the paper's rig):
+  the acquired model predicts the markers at the noise level, tight images and joint limits bound the trial amounts
+  and the report says so, a joint that cannot move without losing markers throws and leaves the robot at the zero
+  reference and the acquisition unchanged, bad settings throw. Seeded noise.
+*/
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include <visp3/core/vpGaussRand.h>
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpUniRand.h>
+#include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
+#include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpSimulatorArm.h>
+#include <visp3/projective/vpSimulatorStereoRig.h>
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+namespace
+{
+//! A vpRobot whose joints are those of a vpSimulatorArm, moved at once by setPosition(); every command is recorded.
+class vpArmRobot : public vpRobot
+{
+public:
+  explicit vpArmRobot(unsigned int n) : q(n, 0.0), commands() {}
+  void get_eJe(vpMatrix &eJe) override { eJe.resize(6, q.size(), true); }
+  void get_fJe(vpMatrix &fJe) override { fJe.resize(6, q.size(), true); }
+  void getDisplacement(const vpRobot::vpControlFrameType, vpColVector &d) override { d.resize(q.size(), true); }
+  void getPosition(const vpRobot::vpControlFrameType, vpColVector &qOut) override { qOut = q; }
+  void init() override {}
+  void setPosition(const vpRobot::vpControlFrameType, const vpColVector &qIn) override
+  {
+    q = qIn;
+    commands.push_back(qIn);
+  }
+  void setVelocity(const vpRobot::vpControlFrameType, const vpColVector &) override {}
+
+  vpColVector q;
+  std::vector<vpColVector> commands;
+};
+
+struct AcquisitionSetup {
+  vpSimulatorArm arm;
+  vpSimulatorStereoRig sim;
+  vpArmRobot robot;
+  vpGaussRand noise;
+  double sigma;
+
+  AcquisitionSetup()
+      : arm(vpSimulatorArm::puma(vpSimulatorArm::paperBasePose())),
+        sim(vpSimulatorStereoRig::paperRig(vpColVector(3, 0.0), 1.0)), robot(6), noise(1.0, 0.0, 12), sigma(0.5)
+  {
+  }
+
+  vpProjectiveAcquisitionProcedure::vpImageSource source()
+  {
+    return [this](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
+      return sim.project(arm.getMarkers(robot.q), left, right, sigma, noise);
+    };
+  }
+
+  vpProjectiveArmAcquisition acquisition() const
+  {
+    std::vector<vpProjectiveArmAcquisition::vpJointType> types(6, vpProjectiveJoint::REVOLUTE);
+    vpProjectiveArmAcquisition acq(types);
+    vpProjectiveStereoRig rig;
+    rig.setFundamentalMatrix(sim.getFundamentalMatrix());
+    acq.setStereoRig(rig);
+    return acq;
+  }
+
+  //! Largest distance (px) of a marker to the image border, over both images, at joints q (noise-free).
+  double borderDistance(const vpColVector &q) const
+  {
+    double d = 1e9;
+    for (const vpColVector &X : arm.getMarkers(q)) {
+      vpImagePoint l, r;
+      sim.project(X, l, r);
+      for (const vpImagePoint &p : {l, r}) {
+        d = std::min({d, p.get_u(), p.get_v(), sim.getWidth() - 1.0 - p.get_u(), sim.getHeight() - 1.0 - p.get_v()});
+      }
+    }
+    return d;
+  }
+};
+
+TEST(ProjectiveAcquisitionProcedure, AcquiredModelPredictsMarkersAtNoiseLevel)
+{
+  AcquisitionSetup s;
+  vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setSteps(vpColVector(6, vpMath::rad(2.0)));
+  std::ostringstream log;
+  procedure.setOutput(&log);
+  unsigned int steps = 0;
+  procedure.setStepCallback([&steps](unsigned int, const vpColVector &, const std::vector<vpImagePoint> &,
+                                     const std::vector<vpImagePoint> &) { ++steps; });
+  vpProjectiveArmAcquisition acq = s.acquisition();
+  const vpProjectiveArmModel model = procedure.run(s.robot, acq);
+
+  EXPECT_LT(procedure.getCalibrationResidual(), 2.0 * s.sigma);
+  ASSERT_EQ(procedure.getReports().size(), 6u);
+  EXPECT_EQ(acq.getNumberOfTrials(), 12u);
+  for (unsigned int i = 0; i < 6; ++i) {
+    EXPECT_EQ(procedure.getReports()[i].trials, 2u);
+    EXPECT_GT(procedure.getReports()[i].amountPositive, vpMath::rad(5.0));
+  }
+  EXPECT_NE(log.str().find("joint 5"), std::string::npos);
+  EXPECT_GT(steps, 12u);
+  EXPECT_NEAR((s.robot.q - vpColVector(6, 0.0)).frobeniusNorm(), 0.0, 1e-15); // back at the zero reference
+
+  // Predictions at 100 random configurations inside the explored box with all markers in view: RMS error at the
+  // noise level.
+  vpUniRand rng(7);
+  double sum = 0.0;
+  unsigned int count = 0;
+  for (int k = 0; k < 100; ++k) {
+    vpColVector q(6);
+    vpProjectiveArmModel::JointVector qm(6);
+    for (unsigned int i = 0; i < 6; ++i) {
+      const vpProjectiveAcquisitionProcedure::vpJointReport &r = procedure.getReports()[i];
+      q[i] = rng.uniform(-0.5 * r.amountNegative, 0.5 * r.amountPositive);
+      qm[i] = q[i];
+    }
+    if (s.borderDistance(q) < 10.0) {
+      continue;
+    }
+    const Eigen::Matrix4d H = model.displacement(qm);
+    const std::vector<vpColVector> X = s.arm.getMarkers(q);
+    for (unsigned int j = 0; j < X.size(); ++j) {
+      Eigen::Vector4d p;
+      ASSERT_TRUE(model.predictMarker(j, H, p));
+      vpImagePoint l, r;
+      s.sim.project(X[j], l, r);
+      sum += (p - Eigen::Vector4d(l.get_u(), l.get_v(), r.get_u(), r.get_v())).squaredNorm();
+      count += 4;
+    }
+  }
+  ASSERT_GT(count, 4u * 7u * 20u);
+  EXPECT_LT(std::sqrt(sum / count), s.sigma); // 0.22 px at seed 12
+}
+
+TEST(ProjectiveAcquisitionProcedure, TightImageBoundsAmountsAndReportSaysSo)
+{
+  AcquisitionSetup s;
+  const double margin = 120.0;
+  vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setSteps(vpColVector(6, vpMath::rad(2.0)));
+  procedure.setMaxAmounts(vpColVector(6, vpMath::rad(40.0)));
+  procedure.setImageMargin(margin);
+  procedure.setMinAmounts(vpColVector(6, vpMath::rad(1.0)));
+  vpProjectiveArmAcquisition acq = s.acquisition();
+  procedure.run(s.robot, acq);
+  unsigned int border = 0;
+  for (unsigned int i = 0; i < 6; ++i) {
+    const vpProjectiveAcquisitionProcedure::vpJointReport &r = procedure.getReports()[i];
+    for (int sign = -1; sign <= 1; sign += 2) {
+      const double amount = sign < 0 ? r.amountNegative : r.amountPositive;
+      const auto reason = sign < 0 ? r.stopNegative : r.stopPositive;
+      vpColVector q(6, 0.0);
+      q[i] = sign * amount;
+      EXPECT_GT(s.borderDistance(q), margin - 3.0 * s.sigma); // the trial kept the markers inside the margin
+      if (reason == vpProjectiveAcquisitionProcedure::IMAGE_BORDER) {
+        ++border;
+        EXPECT_LT(amount, vpMath::rad(40.0));
+        q[i] = sign * (amount + vpMath::rad(2.0));
+        EXPECT_LT(s.borderDistance(q), margin + 3.0 * s.sigma); // one more step would have crossed it
+      } else {
+        EXPECT_EQ(reason, vpProjectiveAcquisitionProcedure::AMOUNT_REACHED);
+        EXPECT_NEAR(amount, vpMath::rad(40.0), 1e-12);
+      }
+    }
+  }
+  EXPECT_GE(border, 2u);
+}
+
+TEST(ProjectiveAcquisitionProcedure, JointLimitsRespected)
+{
+  AcquisitionSetup s;
+  vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  vpColVector qmin(6, -vpMath::rad(170.0)), qmax(6, vpMath::rad(170.0));
+  qmin[1] = -vpMath::rad(8.0);
+  qmax[1] = vpMath::rad(12.0);
+  const double limitMargin = vpMath::rad(1.0);
+  procedure.setJointLimits(qmin, qmax, limitMargin);
+  procedure.setSteps(vpColVector(6, vpMath::rad(3.0)));
+  vpProjectiveArmAcquisition acq = s.acquisition();
+  procedure.run(s.robot, acq);
+  for (const vpColVector &q : s.robot.commands) {
+    for (unsigned int i = 0; i < 6; ++i) {
+      EXPECT_GE(q[i], qmin[i] + limitMargin - 1e-12);
+      EXPECT_LE(q[i], qmax[i] - limitMargin + 1e-12);
+    }
+  }
+  const vpProjectiveAcquisitionProcedure::vpJointReport &r = procedure.getReports()[1];
+  EXPECT_EQ(r.stopNegative, vpProjectiveAcquisitionProcedure::JOINT_LIMIT);
+  EXPECT_EQ(r.stopPositive, vpProjectiveAcquisitionProcedure::JOINT_LIMIT);
+  EXPECT_NEAR(r.amountNegative, vpMath::rad(6.0), 1e-12);
+  EXPECT_NEAR(r.amountPositive, vpMath::rad(9.0), 1e-12);
+}
+
+TEST(ProjectiveAcquisitionProcedure, JointThatLosesMarkersThrowsAndChangesNothing)
+{
+  AcquisitionSetup s;
+  auto base = s.source();
+  // Joint 2 loses a marker as soon as it leaves the zero reference (an occluding cable, say).
+  vpProjectiveAcquisitionProcedure procedure(
+      [&s, base](std::vector<vpImagePoint> &l, std::vector<vpImagePoint> &r) {
+        return base(l, r) && std::fabs(s.robot.q[2]) < vpMath::rad(0.5);
+      },
+      s.sim.getWidth(), s.sim.getHeight());
+  vpProjectiveArmAcquisition acq = s.acquisition();
+  try {
+    procedure.run(s.robot, acq);
+    FAIL() << "no exception";
+  } catch (const vpProjectiveException &e) {
+    EXPECT_EQ(e.getCode(), vpProjectiveException::degenerateConfigurationError);
+    EXPECT_NE(std::string(e.getMessage()).find("joint 2"), std::string::npos);
+    EXPECT_NE(std::string(e.getMessage()).find("marker lost"), std::string::npos);
+  }
+  EXPECT_EQ(acq.getNumberOfTrials(), 0u);
+  EXPECT_TRUE(procedure.getReports().empty());
+  EXPECT_EQ((s.robot.q - vpColVector(6, 0.0)).frobeniusNorm(), 0.0);
+}
+
+TEST(ProjectiveAcquisitionProcedure, BadSettingsThrow)
+{
+  AcquisitionSetup s;
+  EXPECT_THROW(vpProjectiveAcquisitionProcedure(nullptr, 640, 480), vpProjectiveException);
+  EXPECT_THROW(vpProjectiveAcquisitionProcedure(s.source(), 0, 480), vpProjectiveException);
+  vpProjectiveAcquisitionProcedure procedure(s.source(), 640, 480);
+  EXPECT_THROW(procedure.setMaxAmounts(vpColVector(6, -0.1)), vpProjectiveException);
+  EXPECT_THROW(procedure.setSteps(vpColVector(6, 0.0)), vpProjectiveException);
+  EXPECT_THROW(procedure.setMinAmounts(vpColVector(6, -1.0)), vpProjectiveException);
+  EXPECT_THROW(procedure.setImageMargin(-1.0), vpProjectiveException);
+  EXPECT_THROW(procedure.setSpeed(-1.0, 0.0), vpProjectiveException);
+  EXPECT_THROW(procedure.setJointLimits(vpColVector(6, -1.0), vpColVector(5, 1.0), 0.0), vpProjectiveException);
+  EXPECT_THROW(procedure.setJointLimits(vpColVector(6, 1.0), vpColVector(6, -1.0), 0.0), vpProjectiveException);
+  vpColVector nan(6, 0.1);
+  nan[3] = std::nan("");
+  EXPECT_THROW(procedure.setSteps(nan), vpProjectiveException);
+  procedure.setSteps(vpColVector(5, 0.1)); // the robot has 6 joints: run() says so
+  vpProjectiveArmAcquisition acq = s.acquisition();
+  EXPECT_THROW(procedure.run(s.robot, acq), vpProjectiveException);
+  EXPECT_TRUE(s.robot.commands.empty());
+  EXPECT_EQ(acq.getNumberOfTrials(), 0u);
+}
+} // namespace
