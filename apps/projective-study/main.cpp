@@ -42,8 +42,12 @@
   Outputs (study-report.h): a markdown table (stdout and study.md), CSV data (study-runs.csv one line per run,
   study-summary.csv, study-calibration.csv) and PNG figures through gnuplot (study-success.png, study-iterations.png).
 
+  The planned projective servo (global servoing: vpServoProjective::setPathPlanning() inside the joint limits and
+  the image window with a 10 px border) runs beside them on the nominal tasks; with --any-branch the targets need
+  not be in the start's branch, and the report counts the plans that chose another branch than the true target's.
+
   Usage: projective-study [--tasks N (default 500)] [--seed S (default 1)] [--box DEG (default 30)]
-  [--markers 3|7 (default 7)] [--output DIR (default .)]
+  [--markers 3|7 (default 7)] [--sigma PX (one noise level)] [--any-branch] [--nominal-only] [--output DIR]
   Task k uses the seed S + k for everything random about it: projective-study --seed S+k --tasks 1 reproduces it
   alone.
 */
@@ -76,16 +80,35 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace study;
 
+namespace
+{
+//! The acquisition noise stream of a noise level: its index among the default levels (so that --sigma 0.5 draws the
+//! same models as the default run), else \e s.
+unsigned int noiseStream(double sigma, unsigned int s)
+{
+  const std::vector<double> levels = World().sigmas;
+  const auto it = std::find(levels.begin(), levels.end(), sigma);
+  return it == levels.end() ? s : static_cast<unsigned int>(it - levels.begin());
+}
+} // namespace
+
 int main(int argc, char **argv)
 {
   unsigned int nbTasks = 500, seed = 1, markers = 7;
-  double boxDeg = 30.0;
+  double boxDeg = 30.0, sigma = 0.0, checkPlanned = 0.0;
+  bool anyBranch = false, robustness = true;
   std::string output = ".";
   tutorial::CommandLine cmd;
   cmd.add("--tasks", nbTasks, "N", "number of random tasks", 1)
       .add("--seed", seed, "S", "seed of the first task")
       .add("--box", boxDeg, "DEG", "start and target uniformly within +-DEG of the zero reference on every joint")
       .choice("--markers", markers, {3, 7}, "the servo tracks the 7 gripper markers, or the main tutorial's 0-2")
+      .add("--sigma", sigma, "PX", "one noise level only (default: 0.1, 0.5 and 1 px)")
+      .flag("--any-branch", anyBranch, true, "targets in any inverse-kinematic branch, not only the start's")
+      .flag("--nominal-only", robustness, false, "skip the robustness cases (outliers, occlusion, singular start)")
+      .add("--check-planned", checkPlanned, "PCT",
+           "exit with failure if the planned servo succeeds on less than PCT % of the nominal tasks at a noise level",
+           0.0)
       .add("--output", output, "DIR", "directory of the tables, data and figures")
       .note("Single threaded and deterministic. Task k (0-based) uses the seed S + k for all its random draws:\n"
             "--seed S+k --tasks 1 reproduces it alone.");
@@ -99,12 +122,18 @@ int main(int argc, char **argv)
     World world;
     world.boxDeg = boxDeg;
     world.tracked.resize(markers);
+    world.anyBranch = anyBranch;
+    world.robustness = robustness;
+    if (sigma > 0.0) {
+      world.sigmas = {sigma};
+      world.robustnessSigma = sigma;
+    }
     vpIoTools::makeDirectory(output);
     Results results;
     std::ofstream csv((output + "/study-runs.csv").c_str());
     csv << "seed,case,method,sigma_px,calibration_error,outcome,converged_at,last_iteration,final_image_rms_px,"
            "joint_error_over_floor,straightness,exploration_moves,model_error_target_px,outliers_seen,"
-           "outliers_rejected,clean_seen,clean_rejected,message\n";
+           "outliers_rejected,clean_seen,clean_rejected,joint_path_ratio,excursion_deg,no_plan,other_branch,message\n";
     std::cout << "Servo study: the projective servo against calibrated stereo IBVS and Broyden servoing, " << nbTasks
               << " random tasks from seed " << seed << "\n";
 
@@ -118,10 +147,10 @@ int main(int argc, char **argv)
       for (unsigned int s = 0; s < world.sigmas.size(); ++s) {
         std::string message;
         const std::unique_ptr<vpProjectiveRobot> robot =
-            acquireForTask(world, task, world.sigmas[s], s, message, results);
+            acquireForTask(world, task, world.sigmas[s], noiseStream(world.sigmas[s], s), message, results);
         runMethods(world, task, world.sigmas[s], robot.get(), message, NOMINAL, "nominal", world.calibrationFactors,
                    false, results, csv);
-        if (world.sigmas[s] == world.robustnessSigma) {
+        if (world.robustness && world.sigmas[s] == world.robustnessSigma) {
           // Robustness (a) and (b) on the same tasks and models as the nominal case.
           runMethods(world, task, world.sigmas[s], robot.get(), message, OUTLIERS, "outliers", robustFactors, true,
                      results, csv);
@@ -138,13 +167,15 @@ int main(int argc, char **argv)
 
     //! [Singular start]
     // Robustness (c): starts near the wrist singularity, a fresh acquisition per task.
-    for (unsigned int t = 0; t < nbTasks; ++t) {
+    for (unsigned int t = 0; world.robustness && t < nbTasks; ++t) {
       double t0 = vpTime::measureTimeMs();
       results.singularTasks.push_back(makeTask(world, seed + t, true));
       results.timeMs["task generation"] += vpTime::measureTimeMs() - t0;
       const Task &task = results.singularTasks.back();
-      const unsigned int s = static_cast<unsigned int>(
-          std::find(world.sigmas.begin(), world.sigmas.end(), world.robustnessSigma) - world.sigmas.begin());
+      const unsigned int s = noiseStream(
+          world.robustnessSigma,
+          static_cast<unsigned int>(std::find(world.sigmas.begin(), world.sigmas.end(), world.robustnessSigma) -
+                                    world.sigmas.begin()));
       std::string message;
       const std::unique_ptr<vpProjectiveRobot> robot =
           acquireForTask(world, task, world.robustnessSigma, s, message, results);
@@ -174,6 +205,14 @@ int main(int argc, char **argv)
     std::cout << "\n"
               << md.str() << "\n"
               << log.str() << "Table: " << output << "/study.md; runs: " << output << "/study-runs.csv\n";
+    for (double level : world.sigmas) {
+      const double rate = results.get("nominal", "planned", level).successRate();
+      if (rate < checkPlanned) {
+        std::cerr << "Check failed: the planned servo succeeds on " << rate << " % of the tasks at " << level
+                  << " px, below " << checkPlanned << " %" << std::endl;
+        return EXIT_FAILURE;
+      }
+    }
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getStringMessage() << std::endl;
     return EXIT_FAILURE;

@@ -22,6 +22,7 @@
 #include <cmath>
 
 #include <visp3/core/vpGaussRand.h>
+#include <visp3/core/vpMath.h>
 #include <visp3/core/vpTime.h>
 
 #include "study-broyden.h"
@@ -44,7 +45,8 @@ void writeRun(std::ofstream &csv, const std::string &scenario, const std::string
   csv << task.seed << "," << scenario << "," << method << "," << sigma << "," << factor << "," << r.cause() << ","
       << r.convergedAt << "," << r.lastIteration << "," << r.finalImageRms << "," << r.errorOverFloor << ","
       << r.straightness << "," << r.moves << "," << r.modelErrorTarget << "," << r.outliersSeen << ","
-      << r.outliersRejected << "," << r.cleanSeen << "," << r.cleanRejected << ",\"" << message << "\"\n";
+      << r.outliersRejected << "," << r.cleanSeen << "," << r.cleanRejected << "," << r.jointPathRatio << ","
+      << r.excursionDeg << "," << r.noPlan << "," << r.otherBranch << ",\"" << message << "\"\n";
 }
 
 void runMethods(const World &world, const Task &task, double sigma, const vpProjectiveRobot *robot,
@@ -74,8 +76,31 @@ void runMethods(const World &world, const Task &task, double sigma, const vpProj
     results.cell(scenarioName, method, sigma).add(r, task.seed);
     writeRun(csv, scenarioName, method, sigma, -1, task, r);
   }
+  const double tp = vpTime::measureTimeMs();
+  results.timeMs["projective servo"] += tp - t0;
+
+  if (scenario == NOMINAL) {
+    // Global servoing: the same model, planned (its tasks are not filtered to the start's branch with --any-branch).
+    RunResult r;
+    if (robot == nullptr) {
+      r.acquisitionFailed = true;
+      r.message = acquisitionMessage;
+    } else {
+      ProjectiveServo servo(*robot, leftStar, rightStar, world.control);
+      servo.setPlanned(world.rig.getWidth(), world.rig.getHeight(), world.planBorderPx, vpMath::rad(world.planStepDeg),
+                       world.arm.getJointMin(), world.arm.getJointMax());
+      r = runServo(world, task, sigma, servo, scenario);
+      r.noPlan = servo.getNoPlan();
+      if (servo.getPlannedTarget().size() == world.arm.getNumberOfJoints()) {
+        r.otherBranch = branchOf(world.arm, servo.getPlannedTarget()) == branchOf(world.arm, task.qTarget) ? 0 : 1;
+      }
+      r.modelErrorTarget = modelPredictionError(world, *robot, task.qTarget);
+    }
+    results.cell(scenarioName, "planned", sigma).add(r, task.seed);
+    writeRun(csv, scenarioName, "planned", sigma, -1, task, r);
+  }
   const double t1 = vpTime::measureTimeMs();
-  results.timeMs["projective servo"] += t1 - t0;
+  results.timeMs["planned servo"] += t1 - tp;
 
   for (double factor : factors) {
     const BelievedCalibration believed = believedCalibration(world.rig, world.arm, task.calibrationError, factor);

@@ -58,6 +58,10 @@ double modelPredictionError(const World &world, const vpProjectiveRobot &robot, 
   - Robust: the robustness API of vpServoProjective: the tracker's verdict through setFeatureTracked(), the image
     window (setImageSize()), outlier rejection against the epipolar geometry and the model's prediction
     (setOutlierThreshold()), and joint-limit avoidance (setJointLimits()).
+  - Planned (setPlanned()): global servoing as in the main tutorial: setPathPlanning(true) with the world's joint
+    limits (setJointLimits()) and image window (setImageSize() with a border); the first computeControlLaw() plans
+    the task from the model (inverse kinematics of s*, a path in the limits and in view), the task follows it and law
+    (47) finishes. getNoPlan() and getPlannedTarget() tell what the planner did.
 */
 class ProjectiveServo : public Controller
 {
@@ -89,6 +93,22 @@ public:
     m_task.setJointLimits(qmin, qmax);
   }
 
+  //! Turns path planning on (global servoing), inside the joint limits and the image window with \e border px, the
+  //! path sampled every \e step rad at most.
+  void setPlanned(unsigned int width, unsigned int height, double border, double step, const vpColVector &qmin,
+                  const vpColVector &qmax)
+  {
+    m_task.getPathPlanner().setMaxJointStep(step);
+    m_task.setJointLimits(qmin, qmax);
+    m_task.setImageSize(width, height, border);
+    m_task.setPathPlanning(true);
+    m_planned = true;
+  }
+  //! Planned servo: the first computeControlLaw() found no plan.
+  bool getNoPlan() const { return m_noPlan; }
+  //! Planned servo: the joint values the planner chose for the target (empty if none).
+  const vpColVector &getPlannedTarget() const { return m_plannedTarget; }
+
   vpColVector velocity(const vpColVector &q, const std::vector<vpImagePoint> &left,
                        const std::vector<vpImagePoint> &right, const std::vector<bool> &tracked) override
   {
@@ -111,6 +131,13 @@ public:
       }
     }
     const vpColVector qdot = m_task.computeControlLaw(q);
+    if (m_planned && m_first) {
+      m_first = false;
+      m_noPlan = m_task.getStatus() == vpServoProjective::SERVO_NO_PLAN;
+      if (!m_noPlan) {
+        m_plannedTarget = m_task.getPlannedTarget();
+      }
+    }
     if (m_robust) {
       for (unsigned int k = 0; k < m_s.size(); ++k) {
         m_rejected[k] = m_task.getFeatureState(k) == vpServoProjective::FEATURE_OUTLIER;
@@ -129,6 +156,8 @@ private:
   bool m_robust;
   std::vector<bool> m_rejected;
   unsigned int m_stopped = 0;
+  bool m_planned = false, m_first = true, m_noPlan = false;
+  vpColVector m_plannedTarget;
 };
 //! [Projective servo]
 } // namespace study

@@ -57,8 +57,9 @@ std::string tableHeader(const std::string &first)
 {
   return "| " + first +
          " | method | success | acquisition failed | lost view | joint limit | not converged | other | median it. | "
-         "95 % it. | joint error / floor | straightness | extra moves |\n"
-         "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+         "95 % it. | joint error / floor | straightness | joint path / line | excursion median / max (deg) | no plan | "
+         "other branch | extra moves |\n"
+         "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 }
 
 std::string tableRow(const std::string &first, const Cell &c)
@@ -70,6 +71,10 @@ std::string tableRow(const std::string &first, const Cell &c)
      << " | " << c.count("lost view") << " | " << c.count("joint limit") << " | " << c.count("not converged") << " | "
      << other << " | " << fixed(percentile(c.iterations, 0.5), 0) << " | " << fixed(percentile(c.iterations, 0.95), 0)
      << " | " << fixed(percentile(c.errorOverFloor, 0.5), 2) << " | " << fixed(percentile(c.straightness, 0.5), 3)
+     << " | " << fixed(percentile(c.jointPathRatio, 0.5), 2) << " | " << fixed(percentile(c.excursionDeg, 0.5), 1)
+     << " / " << fixed(percentile(c.excursionDeg, 1.0), 1) << " | "
+     << (c.method == "planned" ? std::to_string(c.noPlan) : std::string("-")) << " | "
+     << (c.method == "planned" ? std::to_string(c.otherBranch) + " of " + std::to_string(c.planned) : std::string("-"))
      << " | " << fixed(percentile(c.moves, 0.5), 0) << " |\n";
   return os.str();
 }
@@ -163,14 +168,17 @@ void writeSummary(const Results &results, const std::string &filename)
   std::ofstream out(filename.c_str());
   out << "case,method,sigma_px,calibration_error,tasks,success_percent,acquisition_failed,lost_view,joint_limit,"
          "not_converged,other,median_iterations,p95_iterations,median_joint_error_over_floor,median_straightness,"
-         "median_extra_moves\n";
+         "median_extra_moves,median_joint_path_ratio,median_excursion_deg,max_excursion_deg,no_plan,plans,"
+         "other_branch\n";
   for (const Cell &c : results.cells) {
     out << c.scenario << "," << c.method << "," << c.sigma << "," << c.calibrationFactor << "," << c.tasks << ","
         << c.successRate() << "," << c.count("acquisition") << "," << c.count("lost view") << ","
         << c.count("joint limit") << "," << c.count("not converged") << ","
         << c.count("exception") + c.count("exploration") << "," << percentile(c.iterations, 0.5) << ","
         << percentile(c.iterations, 0.95) << "," << percentile(c.errorOverFloor, 0.5) << ","
-        << percentile(c.straightness, 0.5) << "," << percentile(c.moves, 0.5) << "\n";
+        << percentile(c.straightness, 0.5) << "," << percentile(c.moves, 0.5) << ","
+        << percentile(c.jointPathRatio, 0.5) << "," << percentile(c.excursionDeg, 0.5) << ","
+        << percentile(c.excursionDeg, 1.0) << "," << c.noPlan << "," << c.planned << "," << c.otherBranch << "\n";
   }
 }
 
@@ -335,7 +343,11 @@ std::string markdownReport(const World &world, const Results &results, unsigned 
      << " px/rad). Iterations: median and 95th percentile of the successes; joint error / floor: median over the "
         "successes of the mean over joints of |q - q*| / sqrt(diag(sigma^2 (J^T J)^-1)) at the end of the budget; "
         "straightness: median of the image path length over the straight distance (1 = straight; noise-free "
-        "images of the servo phase up to convergence); extra moves: "
+        "images of the servo phase up to convergence); joint path / line: median over the successes of the joint "
+        "path length up to convergence over |q* - q_0|; excursion: the largest motion of a joint beyond the "
+        "interval of its start and target values, median and maximum over the runs; no plan: planned runs where "
+        "the planner found none (SERVO_NO_PLAN); other branch: plans whose target joints are in another "
+        "inverse-kinematic branch than the true target's; extra moves: "
         "Broyden's exploratory configurations per task (the projective servo's acquisition, 12 trial motions per "
         "arm, is not counted).\n\n";
   md << "Self-check: the exact-calibration IBVS Jacobian equals the true image Jacobian to " << std::scientific
@@ -344,8 +356,10 @@ std::string markdownReport(const World &world, const Results &results, unsigned 
 
   md << "## Tasks\n\nStart and target drawn uniformly in |q_i| <= " << world.boxDeg
      << " deg (joint limits +-170 deg), kept when the tracked markers are " << world.marginPx
-     << " px inside both images at both ends and the target has the start's inverse-kinematic branch (signs of "
-        "the shoulder reach, cos(theta_2) and sin(theta_4)).\n\n"
+     << " px inside both images at both ends"
+     << (world.anyBranch ? " (--any-branch: the target in any inverse-kinematic branch).\n\n"
+                         : " and the target has the start's inverse-kinematic branch (signs of the shoulder reach, "
+                           "cos(theta_2) and sin(theta_4)).\n\n")
      << taskDistribution(world, results.tasks) << "\n";
 
   md << "## Nominal: Gaussian noise\n\n" << tableHeader("noise (px)");
@@ -356,39 +370,44 @@ std::string markdownReport(const World &world, const Results &results, unsigned 
   }
   md << "\nSuccess by the tool rotation of the task:\n\n" << rotationBreakdown(world, results);
 
-  md << "\n## Robustness at " << world.robustnessSigma << " px\n\n"
-     << "(a) each stereo measurement replaced with probability " << world.outlierProbability
-     << " per iteration by a gross error (" << world.outlierMinPx << "-" << world.outlierMaxPx
-     << " px in a random direction, in one image); (b) feature " << world.occludedFeature
-     << " not tracked at iterations " << world.occludedFirst << "-" << world.occludedLast
-     << "; (c) start with q_4 within " << world.nearSingularDeg << " deg of " << world.wristSingularDeg
-     << " deg, where the axes of joints 3 and 5 align (theta_4 = 0 in the DH table), other tasks drawn as above. "
-        "(a) and (b) use the nominal tasks and the nominal 0.5 px models; (c) its own tasks and fresh acquisitions. "
-        "The baselines and the plain projective servo drop the rows of an occluded point and have no other "
-        "protection; the robustness API adds setFeatureTracked(), setImageSize(), setOutlierThreshold("
-     << world.outlierThresholdPx << " px) and setJointLimits().\n\n"
-     << tableHeader("case");
-  for (const char *scenario : {"outliers", "occlusion", "singular start"}) {
-    for (const Cell *c : results.select(scenario, world.robustnessSigma)) {
-      md << tableRow(scenario, *c);
+  if (!world.robustness) {
+    md << "\n(--nominal-only: no robustness cases.)\n";
+  } else {
+    md << "\n## Robustness at " << world.robustnessSigma << " px\n\n"
+       << "(a) each stereo measurement replaced with probability " << world.outlierProbability
+       << " per iteration by a gross error (" << world.outlierMinPx << "-" << world.outlierMaxPx
+       << " px in a random direction, in one image); (b) feature " << world.occludedFeature
+       << " not tracked at iterations " << world.occludedFirst << "-" << world.occludedLast
+       << "; (c) start with q_4 within " << world.nearSingularDeg << " deg of " << world.wristSingularDeg
+       << " deg, where the axes of joints 3 and 5 align (theta_4 = 0 in the DH table), other tasks drawn as above. "
+          "(a) and (b) use the nominal tasks and the nominal 0.5 px models; (c) its own tasks and fresh acquisitions. "
+          "The baselines and the plain projective servo drop the rows of an occluded point and have no other "
+          "protection; the robustness API adds setFeatureTracked(), setImageSize(), setOutlierThreshold("
+       << world.outlierThresholdPx << " px) and setJointLimits().\n\n"
+       << tableHeader("case");
+    for (const char *scenario : {"outliers", "occlusion", "singular start"}) {
+      for (const Cell *c : results.select(scenario, world.robustnessSigma)) {
+        md << tableRow(scenario, *c);
+      }
     }
-  }
-  const Cell &robustOutliers = results.get("outliers", "projective (robust)", world.robustnessSigma);
-  const Cell &robustOcclusion = results.get("occlusion", "projective (robust)", world.robustnessSigma);
-  const size_t remaining = world.tracked.size() - 1;
-  md << "\nWhile feature " << world.occludedFeature << " is occluded, " << remaining << " points remain ("
-     << (remaining >= 3 ? "enough to constrain 6 joints"
-                        : "they cannot constrain 6 joints: a rotation about the line through two points moves neither")
-     << "): the robustness API stopped the task (SERVO_STOPPED, zero velocity) for "
-     << robustOcclusion.stoppedIterations << " iterations over " << robustOcclusion.tasks
-     << " tasks, where the others go on with the damped " << 4 * remaining << " x 6 task.\n";
-  md << "\nOutlier rejection of the robustness API: " << robustOutliers.outliersRejected << " of "
-     << robustOutliers.outliersSeen << " gross errors rejected ("
-     << fixed(100.0 * robustOutliers.outliersRejected / std::max(1u, robustOutliers.outliersSeen), 1) << " %), "
-     << robustOutliers.cleanRejected << " of " << robustOutliers.cleanSeen << " clean measurements rejected ("
-     << fixed(100.0 * robustOutliers.cleanRejected / std::max(1u, robustOutliers.cleanSeen), 2) << " %).\n";
-  if (!results.singularTasks.empty()) {
-    md << "\nSingular-start tasks:\n\n" << taskDistribution(world, results.singularTasks);
+    const Cell &robustOutliers = results.get("outliers", "projective (robust)", world.robustnessSigma);
+    const Cell &robustOcclusion = results.get("occlusion", "projective (robust)", world.robustnessSigma);
+    const size_t remaining = world.tracked.size() - 1;
+    md << "\nWhile feature " << world.occludedFeature << " is occluded, " << remaining << " points remain ("
+       << (remaining >= 3
+               ? "enough to constrain 6 joints"
+               : "they cannot constrain 6 joints: a rotation about the line through two points moves neither")
+       << "): the robustness API stopped the task (SERVO_STOPPED, zero velocity) for "
+       << robustOcclusion.stoppedIterations << " iterations over " << robustOcclusion.tasks
+       << " tasks, where the others go on with the damped " << 4 * remaining << " x 6 task.\n";
+    md << "\nOutlier rejection of the robustness API: " << robustOutliers.outliersRejected << " of "
+       << robustOutliers.outliersSeen << " gross errors rejected ("
+       << fixed(100.0 * robustOutliers.outliersRejected / std::max(1u, robustOutliers.outliersSeen), 1) << " %), "
+       << robustOutliers.cleanRejected << " of " << robustOutliers.cleanSeen << " clean measurements rejected ("
+       << fixed(100.0 * robustOutliers.cleanRejected / std::max(1u, robustOutliers.cleanSeen), 2) << " %).\n";
+    if (!results.singularTasks.empty()) {
+      md << "\nSingular-start tasks:\n\n" << taskDistribution(world, results.singularTasks);
+    }
   }
 
   md << "\n## Verdicts\n\n" << summary(world, results);

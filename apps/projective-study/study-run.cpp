@@ -22,6 +22,7 @@
 #include <cmath>
 
 #include <visp3/core/vpException.h>
+#include <visp3/core/vpMath.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -67,6 +68,8 @@ RunResult runServo(const World &world, const Task &task, double sigma, Controlle
   std::vector<double> pathLength(2 * N, 0.0);
   std::vector<vpImagePoint> previousLeft, previousRight;
   std::vector<bool> rejected;
+  double jointPath = 0.0;
+  std::vector<vpColVector> trajectory(1, q);
   for (unsigned int it = 0; it <= world.budget; ++it) {
     std::vector<vpImagePoint> left, right;
     if (!trueImages(world, q, left, right)) {
@@ -98,6 +101,7 @@ RunResult runServo(const World &world, const Task &task, double sigma, Controlle
                  std::sqrt(vpImagePoint::sqrDistance(task.rightStart[k], task.rightTarget[k]));
       }
       result.straightness = length / chord;
+      result.jointPathRatio = jointPath / (q - task.qStart).frobeniusNorm();
     }
     if (it == world.budget) {
       break;
@@ -146,9 +150,23 @@ RunResult runServo(const World &world, const Task &task, double sigma, Controlle
       result.message = "non-finite joint velocity";
       break;
     }
-    q = world.arm.integrate(q, qdot, 1.0);
+    const vpColVector qNext = world.arm.integrate(q, qdot, 1.0);
+    if (result.convergedAt < 0) {
+      jointPath += (qNext - q).frobeniusNorm();
+    }
+    q = qNext;
+    trajectory.push_back(q);
     if (result.limitHit) {
       break;
+    }
+  }
+  // The target interval ends where the run converged (another inverse-kinematic branch of the same images counts as
+  // the target it went to), at the true target otherwise.
+  const vpColVector &end = result.success() ? q : task.qTarget;
+  for (const vpColVector &qa : trajectory) {
+    for (unsigned int i = 0; i < n; ++i) {
+      const double lo = std::min(task.qStart[i], end[i]), hi = std::max(task.qStart[i], end[i]);
+      result.excursionDeg = std::max(result.excursionDeg, vpMath::deg(std::max(qa[i] - hi, lo - qa[i])));
     }
   }
   double ratio = 0.0;

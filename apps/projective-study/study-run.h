@@ -45,6 +45,16 @@ struct RunResult {
   double errorOverFloor = std::numeric_limits<double>::quiet_NaN(); // mean over joints of |q - q*|_i / floor_i
   double straightness = std::numeric_limits<double>::quiet_NaN();
   double modelErrorTarget = std::numeric_limits<double>::quiet_NaN(); // projective only (px RMS)
+  // Joint path (successes): its length (Euclidean, joint space) from the start to the convergence over the straight
+  // distance |q_c - q_0| to the joints q_c reached at the convergence; the largest excursion of a joint beyond the
+  // interval [start, end] of its values over the whole run (deg), the end being the joints at the end of the budget
+  // for a success (the branch it converged in) and the true target otherwise.
+  double jointPathRatio = std::numeric_limits<double>::quiet_NaN();
+  double excursionDeg = 0.0;
+  // Planned servo only: no plan (SERVO_NO_PLAN at the first iteration); the planned target's branch differs from the
+  // taught target's (-1 when unknown).
+  bool noPlan = false;
+  int otherBranch = -1;
   // Outlier rejection by the controller (robust projective): gross errors seen and rejected, clean points rejected.
   unsigned int outliersSeen = 0, outliersRejected = 0, cleanSeen = 0, cleanRejected = 0;
   unsigned int stoppedIterations = 0;
@@ -81,7 +91,7 @@ struct RunResult {
   sees). It runs the whole budget so that the final joint error is that of a settled arm, and stops early only when
   the markers leave an image or a joint limit is hit. Straightness: the noise-free image paths of the tracked points
   in both images from the start to the convergence, their total length over the total length of the straight
-  segments from their start to their target images.
+  segments from their start to their target images. Joint path: see RunResult.
 */
 RunResult runServo(const World &world, const Task &task, double sigma, Controller &controller, Scenario scenario);
 //! [Servo loop]

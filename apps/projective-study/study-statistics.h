@@ -47,7 +47,10 @@ struct Cell {
   std::map<std::string, unsigned int> causes;
   std::map<std::string, std::vector<unsigned int>> seeds; // first seeds of each failure cause
   std::vector<double> iterations, errorOverFloor, straightness, moves, notConvergedRms, modelErrorTarget;
-  std::vector<bool> successes; // per task, in task order (paired comparisons)
+  std::vector<double> jointPathRatio;                    // successful runs
+  std::vector<double> excursionDeg;                      // every run
+  unsigned int noPlan = 0, planned = 0, otherBranch = 0; // planned servo: no plan; plans; plans in another branch
+  std::vector<bool> successes;                           // per task, in task order (paired comparisons)
   unsigned int outliersSeen = 0, outliersRejected = 0, cleanSeen = 0, cleanRejected = 0, stoppedIterations = 0;
 
   void add(const RunResult &r, unsigned int seed)
@@ -60,9 +63,16 @@ struct Cell {
       iterations.push_back(r.convergedAt);
       errorOverFloor.push_back(r.errorOverFloor);
       straightness.push_back(r.straightness);
+      jointPathRatio.push_back(r.jointPathRatio);
     } else if (seeds[c].size() < 6) {
       seeds[c].push_back(seed);
     }
+    if (!r.acquisitionFailed && !r.explorationFailed) {
+      excursionDeg.push_back(r.excursionDeg);
+    }
+    noPlan += r.noPlan;
+    planned += r.otherBranch >= 0;
+    otherBranch += r.otherBranch == 1;
     if (c == "not converged") {
       notConvergedRms.push_back(r.finalImageRms);
     }
@@ -91,6 +101,12 @@ struct Cell {
       std::ostringstream os;
       os << "IBVS, calibration error " << calibrationFactor << "x";
       return os.str();
+    }
+    if (method == "planned") {
+      return "projective, planned";
+    }
+    if (method == "projective") {
+      return "projective, law (47)";
     }
     if (method == "projective (robust)") {
       return "projective + robustness API";

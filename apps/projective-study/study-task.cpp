@@ -71,7 +71,7 @@ Task makeTask(const World &world, unsigned int seed, bool singularStart)
   do {
     task.qTarget = draw(false);
     ++task.drawnTarget;
-  } while ((!acceptable(world, task.qTarget) || !(branchOf(world.arm, task.qTarget) == branch)) &&
+  } while ((!acceptable(world, task.qTarget) || (!world.anyBranch && !(branchOf(world.arm, task.qTarget) == branch))) &&
            task.drawnTarget < maxDraws);
   if (task.drawnStart >= maxDraws || task.drawnTarget >= maxDraws) {
     throw vpException(vpException::fatalError, "task " + std::to_string(seed) +

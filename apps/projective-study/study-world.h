@@ -51,6 +51,9 @@ struct World {
   std::vector<unsigned int> tracked = {0, 1, 2, 3, 4, 5, 6};
   double boxDeg = 30.0;        // tasks: |q_i| <= boxDeg around the zero reference
   double marginPx = 20.0;      // tracked markers this far inside both images at both ends of a task
+  bool anyBranch = false;      // --any-branch: targets need not be in the start's inverse-kinematic branch
+  double planBorderPx = 10.0;  // planned servo: the image window's border (setImageSize()), as the main tutorial
+  double planStepDeg = 10.0;   // planned servo: the path's largest joint step per sample, as the main tutorial
   double wristSingularDeg = 0; // q_4 where the axes of joints 3 and 5 align (set from the DH table)
   double nearSingularDeg = 2.0;
   unsigned int budget = 100;                    // iterations, every method
@@ -58,6 +61,7 @@ struct World {
   std::vector<double> sigmas = {0.1, 0.5, 1.0}; // px
   std::vector<double> calibrationFactors = {0, 1, 2, 4};
   double robustnessSigma = 0.5;
+  bool robustness = true; // the robustness cases (outliers, occlusion, singular start); --nominal-only: false
   double outlierProbability = 0.05;
   double outlierMinPx = 20.0, outlierMaxPx = 50.0;
   double outlierThresholdPx = 10.0; // robustness API: half the smallest gross error, 14 times the epipolar noise
