@@ -258,13 +258,13 @@ void vpProjectiveStereoRig::setFundamentalMatrix(const vpMatrix &F)
 
 void vpProjectiveStereoRig::setProjections(const vpMatrix &P, const vpMatrix &Pp)
 {
-  const std::string where = std::string(kClass) + "::setProjections()";
+  const std::string where = at("setProjections()");
   setProjections(Projection(toEigen<3, 4>(P, where, "P")), Projection(toEigen<3, 4>(Pp, where, "P'")));
 }
 
 void vpProjectiveStereoRig::setProjections(const Projection &P, const Projection &Pp)
 {
-  const std::string where = std::string(kClass) + "::setProjections()";
+  const std::string where = at("setProjections()");
   if (!P.allFinite() || !Pp.allFinite()) {
     fail(vpProjectiveException::nonFiniteValueError, where, "a camera matrix has a NaN or infinite entry");
   }
