@@ -67,17 +67,19 @@ namespace
 {
 //! [Re-registration]
 /*!
-  The rig moved: the arm visits the observation poses \e poses with every marker lit (the zero reference and two
-  joint offsets, where the acquisition saw all of them), the simulated user clicks them once at the first pose and
-  the tracker follows them to the others without the model (its rig is the old one). Each pose's tracked images go
-  to addRigObservation(); then updateRig(). \e oldError and \e newError are getPredictionError() over all the
-  markers with the old rig (RMS over the poses) and with the new one (a new frame at the first pose).
+  The rig moved: the arm visits the observation poses \e poses with every marker lit (where the task stopped, and
+  two joint offsets from there: observed where the task runs, the new rig predicts best there), the simulated user
+  clicks them once at the first pose and the tracker follows them to the others without the model (its rig is the
+  old one); a pose where a marker would leave the view or merge with another is observed where the arm stopped. Each
+  pose's tracked images go to addRigObservation(); then updateRig(). \e oldError and \e newError are
+  getPredictionError() over all the markers with the old rig (RMS over the poses) and with the new one (a new frame back
+  at the first pose).
 */
 void reRegister(Session &session, vpProjectiveRobot &robot, const std::vector<vpColVector> &poses,
                 const std::vector<unsigned int> &all, double &oldError, double &newError)
 {
   session.lit = all;
-  session.q = poses[0]; // the arm drives there; nothing needs tracking on the way
+  session.q = poses[0];
   session.grab();
   session.click(all);
   session.withModel = false;
@@ -202,15 +204,15 @@ int main(int argc, char **argv)
         writeStereoPicture(output + "/projective-bumped-after-bump.png", session.Ileft, session.Iright, session.tracker,
                            session.markers, &robot, session.q, "just after the bump (old rig)");
         const vpColVector qStopped = session.q;
-        std::vector<vpColVector> poses(3, vpColVector(n, 0.0)); // the zero reference and two spreading offsets
+        std::vector<vpColVector> poses(3, qStopped); // where the task stopped, and two offsets that spread the markers
         for (unsigned int i = 0; i < n; ++i) {
-          poses[1][i] = vpMath::rad((i % 2 == 0 ? 1.0 : -1.0) * world.trialDeg[i] / 4.0);
-          poses[2][i] = -poses[1][i];
+          poses[1][i] += vpMath::rad((i % 2 == 0 ? 1.0 : -1.0) * world.trialDeg[i] / 4.0);
+          poses[2][i] += vpMath::rad((i < 3 ? -1.0 : 1.0) * world.trialDeg[i] / 4.0);
         }
         std::cout << "\n3. Re-registration from " << poses.size() << " observation poses\n";
         reRegister(session, robot, poses, all, errorBumped, errorUpdated);
         std::cout << "    updateRig(): residual " << robot.getRigRegistrationResidual()
-                  << " px; prediction error at the zero reference " << errorUpdated << " px\n\n"
+                  << " px; prediction error where the task stopped " << errorUpdated << " px\n\n"
                   << "4. The task goes on from where it stopped\n";
         // The arm drives back to where the task stopped, where the re-registered model finds the servo's blobs.
         session.q = qStopped;
