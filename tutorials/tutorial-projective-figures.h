@@ -29,6 +29,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <visp3/core/vpDisplay.h>
 #include <visp3/core/vpImage.h>
@@ -141,6 +142,37 @@ inline void writeFigures(const ServoRun &run, const std::string &dir)
              dir + "/projective-servo-fig{2-features,4-joints,5-error}.png", csv);
 }
 //! [Figures]
+
+//! [Prediction figure]
+/*!
+  The model's prediction error over a servo run whose rig was bumped (tutorial-projective-bumped-camera.cpp): CSV
+  \e dir/projective-bumped-prediction.csv (iteration, error in px, phase) and the PNG
+  \e dir/projective-bumped-prediction.png through gnuplot (log scale), one colour per phase: \e phase[it] is 0 before
+  the bump, 1 with the bumped camera and the old rig, 2 after the rig was re-registered.
+*/
+inline void writePredictionFigure(const std::vector<double> &error, const std::vector<int> &phase,
+                                  const std::string &dir)
+{
+  const std::string csv = dir + "/projective-bumped-prediction.csv", png = dir + "/projective-bumped-prediction.png";
+  std::ofstream out(csv.c_str());
+  out << "iteration,prediction_error_px,phase\n";
+  for (size_t it = 0; it < error.size(); ++it) {
+    out << it << "," << error[it] << "," << phase[it] << "\n";
+  }
+  out.close();
+  std::ostringstream gp;
+  gp << "set datafile separator ','\nset terminal png size 1000,480\nset output '" << png << "'\n"
+     << "set title 'model prediction error of the tracked markers (RMS per coordinate)'\n"
+     << "set xlabel 'servo iteration'\nset ylabel '[px]'\nset logscale y\nset key top right\nplot ";
+  const char *names[3] = {"before the bump", "camera bumped, old rig", "rig re-registered"};
+  const char *colours[3] = {"#1a9850", "#d73027", "#4575b4"};
+  for (int p = 0; p < 3; ++p) {
+    gp << "'" << csv << "' every ::1 using 1:($3 == " << p << " ? $2 : 1/0) with linespoints pt 7 ps 0.7 lc rgb '"
+       << colours[p] << "' title '" << names[p] << "'" << (p < 2 ? ", " : "\n");
+  }
+  runGnuplot(gp.str(), dir + "/projective-bumped-prediction.gp", png, csv);
+}
+//! [Prediction figure]
 
 //! [Live display]
 /*!

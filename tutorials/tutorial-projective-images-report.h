@@ -42,6 +42,7 @@
 #include "tutorial-projective-common.h"
 #include "tutorial-projective-images.h"
 #include "tutorial-projective-report.h"
+#include "tutorial-projective-stereo-picture.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -251,7 +252,8 @@ inline bool printTable(const PaperWorld &world, const ImageModel &model, const I
 //! [Seed one]
 /*!
   The detailed report of seed 1: its acquisition from images (if \e acquired), then its teaching and servo, and its
-  final images in \e output (if not empty). \e start is the seed's start time (ms).
+  final images in \e output (if not empty): per camera with the trajectories, and the stereo pair with the tracked
+  markers and the model's predictions (writeStereoPicture()). \e start is the seed's start time (ms).
 */
 inline void printSeedOne(const Session &session, const vpProjectiveRobot &robot, const ServoRun &run, bool acquired,
                          const TrackingAccuracy &acquisitionAccuracy, const TrackingAccuracy &servoAccuracy,
@@ -292,6 +294,8 @@ inline void printSeedOne(const Session &session, const vpProjectiveRobot &robot,
   if (!output.empty() && !run.q.empty()) {
     vpIoTools::makeDirectory(output);
     writeImages(session, run, output);
+    writeStereoPicture(output + "/projective-servo-images-end.png", session.Ileft, session.Iright, session.tracker,
+                       session.markers, &robot, session.q, "end of the servo");
   }
 }
 //! [Seed one]

@@ -24,14 +24,21 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iomanip>
+#include <iostream>
+#include <numeric>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <visp3/core/vpColVector.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpDisplay.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMath.h>
+#include <visp3/core/vpThetaUVector.h>
+#include <visp3/core/vpTranslationVector.h>
 #include <visp3/core/vpUniRand.h>
 #include <visp3/gui/vpDisplayX.h>
 
@@ -135,6 +142,26 @@ private:
 };
 //! [Viewer]
 
+//! [Bump]
+/*!
+  \e rig with camera \e camera (0 left, 1 right) moved by \e d, expressed in that camera's frame (a knock of 2 deg
+  and 1 cm, say): the other camera stays where it was.
+*/
+inline vpSimulatorStereoRig bumpedRig(const vpSimulatorStereoRig &rig, unsigned int camera,
+                                      const vpHomogeneousMatrix &d)
+{
+  vpHomogeneousMatrix wMl = rig.get_wMl(), rMl = rig.get_rMl();
+  if (camera == 0) {
+    wMl = wMl * d; // wMr = wMl rMl^-1 unchanged
+    rMl = rMl * d;
+  } else {
+    rMl = d.inverse() * rMl; // wMr <- wMr d
+  }
+  return vpSimulatorStereoRig(rig.getLeftCameraParameters(), rig.getRightCameraParameters(), rMl, wMl, rig.getWidth(),
+                              rig.getHeight());
+}
+//! [Bump]
+
 //! How a motion imaged frame by frame ended.
 struct MoveResult {
   bool complete = true; // reached the end of the segment
@@ -150,8 +177,8 @@ struct MoveResult {
 struct Session {
   Session(const PaperWorld &w, const ImageModel &m, unsigned int seed)
       : world(w), model(m), renderer(w.rig, static_cast<long>(seed)), clicks(static_cast<uint64_t>(seed), 2),
-        Ileft(w.rig.getHeight(), w.rig.getWidth(), 0), Iright(w.rig.getHeight(), w.rig.getWidth(), 0),
-        q(w.arm.getNumberOfJoints(), 0.0)
+        seed(static_cast<long>(seed)), Ileft(w.rig.getHeight(), w.rig.getWidth(), 0),
+        Iright(w.rig.getHeight(), w.rig.getWidth(), 0), q(w.arm.getNumberOfJoints(), 0.0)
   {
   }
 
@@ -171,7 +198,8 @@ struct Session {
   /*!
     The one use of the ground truth for image measurements, standing for a user who clicks each marker of \e indices
     once in both images (vpStereoDotTracker::initTrackingByClick() with a display): a click up to 2 px off the
-    marker's true image (seeded), inside the blob, that the tracker's vpDot2 refines.
+    marker's true image (seeded), inside the blob, that the tracker's vpDot2 refines. The new tracker has no model
+    (withModel is left to the caller).
   */
   void click(const std::vector<unsigned int> &indices)
   {
@@ -179,7 +207,7 @@ struct Session {
     std::vector<vpImagePoint> clickLeft, clickRight;
     for (unsigned int k : indices) {
       vpImagePoint l, r;
-      world.rig.project(X[k], l, r);
+      renderer.getStereoRig().project(X[k], l, r); // the cameras as they are now (see bump())
       clickLeft.push_back(l + vpImagePoint(clicks.uniform(-2.0, 2.0), clicks.uniform(-2.0, 2.0)));
       clickRight.push_back(r + vpImagePoint(clicks.uniform(-2.0, 2.0), clicks.uniform(-2.0, 2.0)));
     }
@@ -188,6 +216,16 @@ struct Session {
     markers = indices;
   }
   //! [Click]
+
+  /*!
+    A knock on camera \e camera (0 left, 1 right): from the next grab() on, the cameras are bumpedRig() of the
+    present ones by \e d. The world, which the rest of the program sees, is not changed: the truth moved, not the
+    arm.
+  */
+  void bump(unsigned int camera, const vpHomogeneousMatrix &d)
+  {
+    renderer = vpSimulatorMarkerRenderer(bumpedRig(renderer.getStereoRig(), camera, d), seed + 1000);
+  }
 
   //! Shows s* in the live view, if any.
   void showTarget(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right)
@@ -260,6 +298,7 @@ struct Session {
   ImageModel model;
   vpSimulatorMarkerRenderer renderer;
   vpUniRand clicks;
+  long seed;
   vpImage<unsigned char> Ileft, Iright;
   vpColVector q;
   std::vector<unsigned int> lit;        // the markers switched on
@@ -272,6 +311,121 @@ struct Session {
   unsigned int frames = 0;
 };
 //! [Session]
+
+//! [Acquisition]
+/*!
+  Acquisition from images (tutorial-projective-servo-images.cpp and tutorial-projective-bumped-camera.cpp): the user
+  clicks the 7 markers at the zero reference; each trial motion is then tracked
+  from there, and ends at its last good frame if the tracker loses a marker. Between trials the arm drives back to the
+  zero reference, where the tracker restarts from its zero-reference state (\e zeroState).
+*/
+inline vpProjectiveRobot acquireFromImages(Session &session, TrackingAccuracy &accuracy, vpStereoDotTracker &zeroState,
+                                           bool verbose)
+{
+  const unsigned int n = session.world.arm.getNumberOfJoints();
+  std::vector<unsigned int> all(session.world.arm.getToolMarkers().size());
+  std::iota(all.begin(), all.end(), 0u);
+  session.q = vpColVector(n, 0.0);
+  session.lit = all;
+  session.caption = "acquisition: zero reference";
+  session.grab();
+  session.click(all);
+  accuracy.add(session.world, session.q, session.tracker, session.markers);
+  zeroState = session.tracker;
+  if (verbose) {
+    std::cout << "    markers 0-6 clicked once at the zero reference (simulated clicks, refined by vpDot2)\n";
+  }
+  std::vector<TrialMotion> trials;
+  session.accuracy = &accuracy;
+  for (unsigned int i = 0; i < n; ++i) {
+    for (double sign : {1.0, -1.0}) {
+      const double planned = sign * vpMath::rad(session.world.trialDeg[i]);
+      session.caption = "acquisition: joint " + std::to_string(i);
+      session.q = vpColVector(n, 0.0); // back at the zero reference: a new frame, tracked from there
+      session.tracker = zeroState;
+      session.grab();
+      if (!session.tracker.track(session.Ileft, session.Iright, 0.0)) {
+        throw vpException(vpException::fatalError, "acquisition at the zero reference: " + session.tracker.getReport());
+      }
+      vpColVector qTrial(n, 0.0);
+      qTrial[i] = planned;
+      const MoveResult r = session.move(qTrial);
+      const double amount = session.q[i];
+      if (amount == 0.0) {
+        throw vpException(vpException::fatalError, "joint " + std::to_string(i) + " could not move: " + r.failure);
+      }
+      if (verbose) {
+        std::ostringstream os;
+        os << std::fixed << std::setprecision(1) << std::showpos << "    joint " << i << ": " << vpMath::deg(amount)
+           << " deg in " << std::noshowpos << r.frames << " frames";
+        if (!r.complete) {
+          os << ", reduced from " << std::showpos << vpMath::deg(planned) << " deg: " << r.failure;
+        }
+        std::cout << os.str() << "\n";
+      }
+      trials.push_back({i, amount, session.tracker.getLeftPoints(), session.tracker.getRightPoints()});
+    }
+  }
+  session.accuracy = nullptr;
+  // As in the main tutorial, with tracked centres for noisy projections: F with inliers within 1 px, calibrate().
+  return calibrateFromTrials(n, zeroState.getLeftPoints(), zeroState.getRightPoints(), trials, 1.0);
+}
+//! [Acquisition]
+
+//! RMS per coordinate of the tracked markers minus the model's predictions at q (getPredictionError() on a subset).
+inline double trackedPredictionError(const vpProjectiveRobot &robot, const Session &session)
+{
+  double sum = 0.0;
+  for (unsigned int k = 0; k < session.tracker.getNumberOfMarkers(); ++k) {
+    vpImagePoint l, r;
+    robot.projectMarker(session.markers[k], session.q, l, r);
+    sum += vpImagePoint::sqrDistance(l, session.tracker.getLeftPoint(k)) +
+           vpImagePoint::sqrDistance(r, session.tracker.getRightPoint(k));
+  }
+  return std::sqrt(sum / (4.0 * session.tracker.getNumberOfMarkers()));
+}
+
+//! A knock of \e deg degrees about a random axis and \e mm millimetres along a random direction (seeded).
+inline vpHomogeneousMatrix randomBump(double deg, double mm, unsigned int seed)
+{
+  vpUniRand rng(seed + 100);
+  vpColVector axis(3), direction(3);
+  for (unsigned int a = 0; a < 3; ++a) {
+    axis[a] = rng.uniform(-1.0, 1.0);
+    direction[a] = rng.uniform(-1.0, 1.0);
+  }
+  axis *= vpMath::rad(deg) / axis.frobeniusNorm();
+  direction *= 0.001 * mm / direction.frobeniusNorm();
+  return vpHomogeneousMatrix(vpTranslationVector(direction[0], direction[1], direction[2]),
+                             vpThetaUVector(axis[0], axis[1], axis[2]));
+}
+
+//! [Teaching]
+/*!
+  Teaching by showing: the arm, at the zero reference with the servo's markers tracked with the model, is driven by
+  the start to the target, where \e left, \e right (s*) are the tracked centres, then back to the start. Returns why
+  it failed (empty if it did not).
+*/
+inline std::string teachTarget(Session &session, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right)
+{
+  // The direct joint-space line from the zero reference to the target turns the face of markers 0-2 edge-on, and
+  // markers 1 and 2 would cross in both images: the arm goes by the start.
+  session.caption = "teaching: to the start, then the arm is shown the target";
+  MoveResult r = session.move(degToRad(session.world.startDeg));
+  if (r.complete) {
+    r = session.move(degToRad(session.world.targetDeg));
+  }
+  if (!r.complete) {
+    return "while showing the target: " + r.failure;
+  }
+  left = session.tracker.getLeftPoints();
+  right = session.tracker.getRightPoints();
+  session.showTarget(left, right);
+  session.caption = "to the start";
+  r = session.move(degToRad(session.world.startDeg));
+  return r.complete ? std::string() : "while moving to the start: " + r.failure;
+}
+//! [Teaching]
 } // namespace tutorial
 
 #endif

@@ -26,7 +26,8 @@
 
   Usage: tutorial-projective-servo-images [--seeds N] [--model FILE] [--output DIR] [--no-display] [--help]
   With --model arm.json, the model is loaded if the file exists, otherwise acquired by seed 1 and saved; the other
-  seeds servo with it. --output DIR writes seed 1's final images with the feature trajectories. The exit code is 0
+  seeds servo with it. --output DIR writes seed 1's final images with the feature trajectories, and the stereo pair
+  at the start and at the end with the tracked markers and the model's predictions. The exit code is 0
   only if every seed converged.
 */
 
@@ -55,6 +56,7 @@
 #include "tutorial-projective-images-report.h"
 #include "tutorial-projective-images.h"
 #include "tutorial-projective-report.h"
+#include "tutorial-projective-stereo-picture.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -64,72 +66,17 @@ using namespace tutorial; // the paper's world, the session of rendered images a
 
 namespace
 {
-//! [Acquisition]
-/*!
-  Acquisition from images: the user clicks the 7 markers at the zero reference; each trial motion is then tracked
-  from there, and ends at its last good frame if the tracker loses a marker. Between trials the arm drives back to the
-  zero reference, where the tracker restarts from its zero-reference state (\e zeroState).
-*/
-vpProjectiveRobot acquire(Session &session, TrackingAccuracy &accuracy, vpStereoDotTracker &zeroState, bool verbose)
-{
-  const unsigned int n = session.world.arm.getNumberOfJoints();
-  std::vector<unsigned int> all(session.world.arm.getToolMarkers().size());
-  std::iota(all.begin(), all.end(), 0u);
-  session.q = vpColVector(n, 0.0);
-  session.lit = all;
-  session.caption = "acquisition: zero reference";
-  session.grab();
-  session.click(all);
-  accuracy.add(session.world, session.q, session.tracker, session.markers);
-  zeroState = session.tracker;
-  if (verbose) {
-    std::cout << "    markers 0-6 clicked once at the zero reference (simulated clicks, refined by vpDot2)\n";
-  }
-  std::vector<TrialMotion> trials;
-  session.accuracy = &accuracy;
-  for (unsigned int i = 0; i < n; ++i) {
-    for (double sign : {1.0, -1.0}) {
-      const double planned = sign * vpMath::rad(session.world.trialDeg[i]);
-      session.caption = "acquisition: joint " + std::to_string(i);
-      session.q = vpColVector(n, 0.0); // back at the zero reference: a new frame, tracked from there
-      session.tracker = zeroState;
-      session.grab();
-      if (!session.tracker.track(session.Ileft, session.Iright, 0.0)) {
-        throw vpException(vpException::fatalError, "acquisition at the zero reference: " + session.tracker.getReport());
-      }
-      vpColVector qTrial(n, 0.0);
-      qTrial[i] = planned;
-      const MoveResult r = session.move(qTrial);
-      const double amount = session.q[i];
-      if (amount == 0.0) {
-        throw vpException(vpException::fatalError, "joint " + std::to_string(i) + " could not move: " + r.failure);
-      }
-      if (verbose) {
-        std::ostringstream os;
-        os << std::fixed << std::setprecision(1) << std::showpos << "    joint " << i << ": " << vpMath::deg(amount)
-           << " deg in " << std::noshowpos << r.frames << " frames";
-        if (!r.complete) {
-          os << ", reduced from " << std::showpos << vpMath::deg(planned) << " deg: " << r.failure;
-        }
-        std::cout << os.str() << "\n";
-      }
-      trials.push_back({i, amount, session.tracker.getLeftPoints(), session.tracker.getRightPoints()});
-    }
-  }
-  session.accuracy = nullptr;
-  // As in the main tutorial, with tracked centres for noisy projections: F with inliers within 1 px, calibrate().
-  return calibrateFromTrials(n, zeroState.getLeftPoints(), zeroState.getRightPoints(), trials, 1.0);
-}
-//! [Acquisition]
 
 //! [Servo]
 /*!
   Teaching by showing, then the main tutorial's servo loop on tracked centres. The arm, at the zero reference with
   its servo markers tracked, is driven by the start to the target, where s* is the tracked centres, then back to the
-  start. The tracker predicts the blobs with the model from then on. At every iteration the features are the centres
-  tracked in the last frame; the arm executes the control law's joint step while the cameras grab frames.
+  start. With \e output, the stereo pair at the start goes there (writeStereoPicture()). The tracker predicts the blobs
+  with the model from then on. At every iteration the features are the centres tracked in the last frame; the arm
+  executes the control law's joint step while the cameras grab frames.
 */
-ServoRun servo(Session &session, const vpProjectiveRobot &robot, TrackingAccuracy &accuracy, unsigned int iterations)
+ServoRun servo(Session &session, const vpProjectiveRobot &robot, TrackingAccuracy &accuracy, unsigned int iterations,
+               const std::string &output)
 {
   const PaperWorld &world = session.world;
   ServoRun run;
@@ -138,27 +85,11 @@ ServoRun servo(Session &session, const vpProjectiveRobot &robot, TrackingAccurac
   session.tracker.setRobot(robot, world.tracked); // model prediction, and the model's epipolar geometry
   session.withModel = true;
 
-  // The direct joint-space line from the zero reference to the target turns the face of markers 0-2 edge-on, and
-  // markers 1 and 2 would cross in both images: the arm goes by the start.
-  session.caption = "teaching: to the start, then the arm is shown the target";
-  MoveResult r = session.move(degToRad(world.startDeg));
-  if (r.complete) {
-    r = session.move(qTarget);
-  }
-  if (!r.complete) {
-    run.failure = "while showing the target: " + r.failure;
+  run.failure = teachTarget(session, run.leftTarget, run.rightTarget); // by the start, then back there
+  if (!run.failure.empty()) {
     return run;
   }
-  run.leftTarget = session.tracker.getLeftPoints();
-  run.rightTarget = session.tracker.getRightPoints();
-  session.showTarget(run.leftTarget, run.rightTarget);
-  session.caption = "to the start";
-  r = session.move(degToRad(world.startDeg));
-  if (!r.complete) {
-    run.failure = "while moving to the start: " + r.failure;
-    return run;
-  }
-
+  MoveResult r;
   std::vector<vpFeatureStereoPoint> s(nbPoints), s_star(nbPoints);
   vpServoProjective task;
   task.setRobot(robot);
@@ -176,6 +107,11 @@ ServoRun servo(Session &session, const vpProjectiveRobot &robot, TrackingAccurac
     }
     run.trackingError.push_back(accuracy.add(world, session.q, session.tracker, session.markers));
     const vpColVector qdot = task.computeControlLaw(session.q); // eq. (47), J from the model at q
+    if (it == 0 && !output.empty()) {                           // what the tracker and the model see at the start
+      vpIoTools::makeDirectory(output);
+      writeStereoPicture(output + "/projective-servo-images-start.png", session.Ileft, session.Iright, session.tracker,
+                         session.markers, &robot, session.q, "start of the servo");
+    }
     run.record(it, session.q, left, right, task.getError(), session.model.convergenceThreshold);
     run.frames.push_back(r.frames);
     session.showTrail(left, right);
@@ -240,7 +176,7 @@ int main(int argc, char **argv)
       try {
         if (acquireModel) {
           std::cout << (verbose ? "\nSeed 1: acquisition from images\n" : "");
-          robot = acquire(*session, acquisitionAccuracy, zeroState, verbose);
+          robot = acquireFromImages(*session, acquisitionAccuracy, zeroState, verbose);
           st.addModel(robot, predictionError(robot, trueMarkerImages(world.rig, world.arm), seed), acquisitionAccuracy);
           zeroState.keepMarkers(world.tracked); // the servo's markers keep their trackers
         } else {
@@ -258,7 +194,7 @@ int main(int argc, char **argv)
         if (!session->tracker.track(session->Ileft, session->Iright, 0.0)) {
           run.failure = "at the zero reference: " + session->tracker.getReport();
         } else {
-          run = servo(*session, robot, servoAccuracy, 40);
+          run = servo(*session, robot, servoAccuracy, 40, verbose ? output : std::string());
         }
       } catch (const vpException &e) {
         run.failure = e.getStringMessage();
