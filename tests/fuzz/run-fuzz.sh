@@ -10,7 +10,7 @@ seconds="${1:-60}"
 cd "$(dirname "$0")/../.."
 build="${2:-build-fuzz}"
 
-cmake -S . -B "$build" -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVISP_PROJECTIVE_FUZZ=ON \
+cmake -S . -B "$build" -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS=-O1 -DVISP_PROJECTIVE_FUZZ=ON \
   -DVISP_PROJECTIVE_BUILD_TESTS=OFF -DVISP_PROJECTIVE_BUILD_TUTORIALS=OFF -DVISP_PROJECTIVE_BUILD_BENCHMARKS=OFF
 cmake --build "$build" -j2 --target fuzzModelLoader makeSeedCorpus
 
