@@ -59,7 +59,8 @@ void checkScalar(double x, const char *method, const char *name)
 vpProjectiveAcquisitionProcedure::vpProjectiveAcquisitionProcedure(const vpImageSource &source, unsigned int width,
                                                                    unsigned int height)
     : m_source(source), m_width(width), m_height(height), m_maxAmounts(), m_steps(), m_minAmounts(), m_qmin(), m_qmax(),
-      m_limitMargin(0.0), m_imageMargin(10.0), m_rotationSpeed(0.0), m_translationSpeed(0.0), m_os(nullptr),
+      m_limitMargin(0.0), m_imageMargin(10.0), m_rotationSpeed(0.0), m_translationSpeed(0.0), m_epipolarThreshold(2.0),
+      m_os(nullptr),
       m_callback(), m_motion(), m_reports(), m_residual(0.0)
 {
   if (!m_source) {
@@ -136,6 +137,15 @@ void vpProjectiveAcquisitionProcedure::setSpeed(double rotation, double translat
   m_translationSpeed = translation;
 }
 
+void vpProjectiveAcquisitionProcedure::setEpipolarThreshold(double pixels)
+{
+  if (!std::isfinite(pixels) || pixels <= 0.0) {
+    throw vpProjectiveException(vpProjectiveException::invalidValueError,
+                                at("setEpipolarThreshold") + ": the threshold must be finite and > 0 (pixels).");
+  }
+  m_epipolarThreshold = pixels;
+}
+
 std::string vpProjectiveAcquisitionProcedure::toString(vpStopReason reason)
 {
   switch (reason) {
@@ -181,7 +191,8 @@ void vpProjectiveAcquisitionProcedure::moveTo(vpRobot &robot, const vpColVector 
 
 void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVector &qRef, unsigned int i, int sign,
                                                  double &amount, vpStopReason &reason, vpColVector &qReached,
-                                                 std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right)
+                                                 std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right,
+                                                 std::vector<vpImagePoint> &allLeft, std::vector<vpImagePoint> &allRight)
 {
   const double maxAmount = amountOf(m_maxAmounts, i, vpMath::rad(30.0));
   const double step = amountOf(m_steps, i, vpMath::rad(1.0));
@@ -214,6 +225,8 @@ void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVect
     qReached = reading;
     left = l;
     right = r;
+    allLeft.insert(allLeft.end(), l.begin(), l.end());
+    allRight.insert(allRight.end(), r.begin(), r.end());
   }
 }
 
@@ -249,8 +262,18 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
                                 at("run") + ": the markers are not all tracked inside the images at the zero "
                                             "reference: place the arm so that they are, then run again.");
   }
+  // With a known rig the zero reference is checked before the arm moves; without one, once the rig is estimated.
+  const bool rigKnown = acquisition.getStereoRig().isInitialized();
   vpProjectiveArmAcquisition work = acquisition;
-  work.setZeroReference(qRef, left, right);
+  if (rigKnown) {
+    work.setZeroReference(qRef, left, right);
+  }
+  struct Trial {
+    vpColVector q;
+    std::vector<vpImagePoint> left, right;
+  };
+  std::vector<Trial> trials;
+  std::vector<vpImagePoint> allLeft = left, allRight = right; // every pair seen inside the margins, for the rig
   std::vector<vpJointReport> reports(n);
   try {
     for (unsigned int i = 0; i < n; ++i) {
@@ -259,13 +282,12 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
       for (int sign = -1; sign <= 1; sign += 2) {
         double amount = 0.0;
         vpStopReason reason = AMOUNT_REACHED;
-        std::vector<vpImagePoint> l, r;
-        vpColVector qReached;
-        moveJoint(robot, qRef, i, sign, amount, reason, qReached, l, r);
+        Trial trial;
+        moveJoint(robot, qRef, i, sign, amount, reason, trial.q, trial.left, trial.right, allLeft, allRight);
         (sign < 0 ? report.amountNegative : report.amountPositive) = amount;
         (sign < 0 ? report.stopNegative : report.stopPositive) = reason;
         if (amount > 0.0) {
-          work.addTrialMotion(qReached, l, r); // the encoders' readings, as the model will take them
+          trials.push_back(trial); // the encoders' readings, as the model will take them
           ++report.trials;
         }
       }
@@ -287,6 +309,15 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
            << "away from its limits, or lower the image margin or the minimum amount.";
         throw vpProjectiveException(vpProjectiveException::degenerateConfigurationError, os.str());
       }
+    }
+    if (!rigKnown) {
+      vpProjectiveStereoRig rig;
+      rig.estimate(allLeft, allRight, m_epipolarThreshold);
+      work.setStereoRig(rig);
+      work.setZeroReference(qRef, left, right);
+    }
+    for (const Trial &trial : trials) {
+      work.addTrialMotion(trial.q, trial.left, trial.right);
     }
     vpProjectiveArmModel model = work.calibrate();
     acquisition = work;

@@ -20,6 +20,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <vector>
@@ -104,6 +105,42 @@ struct AcquisitionSetup {
   }
 };
 
+/*!
+  RMS error (px) of the model's marker predictions against the true images at 100 random configurations inside half
+  the explored box with all markers 10 px inside the images; fails the test if fewer than 20 such configurations.
+*/
+double predictionRms(const AcquisitionSetup &s, const vpProjectiveAcquisitionProcedure &procedure,
+                     const vpProjectiveArmModel &model)
+{
+  vpUniRand rng(7);
+  double sum = 0.0;
+  unsigned int count = 0;
+  for (int k = 0; k < 100; ++k) {
+    vpColVector q(6);
+    vpProjectiveArmModel::JointVector qm(6);
+    for (unsigned int i = 0; i < 6; ++i) {
+      const vpProjectiveAcquisitionProcedure::vpJointReport &r = procedure.getReports()[i];
+      q[i] = rng.uniform(-0.5 * r.amountNegative, 0.5 * r.amountPositive);
+      qm[i] = q[i];
+    }
+    if (s.borderDistance(q) < 10.0) {
+      continue;
+    }
+    const Eigen::Matrix4d H = model.displacement(qm);
+    const std::vector<vpColVector> X = s.arm.getMarkers(q);
+    for (unsigned int j = 0; j < X.size(); ++j) {
+      Eigen::Vector4d p;
+      EXPECT_TRUE(model.predictMarker(j, H, p));
+      vpImagePoint l, r;
+      s.sim.project(X[j], l, r);
+      sum += (p - Eigen::Vector4d(l.get_u(), l.get_v(), r.get_u(), r.get_v())).squaredNorm();
+      count += 4;
+    }
+  }
+  EXPECT_GT(count, 4u * 7u * 20u);
+  return count == 0 ? 1e9 : std::sqrt(sum / count);
+}
+
 TEST(ProjectiveAcquisitionProcedure, AcquiredModelPredictsMarkersAtNoiseLevel)
 {
   AcquisitionSetup s;
@@ -127,36 +164,49 @@ TEST(ProjectiveAcquisitionProcedure, AcquiredModelPredictsMarkersAtNoiseLevel)
   EXPECT_NE(log.str().find("joint 5"), std::string::npos);
   EXPECT_GT(steps, 12u);
   EXPECT_NEAR((s.robot.q - vpColVector(6, 0.0)).frobeniusNorm(), 0.0, 1e-15); // back at the zero reference
+  EXPECT_LT(predictionRms(s, procedure, model), s.sigma); // 0.22 px at seed 12
+}
 
-  // Predictions at 100 random configurations inside the explored box with all markers in view: RMS error at the
-  // noise level.
-  vpUniRand rng(7);
-  double sum = 0.0;
-  unsigned int count = 0;
-  for (int k = 0; k < 100; ++k) {
-    vpColVector q(6);
-    vpProjectiveArmModel::JointVector qm(6);
-    for (unsigned int i = 0; i < 6; ++i) {
-      const vpProjectiveAcquisitionProcedure::vpJointReport &r = procedure.getReports()[i];
-      q[i] = rng.uniform(-0.5 * r.amountNegative, 0.5 * r.amountPositive);
-      qm[i] = q[i];
-    }
-    if (s.borderDistance(q) < 10.0) {
-      continue;
-    }
-    const Eigen::Matrix4d H = model.displacement(qm);
-    const std::vector<vpColVector> X = s.arm.getMarkers(q);
-    for (unsigned int j = 0; j < X.size(); ++j) {
-      Eigen::Vector4d p;
-      ASSERT_TRUE(model.predictMarker(j, H, p));
-      vpImagePoint l, r;
-      s.sim.project(X[j], l, r);
-      sum += (p - Eigen::Vector4d(l.get_u(), l.get_v(), r.get_u(), r.get_v())).squaredNorm();
-      count += 4;
-    }
+/*
+  Without a rig the procedure estimates F from every pair it saw (about 300 steps of 7 markers here): the model from
+  pixels and encoders only predicts the markers as well as with the true F, the rig is the acquisition's, and a
+  rig-free acquisition that fails leaves the acquisition without a rig.
+*/
+TEST(ProjectiveAcquisitionProcedure, EstimatesTheRigFromItsOwnImages)
+{
+  AcquisitionSetup s;
+  vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setSteps(vpColVector(6, vpMath::rad(2.0)));
+  std::vector<vpProjectiveArmAcquisition::vpJointType> types(6, vpProjectiveJoint::REVOLUTE);
+  vpProjectiveArmAcquisition acq(types);
+  ASSERT_FALSE(acq.getStereoRig().isInitialized());
+  const vpProjectiveArmModel model = procedure.run(s.robot, acq);
+
+  ASSERT_TRUE(acq.getStereoRig().isInitialized());
+  EXPECT_EQ(acq.getNumberOfTrials(), 12u);
+  EXPECT_LT(procedure.getCalibrationResidual(), 2.0 * s.sigma);
+  EXPECT_LT(acq.getStereoRig().getEstimationResidual(), s.sigma);
+  // The estimated F against the true one: the true images satisfy it within a fraction of a pixel.
+  const vpMatrix F = acq.getStereoRig().getFundamentalMatrix();
+  double worst = 0.0;
+  for (const vpColVector &X : s.arm.getMarkers(vpColVector(6, 0.1))) {
+    vpImagePoint l, r;
+    s.sim.project(X, l, r);
+    const vpColVector m({l.get_u(), l.get_v(), 1.0}), mp({r.get_u(), r.get_v(), 1.0});
+    const vpColVector line = F * m;
+    worst = std::max(worst, std::abs(vpColVector::dotProd(mp, line)) / std::hypot(line[0], line[1]));
   }
-  ASSERT_GT(count, 4u * 7u * 20u);
-  EXPECT_LT(std::sqrt(sum / count), s.sigma); // 0.22 px at seed 12
+  EXPECT_LT(worst, s.sigma);
+  EXPECT_LT(predictionRms(s, procedure, model), s.sigma);
+
+  // Bad threshold: a clear error; a run that fails (a 1-step minimum amount no joint can reach) changes nothing.
+  EXPECT_THROW(procedure.setEpipolarThreshold(0.0), vpProjectiveException);
+  EXPECT_THROW(procedure.setEpipolarThreshold(std::nan("")), vpProjectiveException);
+  procedure.setMinAmounts(vpColVector(6, vpMath::rad(89.0)));
+  vpProjectiveArmAcquisition fresh(types);
+  EXPECT_THROW(procedure.run(s.robot, fresh), vpProjectiveException);
+  EXPECT_FALSE(fresh.getStereoRig().isInitialized());
+  EXPECT_EQ(fresh.getNumberOfTrials(), 0u);
 }
 
 TEST(ProjectiveAcquisitionProcedure, TightImageBoundsAmountsAndReportSaysSo)

@@ -51,6 +51,12 @@ BEGIN_VISP_NAMESPACE
   motion (addTrialMotion()). The robot goes back to \f$ q_{ref} \f$ after each joint. A joint whose larger amount is
   below its minimum (setMinAmounts()) makes run() throw. The model is then calibrated
   (vpProjectiveArmAcquisition::calibrate()).
+
+  Given an acquisition without a stereo rig, run() weakly calibrates the rig itself: the fundamental matrix from
+  every stereo pair it saw with all markers inside the margins (the zero reference and every step: 7 markers and 100
+  steps give 700 matches), by vpProjectiveStereoRig::estimate() with the threshold of setEpipolarThreshold(). The
+  model then comes from pixels and encoder readings only, and the estimated rig is in the acquisition afterwards
+  (vpProjectiveArmAcquisition::getStereoRig()) and in the model.
 */
 class VISP_EXPORT vpProjectiveAcquisitionProcedure
 {
@@ -137,6 +143,13 @@ public:
     then vpRobot::setPosition(ARTICULAR_FRAME, q). With a motion, run() leaves the robot's state to it.
   */
   void setMotion(const vpMotion &motion) { m_motion = motion; }
+  /*!
+    Epipolar inlier threshold (pixels, > 0) of the rig's estimation when the acquisition given to run() has no rig
+    (vpProjectiveStereoRig::estimate()). Default 2 px, for noise up to about 0.5 px per coordinate: raise it in
+    proportion to the noise.
+    \exception vpProjectiveException (invalidValueError) if not positive or not finite.
+  */
+  void setEpipolarThreshold(double pixels);
   //! Where to write a line per joint (null: nothing). Default null.
   void setOutput(std::ostream *os) { m_os = os; }
   //! Called after each step with the new images (live display); empty: nothing.
@@ -144,13 +157,14 @@ public:
 
   /*!
     Runs the acquisition on \e robot (put in POSITION_CONTROL, left at the zero reference) and calibrates
-    \e acquisition (joint types and stereo rig set by the caller; its zero reference and trials are replaced).
-    Returns the model.
+    \e acquisition (joint types set by the caller, and its stereo rig if the rig is known; without one, the rig is
+    estimated from the images of the run; its zero reference and trials are replaced). Returns the model.
     \exception vpProjectiveException (dimensionError) if a per-joint setting or the acquisition does not have the
     robot's number of joints; (notEnoughPointsError) if the image source fails at the zero reference;
     (degenerateConfigurationError) if a joint cannot move its minimum amount without a marker leaving the images
     or reaching a limit: the message says which and what to change. On any error \e acquisition is unchanged and the
-    robot is sent back to the zero reference.
+    robot is sent back to the zero reference. Without a rig: (estimationFailedError) if the images of the run do not
+    determine one (see vpProjectiveStereoRig::estimate()).
   */
   vpProjectiveArmModel run(vpRobot &robot, vpProjectiveArmAcquisition &acquisition);
 
@@ -167,12 +181,13 @@ private:
   void moveTo(vpRobot &robot, const vpColVector &q) const;
   void moveJoint(vpRobot &robot, const vpColVector &qRef, unsigned int i, int sign, double &amount,
                  vpStopReason &reason, vpColVector &qReached, std::vector<vpImagePoint> &left,
-                 std::vector<vpImagePoint> &right);
+                 std::vector<vpImagePoint> &right, std::vector<vpImagePoint> &allLeft,
+                 std::vector<vpImagePoint> &allRight);
 
   vpImageSource m_source;
   unsigned int m_width, m_height;
   vpColVector m_maxAmounts, m_steps, m_minAmounts, m_qmin, m_qmax;
-  double m_limitMargin, m_imageMargin, m_rotationSpeed, m_translationSpeed;
+  double m_limitMargin, m_imageMargin, m_rotationSpeed, m_translationSpeed, m_epipolarThreshold;
   std::ostream *m_os;
   vpStepCallback m_callback;
   vpMotion m_motion;
