@@ -60,8 +60,7 @@ vpProjectiveAcquisitionProcedure::vpProjectiveAcquisitionProcedure(const vpImage
                                                                    unsigned int height)
     : m_source(source), m_width(width), m_height(height), m_maxAmounts(), m_steps(), m_minAmounts(), m_qmin(), m_qmax(),
       m_limitMargin(0.0), m_imageMargin(10.0), m_rotationSpeed(0.0), m_translationSpeed(0.0), m_epipolarThreshold(2.0),
-      m_os(nullptr),
-      m_callback(), m_motion(), m_reports(), m_residual(0.0)
+      m_os(nullptr), m_callback(), m_motion(), m_reports(), m_residual(0.0)
 {
   if (!m_source) {
     throw vpProjectiveException(vpProjectiveException::invalidValueError,
@@ -192,7 +191,8 @@ void vpProjectiveAcquisitionProcedure::moveTo(vpRobot &robot, const vpColVector 
 void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVector &qRef, unsigned int i, int sign,
                                                  double &amount, vpStopReason &reason, vpColVector &qReached,
                                                  std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right,
-                                                 std::vector<vpImagePoint> &allLeft, std::vector<vpImagePoint> &allRight)
+                                                 std::vector<vpImagePoint> &allLeft,
+                                                 std::vector<vpImagePoint> &allRight)
 {
   const double maxAmount = amountOf(m_maxAmounts, i, vpMath::rad(30.0));
   const double step = amountOf(m_steps, i, vpMath::rad(1.0));
@@ -328,4 +328,15 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
     moveTo(robot, qRef);
     throw;
   }
+}
+
+void vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpProjectiveRobot &projectiveRobot)
+{
+  vpProjectiveArmAcquisition acquisition = projectiveRobot.m_acquisition;
+  const vpProjectiveStereoRig &rig = projectiveRobot.getStereoRig(); // once calibrated, the model's (updateRig())
+  if (rig.isInitialized()) {
+    acquisition.setStereoRig(rig);
+  }
+  const vpProjectiveArmModel model = run(robot, acquisition);
+  projectiveRobot.adopt(acquisition, model, m_residual, acquisition.getAlgebraicResidual());
 }

@@ -106,11 +106,19 @@ void vpProjectiveRobot::addTrialMotion(const vpColVector &q, const std::vector<v
 
 void vpProjectiveRobot::calibrate()
 {
-  m_model = m_acquisition.calibrate(); // throws before anything changes
-  m_residual = m_acquisition.getCalibrationResidual();
-  m_algebraicResidual = m_acquisition.getAlgebraicResidual();
+  const vpProjectiveArmModel model = m_acquisition.calibrate(); // throws before anything changes
+  adopt(m_acquisition, model, m_acquisition.getCalibrationResidual(), m_acquisition.getAlgebraicResidual());
+}
+
+void vpProjectiveRobot::adopt(const vpProjectiveArmAcquisition &acquisition, const vpProjectiveArmModel &model,
+                              double residual, double algebraicResidual)
+{
+  m_acquisition = acquisition;
+  m_model = model;
+  m_residual = residual;
+  m_algebraicResidual = algebraicResidual;
   m_calibrated = true;
-  m_rigJoints.clear();
+  m_rigJoints.clear(); // rig observations belong to the previous model
   m_rigImages.clear();
   m_rigGeneration = 0;
   ++m_modelGeneration;
@@ -364,15 +372,7 @@ void vpProjectiveRobot::loadModel(const std::string &filename)
   acquisition.setRigMounting(model.getRigMounting());
   acquisition.setStereoRig(model.getStereoRig());
   acquisition.setOutlierThreshold(m_acquisition.getOutlierThreshold());
-  m_acquisition = acquisition;
-  m_model = model;
-  m_residual = residual;
-  m_algebraicResidual = algebraicResidual;
-  m_calibrated = true;
-  m_rigJoints.clear();
-  m_rigImages.clear();
-  m_rigGeneration = 0;
-  ++m_modelGeneration;
+  adopt(acquisition, model, residual, algebraicResidual);
 }
 
 namespace

@@ -30,6 +30,7 @@
 #include <visp3/core/vpUniRand.h>
 #include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 #include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpSimulatorArm.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
@@ -164,7 +165,7 @@ TEST(ProjectiveAcquisitionProcedure, AcquiredModelPredictsMarkersAtNoiseLevel)
   EXPECT_NE(log.str().find("joint 5"), std::string::npos);
   EXPECT_GT(steps, 12u);
   EXPECT_NEAR((s.robot.q - vpColVector(6, 0.0)).frobeniusNorm(), 0.0, 1e-15); // back at the zero reference
-  EXPECT_LT(predictionRms(s, procedure, model), s.sigma); // 0.22 px at seed 12
+  EXPECT_LT(predictionRms(s, procedure, model), s.sigma);                     // 0.22 px at seed 12
 }
 
 /*
@@ -207,6 +208,50 @@ TEST(ProjectiveAcquisitionProcedure, EstimatesTheRigFromItsOwnImages)
   EXPECT_THROW(procedure.run(s.robot, fresh), vpProjectiveException);
   EXPECT_FALSE(fresh.getStereoRig().isInitialized());
   EXPECT_EQ(fresh.getNumberOfTrials(), 0u);
+}
+
+/*
+  The facade: run(vpRobot &, vpProjectiveRobot &) calibrates the vpProjectiveRobot (rig estimated, as it has none),
+  whose model takes the encoder readings from a zero reference away from 0; a failed run leaves it as it was.
+*/
+TEST(ProjectiveAcquisitionProcedure, CalibratesTheFacadeFromAbsoluteReadings)
+{
+  AcquisitionSetup s;
+  const vpColVector qRef({0.1, -0.05, 0.08, 0.2, -0.1, 0.3});
+  s.robot.q = qRef;
+  vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setSteps(vpColVector(6, vpMath::rad(2.0)));
+  vpProjectiveRobot robot(std::vector<vpProjectiveRobot::vpJointType>(6, vpProjectiveRobot::REVOLUTE));
+  procedure.run(s.robot, robot);
+  ASSERT_TRUE(robot.isCalibrated());
+  EXPECT_EQ(robot.getAcquisition().getNumberOfTrials(), 12u);
+  EXPECT_LT((robot.getZeroReferenceJoints() - qRef).frobeniusNorm(), 1e-12);
+  EXPECT_LT(robot.getCalibrationResidual(), 2.0 * s.sigma);
+
+  // Encoder readings as they are: the markers predicted at qRef + dq against the true ones, within the noise.
+  double sum = 0.0;
+  unsigned int count = 0;
+  for (double a : {-0.05, 0.05}) {
+    const vpColVector q = qRef + vpColVector(6, a);
+    const std::vector<vpColVector> X = s.arm.getMarkers(q);
+    for (unsigned int j = 0; j < X.size(); ++j) {
+      vpImagePoint l, r, lp, rp;
+      s.sim.project(X[j], l, r);
+      robot.projectMarker(j, q, lp, rp);
+      sum += vpImagePoint::sqrDistance(l, lp) + vpImagePoint::sqrDistance(r, rp);
+      count += 4;
+    }
+  }
+  EXPECT_LT(std::sqrt(sum / count), s.sigma);
+
+  const unsigned long generation = robot.getModelGeneration();
+  const vpMatrix G = robot.getProjectiveToMetric();
+  procedure.setMinAmounts(vpColVector(6, vpMath::rad(89.0))); // no joint gets that far: run() throws
+  EXPECT_THROW(procedure.run(s.robot, robot), vpProjectiveException);
+  EXPECT_EQ(robot.getModelGeneration(), generation);
+  EXPECT_EQ((robot.getProjectiveToMetric() - G).frobeniusNorm(), 0.0);
+  EXPECT_EQ(robot.getAcquisition().getNumberOfTrials(), 12u);
+  EXPECT_LT((s.robot.q - qRef).frobeniusNorm(), 1e-15); // back at the zero reference
 }
 
 TEST(ProjectiveAcquisitionProcedure, TightImageBoundsAmountsAndReportSaysSo)

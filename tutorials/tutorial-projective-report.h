@@ -195,9 +195,10 @@ inline vpProjectiveRobot loadOrAcquire(const std::string &modelFile, const std::
     std::cout << "    model loaded from " << modelFile << "\n";
   } else {
     robot = acquire();
-    std::cout << "    epipolar geometry from the " << robot.getStereoRig().getInliers().size()
-              << " marker matches of the acquisition images: RMS residual "
-              << robot.getStereoRig().getEstimationResidual() << " px\n";
+    const vpProjectiveStereoRig &estimated = robot.getAcquisition().getStereoRig(); // before the bundle adjustment
+    std::cout << "    epipolar geometry from the " << estimated.getInliers().size()
+              << " marker matches of the acquisition images: RMS residual " << estimated.getEstimationResidual()
+              << " px\n";
     if (!modelFile.empty()) {
       robot.saveModel(modelFile);
       std::cout << "    model saved to " << modelFile << "\n";

@@ -33,6 +33,7 @@
 
 #include <visp3/projective/vpProjectiveArmAcquisition.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpProjectiveRobot.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -167,6 +168,13 @@ public:
     determine one (see vpProjectiveStereoRig::estimate()).
   */
   vpProjectiveArmModel run(vpRobot &robot, vpProjectiveArmAcquisition &acquisition);
+  /*!
+    The same for the facade: runs the acquisition on \e robot with the joint types, the rig mounting, the outlier
+    threshold and, if it has one, the stereo rig of \e projectiveRobot, which is calibrated on success (as after
+    vpProjectiveRobot::calibrate(); its model takes absolute encoder readings) and unchanged on failure.
+    \exception vpProjectiveException as run(vpRobot &, vpProjectiveArmAcquisition &).
+  */
+  void run(vpRobot &robot, vpProjectiveRobot &projectiveRobot);
 
   //! What the last run() did with each joint.
   const std::vector<vpJointReport> &getReports() const { return m_reports; }

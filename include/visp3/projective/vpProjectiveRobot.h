@@ -38,6 +38,8 @@
 
 BEGIN_VISP_NAMESPACE
 
+class vpProjectiveAcquisitionProcedure;
+
 /*!
   \class vpProjectiveRobot
   \ingroup group_projective
@@ -167,6 +169,12 @@ public:
     \exception vpProjectiveException (dimensionError) if there is no such observation.
   */
   bool isOutlier(unsigned int trial, unsigned int marker) const { return m_acquisition.isOutlier(trial, marker); }
+  /*!
+    The acquisition: its images, outlier flags and residuals, and the rig as it was estimated or set (getStereoRig()
+    returns the model's, refined by the bundle adjustment, once calibrated). After loadModel(): no images, the
+    model's rig.
+  */
+  const vpProjectiveArmAcquisition &getAcquisition() const { return m_acquisition; }
   //@}
 
   /*! \name Model */
@@ -345,6 +353,11 @@ public:
   //@}
 
 private:
+  friend class vpProjectiveAcquisitionProcedure; // run(vpRobot &, vpProjectiveRobot &) calibrates through adopt()
+
+  //! Takes \e model, calibrated from \e acquisition with these residuals, as the robot's model.
+  void adopt(const vpProjectiveArmAcquisition &acquisition, const vpProjectiveArmModel &model, double residual,
+             double algebraicResidual);
   void checkJoint(unsigned int i, const char *method) const;
   JointVector toJointVector(const vpColVector &q, const char *method) const;
 
