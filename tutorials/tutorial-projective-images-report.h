@@ -122,10 +122,9 @@ struct ImagesStudy {
   std::vector<double> iterations, imageError, prediction, calibrationResidual, frames;
   vpColVector meanAbsJointError; // rad, sum over the converged seeds until finish()
   TrackingAccuracy acquisitionAccuracy, servoAccuracy;
-  unsigned int seeds = 0, trackingFailures = 0, notConverged = 0, converged = 0;
+  unsigned int seeds = 0, trackingFailures = 0, notConverged = 0, converged = 0, jitterDof = 0;
   std::vector<std::string> failures;
-  double jitterSumSquares = 0.0;
-  unsigned int jitterDof = 0;
+  double jitterSumSquares = 0.0; // over jitterDof degrees of freedom
 
   /*!
     Jitter of the tracked centres once converged: the spread of their errors about their mean over the iterations
@@ -193,10 +192,7 @@ struct ImagesStudy {
 inline bool printTable(const PaperWorld &world, const ImageModel &model, const ImagesStudy &st)
 {
   const unsigned int n = world.arm.getNumberOfJoints(), seeds = st.seeds;
-  vpColVector meanAbs(n, 0.0);
-  if (st.converged > 0) {
-    meanAbs = st.meanAbsJointError / st.converged;
-  }
+  const vpColVector meanAbs = st.converged > 0 ? vpColVector(st.meanAbsJointError / st.converged) : vpColVector(n, 0.0);
   const ImagesAt trueTracked = trueMarkerImages(world.rig, world.arm, world.tracked);
   const vpMatrix J = imageJacobian(trueTracked, degToRad(world.targetDeg));
   const vpColVector floorAccuracy = noiseFloor(J, st.servoAccuracy.rms()), floorJitter = noiseFloor(J, st.jitter());
@@ -261,7 +257,7 @@ inline void printSeedOne(const Session &session, const vpProjectiveRobot &robot,
 {
   if (acquired && robot.isCalibrated() && !st.prediction.empty()) {
     std::cout << "    epipolar geometry from the tracked centres: RMS residual "
-              << robot.getStereoRig().getEstimationResidual() << " px\n"
+              << robot.getAcquisition().getStereoRig().getEstimationResidual() << " px\n"
               << "    algebraic generators: RMS error on the acquisition images " << robot.getAlgebraicResidual()
               << " px; after the bundle adjustment " << robot.getCalibrationResidual() << " px\n"
               << "    tracking accuracy (tracked centre - true projection): " << acquisitionAccuracy.rms()

@@ -13,9 +13,10 @@
 
 /*!
   \file tutorial-projective-images.h
-  \brief The camera side of tutorial-projective-servo-images.cpp: one seed's session (the arm at q, the rendered
-  stereo frames of its lit markers, the vpStereoDotTracker that follows them, the simulated user's clicks), the
-  motion of the arm imaged frame by frame, the tracking accuracy against the ground truth, and the live view.
+  \brief The camera side of the image tutorials: one seed's session (the arm at q, the rendered stereo frames of its
+  lit markers, the vpStereoDotTracker that follows them, the simulated user's clicks), the motion of the arm imaged
+  frame by frame, and the knocks of a bumped camera. The steps on a session are in
+  tutorial-projective-images-acquisition.h, the accuracy and the live view in tutorial-projective-images-view.h.
 */
 
 #ifndef _tutorial_projective_images_h_
@@ -47,6 +48,7 @@
 #include <visp3/projective/vpStereoDotTracker.h>
 
 #include "tutorial-projective-common.h"
+#include "tutorial-projective-images-view.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -63,84 +65,6 @@ struct ImageModel {
   double convergenceThreshold = 0.2; // px: RMS(s - s*) for convergence, the main job's 2 sigma at 0.1 px
 };
 //! [Image model]
-
-//! RMS of the tracked centres minus the true projections (px per coordinate): only reported, never used.
-struct TrackingAccuracy {
-  double sumSquares = 0.0, largest = 0.0;
-  unsigned int coordinates = 0;
-  //! Accounts one stereo frame of the markers \e markers at \e q; returns its errors (u, v, u', v' per marker).
-  vpColVector add(const PaperWorld &world, const vpColVector &q, const vpStereoDotTracker &tracker,
-                  const std::vector<unsigned int> &markers)
-  {
-    const std::vector<vpColVector> X = world.arm.getMarkers(q);
-    vpColVector errors(4 * tracker.getNumberOfMarkers());
-    for (unsigned int k = 0; k < tracker.getNumberOfMarkers(); ++k) {
-      vpImagePoint l, r;
-      world.rig.project(X[markers[k]], l, r);
-      const vpImagePoint dl = tracker.getLeftPoint(k) - l, dr = tracker.getRightPoint(k) - r;
-      errors[4 * k] = dl.get_u();
-      errors[4 * k + 1] = dl.get_v();
-      errors[4 * k + 2] = dr.get_u();
-      errors[4 * k + 3] = dr.get_v();
-    }
-    sumSquares += errors.sumSquare();
-    coordinates += errors.size();
-    largest = std::max(largest, std::max(errors.getMaxValue(), -errors.getMinValue()));
-    return errors;
-  }
-  //! Accounts another accuracy.
-  void add(const TrackingAccuracy &other)
-  {
-    sumSquares += other.sumSquares;
-    coordinates += other.coordinates;
-    largest = std::max(largest, other.largest);
-  }
-  //! RMS error (px).
-  double rms() const { return coordinates > 0 ? std::sqrt(sumSquares / coordinates) : 0.0; }
-};
-
-//! [Viewer]
-//! Both images live (seed 1, with an X display): the tracked blobs, the taught target and the servo's trajectory.
-class Viewer
-{
-public:
-  Viewer(vpImage<unsigned char> &Ileft, vpImage<unsigned char> &Iright)
-#if defined(VISP_HAVE_X11)
-      : m_left(Ileft, 0, 0, "Left camera"), m_right(Iright, static_cast<int>(Ileft.getWidth()) + 20, 0, "Right camera")
-#endif
-  {
-    (void)Iright;
-  }
-  //! Shows the last stereo frame with \e caption.
-  void show(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
-            const vpStereoDotTracker &tracker, const std::string &caption)
-  {
-    for (unsigned int c = 0; c < 2; ++c) {
-      const vpImage<unsigned char> &I = c == 0 ? Ileft : Iright;
-      vpDisplay::display(I);
-      vpDisplay::displayText(I, 20, 20, caption, vpColor::yellow);
-      for (const vpImagePoint &ip : target[c]) {
-        vpDisplay::displayCross(I, ip, 14, vpColor::red, 2);
-      }
-      for (const std::vector<vpImagePoint> &points : trail[c]) {
-        for (const vpImagePoint &ip : points) {
-          vpDisplay::displayPoint(I, ip, vpColor::cyan, 2);
-        }
-      }
-    }
-    tracker.display(Ileft, Iright);
-    vpDisplay::flush(Ileft);
-    vpDisplay::flush(Iright);
-  }
-  std::vector<vpImagePoint> target[2];             //!< s* in each image
-  std::vector<std::vector<vpImagePoint>> trail[2]; //!< the servo's trajectory in each image
-
-private:
-#if defined(VISP_HAVE_X11)
-  vpDisplayX m_left, m_right;
-#endif
-};
-//! [Viewer]
 
 //! [Bump]
 /*!
@@ -161,6 +85,21 @@ inline vpSimulatorStereoRig bumpedRig(const vpSimulatorStereoRig &rig, unsigned 
                               rig.getHeight());
 }
 //! [Bump]
+
+//! A knock of \e deg degrees about a random axis and \e mm millimetres along a random direction (seeded).
+inline vpHomogeneousMatrix randomBump(double deg, double mm, unsigned int seed)
+{
+  vpUniRand rng(seed + 100);
+  vpColVector axis(3), direction(3);
+  for (unsigned int a = 0; a < 3; ++a) {
+    axis[a] = rng.uniform(-1.0, 1.0);
+    direction[a] = rng.uniform(-1.0, 1.0);
+  }
+  axis *= vpMath::rad(deg) / axis.frobeniusNorm();
+  direction *= 0.001 * mm / direction.frobeniusNorm();
+  return vpHomogeneousMatrix(vpTranslationVector(direction[0], direction[1], direction[2]),
+                             vpThetaUVector(axis[0], axis[1], axis[2]));
+}
 
 //! How a motion imaged frame by frame ended.
 struct MoveResult {
@@ -311,121 +250,5 @@ struct Session {
   unsigned int frames = 0;
 };
 //! [Session]
-
-//! [Acquisition]
-/*!
-  Acquisition from images (tutorial-projective-servo-images.cpp and tutorial-projective-bumped-camera.cpp): the user
-  clicks the 7 markers at the zero reference; each trial motion is then tracked
-  from there, and ends at its last good frame if the tracker loses a marker. Between trials the arm drives back to the
-  zero reference, where the tracker restarts from its zero-reference state (\e zeroState).
-*/
-inline vpProjectiveRobot acquireFromImages(Session &session, TrackingAccuracy &accuracy, vpStereoDotTracker &zeroState,
-                                           bool verbose)
-{
-  const unsigned int n = session.world.arm.getNumberOfJoints();
-  std::vector<unsigned int> all(session.world.arm.getToolMarkers().size());
-  std::iota(all.begin(), all.end(), 0u);
-  session.q = vpColVector(n, 0.0);
-  session.lit = all;
-  session.caption = "acquisition: zero reference";
-  session.grab();
-  session.click(all);
-  accuracy.add(session.world, session.q, session.tracker, session.markers);
-  zeroState = session.tracker;
-  if (verbose) {
-    std::cout << "    markers 0-6 clicked once at the zero reference (simulated clicks, refined by vpDot2)\n";
-  }
-  std::vector<TrialMotion> trials;
-  session.accuracy = &accuracy;
-  for (unsigned int i = 0; i < n; ++i) {
-    for (double sign : {1.0, -1.0}) {
-      const double planned = sign * vpMath::rad(session.world.trialDeg[i]);
-      session.caption = "acquisition: joint " + std::to_string(i);
-      session.q = vpColVector(n, 0.0); // back at the zero reference: a new frame, tracked from there
-      session.tracker = zeroState;
-      session.grab();
-      if (!session.tracker.track(session.Ileft, session.Iright, 0.0)) {
-        throw vpException(vpException::fatalError, "acquisition at the zero reference: " + session.tracker.getReport());
-      }
-      vpColVector qTrial(n, 0.0);
-      qTrial[i] = planned;
-      const MoveResult r = session.move(qTrial);
-      const double amount = session.q[i];
-      if (amount == 0.0) {
-        throw vpException(vpException::fatalError, "joint " + std::to_string(i) + " could not move: " + r.failure);
-      }
-      if (verbose) {
-        std::ostringstream os;
-        os << std::fixed << std::setprecision(1) << std::showpos << "    joint " << i << ": " << vpMath::deg(amount)
-           << " deg in " << std::noshowpos << r.frames << " frames";
-        if (!r.complete) {
-          os << ", reduced from " << std::showpos << vpMath::deg(planned) << " deg: " << r.failure;
-        }
-        std::cout << os.str() << "\n";
-      }
-      trials.push_back({i, amount, session.tracker.getLeftPoints(), session.tracker.getRightPoints()});
-    }
-  }
-  session.accuracy = nullptr;
-  // As in the main tutorial, with tracked centres for noisy projections: F with inliers within 1 px, calibrate().
-  return calibrateFromTrials(n, zeroState.getLeftPoints(), zeroState.getRightPoints(), trials, 1.0);
-}
-//! [Acquisition]
-
-//! RMS per coordinate of the tracked markers minus the model's predictions at q (getPredictionError() on a subset).
-inline double trackedPredictionError(const vpProjectiveRobot &robot, const Session &session)
-{
-  double sum = 0.0;
-  for (unsigned int k = 0; k < session.tracker.getNumberOfMarkers(); ++k) {
-    vpImagePoint l, r;
-    robot.projectMarker(session.markers[k], session.q, l, r);
-    sum += vpImagePoint::sqrDistance(l, session.tracker.getLeftPoint(k)) +
-           vpImagePoint::sqrDistance(r, session.tracker.getRightPoint(k));
-  }
-  return std::sqrt(sum / (4.0 * session.tracker.getNumberOfMarkers()));
-}
-
-//! A knock of \e deg degrees about a random axis and \e mm millimetres along a random direction (seeded).
-inline vpHomogeneousMatrix randomBump(double deg, double mm, unsigned int seed)
-{
-  vpUniRand rng(seed + 100);
-  vpColVector axis(3), direction(3);
-  for (unsigned int a = 0; a < 3; ++a) {
-    axis[a] = rng.uniform(-1.0, 1.0);
-    direction[a] = rng.uniform(-1.0, 1.0);
-  }
-  axis *= vpMath::rad(deg) / axis.frobeniusNorm();
-  direction *= 0.001 * mm / direction.frobeniusNorm();
-  return vpHomogeneousMatrix(vpTranslationVector(direction[0], direction[1], direction[2]),
-                             vpThetaUVector(axis[0], axis[1], axis[2]));
-}
-
-//! [Teaching]
-/*!
-  Teaching by showing: the arm, at the zero reference with the servo's markers tracked with the model, is driven by
-  the start to the target, where \e left, \e right (s*) are the tracked centres, then back to the start. Returns why
-  it failed (empty if it did not).
-*/
-inline std::string teachTarget(Session &session, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right)
-{
-  // The direct joint-space line from the zero reference to the target turns the face of markers 0-2 edge-on, and
-  // markers 1 and 2 would cross in both images: the arm goes by the start.
-  session.caption = "teaching: to the start, then the arm is shown the target";
-  MoveResult r = session.move(degToRad(session.world.startDeg));
-  if (r.complete) {
-    r = session.move(degToRad(session.world.targetDeg));
-  }
-  if (!r.complete) {
-    return "while showing the target: " + r.failure;
-  }
-  left = session.tracker.getLeftPoints();
-  right = session.tracker.getRightPoints();
-  session.showTarget(left, right);
-  session.caption = "to the start";
-  r = session.move(degToRad(session.world.startDeg));
-  return r.complete ? std::string() : "while moving to the start: " + r.failure;
-}
-//! [Teaching]
 } // namespace tutorial
-
 #endif

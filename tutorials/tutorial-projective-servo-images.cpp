@@ -54,6 +54,7 @@
 #include "tutorial-command-line.h"
 #include "tutorial-projective-common.h"
 #include "tutorial-projective-images-report.h"
+#include "tutorial-projective-images-acquisition.h"
 #include "tutorial-projective-images.h"
 #include "tutorial-projective-report.h"
 #include "tutorial-projective-stereo-picture.h"
