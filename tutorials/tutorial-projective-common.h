@@ -213,10 +213,11 @@ inline vpProjectiveRobot acquireByTrials(const std::vector<double> &trialDeg, co
 }
 
 /*!
-  RMS pixel error of the markers predicted by the model, rig.project(H(q) M(0)), at 100 random q within
-  +-\e rangeDeg (uniform, seeded by \e seed); only the configurations where the true markers are all in view count
-  (0 if none).
-  \param trueImages : the true (noise-free) images of all the markers at q, in the order of the zero reference.
+  RMS pixel error of the markers predicted by the model, rig.project(H(q_ref + q) M(0)), at 100 random offsets q
+  from the zero reference's readings q_ref within +-\e rangeDeg (uniform, seeded by \e seed); only the
+  configurations where the true markers are all in view count (0 if none).
+  \param trueImages : the true (noise-free) images of all the markers at the offset q, in the order of the zero
+  reference.
 */
 inline double predictionError(const vpProjectiveRobot &robot, const ImagesAt &trueImages, unsigned int seed,
                               double rangeDeg = 30.0)
@@ -235,7 +236,7 @@ inline double predictionError(const vpProjectiveRobot &robot, const ImagesAt &tr
     if (!trueImages(q, left, right)) {
       continue; // only configurations where the truth is visible
     }
-    const vpMatrix H = robot.getDisplacement(q);
+    const vpMatrix H = robot.getDisplacement(robot.getZeroReferenceJoints() + q); // q from the zero reference
     for (size_t j = 0; j < M0.size(); ++j) {
       vpImagePoint l, r;
       robot.getStereoRig().project(H * M0[j], l, r);

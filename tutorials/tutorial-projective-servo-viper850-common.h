@@ -22,6 +22,7 @@
     start and target of the servo task;
   - tracked (std::vector<unsigned int>): the markers the servo tracks;
   - predictionRangeDeg (double): the model is checked at random q within +-predictionRangeDeg of the zero reference;
+  - minTrialDeg (double): the acquisition fails if a joint cannot move that far (deg) without a marker leaving the view;
   - mounting (vpProjectiveRobot::vpRigMounting): where the rig is;
   - damping (double, px/rad): the control law is damped when the smallest singular value of J falls below it
     (vpServoProjective::setDamping(damping, damping));
@@ -53,6 +54,7 @@
 #include <visp3/robot/vpSimulatorViper850.h>
 
 #include <visp3/projective/vpFeatureStereoPoint.h>
+#include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpServoProjective.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
@@ -74,67 +76,40 @@ namespace viper850
 {
 using tutorial::degToRad;
 
-//! [Images]
-/*!
-  The images of the markers \e which seen by the rig where it is when the joints are at qRef + q (World::rigAt()),
-  at the markers where they are then (World::markersAt()), with Gaussian noise \e sigma (none if \e noise is null),
-  as an ImagesAt of the model's joint values q (of the arm's joint values if \\e qRef is empty). \e world, \e viper and
-  \e noise must outlive it.
-*/
-template <class World>
-tutorial::ImagesAt imagesAt(const World &world, const vpViper850 &viper, const std::vector<unsigned int> &which,
-                            double sigma, vpGaussRand *noise, const vpColVector &qRef)
-{
-  return [&world, &viper, which, sigma, noise, qRef](const vpColVector &q, std::vector<vpImagePoint> &left,
-                                                     std::vector<vpImagePoint> &right) {
-    const vpColVector qArm = qRef.size() > 0 ? qRef + q : q;
-    const vpSimulatorStereoRig &rig = world.rigAt(viper, qArm);
-    const std::vector<vpColVector> &fMarkers = world.markersAt(viper, qArm);
-    left.resize(which.size());
-    right.resize(which.size());
-    bool inView = true;
-    for (size_t k = 0; k < which.size(); ++k) {
-      inView = (noise == nullptr ? rig.project(fMarkers[which[k]], left[k], right[k])
-                                 : rig.project(fMarkers[which[k]], left[k], right[k], sigma, *noise)) &&
-               inView;
-    }
-    return inView;
-  };
-}
-
-//! All the markers of the world, 0 to nbMarkers() - 1.
-template <class World> std::vector<unsigned int> allMarkers(const World &world)
-{
-  std::vector<unsigned int> all(world.nbMarkers());
-  for (unsigned int j = 0; j < all.size(); ++j) {
-    all[j] = j;
-  }
-  return all;
-}
-//! [Images]
-
 //! [Acquisition]
 /*!
-  Acquisition (paper section 6) on the simulated arm: marker images at the zero reference, then joint i alone moved
-  by +-trial_i (the paper's trials, halved until every marker is in view), the amounts read back from the encoders.
+  Acquisition (paper section 6) on the simulated arm by vpProjectiveAcquisitionProcedure: from the zero reference,
+  each joint alone moved both ways in 2 deg steps, up to 45 deg, a marker 10 px from an image border or 5 deg from
+  the simulator's joint limits, whichever comes first; the fundamental matrix from every stereo pair of the run; the
+  model calibrated from the encoder readings, so it takes them as they are. A line per joint with \e verbose.
 */
 template <class World>
 vpProjectiveRobot acquire(const World &world, vpSimulatorViper850 &robot, double sigma, vpGaussRand &noise,
                           bool verbose)
 {
-  const vpColVector qRef = degToRad(world.qRefDeg);
-  vpColVector reading; // where the encoders say the arm is: the images are taken there
-  const auto moveToTrial = [&](const vpColVector &q) {
-    reading = moveTo(robot, qRef + q); // straight from the previous pose: only where the arm stops matters
-    return reading - qRef;
-  };
-  const tutorial::ImagesAt imagesAtReading = imagesAt(world, robot, allMarkers(world), sigma, &noise, vpColVector());
-  const tutorial::ImagesAt atReading = [&](const vpColVector &, std::vector<vpImagePoint> &left,
-                                           std::vector<vpImagePoint> &right) {
-    return imagesAtReading(reading, left, right);
-  };
-  return tutorial::acquireByTrials({30, 20, 30, 40, 60, 60}, atReading, std::max(1.0, 4.0 * sigma), verbose,
-                                   world.mounting, moveToTrial);
+  const tutorial::ImagesAt images = imagesAt(world, robot, allMarkers(world), sigma, &noise, vpColVector());
+  const vpSimulatorStereoRig &rig = world.rigAt(robot, degToRad(world.qRefDeg));
+  vpProjectiveAcquisitionProcedure procedure(
+      [&](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
+        vpColVector q;
+        robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
+        return images(q, left, right); // a real rig: the stereo tracker's markers (vpStereoDotTracker)
+      },
+      rig.getWidth(), rig.getHeight());
+  const unsigned int n = static_cast<unsigned int>(world.qRefDeg.size());
+  procedure.setMaxAmounts(vpColVector(n, vpMath::rad(45.0)));
+  procedure.setSteps(vpColVector(n, vpMath::rad(2.0)));
+  procedure.setMinAmounts(vpColVector(n, vpMath::rad(world.minTrialDeg)));
+  procedure.setJointLimits(robot.getJointMin(), robot.getJointMax(), vpMath::rad(5.0));
+  procedure.setEpipolarThreshold(std::max(1.0, 4.0 * sigma));
+  procedure.setMotion([](vpRobot &arm, const vpColVector &q) { moveTo(static_cast<vpSimulatorViper850 &>(arm), q); });
+  procedure.setOutput(verbose ? &std::cout : nullptr);
+
+  vpProjectiveRobot model(std::vector<vpProjectiveRobot::vpJointType>(n, vpProjectiveRobot::REVOLUTE));
+  model.setRigMounting(world.mounting);
+  moveTo(robot, degToRad(world.qRefDeg)); // the zero reference, where the procedure starts
+  procedure.run(robot, model);
+  return model;
 }
 //! [Acquisition]
 
@@ -151,7 +126,7 @@ tutorial::ServoRun servo(const World &world, vpSimulatorViper850 &robot, const v
                          const std::function<void(const tutorial::ServoRun &)> &show = nullptr)
 {
   tutorial::ServoRun run;
-  const vpColVector qRef = degToRad(world.qRefDeg), qTarget = degToRad(world.targetDeg);
+  const vpColVector qTarget = degToRad(world.targetDeg);
   const unsigned int nbPoints = static_cast<unsigned int>(world.tracked.size());
   const tutorial::ImagesAt trackedImages = imagesAt(world, robot, world.tracked, sigma, &noise, vpColVector());
 
@@ -180,7 +155,7 @@ tutorial::ServoRun servo(const World &world, vpSimulatorViper850 &robot, const v
     for (unsigned int k = 0; k < nbPoints; ++k) {
       s[k].buildFrom(left[k], right[k]);
     }
-    const vpColVector qdot = task.computeControlLaw(q - qRef); // the model's joints are relative to the reference
+    const vpColVector qdot = task.computeControlLaw(q); // the model takes the encoder readings
     run.record(it, q, left, right, task.getError(), std::max(2.0 * sigma, 1e-6));
     if (show) {
       show(run);

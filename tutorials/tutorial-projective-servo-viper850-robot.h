@@ -22,16 +22,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpConfig.h>
 #include <visp3/core/vpException.h>
+#include <visp3/core/vpGaussRand.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
+#include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpRotationMatrix.h>
 #include <visp3/core/vpRxyzVector.h>
 #include <visp3/core/vpTime.h>
 #include <visp3/robot/vpSimulatorViper850.h>
+
+#include <visp3/projective/vpSimulatorStereoRig.h>
+
+#include "tutorial-projective-common.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -127,6 +134,45 @@ inline vpColVector moveTo(vpSimulatorViper850 &robot, const vpColVector &qGoal)
   return q;
 }
 //! [Robot]
+
+//! [Images]
+/*!
+  The images of the markers \e which seen by the rig where it is when the joints are at qRef + q (World::rigAt()),
+  at the markers where they are then (World::markersAt()), with Gaussian noise \e sigma (none if \e noise is null),
+  as an ImagesAt of the model's joint values q (of the arm's joint values if \\e qRef is empty). \e world, \e viper and
+  \e noise must outlive it.
+*/
+template <class World>
+tutorial::ImagesAt imagesAt(const World &world, const vpViper850 &viper, const std::vector<unsigned int> &which,
+                            double sigma, vpGaussRand *noise, const vpColVector &qRef)
+{
+  return [&world, &viper, which, sigma, noise, qRef](const vpColVector &q, std::vector<vpImagePoint> &left,
+                                                     std::vector<vpImagePoint> &right) {
+    const vpColVector qArm = qRef.size() > 0 ? qRef + q : q;
+    const vpSimulatorStereoRig &rig = world.rigAt(viper, qArm);
+    const std::vector<vpColVector> &fMarkers = world.markersAt(viper, qArm);
+    left.resize(which.size());
+    right.resize(which.size());
+    bool inView = true;
+    for (size_t k = 0; k < which.size(); ++k) {
+      inView = (noise == nullptr ? rig.project(fMarkers[which[k]], left[k], right[k])
+                                 : rig.project(fMarkers[which[k]], left[k], right[k], sigma, *noise)) &&
+               inView;
+    }
+    return inView;
+  };
+}
+
+//! All the markers of the world, 0 to nbMarkers() - 1.
+template <class World> std::vector<unsigned int> allMarkers(const World &world)
+{
+  std::vector<unsigned int> all(world.nbMarkers());
+  for (unsigned int j = 0; j < all.size(); ++j) {
+    all[j] = j;
+  }
+  return all;
+}
+//! [Images]
 } // namespace viper850
 
 #endif

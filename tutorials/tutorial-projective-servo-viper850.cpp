@@ -21,9 +21,10 @@
   setVelocity(vpRobot::ARTICULAR_FRAME, qdot). A tree of 7 markers is bolted to its flange; a stereo rig (the paper's
   cameras, 20 cm apart, 1.2 m in front of the robot) sees them. The marker positions come from ViSP's kinematic model
   of the Viper850 (vpViper::get_fMe()); the plugin gets only joint encoder values and noisy pixels, and
-  1. acquires the arm: the marker images at a zero reference, then each joint moved alone both ways (trials halved
-     until the markers stay in view); the fundamental matrix comes from these very images;
-  2. calibrates the projective model of the 6 revolute joints (vpProjectiveRobot::calibrate());
+  1. acquires the arm with vpProjectiveAcquisitionProcedure: the marker images at a zero reference, then each joint
+     moved alone both ways in 2 deg steps until 45 deg, a marker near an image border or a joint near its limit (no
+     hand-picked amounts); the fundamental matrix comes from the images of these very steps;
+  2. calibrates the projective model of the 6 revolute joints, which then takes the encoder readings as they are;
   3. servoes the marker tree with 3 tracked markers from a start to a target configuration (37 cm and 49 deg of tool
      motion) with the control law qdot = -lambda J^+ (s - s*) of vpServoProjective;
   4. repeats 1-3 over many noise seeds at 0.5 px and 0.1 px and prints the final joint errors next to the accuracy
@@ -91,6 +92,7 @@ struct World {
                                        vpColVector({0.000, -0.030, 0.010})};
   std::vector<unsigned int> tracked = {0, 1, 2};
   double predictionRangeDeg = 15.0; // model check at random q within +-15 deg of the zero reference (in view)
+  double minTrialDeg = 5.0;         // the procedure's default: every joint moves 5 deg or more in view
   // Start and target of the servo task (deg): the marker tree translates by 37 cm and rotates by 49 deg. The pair
   // was found once by a seeded search over random configurations within +-35 deg of the zero reference: the 3
   // tracked markers at least 20 px inside both images at both ends, the ViSP simulator's joint limits respected, the
