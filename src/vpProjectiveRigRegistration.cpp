@@ -13,6 +13,7 @@
 
 #include <visp3/projective/vpProjectiveRigRegistration.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -177,6 +178,102 @@ double refineRigid(const Projection &A, const std::vector<Eigen::Vector4d> &N, c
   const ceres::Solver::Summary summary = solveLeastSquares(problem, ceres::DENSE_QR, 50, 1e-10);
   return summary.final_cost;
 }
+
+//! Sum of squared pixel errors of the camera A T(pose) on the metric points N.
+double squaredError(const Projection &A, const double pose[6], const std::vector<Eigen::Vector4d> &N,
+                    const std::vector<Eigen::Vector2d> &uv)
+{
+  double sum = 0.0;
+  for (size_t k = 0; k < N.size(); ++k) {
+    double r[2];
+    RigidCameraError(A, N[k], uv[k])(pose, r);
+    sum += r[0] * r[0] + r[1] * r[1];
+  }
+  return std::isfinite(sum) ? sum : std::numeric_limits<double>::infinity();
+}
+
+//! Ceres on one rigid motion shared by both cameras (the whole rig moved) from \e pose; returns the squared error.
+double refineShared(const Projection &Al, const Projection &Ar, const std::vector<Eigen::Vector4d> &N,
+                    const std::vector<Eigen::Vector2d> &left, const std::vector<Eigen::Vector2d> &right, double pose[6])
+{
+  ceres::Problem problem;
+  for (size_t k = 0; k < N.size(); ++k) {
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<RigidCameraError, 2, 6>(new RigidCameraError(Al, N[k], left[k])), nullptr,
+        pose);
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<RigidCameraError, 2, 6>(new RigidCameraError(Ar, N[k], right[k])), nullptr,
+        pose);
+  }
+  solveLeastSquares(problem, ceres::DENSE_QR, 50, 1e-10);
+  return squaredError(Al, pose, N, left) + squaredError(Ar, pose, N, right);
+}
+
+/*
+  Which cameras moved, with fixed intrinsics (something did: the caller re-registers): the left one, the right one,
+  the whole rig rigidly (one motion), or each its own. Each hypothesis is fitted (rigid motions T of the metric
+  frame; T = I for a camera that did not move) and the one with the lowest Bayesian information criterion
+  N ln(SSE / N) + p ln N wins (N pixel coordinates, p = 6, 6, 6 or 12 parameters). A camera that did not move then keeps its acquired projection exactly instead of
+  a re-estimate from a few noisy observations: the disparities, hence the depths the servo's target depends on, keep
+  the acquisition's accuracy. Replaces P and Pp by the winning pair.
+*/
+void selectRigMotion(const Projection &Pold, const Projection &Ppold, const Eigen::Matrix4d &G,
+                     const std::vector<Eigen::Vector4d> &X, const std::vector<Eigen::Vector2d> &left,
+                     const std::vector<Eigen::Vector2d> &right, Projection &P, Projection &Pp)
+{
+  const Eigen::Matrix4d Ginv = G.inverse();
+  const Projection Al = Pold * Ginv, Ar = Ppold * Ginv;
+  std::vector<Eigen::Vector4d> N(X.size());
+  for (size_t k = 0; k < X.size(); ++k) {
+    N[k] = G * X[k].normalized();
+  }
+  struct Hypothesis {
+    double poseL[6], poseR[6];
+    double sse;
+    int parameters;
+  };
+  Hypothesis each{{0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0}, 0.0, 12};
+  closestRigidMotion(Al, P * Ginv, each.poseL); // the independent fits, as rigid motions
+  closestRigidMotion(Ar, Pp * Ginv, each.poseR);
+  const double zero[6] = {0, 0, 0, 0, 0, 0};
+  const double leftMoved = squaredError(Al, each.poseL, N, left), leftStill = squaredError(Al, zero, N, left);
+  const double rightMoved = squaredError(Ar, each.poseR, N, right), rightStill = squaredError(Ar, zero, N, right);
+  each.sse = leftMoved + rightMoved;
+  Hypothesis onlyLeft = each, onlyRight = each, rig = each;
+  std::fill(onlyLeft.poseR, onlyLeft.poseR + 6, 0.0);
+  onlyLeft.sse = leftMoved + rightStill;
+  onlyLeft.parameters = 6;
+  std::fill(onlyRight.poseL, onlyRight.poseL + 6, 0.0);
+  onlyRight.sse = leftStill + rightMoved;
+  onlyRight.parameters = 6;
+  double fromRight[6];
+  std::copy(each.poseR, each.poseR + 6, fromRight);
+  rig.sse = refineShared(Al, Ar, N, left, right, rig.poseL); // starts from the left camera's motion
+  const double sseFromRight = refineShared(Al, Ar, N, left, right, fromRight);
+  if (sseFromRight < rig.sse) {
+    std::copy(fromRight, fromRight + 6, rig.poseL);
+    rig.sse = sseFromRight;
+  }
+  std::copy(rig.poseL, rig.poseL + 6, rig.poseR);
+  rig.parameters = 6;
+
+  const double coordinates = 4.0 * static_cast<double>(X.size());
+  const double floor = 1e-12 * coordinates; // (1e-6 px)^2 per coordinate: round-off must not pick the hypothesis
+  const Hypothesis *best = nullptr;
+  double bestScore = std::numeric_limits<double>::infinity();
+  for (const Hypothesis *h : {&onlyLeft, &onlyRight, &rig, &each}) {
+    const double score =
+        coordinates * std::log(std::max(h->sse, floor) / coordinates) + h->parameters * std::log(coordinates);
+    if (std::isfinite(h->sse) && score < bestScore) {
+      bestScore = score;
+      best = h;
+    }
+  }
+  if (best != nullptr) {
+    P = rigidCamera(Al, best->poseL, G);
+    Pp = rigidCamera(Ar, best->poseR, G);
+  }
+}
 } // namespace
 
 Projection vpProjectiveRigRegistration::resect(const Projection &Pold, const Eigen::Matrix4d &G,
@@ -271,8 +368,13 @@ vpProjectiveStereoRig vpProjectiveRigRegistration::registerRig(const vpProjectiv
   }
   const vpProjectiveStereoRig &old = model.getStereoRig();
   double rmsLeft = 0.0, rmsRight = 0.0;
-  const Projection P = resect(old.leftProjection(), model.projectiveToMetric(), X, left, mode, &rmsLeft);
-  const Projection Pp = resect(old.rightProjection(), model.projectiveToMetric(), X, right, mode, &rmsRight);
+  Projection P = resect(old.leftProjection(), model.projectiveToMetric(), X, left, mode, &rmsLeft);
+  Projection Pp = resect(old.rightProjection(), model.projectiveToMetric(), X, right, mode, &rmsRight);
+  if (mode == FIXED_INTRINSICS) {
+    selectRigMotion(old.leftProjection(), old.rightProjection(), model.projectiveToMetric(), X, left, right, P, Pp);
+    rmsLeft = rmsError(P, X, left);
+    rmsRight = rmsError(Pp, X, right);
+  }
   if (rmsLeft > maxResidual || rmsRight > maxResidual) {
     std::ostringstream os;
     os << "the model does not explain the observations (RMS " << rmsLeft << " px left, " << rmsRight

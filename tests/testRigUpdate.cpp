@@ -172,16 +172,22 @@ double predictionError(const vpProjectiveRobot &robot, const ArmSetup &s, const 
   Adds \e count observations of \e s at random configurations in view (around \e center within +-range if given,
   else within 0.6 times the trial amounts of the zero reference) and updates the rig.
 */
-void reRegister(vpProjectiveRobot &robot, const ArmSetup &s, unsigned int count, vpUniRand &rng, vpGaussRand &noise,
-                const vpColVector &center = vpColVector(), double range = 0.0)
+struct Observation {
+  vpColVector q;
+  std::vector<vpImagePoint> left, right;
+};
+
+std::vector<Observation> reRegister(vpProjectiveRobot &robot, const ArmSetup &s, unsigned int count, vpUniRand &rng,
+                                    vpGaussRand &noise, const vpColVector &center = vpColVector(), double range = 0.0)
 {
-  for (unsigned int k = 0; k < count; ++k) {
-    const vpColVector q = center.getRows() > 0 ? jointsNear({&s}, rng, center, range) : visibleJoints({&s}, rng);
-    std::vector<vpImagePoint> left, right;
-    s.images(s.armJoints(q), left, right, kSigma, noise, -1e9);
-    robot.addRigObservation(q, left, right);
+  std::vector<Observation> observations(count);
+  for (Observation &o : observations) {
+    o.q = center.getRows() > 0 ? jointsNear({&s}, rng, center, range) : visibleJoints({&s}, rng);
+    s.images(s.armJoints(o.q), o.left, o.right, kSigma, noise, -1e9);
+    robot.addRigObservation(o.q, o.left, o.right);
   }
   robot.updateRig();
+  return observations;
 }
 
 //! Tool pose error (rotation in degrees, translation in metres) between model joints qa and qb of \e s.
@@ -208,25 +214,30 @@ struct ServoRun {
     task.setRobot(robot);
     task.setLambda(0.5);
     task.setMaxJointVelocity(vpMath::rad(10.0));
+    task.setPathPlanning(true); // plans from the model: no task ends in another branch (issue 11)
     for (size_t k = 0; k < kTracked.size(); ++k) {
       task.addFeature(s[k], sStar[k]);
     }
   }
 
   static void measure(const ArmSetup &setup, const vpColVector &q, double sigma, vpGaussRand &noise,
-                      std::vector<vpFeatureStereoPoint> &features)
+                      std::vector<vpFeatureStereoPoint> &features, Observation *frame = nullptr)
   {
     std::vector<vpImagePoint> left, right;
     setup.images(setup.armJoints(q), left, right, sigma, noise, -1e9);
+    if (frame != nullptr) {
+      *frame = Observation{q, left, right};
+    }
     for (size_t k = 0; k < kTracked.size(); ++k) {
       features[k].buildFrom(left[kTracked[k]], right[kTracked[k]]);
     }
   }
 
   //! One iteration at q seen through \e setup; moves q; returns the status.
-  vpServoProjective::vpServoStatus step(const ArmSetup &setup, vpColVector &q, double sigma, vpGaussRand &noise)
+  vpServoProjective::vpServoStatus step(const ArmSetup &setup, vpColVector &q, double sigma, vpGaussRand &noise,
+                                        Observation *frame = nullptr)
   {
-    measure(setup, q, sigma, noise, s);
+    measure(setup, q, sigma, noise, s, frame);
     const vpColVector qdot = task.computeControlLaw(q);
     q = setup.arm.integrate(setup.armJoints(q), qdot, 1.0) - setup.qRef;
     return task.getStatus();
@@ -315,11 +326,25 @@ BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind)
       c.detectedAfter = it;
     }
   }
-  // Three observation poses within 20 deg of where the arm stopped (spreading the markers), then back there.
-  reRegister(robot, b, 3, rng, noise, q, vpMath::rad(20.0));
+  // Three observation poses within 20 deg of where the arm stopped (spreading the markers), then back there. The
+  // servo's own frames keep refining the rig: every 40 iterations, updateRig() again from the three poses and the
+  // frames seen so far (20 of every 40). Frames where the task ends pin the new cameras where the re-expressed s*
+  // matters: the task then ends where the model's inverse kinematics puts the taught s*.
+  const std::vector<Observation> poses = reRegister(robot, b, 3, rng, noise, q, vpMath::rad(20.0));
+  std::vector<Observation> observed = poses;
   vpColVector qRest(s.n(), 0.0);
   for (int it = 0; it < 150; ++it) {
-    run.step(b, q, kSigma, noise);
+    Observation frame;
+    run.step(b, q, kSigma, noise, &frame);
+    if (it % 40 >= 20 && it < 120) {
+      observed.push_back(frame);
+    }
+    if (it % 40 == 39 && it < 120) {
+      for (const Observation &o : observed) {
+        robot.addRigObservation(o.q, o.left, o.right);
+      }
+      robot.updateRig();
+    }
     if (it >= 120) {
       qRest += q / 30.0;
     }
@@ -753,9 +778,9 @@ TEST(RigUpdate, MonteCarloOfBumps)
   EXPECT_EQ(falseAlarms, 0);
   EXPECT_LE(median(ratio3), 2.0);
   EXPECT_LE(median(ratio10), 1.2);
-  // Below the issue's 95 %: the unbumped runs themselves rest up to 1.4 mm from the target (90 % quantile) at 0.5 px,
-  // and the re-expressed target inherits the new rig's error (see the printed figures).
-  EXPECT_GE(finished, static_cast<int>(0.8 * n));
-  EXPECT_GE(finishedOfThose, static_cast<int>(0.8 * unbumpedFinishedCount));
+  // The issue's 95 %: the unbumped runs themselves rest up to 1.3 mm from the target (90 % quantile) at 0.5 px, and
+  // the re-expressed target inherits the model's error at the target (see the printed figures).
+  EXPECT_GE(finished, static_cast<int>(std::ceil(0.95 * n)));
+  EXPECT_GE(finishedOfThose, static_cast<int>(std::ceil(0.95 * unbumpedFinishedCount)));
   EXPECT_EQ(userUnchanged, cases);
 }

@@ -48,7 +48,16 @@ BEGIN_VISP_NAMESPACE
   metric frame (6 parameters: the angle-axis \f$ \omega \f$ in radians and \f$ t \f$ in the unit of \f$ G \f$'s
   frame). Start: the better (lower cost) of \f$ T = I \f$ and the rigid motion closest to a linear resection (DLT on
   Hartley-normalised pixels and whitened points); then Ceres minimises the pixel reprojection error over
-  \f$ (\omega, t) \f$.
+  \f$ (\omega, t) \f$. registerRig() then decides which cameras moved: the left one, the right one, the whole rig
+  (one \f$ T \f$ shared by both cameras, refitted on both images) or each its own, by the lowest Bayesian information
+  criterion \f$ N \ln(\mathrm{SSE}/N) + p \ln N \f$ (\f$ N \f$ pixel coordinates, \f$ p \f$ = 6, 6, 6 or 12
+  parameters). A camera that did not move keeps its acquired projection exactly: the disparities, hence the depths,
+  keep the acquisition's accuracy instead of that of a few noisy observations.
+
+  <b>Refining with the servo's frames.</b> The frames of a running task are observations too. Calling updateRig()
+  again with the first observation poses and the frames seen where the task ends makes the new cameras predict the
+  markers best where the re-expressed \f$ s^* \f$ matters; the task then ends where the model's inverse kinematics
+  puts the taught \f$ s^* \f$ (measured: \ref servo_meas_mismatch).
 
   <b>General (11 parameters).</b> DLT, then Ceres on the reprojection error over \f$ P \f$ (unit Frobenius norm).
   Needs more observations to reach the same accuracy; kept for a camera whose intrinsics changed (zoom, refocus).
