@@ -71,8 +71,9 @@ namespace
   The rig moved: the arm visits the observation poses \e poses with every marker lit (where the task stopped, and
   two joint offsets from there: observed where the task runs, the new rig predicts best there), the simulated user
   clicks them once at the first pose and the tracker follows them to the others without the model (its rig is the
-  old one); a pose where a marker would leave the view or merge with another is observed where the arm stopped. Each
-  pose's tracked images go to addRigObservation(); then updateRig(). \e oldError and \e newError are
+  old one); a pose where a marker would leave the view or merge with another is observed where the arm stopped, and
+  the user clicks the markers again when a move loses one on its way. Each pose's tracked images go to
+  addRigObservation(); then updateRig(). \e oldError and \e newError are
   getPredictionError() over all the markers with the old rig (RMS over the poses) and with the new one (a new frame back
   at the first pose).
 */
@@ -84,13 +85,23 @@ void reRegister(Session &session, vpProjectiveRobot &robot, const std::vector<vp
   session.grab();
   session.click(all);
   session.withModel = false;
+  const auto moveTo = [&](const vpColVector &q) {
+    const vpColVector from = session.q;
+    MoveResult r = session.move(q);
+    if (!r.complete && session.q == from) { // lost on the first frame, near the border: clicked again, on its way
+      std::cout << "    " << r.failure << ": clicked again\n";
+      session.click(all);
+      r = session.move(q);
+    }
+    return r;
+  };
   double sum = 0.0;
   for (size_t p = 0; p < poses.size(); ++p) {
     session.caption = "observation pose " + std::to_string(p + 1);
     MoveResult r;
     if (p > 0) {
-      r = session.move(poses[0]); // each observation pose from the first one
-      r = r.complete ? session.move(poses[p]) : r;
+      r = moveTo(poses[0]); // each observation pose from the first one
+      r = r.complete ? moveTo(poses[p]) : r;
     }
     const std::vector<vpImagePoint> left = session.tracker.getLeftPoints(), right = session.tracker.getRightPoints();
     robot.addRigObservation(session.q, left, right);
@@ -101,7 +112,7 @@ void reRegister(Session &session, vpProjectiveRobot &robot, const std::vector<vp
   }
   oldError = std::sqrt(sum / poses.size());
   robot.updateRig(); // both cameras re-estimated in the model's frame, the arm model kept
-  const MoveResult r = session.move(poses[0]);
+  const MoveResult r = moveTo(poses[0]);
   if (!r.complete) {
     throw vpException(vpException::fatalError, "back to the first observation pose: " + r.failure);
   }
@@ -139,12 +150,12 @@ int main(int argc, char **argv)
     vpIoTools::makeDirectory(output);
     std::cout << std::fixed << std::setprecision(2)
               << "A camera bumped during non-metric visual servoing (Ruf & Horaud), on rendered images tracked by "
-                 "vpStereoDotTracker\n\n1. Acquisition from images\n";
+                 "vpStereoDotTracker\n\n1. Acquisition from images by vpProjectiveAcquisitionProcedure\n";
 
     //! [Acquisition]
     TrackingAccuracy accuracy;
     vpStereoDotTracker zeroState;
-    vpProjectiveRobot robot = acquireFromImages(session, accuracy, zeroState, true);
+    vpProjectiveRobot robot = acquireByProcedure(session, accuracy, zeroState, true);
     session.q = vpColVector(n, 0.0); // a new frame at the zero reference, all markers lit: the model's prediction
     session.tracker = zeroState;
     session.grab();

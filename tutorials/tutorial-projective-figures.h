@@ -250,6 +250,24 @@ public:
     }
   }
 
+  //! Shows the marker images \e left, \e right (e.g. an acquisition step) with \e caption, if the windows are open.
+  void showMarkers(const std::string &caption, const std::vector<vpImagePoint> &left,
+                   const std::vector<vpImagePoint> &right)
+  {
+    if (!isOpen()) {
+      return;
+    }
+    vpDisplay::display(m_left);
+    vpDisplay::display(m_right);
+    for (size_t k = 0; k < left.size() && k < right.size(); ++k) {
+      vpDisplay::displayCross(m_left, left[k], 10, vpColor::green, 2);
+      vpDisplay::displayCross(m_right, right[k], 10, vpColor::green, 2);
+    }
+    vpDisplay::displayText(m_left, 20, 20, caption, vpColor::blue);
+    vpDisplay::flush(m_left);
+    vpDisplay::flush(m_right);
+  }
+
   //! If the windows are open, waits for a click in the left one.
   void waitForClick()
   {

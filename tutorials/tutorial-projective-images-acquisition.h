@@ -13,8 +13,9 @@
 
 /*!
   \file tutorial-projective-images-acquisition.h
-  \brief The image tutorials' steps on a Session (tutorial-projective-images.h): the acquisition from tracked images,
-  the prediction error of the tracked markers, and the target taught by showing.
+  \brief The image tutorials' steps on a Session (tutorial-projective-images.h): the acquisition from tracked images
+  (the main job's trials, or vpProjectiveAcquisitionProcedure on the session's arm as a vpRobot), the prediction
+  error of the tracked markers, and the target taught by showing.
 */
 
 #ifndef _tutorial_projective_images_acquisition_h_
@@ -30,6 +31,10 @@
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMath.h>
 
+#include <visp3/core/vpMatrix.h>
+#include <visp3/robot/vpRobot.h>
+
+#include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpStereoDotTracker.h>
 
@@ -43,20 +48,16 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace tutorial
 {
-//! [Acquisition]
 /*!
-  Acquisition from images (tutorial-projective-servo-images.cpp and tutorial-projective-bumped-camera.cpp): the user
-  clicks the 7 markers at the zero reference; each trial motion is then tracked
-  from there, and ends at its last good frame if the tracker loses a marker. Between trials the arm drives back to the
-  zero reference, where the tracker restarts from its zero-reference state (\e zeroState).
+  The start of an acquisition from images: the arm at the zero reference with every marker lit, the user's clicks on
+  the 7 markers, the tracker's state there kept in \e zeroState.
 */
-inline vpProjectiveRobot acquireFromImages(Session &session, TrackingAccuracy &accuracy, vpStereoDotTracker &zeroState,
-                                           bool verbose)
+inline void clickAtZeroReference(Session &session, TrackingAccuracy &accuracy, vpStereoDotTracker &zeroState,
+                                 bool verbose)
 {
-  const unsigned int n = session.world.arm.getNumberOfJoints();
   std::vector<unsigned int> all(session.world.arm.getToolMarkers().size());
   std::iota(all.begin(), all.end(), 0u);
-  session.q = vpColVector(n, 0.0);
+  session.q = vpColVector(session.world.arm.getNumberOfJoints(), 0.0);
   session.lit = all;
   session.caption = "acquisition: zero reference";
   session.grab();
@@ -66,6 +67,20 @@ inline vpProjectiveRobot acquireFromImages(Session &session, TrackingAccuracy &a
   if (verbose) {
     std::cout << "    markers 0-6 clicked once at the zero reference (simulated clicks, refined by vpDot2)\n";
   }
+}
+
+//! [Acquisition]
+/*!
+  Acquisition from images (tutorial-projective-servo-images.cpp, with the main job's trials): the user clicks the 7
+  markers at the zero reference; each trial motion is then tracked from there, and ends at its last good frame if the
+  tracker loses a marker. Between trials the arm drives back to the zero reference, where the tracker restarts from
+  its zero-reference state (\e zeroState).
+*/
+inline vpProjectiveRobot acquireFromImages(Session &session, TrackingAccuracy &accuracy, vpStereoDotTracker &zeroState,
+                                           bool verbose)
+{
+  const unsigned int n = session.world.arm.getNumberOfJoints();
+  clickAtZeroReference(session, accuracy, zeroState, verbose);
   std::vector<TrialMotion> trials;
   session.accuracy = &accuracy;
   for (unsigned int i = 0; i < n; ++i) {
@@ -102,6 +117,63 @@ inline vpProjectiveRobot acquireFromImages(Session &session, TrackingAccuracy &a
   return calibrateFromTrials(n, zeroState.getLeftPoints(), zeroState.getRightPoints(), trials, 1.0);
 }
 //! [Acquisition]
+
+//! [Session robot]
+//! The session's arm as a ViSP robot: its joints read by getPosition(), driven by setPosition() (Session::move()).
+class SessionRobot : public vpRobot
+{
+public:
+  explicit SessionRobot(Session &session) : m_session(session), m_lastMove() { nDof = session.q.size(); }
+  void getPosition(const vpRobot::vpControlFrameType, vpColVector &q) override { q = m_session.q; }
+  //! Drives the arm to \e q frame by frame; stops at the last frame where every marker was tracked.
+  void setPosition(const vpRobot::vpControlFrameType, const vpColVector &q) override { m_lastMove = m_session.move(q); }
+  //! Whether the last motion kept every marker tracked.
+  bool tracked() const { return m_lastMove.complete; }
+  void get_eJe(vpMatrix &eJe) override { eJe.resize(6, nDof, true); } // not used by the acquisition
+  void get_fJe(vpMatrix &fJe) override { fJe.resize(6, nDof, true); }
+  void getDisplacement(const vpRobot::vpControlFrameType, vpColVector &d) override { d.resize(nDof, true); }
+  void init() override {}
+  void setVelocity(const vpRobot::vpControlFrameType, const vpColVector &) override {}
+
+private:
+  Session &m_session;
+  MoveResult m_lastMove;
+};
+//! [Session robot]
+
+//! [Acquisition procedure]
+/*!
+  Acquisition from images by vpProjectiveAcquisitionProcedure (tutorial-projective-bumped-camera.cpp): the user
+  clicks the 7 markers at the zero reference; the procedure then moves each joint alone in 2 deg steps both ways,
+  up to 45 deg, a tracked marker 10 px from an image border or a marker lost, the arm tracked frame by frame
+  (SessionRobot); F from the tracked centres of every step (inliers within 1 px); the model calibrated. No trial
+  amount is chosen by hand.
+*/
+inline vpProjectiveRobot acquireByProcedure(Session &session, TrackingAccuracy &accuracy, vpStereoDotTracker &zeroState,
+                                            bool verbose)
+{
+  const unsigned int n = session.world.arm.getNumberOfJoints();
+  clickAtZeroReference(session, accuracy, zeroState, verbose);
+  SessionRobot arm(session);
+  vpProjectiveAcquisitionProcedure procedure(
+      [&](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
+        left = session.tracker.getLeftPoints();
+        right = session.tracker.getRightPoints();
+        return arm.tracked(); // the arm stopped short of the step: a marker was lost
+      },
+      session.world.rig.getWidth(), session.world.rig.getHeight());
+  procedure.setMaxAmounts(vpColVector(n, vpMath::rad(45.0)));
+  procedure.setSteps(vpColVector(n, vpMath::rad(2.0)));
+  procedure.setEpipolarThreshold(1.0);
+  procedure.setOutput(verbose ? &std::cout : nullptr);
+  session.accuracy = &accuracy;
+  session.caption = "acquisition";
+  vpProjectiveRobot robot(std::vector<vpProjectiveRobot::vpJointType>(n, vpProjectiveRobot::REVOLUTE));
+  procedure.run(arm, robot);
+  session.accuracy = nullptr;
+  return robot;
+}
+//! [Acquisition procedure]
 
 //! RMS per coordinate of the tracked markers minus the model's predictions at q (getPredictionError() on a subset).
 inline double trackedPredictionError(const vpProjectiveRobot &robot, const Session &session)

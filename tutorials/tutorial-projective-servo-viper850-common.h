@@ -81,11 +81,12 @@ using tutorial::degToRad;
   Acquisition (paper section 6) on the simulated arm by vpProjectiveAcquisitionProcedure: from the zero reference,
   each joint alone moved both ways in 2 deg steps, up to 45 deg, a marker 10 px from an image border or 5 deg from
   the simulator's joint limits, whichever comes first; the fundamental matrix from every stereo pair of the run; the
-  model calibrated from the encoder readings, so it takes them as they are. A line per joint with \e verbose.
+  model calibrated from the encoder readings, so it takes them as they are. A line per joint with \e verbose, every
+  step's images in \e view if it is open.
 */
 template <class World>
 vpProjectiveRobot acquire(const World &world, vpSimulatorViper850 &robot, double sigma, vpGaussRand &noise,
-                          bool verbose)
+                          bool verbose, tutorial::LiveView *view = nullptr)
 {
   const tutorial::ImagesAt images = imagesAt(world, robot, allMarkers(world), sigma, &noise, vpColVector());
   const vpSimulatorStereoRig &rig = world.rigAt(robot, degToRad(world.qRefDeg));
@@ -104,6 +105,12 @@ vpProjectiveRobot acquire(const World &world, vpSimulatorViper850 &robot, double
   procedure.setEpipolarThreshold(std::max(1.0, 4.0 * sigma));
   procedure.setMotion([](vpRobot &arm, const vpColVector &q) { moveTo(static_cast<vpSimulatorViper850 &>(arm), q); });
   procedure.setOutput(verbose ? &std::cout : nullptr);
+  if (view != nullptr && view->isOpen()) {
+    procedure.setStepCallback([view](unsigned int joint, const vpColVector &, const std::vector<vpImagePoint> &left,
+                                     const std::vector<vpImagePoint> &right) {
+      view->showMarkers("acquisition: joint " + std::to_string(joint), left, right);
+    });
+  }
 
   vpProjectiveRobot model(std::vector<vpProjectiveRobot::vpJointType>(n, vpProjectiveRobot::REVOLUTE));
   model.setRigMounting(world.mounting);
@@ -209,7 +216,7 @@ int runExperiment(const World &world, vpSimulatorViper850 &robot, unsigned int s
   std::cout << "\nSeed 1 at 0.5 px: acquisition and calibration\n";
   vpGaussRand noise(1.0, 0.0, 1);
   const vpProjectiveRobot model = tutorial::loadOrAcquire(
-      modelFile, [&] { return acquire(world, robot, 0.5, noise, true); },
+      modelFile, [&] { return acquire(world, robot, 0.5, noise, true, &view); },
       imagesAt(world, robot, allMarkers(world), 0.0, nullptr, degToRad(world.qRefDeg)), world.predictionRangeDeg);
 
   const unsigned int iterations = 30;
