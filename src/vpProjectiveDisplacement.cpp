@@ -27,10 +27,7 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
-namespace
-{
-const vpErrorSite at("vpProjectiveDisplacement");
-} // namespace
+const vpErrorSite at("vpProjectiveDisplacement"); // const: internal linkage, one per source
 
 vpProjectiveDisplacement::vpProjectiveDisplacement() : m_H(Eigen::Matrix4d::Identity()) {}
 

@@ -42,9 +42,9 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-const vpErrorSite at("vpProjectiveDisplacement");
 // Largest rigidity statistic (DisplacementAdjustment::rigidityStatistic()) of a robust estimate.
 const double kRigidityBound = 8.0;
+const vpErrorSite at("vpProjectiveDisplacement");
 
 /*
   The homography of P^3 that maps 5 points X (unit, whitened) onto 5 points Y, in closed form: with

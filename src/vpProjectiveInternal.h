@@ -74,6 +74,17 @@ inline void requireFinite(double x, const std::string &where, const std::string 
   }
 }
 
+//! A setter's non-negative setting, checked: \e x if finite and >= 0, else the error saying that \e what (e.g. "the
+//! gain") must be, with \e use (what 0 or a value means, e.g. "pixels; 0 disables the outlier rejection").
+inline double nonNegative(double x, const std::string &where, const std::string &what, const std::string &use)
+{
+  requireFinite(x, where, what);
+  if (x < 0.0) {
+    fail(vpProjectiveException::invalidValueError, where, what + " must be non-negative: positive or 0 (" + use + ")");
+  }
+  return x;
+}
+
 //! True if every entry of a ViSP matrix, vector or transform is finite.
 inline bool allFinite(const vpArray2D<double> &A)
 {

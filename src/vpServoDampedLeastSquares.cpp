@@ -133,24 +133,15 @@ vpServoDampedLeastSquares::vpServoDampedLeastSquares()
 void vpServoDampedLeastSquares::setDamping(double sigmaThreshold, double maxDamping)
 {
   const std::string where = at("setDamping()");
-  requireFinite(sigmaThreshold, where, "the singular value threshold");
-  requireFinite(maxDamping, where, "the maximum damping");
-  if (sigmaThreshold < 0.0 || maxDamping < 0.0) {
-    fail(vpProjectiveException::invalidValueError, where,
-         "the threshold and the damping must be non-negative (0 for the threshold disables the damping)");
-  }
-  m_sigmaThreshold = sigmaThreshold;
-  m_maxDamping = maxDamping;
+  const double threshold = nonNegative(sigmaThreshold, where, "the singular value threshold", "px/rad; 0: no damping");
+  m_maxDamping = nonNegative(maxDamping, where, "the maximum damping", "px/rad"); // both checked before any change
+  m_sigmaThreshold = threshold;
 }
 
 void vpServoDampedLeastSquares::setMaxJointVelocity(double qdotMax)
 {
-  const std::string where = at("setMaxJointVelocity()");
-  requireFinite(qdotMax, where, "the maximum joint velocity");
-  if (qdotMax < 0.0) {
-    fail(vpProjectiveException::invalidValueError, where, "the maximum joint velocity must be positive (0 disables)");
-  }
-  m_qdotMax = qdotMax;
+  m_qdotMax = nonNegative(qdotMax, at("setMaxJointVelocity()"), "the maximum joint velocity",
+                          "rad/s or m/s per joint; 0 disables the limit");
 }
 
 void vpServoDampedLeastSquares::setPseudoInverseThreshold(double threshold)
@@ -228,10 +219,7 @@ vpColVector vpServoDampedLeastSquares::computeVelocity(const vpMatrix &J, const 
   if (!allFinite(e)) {
     fail(vpProjectiveException::nonFiniteValueError, where, "e has a NaN or infinite entry");
   }
-  requireFinite(lambda, where, "the gain");
-  if (lambda < 0.0) {
-    fail(vpProjectiveException::invalidValueError, where, "the gain must be non-negative");
-  }
+  nonNegative(lambda, where, "the gain", "1/s");
   Eigen::MatrixXd JE(J.getRows(), J.getCols());
   conversion::visp2eigen(J, JE);
   const Eigen::VectorXd eE = eigenMap(e);

@@ -131,13 +131,8 @@ void vpServoFeatureHealth::setImageSize(unsigned int width, unsigned int height,
 
 void vpServoFeatureHealth::setOutlierThreshold(double pixels)
 {
-  const std::string where = at("setOutlierThreshold()");
-  requireFinite(pixels, where, "the outlier threshold");
-  if (pixels < 0.0) {
-    fail(vpProjectiveException::invalidValueError, where,
-         "the outlier threshold must be non-negative (pixels; 0 disables the outlier rejection)");
-  }
-  m_outlierThreshold = pixels;
+  m_outlierThreshold =
+      nonNegative(pixels, at("setOutlierThreshold()"), "the outlier threshold", "pixels; 0 disables the rejection");
 }
 
 void vpServoFeatureHealth::startIteration(const vpProjectiveRobot &robot, const vpProjectiveRobot::JointVector &q)

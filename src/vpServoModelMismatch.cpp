@@ -32,13 +32,8 @@ vpServoModelMismatch::vpServoModelMismatch()
 
 void vpServoModelMismatch::setThreshold(double pixels)
 {
-  const std::string where = vpErrorSite("vpServoModelMismatch")("setThreshold()");
-  requireFinite(pixels, where, "the model-mismatch threshold");
-  if (pixels < 0.0) {
-    fail(vpProjectiveException::invalidValueError, where,
-         "the model-mismatch threshold is a distance in pixels: positive (e.g. 5), or 0 to disable the detection");
-  }
-  m_threshold = pixels;
+  m_threshold = nonNegative(pixels, vpErrorSite("vpServoModelMismatch")("setThreshold()"),
+                            "the model-mismatch threshold", "a distance in pixels, e.g. 5; 0 disables the detection");
 }
 
 void vpServoModelMismatch::setConsecutiveIterations(unsigned int iterations)

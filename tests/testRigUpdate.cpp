@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -104,15 +105,12 @@ ArmSetup bumped(const ArmSetup &s, BumpKind kind, vpUniRand &rng)
   return b;
 }
 
-//! Random model joints (within 0.6 times the trial amounts) with every marker in view in all \e setups.
-vpColVector visibleJoints(const std::vector<const ArmSetup *> &setups, vpUniRand &rng)
+//! Model joints drawn by \e draw until every marker is in view in all \e setups (\e fallback if none in 100000 draws).
+vpColVector drawInView(const std::vector<const ArmSetup *> &setups, const std::function<vpColVector()> &draw,
+                       const vpColVector &fallback)
 {
-  const ArmSetup &s = *setups[0];
   for (int attempt = 0; attempt < 100000; ++attempt) {
-    vpColVector q(s.n());
-    for (unsigned int i = 0; i < s.n(); ++i) {
-      q[i] = rng.uniform(-0.6 * s.trialAmounts[i], 0.6 * s.trialAmounts[i]);
-    }
+    const vpColVector q = draw();
     bool ok = true;
     for (const ArmSetup *setup : setups) {
       ok = ok && setup->visible(setup->armJoints(q), 20.0);
@@ -122,34 +120,45 @@ vpColVector visibleJoints(const std::vector<const ArmSetup *> &setups, vpUniRand
     }
   }
   ADD_FAILURE() << "no configuration in view";
-  return vpColVector(s.n(), 0.0);
+  return fallback;
+}
+
+//! Random model joints (within 0.6 times the trial amounts) with every marker in view in all \e setups.
+vpColVector visibleJoints(const std::vector<const ArmSetup *> &setups, vpUniRand &rng)
+{
+  const ArmSetup &s = *setups[0];
+  return drawInView(
+      setups,
+      [&] {
+        vpColVector q(s.n());
+        for (unsigned int i = 0; i < s.n(); ++i) {
+          q[i] = rng.uniform(-0.6 * s.trialAmounts[i], 0.6 * s.trialAmounts[i]);
+        }
+        return q;
+      },
+      vpColVector(s.n(), 0.0));
 }
 
 //! Model joints within +-range of \e center (per joint) with every marker in view in all \e setups.
 vpColVector jointsNear(const std::vector<const ArmSetup *> &setups, vpUniRand &rng, const vpColVector &center,
                        double range)
 {
-  for (int attempt = 0; attempt < 100000; ++attempt) {
-    vpColVector q = center;
-    for (unsigned int i = 0; i < q.getRows(); ++i) {
-      q[i] += rng.uniform(-range, range);
-    }
-    bool ok = true;
-    for (const ArmSetup *setup : setups) {
-      ok = ok && setup->visible(setup->armJoints(q), 20.0);
-    }
-    if (ok) {
-      return q;
-    }
-  }
-  ADD_FAILURE() << "no configuration in view";
-  return center;
+  return drawInView(
+      setups,
+      [&] {
+        vpColVector q = center;
+        for (unsigned int i = 0; i < q.getRows(); ++i) {
+          q[i] += rng.uniform(-range, range);
+        }
+        return q;
+      },
+      center);
 }
 
-vpProjectiveRobot acquiredRobot(const ArmSetup &s, vpGaussRand &noise)
+vpProjectiveRobot acquiredRobot(const ArmSetup &s, vpGaussRand &noise, double sigma = kSigma)
 {
   vpProjectiveRobot robot(s.jointTypes());
-  EXPECT_TRUE(s.acquire(robot, kSigma, noise)) << s.name;
+  EXPECT_TRUE(s.acquire(robot, sigma, noise)) << s.name;
   robot.calibrate();
   return robot;
 }
@@ -433,9 +442,7 @@ TEST(RigUpdate, NoiseFreeReRegistrationIsExact)
     for (auto mode : {vpProjectiveRigRegistration::FIXED_INTRINSICS, vpProjectiveRigRegistration::GENERAL}) {
       vpUniRand rng(11 + kind);
       vpGaussRand noise(1.0, 0.0, 3);
-      vpProjectiveRobot robot(s.jointTypes());
-      ASSERT_TRUE(s.acquire(robot, 0.0, noise));
-      robot.calibrate();
+      vpProjectiveRobot robot = acquiredRobot(s, noise, 0.0); // noise-free
       const ArmSetup b = bumped(s, kind, rng);
       std::vector<vpColVector> poses;
       for (int k = 0; k < 5; ++k) {
@@ -627,37 +634,46 @@ TEST(RigUpdate, BumpDetectedReRegisteredAndTaskFinished)
   }
 }
 
+//! A noise-free model of the PUMA, its rig then bumped (\e kind) and a target in view of both rigs; seeded.
+struct NoiseFreeBump {
+  NoiseFreeBump(long seed, BumpKind kind)
+      : s(pumaEyeToHand()), rng(seed), noise(1.0, 0.0, seed), robot(acquiredRobot(s, noise, 0.0)),
+        b(bumped(s, kind, rng)), qTarget(jointsNear({&s, &b}, rng, vpColVector(s.n(), 0.0), vpMath::rad(20.0)))
+  {
+  }
+  const ArmSetup s;
+  vpUniRand rng;
+  vpGaussRand noise;
+  vpProjectiveRobot robot;
+  const ArmSetup b;
+  const vpColVector qTarget;
+};
+
 // SERVO_MODEL_MISMATCH takes precedence over single-feature outliers, a single outlier is not a mismatch, qdot = 0,
 // and a threshold of 0 turns the detection off.
 TEST(RigUpdate, MismatchPrecedenceAndSwitch)
 {
-  const ArmSetup s = pumaEyeToHand();
-  vpUniRand rng(31);
-  vpGaussRand noise(1.0, 0.0, 31);
-  vpProjectiveRobot robot(s.jointTypes());
-  ASSERT_TRUE(s.acquire(robot, 0.0, noise));
-  robot.calibrate();
-  const ArmSetup b = bumped(s, BUMP_LEFT, rng);
-  const vpColVector qTarget = jointsNear({&s, &b}, rng, vpColVector(s.n(), 0.0), vpMath::rad(20.0));
-  const vpColVector qStart = jointsNear({&s, &b}, rng, qTarget, vpMath::rad(8.0));
+  NoiseFreeBump t(31, BUMP_LEFT);
+  const ArmSetup &s = t.s, &b = t.b;
+  const vpColVector qStart = jointsNear({&s, &b}, t.rng, t.qTarget, vpMath::rad(8.0));
   for (double threshold : {5.0, 0.0}) {
-    ServoRun run(s, robot, qTarget, 0.0, noise);
+    ServoRun run(s, t.robot, t.qTarget, 0.0, t.noise);
     run.task.setOutlierThreshold(3.0);
     run.task.setModelMismatchThreshold(threshold);
     vpColVector q = qStart;
     for (int it = 0; it < 3; ++it) {
-      EXPECT_EQ(run.step(s, q, 0.0, noise), vpServoProjective::SERVO_RUNNING);
+      EXPECT_EQ(run.step(s, q, 0.0, t.noise), vpServoProjective::SERVO_RUNNING);
     }
     // One feature jumps by 20 px: an outlier, not a mismatch.
-    ServoRun::measure(s, q, 0.0, noise, run.s);
+    ServoRun::measure(s, q, 0.0, t.noise, run.s);
     const Eigen::Vector4d s2 = run.s[2].getFeature();
     run.s[2].buildFrom(s2(0) + 20.0, s2(1), s2(2), s2(3));
     run.task.computeControlLaw(q);
     EXPECT_EQ(run.task.getFeatureState(2), vpServoProjective::FEATURE_OUTLIER);
     EXPECT_EQ(run.task.getStatus(), vpServoProjective::SERVO_REDUCED);
     // The camera moves: every feature is an outlier for the health, and a mismatch at the second call.
-    vpServoProjective::vpServoStatus first = run.step(b, q, 0.0, noise);
-    ServoRun::measure(b, q, 0.0, noise, run.s);
+    vpServoProjective::vpServoStatus first = run.step(b, q, 0.0, t.noise);
+    ServoRun::measure(b, q, 0.0, t.noise, run.s);
     const vpColVector qdot = run.task.computeControlLaw(q);
     if (threshold > 0.0) {
       EXPECT_NE(first, vpServoProjective::SERVO_MODEL_MISMATCH);
@@ -674,57 +690,51 @@ TEST(RigUpdate, MismatchPrecedenceAndSwitch)
 // The task's own s*: re-expressed after updateRig(), the user's objects unchanged, a new s* taken as given.
 TEST(RigUpdate, TaskReExpressesItsDesiredFeatures)
 {
-  const ArmSetup s = pumaEyeToHand();
-  vpUniRand rng(21);
-  vpGaussRand noise(1.0, 0.0, 21);
-  vpProjectiveRobot robot(s.jointTypes());
-  ASSERT_TRUE(s.acquire(robot, 0.0, noise));
-  robot.calibrate();
-  const ArmSetup b = bumped(s, BUMP_RIG, rng);
-  const vpColVector qTarget = jointsNear({&s, &b}, rng, vpColVector(s.n(), 0.0), vpMath::rad(20.0));
-  ServoRun run(s, robot, qTarget, 0.0, noise);
-  vpColVector q = jointsNear({&s, &b}, rng, qTarget, vpMath::rad(8.0));
-  run.step(s, q, 0.0, noise);
+  NoiseFreeBump t(21, BUMP_RIG);
+  const ArmSetup &s = t.s, &b = t.b;
+  ServoRun run(s, t.robot, t.qTarget, 0.0, t.noise);
+  vpColVector q = jointsNear({&s, &b}, t.rng, t.qTarget, vpMath::rad(8.0));
+  run.step(s, q, 0.0, t.noise);
   EXPECT_EQ(toEigen4(run.task.getDesiredFeature(0)), run.sStar[0].getFeature());
   vpColVector qObs;
   for (int k = 0; k < 3; ++k) {
-    qObs = visibleJoints({&b}, rng);
+    qObs = visibleJoints({&b}, t.rng);
     std::vector<vpImagePoint> left, right;
     b.images(b.armJoints(qObs), left, right, -1e9);
-    robot.addRigObservation(qObs, left, right);
+    t.robot.addRigObservation(qObs, left, right);
   }
-  robot.updateRig();
+  t.robot.updateRig();
   const Eigen::Vector4d user = run.sStar[0].getFeature();
-  run.step(b, q, 0.0, noise);
+  run.step(b, q, 0.0, t.noise);
   // Noise-free: the re-expressed s* is the new rig's image of the target, i.e. what the bumped rig sees there.
   for (size_t k = 0; k < kTracked.size(); ++k) {
-    const Eigen::Vector4d expected = b.imageOf(b.armJoints(qTarget), kTracked[k]);
+    const Eigen::Vector4d expected = b.imageOf(b.armJoints(t.qTarget), kTracked[k]);
     EXPECT_LT((toEigen4(run.task.getDesiredFeature(static_cast<unsigned int>(k))) - expected).norm(), 1e-3);
   }
   EXPECT_EQ(run.sStar[0].getFeature(), user);
   EXPECT_GT((toEigen4(run.task.getDesiredFeature(0)) - user).norm(), 1.0);
   for (int it = 0; it < 100; ++it) {
-    const vpServoProjective::vpServoStatus st = run.step(b, q, 0.0, noise);
+    const vpServoProjective::vpServoStatus st = run.step(b, q, 0.0, t.noise);
     if (it % 10 == 0)
       std::cout << it << " " << st << " " << run.task.getError().frobeniusNorm() << " " << run.task.getConditionNumber()
                 << std::endl;
   }
   double deg = 0.0, metres = 0.0;
   {
-    vpColVector qq = qTarget;
-    run.step(b, qq, 0.0, noise);
+    vpColVector qq = t.qTarget;
+    run.step(b, qq, 0.0, t.noise);
     std::cout << "at target e " << run.task.getError().t() << std::endl;
     std::vector<vpImagePoint> l, r;
-    b.images(b.armJoints(qTarget), l, r, -1e9);
-    std::cout << "pred err at target " << robot.getPredictionError(qTarget, l, r) << std::endl;
-    std::cout << "q-qT " << (q - qTarget).t() << std::endl;
+    b.images(b.armJoints(t.qTarget), l, r, -1e9);
+    std::cout << "pred err at target " << t.robot.getPredictionError(t.qTarget, l, r) << std::endl;
+    std::cout << "q-qT " << (q - t.qTarget).t() << std::endl;
   }
-  toolPoseError(s, q, qTarget, deg, metres);
+  toolPoseError(s, q, t.qTarget, deg, metres);
   EXPECT_LT(deg, 1e-3);
   EXPECT_LT(metres, 1e-5);
   // A new s* given by the user after the update is in the new images: taken as given.
-  ServoRun::measure(b, qObs, 0.0, noise, run.sStar);
-  run.step(b, q, 0.0, noise);
+  ServoRun::measure(b, qObs, 0.0, t.noise, run.sStar);
+  run.step(b, q, 0.0, t.noise);
   EXPECT_EQ(toEigen4(run.task.getDesiredFeature(1)), run.sStar[1].getFeature());
 }
 

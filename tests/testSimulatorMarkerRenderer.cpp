@@ -36,10 +36,10 @@
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
+using namespace vpProjectiveTest;
+
 namespace
 {
-using vpProjectiveTest::point3;
-using vpProjectiveTest::throwsProjective;
 
 const vpSimulatorStereoRig kRig = vpSimulatorStereoRig::paperRig(vpColVector(3, 0.0), 1.0);
 

@@ -73,6 +73,17 @@ struct World {
   }
 };
 
+//! The world with the arm at q = 0 rendered by a renderer seeded with \e seed: images in w.Il, w.Ir, true pixels.
+struct RenderedAtZero {
+  explicit RenderedAtZero(long seed) : w(), renderer(w.rig, seed), left(), right()
+  {
+    w.renderArm(renderer, vpColVector(6, 0.0), left, right);
+  }
+  World w;
+  vpSimulatorMarkerRenderer renderer;
+  std::vector<vpImagePoint> left, right;
+};
+
 //! Joint values along a smooth path: q(t) = t * qEnd (deg), t in [0, 1].
 vpColVector along(double t)
 {
@@ -299,10 +310,9 @@ TEST(StereoDotTracker, ModelPredictionRecoversAMarkerAfterAnIrregularMotion)
 
 TEST(StereoDotTracker, DetectionPairsTheBlobsByTheEpipolarGeometry)
 {
-  World w;
-  vpSimulatorMarkerRenderer renderer(w.rig, 6);
-  std::vector<vpImagePoint> left, right;
-  const std::vector<vpColVector> X = w.renderArm(renderer, vpColVector(6, 0.0), left, right);
+  RenderedAtZero z(6);
+  World &w = z.w;
+  const std::vector<vpImagePoint> &left = z.left, &right = z.right;
   vpStereoDotTracker tracker;
   tracker.setStereoRig(w.trueRig);
   tracker.initTrackingByDetection(w.Il, w.Ir, 7);
@@ -352,10 +362,9 @@ TEST(StereoDotTracker, DetectionWithTheModelNumbersTheMarkersAsTheModel)
 
 TEST(StereoDotTracker, MisuseThrowsAndLeavesTheTrackerAsItWas)
 {
-  World w;
-  vpSimulatorMarkerRenderer renderer(w.rig, 9);
-  std::vector<vpImagePoint> left, right;
-  const std::vector<vpColVector> X = w.renderArm(renderer, vpColVector(6, 0.0), left, right);
+  RenderedAtZero z(9);
+  World &w = z.w;
+  const std::vector<vpImagePoint> &left = z.left, &right = z.right;
   vpStereoDotTracker tracker;
   EXPECT_TRUE(
       throwsProjective([&] { tracker.track(w.Il, w.Ir); }, vpProjectiveException::notInitializedError, "initTracking"));

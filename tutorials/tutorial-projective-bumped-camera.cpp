@@ -179,12 +179,12 @@ int main(int argc, char **argv)
       throw vpException(vpException::fatalError, "teaching: " + failure);
     }
     const size_t K = world.tracked.size();
-    std::vector<vpFeatureStereoPoint> s(K), s_star(K);
-    vpServoProjective task;
+    vpServoProjective task; // the settings of tutorial-projective-servo.cpp
     task.setRobot(robot);
     task.setLambda(0.5);
     task.setMaxJointVelocity(vpMath::rad(15.0));
     task.setDamping(30.0, 30.0);
+    std::vector<vpFeatureStereoPoint> s(K), s_star(K); // s from the tracked centres, s* from the taught ones
     for (size_t k = 0; k < K; ++k) {
       s_star[k].buildFrom(leftStar[k], rightStar[k]);
       task.addFeature(s[k], s_star[k]);

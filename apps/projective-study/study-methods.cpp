@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include <visp3/core/vpGaussRand.h>
 #include <visp3/core/vpMath.h>
@@ -56,48 +57,53 @@ void runMethods(const World &world, const Task &task, double sigma, const vpProj
   std::vector<vpImagePoint> leftStar, rightStar;
   measuredTarget(task, sigma, leftStar, rightStar);
 
-  const double t0 = vpTime::measureTimeMs();
-  for (int variant = 0; variant < (robust ? 2 : 1); ++variant) {
-    const std::string method = variant == 0 ? "projective" : "projective (robust)";
+  // The projective servo on the acquired model, set up by \e configure; after the run, \e finish reads the servo.
+  const auto runProjective = [&](const std::string &method, const std::function<void(ProjectiveServo &)> &configure,
+                                 const std::function<void(const ProjectiveServo &, RunResult &)> &finish) {
     RunResult r;
     if (robot == nullptr) {
       r.acquisitionFailed = true;
       r.message = acquisitionMessage;
     } else {
       ProjectiveServo servo(*robot, leftStar, rightStar, world.control);
-      if (variant == 1) {
-        servo.setRobust(world.rig.getWidth(), world.rig.getHeight(), world.outlierThresholdPx, world.arm.getJointMin(),
-                        world.arm.getJointMax());
-      }
+      configure(servo);
       r = runServo(world, task, sigma, servo, scenario);
-      r.stoppedIterations = servo.getStoppedIterations();
+      finish(servo, r);
       r.modelErrorTarget = modelPredictionError(world, *robot, task.qTarget);
     }
     results.cell(scenarioName, method, sigma).add(r, task.seed);
     writeRun(csv, scenarioName, method, sigma, -1, task, r);
+  };
+
+  const double t0 = vpTime::measureTimeMs();
+  for (int variant = 0; variant < (robust ? 2 : 1); ++variant) {
+    runProjective(
+        variant == 0 ? "projective" : "projective (robust)",
+        [&](ProjectiveServo &servo) {
+          if (variant == 1) {
+            servo.setRobust(world.rig.getWidth(), world.rig.getHeight(), world.outlierThresholdPx,
+                            world.arm.getJointMin(), world.arm.getJointMax());
+          }
+        },
+        [](const ProjectiveServo &servo, RunResult &r) { r.stoppedIterations = servo.getStoppedIterations(); });
   }
   const double tp = vpTime::measureTimeMs();
   results.timeMs["projective servo"] += tp - t0;
 
   if (scenario == NOMINAL) {
     // Global servoing: the same model, planned (its tasks are not filtered to the start's branch with --any-branch).
-    RunResult r;
-    if (robot == nullptr) {
-      r.acquisitionFailed = true;
-      r.message = acquisitionMessage;
-    } else {
-      ProjectiveServo servo(*robot, leftStar, rightStar, world.control);
-      servo.setPlanned(world.rig.getWidth(), world.rig.getHeight(), world.planBorderPx, vpMath::rad(world.planStepDeg),
-                       world.arm.getJointMin(), world.arm.getJointMax());
-      r = runServo(world, task, sigma, servo, scenario);
-      r.noPlan = servo.getNoPlan();
-      if (servo.getPlannedTarget().size() == world.arm.getNumberOfJoints()) {
-        r.otherBranch = branchOf(world.arm, servo.getPlannedTarget()) == branchOf(world.arm, task.qTarget) ? 0 : 1;
-      }
-      r.modelErrorTarget = modelPredictionError(world, *robot, task.qTarget);
-    }
-    results.cell(scenarioName, "planned", sigma).add(r, task.seed);
-    writeRun(csv, scenarioName, "planned", sigma, -1, task, r);
+    runProjective(
+        "planned",
+        [&](ProjectiveServo &servo) {
+          servo.setPlanned(world.rig.getWidth(), world.rig.getHeight(), world.planBorderPx,
+                           vpMath::rad(world.planStepDeg), world.arm.getJointMin(), world.arm.getJointMax());
+        },
+        [&](const ProjectiveServo &servo, RunResult &r) {
+          r.noPlan = servo.getNoPlan();
+          if (servo.getPlannedTarget().size() == world.arm.getNumberOfJoints()) {
+            r.otherBranch = branchOf(world.arm, servo.getPlannedTarget()) == branchOf(world.arm, task.qTarget) ? 0 : 1;
+          }
+        });
   }
   const double t1 = vpTime::measureTimeMs();
   results.timeMs["planned servo"] += t1 - tp;

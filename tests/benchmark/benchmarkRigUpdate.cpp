@@ -39,19 +39,21 @@ using namespace vpProjectiveTest;
 
 namespace
 {
-const double kSigma = 0.5;
-
 //! The acquired PUMA and the noisy observations of its bumped rig.
 struct Bump {
+  static constexpr double sigma = 0.5; // pixel noise of the acquisition and of the observations
   ArmSetup setup = pumaEyeToHand();
   vpProjectiveRobot robot;
-  std::vector<vpColVector> q;
-  std::vector<std::vector<vpImagePoint>> left, right;
+  struct Observation {
+    vpColVector q;
+    std::vector<vpImagePoint> left, right;
+  };
+  std::vector<Observation> observations; // of the bumped rig, at random joints in view
 
   Bump() : robot(setup.jointTypes())
   {
     vpGaussRand noise(1.0, 0.0, 1);
-    setup.acquire(robot, kSigma, noise);
+    setup.acquire(robot, sigma, noise);
     robot.calibrate();
     ArmSetup bumped = setup;
     const vpHomogeneousMatrix d(vpTranslationVector(0.006, -0.008, 0.0),
@@ -63,13 +65,10 @@ struct Bump {
     for (double a : setup.trialAmounts) {
       range.push_back(0.6 * a);
     }
-    while (q.size() < 10) {
-      const vpColVector qk = bumped.randomVisibleJoints(rng, range, 20.0);
-      std::vector<vpImagePoint> l, r;
-      bumped.images(bumped.armJoints(qk), l, r, kSigma, noise, -1e9);
-      q.push_back(qk);
-      left.push_back(l);
-      right.push_back(r);
+    observations.resize(10);
+    for (Observation &o : observations) {
+      o.q = bumped.randomVisibleJoints(rng, range, 20.0);
+      bumped.images(bumped.armJoints(o.q), o.left, o.right, sigma, noise, -1e9);
     }
   }
 };
@@ -89,7 +88,7 @@ void BM_UpdateRig(benchmark::State &state)
                                                    : vpProjectiveRigRegistration::GENERAL);
   for (auto _ : state) {
     for (size_t k = 0; k < observations; ++k) {
-      robot.addRigObservation(b.q[k], b.left[k], b.right[k]);
+      robot.addRigObservation(b.observations[k].q, b.observations[k].left, b.observations[k].right);
     }
     robot.updateRig();
     benchmark::DoNotOptimize(robot.getStereoRig().leftProjection().data());
