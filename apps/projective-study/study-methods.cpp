@@ -69,6 +69,7 @@ void runMethods(const World &world, const Task &task, double sigma, const vpProj
       configure(servo);
       r = runServo(world, task, sigma, servo, scenario);
       finish(servo, r);
+      r.mismatchIterations = servo.getMismatchIterations();
       r.modelErrorTarget = modelPredictionError(world, *robot, task.qTarget);
     }
     results.cell(scenarioName, method, sigma).add(r, task.seed);

@@ -131,6 +131,7 @@ public:
       }
     }
     const vpColVector qdot = m_task.computeControlLaw(q);
+    m_mismatch += m_task.getStatus() == vpServoProjective::SERVO_MODEL_MISMATCH; // a false alarm: no camera moves
     if (m_planned && m_first) {
       m_first = false;
       m_noPlan = m_task.getStatus() == vpServoProjective::SERVO_NO_PLAN;
@@ -148,6 +149,8 @@ public:
   }
   void rejected(std::vector<bool> &flags) const override { flags = m_rejected; }
   unsigned int getStoppedIterations() const { return m_stopped; }
+  //! Iterations that reported SERVO_MODEL_MISMATCH.
+  unsigned int getMismatchIterations() const { return m_mismatch; }
 
 private:
   vpServoProjective m_task;
@@ -155,7 +158,7 @@ private:
   std::vector<bool> m_tracked;
   bool m_robust;
   std::vector<bool> m_rejected;
-  unsigned int m_stopped = 0;
+  unsigned int m_stopped = 0, m_mismatch = 0;
   bool m_planned = false, m_first = true, m_noPlan = false;
   vpColVector m_plannedTarget;
 };

@@ -58,6 +58,7 @@ struct RunResult {
   // Outlier rejection by the controller (robust projective): gross errors seen and rejected, clean points rejected.
   unsigned int outliersSeen = 0, outliersRejected = 0, cleanSeen = 0, cleanRejected = 0;
   unsigned int stoppedIterations = 0;
+  unsigned int mismatchIterations = 0; // projective and planned: SERVO_MODEL_MISMATCH (false alarms: no camera moves)
   std::string message;
   bool success() const
   {

@@ -52,6 +52,7 @@ struct Cell {
   unsigned int noPlan = 0, planned = 0, otherBranch = 0; // planned servo: no plan; plans; plans in another branch
   std::vector<bool> successes;                           // per task, in task order (paired comparisons)
   unsigned int outliersSeen = 0, outliersRejected = 0, cleanSeen = 0, cleanRejected = 0, stoppedIterations = 0;
+  unsigned int mismatchRuns = 0, mismatchIterations = 0; // runs with a SERVO_MODEL_MISMATCH, and its iterations
 
   void add(const RunResult &r, unsigned int seed)
   {
@@ -85,6 +86,8 @@ struct Cell {
     cleanSeen += r.cleanSeen;
     cleanRejected += r.cleanRejected;
     stoppedIterations += r.stoppedIterations;
+    mismatchRuns += r.mismatchIterations > 0;
+    mismatchIterations += r.mismatchIterations;
   }
   unsigned int count(const std::string &c) const
   {
