@@ -213,9 +213,9 @@ double refineShared(const Projection &Al, const Projection &Ar, const std::vecto
   Which cameras moved, with fixed intrinsics (something did: the caller re-registers): the left one, the right one,
   the whole rig rigidly (one motion), or each its own. Each hypothesis is fitted (rigid motions T of the metric
   frame; T = I for a camera that did not move) and the one with the lowest Bayesian information criterion
-  N ln(SSE / N) + p ln N wins (N pixel coordinates, p = 6, 6, 6 or 12 parameters). A camera that did not move then keeps its acquired projection exactly instead of
-  a re-estimate from a few noisy observations: the disparities, hence the depths the servo's target depends on, keep
-  the acquisition's accuracy. Replaces P and Pp by the winning pair.
+  N ln(SSE / N) + p ln N wins (N pixel coordinates, p = 6, 6, 6 or 12 parameters). A camera that did not move then keeps
+  its acquired projection exactly instead of a re-estimate from a few noisy observations: the disparities, hence the
+  depths the servo's target depends on, keep the acquisition's accuracy. Replaces P and Pp by the winning pair.
 */
 void selectRigMotion(const Projection &Pold, const Projection &Ppold, const Eigen::Matrix4d &G,
                      const std::vector<Eigen::Vector4d> &X, const std::vector<Eigen::Vector2d> &left,
@@ -227,46 +227,43 @@ void selectRigMotion(const Projection &Pold, const Projection &Ppold, const Eige
   for (size_t k = 0; k < X.size(); ++k) {
     N[k] = G * X[k].normalized();
   }
+  // The independent fits of resect(), as rigid motions; a camera that did not move has the zero motion.
+  const double zero[6] = {0, 0, 0, 0, 0, 0};
+  double poseL[6], poseR[6];
+  closestRigidMotion(Al, P * Ginv, poseL);
+  closestRigidMotion(Ar, Pp * Ginv, poseR);
+  const double leftMoved = squaredError(Al, poseL, N, left), leftStill = squaredError(Al, zero, N, left);
+  const double rightMoved = squaredError(Ar, poseR, N, right), rightStill = squaredError(Ar, zero, N, right);
+  // The whole rig: one motion for both cameras, from either camera's as a start.
+  double poseRig[6], fromRight[6];
+  std::copy(poseL, poseL + 6, poseRig);
+  std::copy(poseR, poseR + 6, fromRight);
+  double sseRig = refineShared(Al, Ar, N, left, right, poseRig);
+  const double sseFromRight = refineShared(Al, Ar, N, left, right, fromRight);
+  if (sseFromRight < sseRig) {
+    std::copy(fromRight, fromRight + 6, poseRig);
+    sseRig = sseFromRight;
+  }
+
   struct Hypothesis {
-    double poseL[6], poseR[6];
+    const double *poseL, *poseR;
     double sse;
     int parameters;
   };
-  Hypothesis each{{0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0}, 0.0, 12};
-  closestRigidMotion(Al, P * Ginv, each.poseL); // the independent fits, as rigid motions
-  closestRigidMotion(Ar, Pp * Ginv, each.poseR);
-  const double zero[6] = {0, 0, 0, 0, 0, 0};
-  const double leftMoved = squaredError(Al, each.poseL, N, left), leftStill = squaredError(Al, zero, N, left);
-  const double rightMoved = squaredError(Ar, each.poseR, N, right), rightStill = squaredError(Ar, zero, N, right);
-  each.sse = leftMoved + rightMoved;
-  Hypothesis onlyLeft = each, onlyRight = each, rig = each;
-  std::fill(onlyLeft.poseR, onlyLeft.poseR + 6, 0.0);
-  onlyLeft.sse = leftMoved + rightStill;
-  onlyLeft.parameters = 6;
-  std::fill(onlyRight.poseL, onlyRight.poseL + 6, 0.0);
-  onlyRight.sse = leftStill + rightMoved;
-  onlyRight.parameters = 6;
-  double fromRight[6];
-  std::copy(each.poseR, each.poseR + 6, fromRight);
-  rig.sse = refineShared(Al, Ar, N, left, right, rig.poseL); // starts from the left camera's motion
-  const double sseFromRight = refineShared(Al, Ar, N, left, right, fromRight);
-  if (sseFromRight < rig.sse) {
-    std::copy(fromRight, fromRight + 6, rig.poseL);
-    rig.sse = sseFromRight;
-  }
-  std::copy(rig.poseL, rig.poseL + 6, rig.poseR);
-  rig.parameters = 6;
-
+  const Hypothesis hypotheses[] = {{poseL, zero, leftMoved + rightStill, 6},
+                                   {zero, poseR, leftStill + rightMoved, 6},
+                                   {poseRig, poseRig, sseRig, 6},
+                                   {poseL, poseR, leftMoved + rightMoved, 12}};
   const double coordinates = 4.0 * static_cast<double>(X.size());
   const double floor = 1e-12 * coordinates; // (1e-6 px)^2 per coordinate: round-off must not pick the hypothesis
   const Hypothesis *best = nullptr;
-  double bestScore = std::numeric_limits<double>::infinity();
-  for (const Hypothesis *h : {&onlyLeft, &onlyRight, &rig, &each}) {
+  double bestScore = std::numeric_limits<double>::infinity(); // a non-finite SSE never wins
+  for (const Hypothesis &h : hypotheses) {
     const double score =
-        coordinates * std::log(std::max(h->sse, floor) / coordinates) + h->parameters * std::log(coordinates);
-    if (std::isfinite(h->sse) && score < bestScore) {
+        coordinates * std::log(std::max(h.sse, floor) / coordinates) + h.parameters * std::log(coordinates);
+    if (score < bestScore) {
       bestScore = score;
-      best = h;
+      best = &h;
     }
   }
   if (best != nullptr) {
