@@ -82,6 +82,9 @@ bool vpServoProjective::detectMismatch(const JointVector &q)
     m_mismatchRigGeneration = m_robot->getRigGeneration();
     m_mismatchModelGeneration = m_robot->getModelGeneration();
   }
+  if (m_mismatch.getThreshold() == 0.0) {
+    return false; // detection off: no prediction, no memory to keep (H(q), one triangulation per feature)
+  }
   const double w = m_health.getImageWidth(), h = m_health.getImageHeight(), b = m_health.getImageBorder();
   m_mismatch.startIteration(m_robot->getModel(), q);
   for (unsigned int i = 0; i < m_features.size(); ++i) {

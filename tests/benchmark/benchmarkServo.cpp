@@ -363,6 +363,15 @@ void BM_vpServoProjective_Eigen(benchmark::State &state)
   state.SetLabel(taskLabel(t.task));
 }
 
+//! The same with the model-mismatch detection off (setModelMismatchThreshold(0)): the law alone, as before issue 12.
+void BM_vpServoProjective_Eigen_NoMismatchCheck(benchmark::State &state)
+{
+  ProjectiveTask t(paperRobot());
+  t.task.setModelMismatchThreshold(0.0);
+  timeControlLaw(state, t.task, jointVector(t.q));
+  state.SetLabel(taskLabel(t.task));
+}
+
 /*!
   The same task with every check of issue 6 on, so that each one runs in the timed loop: an image window
   (setImageSize), outlier rejection (setOutlierThreshold: epipolar distance and prediction H(q) H(q_l)^-1 M_l, the
@@ -824,6 +833,10 @@ bool checkAllocations(const MedianReporter &reporter)
 BENCHMARK(BM_vpServo_Viper850)->Repetitions(10)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_vpServoProjective_vpColVector)->Repetitions(10)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_vpServoProjective_Eigen)->Repetitions(10)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_vpServoProjective_Eigen_NoMismatchCheck)
+    ->Repetitions(10)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_vpServoProjective_Eigen_Robust)
     ->ArgName("near_target")
     ->Arg(0)
