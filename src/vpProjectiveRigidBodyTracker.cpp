@@ -21,6 +21,7 @@
 
 #include <visp3/projective/vpMetricTwist.h>
 
+#include "vpLevenbergMarquardt.h"
 #include "vpProjection.h"
 #include "vpProjectiveInternal.h"
 
@@ -33,45 +34,6 @@ using namespace vpProjectiveInternal;
 namespace
 {
 const vpErrorSite at("vpProjectiveRigidBodyTracker");
-
-/*
-  Levenberg-Marquardt on D parameters: evaluate(x, &N, &g, cost) gives the normal equations N = J^T J, g = J^T r and
-  the cost at x (false where the model is undefined); update(x, S, g, xNew) solves the damped system S (N with its
-  diagonal scaled by 1 + lambda) for the step and applies it on the state's manifold. At most 30 accepted steps, 8
-  dampings each; stops at a relative decrease below 1e-12. Returns false if the cost is undefined at the start.
-*/
-template <int D, typename State, typename Evaluate, typename Update>
-bool levenbergMarquardt(State &x, double &cost, const Evaluate &evaluate, const Update &update)
-{
-  Eigen::Matrix<double, D, D> N;
-  Eigen::Matrix<double, D, 1> g;
-  if (!evaluate(x, &N, &g, cost)) {
-    return false;
-  }
-  double lambda = 1e-4;
-  State xNew;
-  for (int iteration = 0; iteration < 30; ++iteration) {
-    bool accepted = false, converged = false;
-    for (int attempt = 0; attempt < 8 && !accepted; ++attempt) {
-      Eigen::Matrix<double, D, D> S = N;
-      S.diagonal() *= 1.0 + lambda;
-      double costNew = 0.0;
-      if (update(x, S, g, xNew) && evaluate(xNew, nullptr, nullptr, costNew) && costNew < cost) {
-        converged = cost - costNew <= 1e-12 * cost;
-        x = xNew;
-        evaluate(x, &N, &g, cost);
-        lambda = std::max(lambda / 10.0, 1e-12);
-        accepted = true;
-      } else {
-        lambda *= 10.0;
-      }
-    }
-    if (!accepted || converged) {
-      break;
-    }
-  }
-  return true;
-}
 
 /*
   Cost and normal equations (N = A^T A, g = A^T r, A the 4-row Jacobian of the residuals r) of the reprojection error
