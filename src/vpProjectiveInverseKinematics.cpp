@@ -15,12 +15,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include <Eigen/Dense>
 
 #include <visp3/core/vpUniRand.h>
 
+#include "vpLevenbergMarquardt.h"
 #include "vpProjectiveInternal.h"
+#include "vpProjection.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -142,12 +145,122 @@ vpProjectiveInverseKinematics::solve(const vpProjectiveArmModel &model, const st
   return q;
 }
 
+vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solveWithPoints(
+    const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s, const std::vector<Eigen::Vector4d> &seen,
+    const vpProjectiveArmModel::JointVector &q0, const vpProjectiveArmModel::JointVector &q,
+    std::vector<Eigen::Vector4d> &points, double *residual)
+{
+  // The state: the joint values at the target and the points on their unit spheres; a step moves q additively and
+  // each point in its tangent space (3 parameters), the parameters ordered (q, M_0, M_1, ...).
+  struct State {
+    vpProjectiveArmModel::JointVector q;
+    std::vector<Eigen::Vector4d> M;
+  };
+  typedef Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic> Matrix;
+  typedef Eigen::Matrix<double, Eigen::Dynamic, 1> Vector;
+  const char *const where = "vpProjectiveInverseKinematics::solveWithPoints()";
+  const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints()), N = static_cast<Eigen::Index>(s.size());
+  if (seen.size() != s.size() || points.size() != s.size() || q0.size() != n || q.size() != n) {
+    std::ostringstream os;
+    os << s.size() << " desired pixels, " << seen.size() << " seen pixels and " << points.size() << " points (one each)"
+       << ", joint vectors of " << q0.size() << " and " << q.size() << " entries for " << n << " joints";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  bool finite = q0.allFinite() && q.allFinite();
+  for (Eigen::Index k = 0; k < N; ++k) {
+    finite = finite && s[k].allFinite() && seen[k].allFinite() && points[k].allFinite() && points[k].norm() > 0.0;
+  }
+  if (!finite) {
+    fail(vpProjectiveException::nonFiniteValueError, where,
+         "a pixel, a point or a joint value is not finite, or a point is zero: track every point");
+  }
+  const Eigen::Index D = n + 3 * N;
+  const Eigen::Matrix4d H0 = model.displacement(q0);
+  const auto &P = model.getStereoRig().leftProjection(), &Pp = model.getStereoRig().rightProjection();
+  auto evaluate = [&](const State &x, Matrix *A, Vector *g, double &cost) {
+    const Eigen::Matrix4d H = model.displacement(x.q);
+    Eigen::Matrix4d HhatKq[vpProjectiveArmModel::maxJoints];
+    if (A != nullptr) {
+      model.jointMotions(x.q, HhatKq);
+      A->setZero(D, D);
+      g->setZero(D);
+    }
+    cost = 0.0;
+    vpProjectiveArmModel::PointJacobian Jq;
+    Eigen::Vector4d sM;
+    Eigen::Matrix4d L;
+    for (Eigen::Index k = 0; k < N; ++k) {
+      const Eigen::Matrix<double, 4, 3> B = sphereTangentBasis(x.M[k]);
+      const Eigen::Index c = n + 3 * k;
+      // The view at q0: only the point moves its image.
+      const Eigen::Vector4d M0 = H0 * x.M[k];
+      if (!projectStereo(P, Pp, M0, sM, &L)) {
+        return false;
+      }
+      const Eigen::Vector4d r0 = sM - seen[k];
+      cost += r0.squaredNorm();
+      if (A != nullptr) {
+        const Eigen::Matrix<double, 4, 3> Jm = L * H0 * B;
+        A->block(c, c, 3, 3).noalias() += Jm.transpose() * Jm;
+        g->segment(c, 3).noalias() += Jm.transpose() * r0;
+      }
+      // The view at the target: the joints and the point.
+      const Eigen::Vector4d M = H * x.M[k];
+      if (!projectStereo(P, Pp, M, sM, &L) || (A != nullptr && !model.imageJacobian(HhatKq, M, Jq))) {
+        return false;
+      }
+      const Eigen::Vector4d r = sM - s[k];
+      cost += r.squaredNorm();
+      if (A != nullptr) {
+        const Eigen::Matrix<double, 4, 3> Jm = L * H * B;
+        A->topLeftCorner(n, n).noalias() += Jq.transpose() * Jq;
+        A->block(0, c, n, 3).noalias() += Jq.transpose() * Jm;
+        A->block(c, c, 3, 3).noalias() += Jm.transpose() * Jm;
+        g->head(n).noalias() += Jq.transpose() * r;
+        g->segment(c, 3).noalias() += Jm.transpose() * r;
+      }
+    }
+    if (A != nullptr) {
+      A->bottomLeftCorner(3 * N, n) = A->topRightCorner(n, 3 * N).transpose();
+    }
+    return std::isfinite(cost);
+  };
+  auto update = [&](const State &x, Matrix &S, const Vector &g, State &xNew) {
+    S.diagonal() = S.diagonal().cwiseMax(1e-12 * S.diagonal().maxCoeff()); // a joint the pixels do not see
+    const Vector step = S.ldlt().solve(-g);
+    xNew.q = x.q + step.head(n);
+    xNew.M.resize(static_cast<size_t>(N));
+    for (Eigen::Index k = 0; k < N; ++k) {
+      xNew.M[k] = (x.M[k] + sphereTangentBasis(x.M[k]) * step.segment<3>(n + 3 * k)).normalized();
+    }
+    return step.allFinite();
+  };
+  State x{q, points};
+  for (Eigen::Vector4d &M : x.M) {
+    M.normalize();
+  }
+  double cost = 0.0;
+  if (!levenbergMarquardt<Eigen::Dynamic>(x, cost, evaluate, update) || !x.q.allFinite()) {
+    fail(vpProjectiveException::estimationFailedError, where,
+         "a point lies on a camera's focal plane at q0 or q; start closer to the solution (q)");
+  }
+  points = x.M;
+  if (residual != nullptr) {
+    *residual = std::sqrt(cost / static_cast<double>(8 * N));
+  }
+  return x.q;
+}
+
 std::vector<vpProjectiveArmModel::JointVector> vpProjectiveInverseKinematics::solveAll(
     const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
     const std::vector<Eigen::Vector4d> &points, const vpProjectiveArmModel::JointVector &q0,
     const vpProjectiveArmModel::JointVector &qmin, const vpProjectiveArmModel::JointVector &qmax, unsigned int starts,
-    std::vector<double> *residuals)
+    std::vector<double> *residuals, const std::vector<Eigen::Vector4d> *seen)
 {
+  if (seen != nullptr && seen->size() != points.size()) {
+    fail(vpProjectiveException::dimensionError, "vpProjectiveInverseKinematics::solveAll()",
+         "the seen pixels must be one per point");
+  }
   typedef vpProjectiveArmModel::JointVector JointVector;
   const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
   // Two joint vectors are the same configuration when every joint agrees, revolute ones modulo a turn.
@@ -188,12 +301,43 @@ std::vector<vpProjectiveArmModel::JointVector> vpProjectiveInverseKinematics::so
       cost[same] = rms;
     }
   }
-  // The branches: the minima that explain the images nearly as well as the best (a wrong local minimum leaves pixels
-  // far off), sorted by their residual.
+  if (seen != nullptr) {
+    // Each minimum with the points refined by their two views; minima that meet are one.
+    std::vector<JointVector> refined;
+    std::vector<double> refinedCost;
+    for (size_t b = 0; b < found.size(); ++b) {
+      std::vector<Eigen::Vector4d> M = points;
+      double rms = 0.0;
+      JointVector q;
+      try {
+        q = solveWithPoints(model, s, *seen, q0, found[b], M, &rms);
+      } catch (const vpProjectiveException &) {
+        continue;
+      }
+      size_t same = refined.size();
+      for (size_t r = 0; r < refined.size() && same == refined.size(); ++r) {
+        same = distance(refined[r], q) < 1e-3 ? r : same;
+      }
+      if (same == refined.size()) {
+        refined.push_back(q);
+        refinedCost.push_back(rms);
+      } else if (rms < refinedCost[same]) {
+        refined[same] = q;
+        refinedCost[same] = rms;
+      }
+    }
+    found.swap(refined);
+    cost.swap(refinedCost);
+  }
+  // The branches: the minima that explain the images nearly as well as the best, sorted by their residual. The points
+  // fixed, a wrong local minimum leaves pixels far off, but so may the true one, the points' depth errors turned
+  // sideways: hence 1 px or twice the best. Refined with both views, the branches of the true pose share its residual
+  // at the noise, and another pose that the points nearly explain (three points) leaves more: within 1.5 times the
+  // best (and 0.01 px, the working precision of noise-free pixels).
   const double best = cost.empty() ? 0.0 : *std::min_element(cost.begin(), cost.end());
   std::vector<size_t> order;
   for (size_t b = 0; b < found.size(); ++b) {
-    if (cost[b] <= std::max(1.0, 2.0 * best)) {
+    if (seen != nullptr ? cost[b] <= 1.5 * best + 0.01 : cost[b] <= std::max(1.0, 2.0 * best)) {
       order.push_back(b);
     }
   }

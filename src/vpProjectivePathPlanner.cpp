@@ -45,8 +45,8 @@ const double kPriorWeight = 30.0;
 
 vpProjectivePathPlanner::vpProjectivePathPlanner()
     : m_hasLimits(false), m_qmin(), m_qmax(), m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0),
-      m_starts(24), m_maxResidual(20.0), m_front(), m_status(PLAN_NONE), m_branches(), m_residuals(), m_branch(0),
-      m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
+      m_starts(24), m_maxResidual(5.0), m_limitMargin(0.0), m_front(), m_status(PLAN_NONE), m_branches(), m_residuals(),
+      m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
 {
 }
 
@@ -103,6 +103,15 @@ void vpProjectivePathPlanner::setMaxResidual(double pixels)
          "the largest RMS pixel residual of a target must be positive and finite");
   }
   m_maxResidual = pixels;
+}
+
+void vpProjectivePathPlanner::setJointLimitMargin(double fraction)
+{
+  if (!std::isfinite(fraction) || fraction < 0.0 || fraction > 0.5) {
+    fail(vpProjectiveException::invalidValueError, at("setJointLimitMargin()"),
+         "the margin is a fraction of each joint's range kept from both limits: in [0, 1/2]");
+  }
+  m_limitMargin = fraction;
 }
 
 void vpProjectivePathPlanner::setNumberOfStarts(unsigned int starts)
@@ -220,12 +229,16 @@ bool vpProjectivePathPlanner::imagePath(const vpProjectiveArmModel &model, const
   return true;
 }
 
-bool vpProjectivePathPlanner::chooseTarget(const vpProjectiveArmModel &model, const JointVector &q,
-                                           const std::vector<Eigen::Vector4d> &points, bool &anyInside)
+std::vector<std::pair<vpProjectivePathPlanner::JointVector, unsigned int>>
+vpProjectivePathPlanner::targetCandidates(const vpProjectiveArmModel &model, const JointVector &q,
+                                          const std::vector<Eigen::Vector4d> &points, bool &anyInside) const
 {
   // Each branch's representative nearest to q (revolute joints modulo a turn; another turn if the nearest is outside
-  // the limits and that one inside), then of those inside the limits with the features in view the nearest.
-  double bestDistance = std::numeric_limits<double>::infinity();
+  // the limits and that one inside); of those inside the limits with the features in view, the nearest with every
+  // joint out of the margins (c = 0), then the nearest (c = 1) if it is another.
+  double bestDistance[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  JointVector target[2];
+  unsigned int branch[2] = {0, 0};
   std::vector<Eigen::Vector4d> s;
   anyInside = false;
   for (size_t b = 0; b < m_branches.size(); ++b) {
@@ -247,13 +260,71 @@ bool vpProjectivePathPlanner::chooseTarget(const vpProjectiveArmModel &model, co
     }
     anyInside = true;
     const double d = (t - q).norm();
-    if (d < bestDistance && visible(model, t, points, s)) {
-      bestDistance = d;
-      m_target = t;
-      m_branch = static_cast<unsigned int>(b);
+    if (!(d < bestDistance[1]) && !(d < bestDistance[0])) {
+      continue;
+    }
+    if (!visible(model, t, points, s)) {
+      continue;
+    }
+    int inMargin = 0;
+    for (Eigen::Index i = 0; m_hasLimits && i < q.size(); ++i) {
+      const double margin = m_limitMargin * (m_qmax(i) - m_qmin(i));
+      inMargin = (t(i) < m_qmin(i) + margin || t(i) > m_qmax(i) - margin) ? 1 : inMargin;
+    }
+    for (int c = inMargin; c < 2; ++c) {
+      if (d < bestDistance[c]) {
+        bestDistance[c] = d;
+        target[c] = t;
+        branch[c] = static_cast<unsigned int>(b);
+      }
     }
   }
-  return bestDistance < std::numeric_limits<double>::infinity();
+  std::vector<std::pair<JointVector, unsigned int>> candidates;
+  for (int c = 0; c < 2; ++c) {
+    if (bestDistance[c] < std::numeric_limits<double>::infinity() && (candidates.empty() || branch[c] != branch[0])) {
+      candidates.emplace_back(target[c], branch[c]);
+    }
+  }
+  return candidates;
+}
+
+bool vpProjectivePathPlanner::planPath(const vpProjectiveArmModel &model, const JointVector &q,
+                                       const JointVector &target, const std::vector<Eigen::Vector4d> &points,
+                                       const JointVector &qmin, const JointVector &qmax, std::vector<JointVector> &path,
+                                       std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind) const
+{
+  if (imagePath(model, q, target, points, path) && feasible(model, path, points, features)) {
+    kind = PATH_IMAGE_LINE;
+    return true;
+  }
+  if (feasible(model, path = jointLine(q, target), points, features)) {
+    kind = PATH_JOINT_LINE;
+    return true;
+  }
+  // A waypoint among configurations inside the limits with the features in view: the shortest feasible.
+  vpUniRand uniform(0x5eedULL);
+  double shortest = std::numeric_limits<double>::infinity();
+  std::vector<Eigen::Vector4d> s;
+  for (unsigned int draw = 0; draw < kWaypointDraws; ++draw) {
+    JointVector w(q.size());
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      w(i) = uniform.uniform(qmin(i), qmax(i));
+    }
+    const double length = (w - q).norm() + (target - w).norm();
+    if (!(length < shortest) || !inside(w) || !visible(model, w, points, s)) {
+      continue;
+    }
+    std::vector<JointVector> candidate = jointLine(q, w), second = jointLine(w, target);
+    candidate.insert(candidate.end(), second.begin() + 1, second.end());
+    std::vector<std::vector<Eigen::Vector4d>> candidateFeatures;
+    if (feasible(model, candidate, points, candidateFeatures)) {
+      shortest = length;
+      path = candidate;
+      features = candidateFeatures;
+    }
+  }
+  kind = PATH_WAYPOINT;
+  return shortest < std::numeric_limits<double>::infinity();
 }
 
 vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProjectiveArmModel &model,
@@ -288,7 +359,17 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
       qmax(i) = q(i) + range;
     }
   }
-  m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, points, q, qmin, qmax, m_starts, &m_residuals);
+  // The points' images at q (the features they were triangulated from, less their epipolar error) are the second view
+  // of the two-view refinement of every minimum.
+  std::vector<Eigen::Vector4d> seen(points.size());
+  const Eigen::Matrix4d Hq = model.displacement(q);
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (!model.getStereoRig().project(Hq * points[k], seen[k])) {
+      fail(vpProjectiveException::invalidValueError, where, "a point lies on a camera's focal plane at q");
+    }
+  }
+  m_branches =
+      vpProjectiveInverseKinematics::solveAll(model, sStar, points, q, qmin, qmax, m_starts, &m_residuals, &seen);
   m_path.clear();
   m_features.clear();
   std::ostringstream os;
@@ -306,66 +387,43 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
     return m_status;
   }
   // The depth signs where the points are seen, at q: the reference of "in front of the cameras".
-  const Eigen::Matrix4d H = model.displacement(q);
   m_front.resize(points.size());
   for (size_t k = 0; k < points.size(); ++k) {
-    const Eigen::Vector4d M = H * points[k];
+    const Eigen::Vector4d M = Hq * points[k];
     m_front[k] << model.getStereoRig().leftProjection().row(2).dot(M),
         model.getStereoRig().rightProjection().row(2).dot(M);
   }
-  // 2. The target.
+  // 2. The target, and 3. a path keeping the features in view and the joints within their limits: the preferred
+  // target first, the nearest if no path leads to the preferred one.
   os << m_branches.size() << " inverse-kinematic branch" << (m_branches.size() > 1 ? "es" : "") << " found";
   bool anyInside = false;
-  if (!chooseTarget(model, q, points, anyInside)) {
+  const std::vector<std::pair<JointVector, unsigned int>> candidates = targetCandidates(model, q, points, anyInside);
+  if (candidates.empty()) {
     m_status = anyInside ? PLAN_NO_VISIBLE_PATH : PLAN_OUTSIDE_JOINT_LIMITS;
     os << (anyInside ? "; at every one inside the joint limits a feature is out of the image window or behind a camera"
                      : ", none inside the joint limits");
     m_description = os.str();
     return m_status;
   }
-  os << "; target: branch " << m_branch << ", " << vpMath::deg((m_target - q).cwiseAbs().maxCoeff())
-     << " deg away at most per joint";
-  // 3. A path keeping the features in view and the joints within their limits.
   std::vector<JointVector> path;
   std::vector<std::vector<Eigen::Vector4d>> features;
-  if (imagePath(model, q, m_target, points, path) && feasible(model, path, points, features)) {
-    m_kind = PATH_IMAGE_LINE;
-    os << "; path: straight image lines";
-  } else if (feasible(model, path = jointLine(q, m_target), points, features)) {
-    m_kind = PATH_JOINT_LINE;
-    os << "; path: the straight joint-space line";
-  } else {
-    // A waypoint among configurations inside the limits with the features in view: the shortest feasible.
-    vpUniRand uniform(0x5eedULL);
-    double shortest = std::numeric_limits<double>::infinity();
-    std::vector<Eigen::Vector4d> s;
-    for (unsigned int draw = 0; draw < kWaypointDraws; ++draw) {
-      JointVector w(n);
-      for (Eigen::Index i = 0; i < n; ++i) {
-        w(i) = uniform.uniform(qmin(i), qmax(i));
-      }
-      const double length = (w - q).norm() + (m_target - w).norm();
-      if (!(length < shortest) || !inside(w) || !visible(model, w, points, s)) {
-        continue;
-      }
-      std::vector<JointVector> candidate = jointLine(q, w), second = jointLine(w, m_target);
-      candidate.insert(candidate.end(), second.begin() + 1, second.end());
-      std::vector<std::vector<Eigen::Vector4d>> candidateFeatures;
-      if (feasible(model, candidate, points, candidateFeatures)) {
-        shortest = length;
-        path = candidate;
-        features = candidateFeatures;
-      }
-    }
-    if (!(shortest < std::numeric_limits<double>::infinity())) {
-      m_status = PLAN_NO_VISIBLE_PATH;
-      os << "; no path keeps the features in view within the joint limits";
-      m_description = os.str();
-      return m_status;
-    }
-    m_kind = PATH_WAYPOINT;
-    os << "; path: through a waypoint";
+  size_t c = 0;
+  while (c < candidates.size() &&
+         !planPath(model, q, candidates[c].first, points, qmin, qmax, path, features, m_kind)) {
+    ++c;
   }
+  if (c == candidates.size()) {
+    m_status = PLAN_NO_VISIBLE_PATH;
+    os << "; no path keeps the features in view within the joint limits";
+    m_description = os.str();
+    return m_status;
+  }
+  m_target = candidates[c].first;
+  m_branch = candidates[c].second;
+  const char *const kinds[] = {"straight image lines", "the straight joint-space line", "through a waypoint"};
+  os << "; target: branch " << m_branch << ", " << vpMath::deg((m_target - q).cwiseAbs().maxCoeff())
+     << " deg away at most per joint" << (c > 0 ? " (no path to the one out of the joint-limit margins)" : "")
+     << "; path: " << kinds[m_kind];
   os << " in " << path.size() - 1 << " steps";
   m_path = path;
   m_features = features;

@@ -136,6 +136,7 @@ bool vpServoProjective::planIfNeeded(const JointVector &q)
       qmax = toEigenVector<JointVector>(m_jointLimits.getUpperLimits(), q.size(), at("computeControlLaw()"), "qmax");
     }
     m_planner.setJointLimits(qmin, qmax);
+    m_planner.setJointLimitMargin(m_jointLimits.hasJointLimits() ? m_jointLimits.getRho() : 0.0);
     m_planner.setImageSize(m_health.getImageWidth(), m_health.getImageHeight(), m_health.getImageBorder());
     m_planner.plan(model, q, points, sStar);
     m_plannedFor = sStar;

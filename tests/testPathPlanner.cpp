@@ -202,6 +202,142 @@ TEST_P(PathPlannerArms, InverseKinematicsFindsEveryBranch)
   }
 }
 
+TEST_P(PathPlannerArms, TwoViewRefinementBringsTheResidualToTheNoise)
+{
+  // A task's points triangulated at the start from noisy pixels, then the inverse kinematics of noisy desired pixels:
+  // points fixed (solve()) against points refined by both views (solveWithPoints()), from the true target.
+  const ArmSetup s = GetParam().make();
+  const vpProjectiveRobot robot = acquireNoiseFree(s);
+  const vpProjectiveArmModel &model = robot.getModel();
+  const std::vector<unsigned int> tracked = {0, 1, 2};
+  const double sigma = 0.5;
+  vpUniRand rng(23);
+  vpGaussRand noise(sigma, 0.0, 29);
+  const std::vector<double> range(s.n(), vpMath::rad(2.0 * GetParam().rangeDeg));
+  std::vector<double> fixedError, refinedError, fixedResidual, refinedResidual;
+  for (int task = 0; task < 30; ++task) {
+    const vpColVector qStart = s.randomVisibleJoints(rng, range), qTarget = s.randomVisibleJoints(rng, range);
+    std::vector<Eigen::Vector4d> seen = trueImages(s, qStart, tracked), sStar = trueImages(s, qTarget, tracked);
+    for (size_t k = 0; k < tracked.size(); ++k) {
+      for (int c = 0; c < 4; ++c) {
+        seen[k](c) += noise();
+        sStar[k](c) += noise();
+      }
+    }
+    const Eigen::PartialPivLU<Eigen::Matrix4d> H(model.displacement(toJoints(qStart)));
+    std::vector<Eigen::Vector4d> points;
+    for (const Eigen::Vector4d &p : seen) {
+      points.push_back(H.solve(model.getStereoRig().triangulate(p.head<2>(), p.tail<2>())));
+    }
+    const std::vector<Eigen::Vector4d> triangulated = points;
+    double fixedRms = 0.0, rms = 0.0;
+    const JointVector fixed = vpProjectiveInverseKinematics::solve(model, sStar, points, toJoints(qTarget), &fixedRms);
+    const JointVector refined = vpProjectiveInverseKinematics::solveWithPoints(model, sStar, seen, toJoints(qStart),
+                                                                               toJoints(qTarget), points, &rms);
+    fixedError.push_back(vpMath::deg((fixed - toJoints(qTarget)).norm()));
+    refinedError.push_back(vpMath::deg((refined - toJoints(qTarget)).norm()));
+    fixedResidual.push_back(fixedRms);
+    refinedResidual.push_back(rms);
+    // The refined points still explain the start's pixels at the noise level.
+    const Eigen::Matrix4d Hs = model.displacement(toJoints(qStart));
+    for (size_t k = 0; k < points.size(); ++k) {
+      Eigen::Vector4d p;
+      ASSERT_TRUE(model.getStereoRig().project(Hs * points[k], p));
+      EXPECT_LT((p - seen[k]).norm(), 10.0 * sigma) << s.name << " task " << task << " point " << k;
+      EXPECT_NEAR(points[k].norm(), 1.0, 1e-12);
+      EXPECT_FALSE(points[k].isApprox(triangulated[k].normalized(), 1e-12)) << "the point did not move";
+    }
+  }
+  const double fixedMedian = median(fixedError);
+  const double refinedMedian = median(refinedError);
+  const double fixedResidualMedian = median(fixedResidual), residualMedian = median(refinedResidual);
+  std::cout << s.name << ", medians over 30 tasks: residual " << fixedResidualMedian
+            << " px RMS with the points fixed, " << residualMedian << " px refined; target joint error " << fixedMedian
+            << " deg fixed, " << refinedMedian << " deg refined" << std::endl;
+  // 24 pixels for 6 joints and 9 point coordinates: sigma sqrt(9 / 24) = 0.61 sigma expected; with the points fixed
+  // the true target leaves more than the 12 pixels' noise for 6 joints (0.71 sigma), the points' depth errors turned
+  // sideways.
+  EXPECT_GT(residualMedian, 0.3 * sigma);
+  EXPECT_LT(residualMedian, 1.0 * sigma);
+  EXPECT_GT(fixedResidualMedian, 1.5 * residualMedian);
+  EXPECT_LT(refinedMedian, fixedMedian);
+
+  // Noise-free: the true target and points from a start 3 deg off on every joint, to working precision.
+  const vpColVector qStart(s.n(), 0.0);
+  vpColVector qTarget(s.n(), vpMath::rad(5.0));
+  const std::vector<Eigen::Vector4d> seen = trueImages(s, qStart, tracked), sStar = trueImages(s, qTarget, tracked);
+  std::vector<Eigen::Vector4d> points = modelPoints(robot, tracked);
+  double rms = 1.0;
+  const JointVector q = vpProjectiveInverseKinematics::solveWithPoints(
+      model, sStar, seen, toJoints(qStart), toJoints(qTarget) + JointVector::Constant(s.n(), vpMath::rad(3.0)), points,
+      &rms);
+  EXPECT_LT((q - toJoints(qTarget)).cwiseAbs().maxCoeff(), 1e-6) << s.name;
+  EXPECT_LT(rms, 1e-6) << s.name;
+
+  // Bad input throws and leaves the points as they were.
+  const std::vector<Eigen::Vector4d> before = points;
+  std::vector<Eigen::Vector4d> shortSeen(seen.begin(), seen.end() - 1), nanSeen = seen;
+  nanSeen[0](1) = std::nan("");
+  EXPECT_THROW(vpProjectiveInverseKinematics::solveWithPoints(model, sStar, shortSeen, toJoints(qStart), q, points),
+               vpException);
+  EXPECT_THROW(vpProjectiveInverseKinematics::solveWithPoints(model, sStar, nanSeen, toJoints(qStart), q, points),
+               vpException);
+  EXPECT_THROW(vpProjectiveInverseKinematics::solveWithPoints(model, sStar, seen, JointVector::Zero(2), q, points),
+               vpException);
+  for (size_t k = 0; k < points.size(); ++k) {
+    EXPECT_EQ(points[k], before[k]);
+  }
+}
+
+TEST(PathPlanner, KeepsTheTargetOutOfTheJointLimitMargins)
+{
+  // A target with joint 5 at 140 deg, 30 deg from its limit: in the band of a margin of 0.1 of the 340 deg range, and
+  // the nearest branch to a start 40 deg away on that joint. The wrist's other branch (joints 3 and 5 half a turn
+  // away, joint 4 mirrored) shows the same images with every joint out of the margins, farther from the start.
+  const ArmSetup s = pumaEyeToHand();
+  const vpProjectiveRobot robot = acquireNoiseFree(s);
+  const std::vector<unsigned int> tracked = {0, 1, 2};
+  const std::vector<Eigen::Vector4d> points = modelPoints(robot, tracked);
+  vpColVector qStart(s.n(), 0.0), qTarget(s.n(), 0.0);
+  qStart[3] = qTarget[3] = vpMath::rad(60.0);
+  qStart[4] = qTarget[4] = vpMath::rad(10.0);
+  qStart[5] = vpMath::rad(100.0);
+  qTarget[5] = vpMath::rad(140.0);
+  const std::vector<Eigen::Vector4d> sStar = trueImages(s, qTarget, tracked);
+  const JointVector qmin = JointVector::Constant(s.n(), vpMath::rad(-170.0));
+  const JointVector qmax = JointVector::Constant(s.n(), vpMath::rad(170.0));
+  const double margin = 0.1, band = vpMath::rad(170.0 - 34.0);
+  vpProjectivePathPlanner planner;
+  planner.setJointLimits(qmin, qmax);
+  EXPECT_EQ(planner.getJointLimitMargin(), 0.0);
+  ASSERT_EQ(planner.plan(robot.getModel(), toJoints(qStart), points, sStar), vpProjectivePathPlanner::PLAN_FOUND)
+      << planner.getDescription();
+  const JointVector nearest = planner.getTarget();
+  ASSERT_LT((nearest - toJoints(qTarget)).cwiseAbs().maxCoeff(), 1e-4) << "the nearest branch is the taught one";
+  ASSERT_GT(nearest.cwiseAbs().maxCoeff(), band);
+
+  planner.setJointLimitMargin(margin);
+  ASSERT_EQ(planner.plan(robot.getModel(), toJoints(qStart), points, sStar), vpProjectivePathPlanner::PLAN_FOUND)
+      << planner.getDescription();
+  const JointVector away = planner.getTarget();
+  EXPECT_LT(away.cwiseAbs().maxCoeff(), band) << away.transpose();
+  EXPECT_GT((away - toJoints(qStart)).norm(), (nearest - toJoints(qStart)).norm());
+  const std::vector<Eigen::Vector4d> reached = trueImages(s, toVisp(away), tracked);
+  for (size_t k = 0; k < tracked.size(); ++k) {
+    EXPECT_LT((reached[k] - sStar[k]).cwiseAbs().maxCoeff(), 1e-3) << "the same images, truly";
+  }
+  EXPECT_TRUE(planner.getPath().back().isApprox(away));
+
+  // No branch out of the margins: the nearest inside the limits, as without a margin.
+  planner.setJointLimitMargin(0.5);
+  ASSERT_EQ(planner.plan(robot.getModel(), toJoints(qStart), points, sStar), vpProjectivePathPlanner::PLAN_FOUND);
+  EXPECT_LT((planner.getTarget() - nearest).norm(), 1e-9);
+  EXPECT_THROW(planner.setJointLimitMargin(-0.1), vpException);
+  EXPECT_THROW(planner.setJointLimitMargin(0.6), vpException);
+  EXPECT_THROW(planner.setJointLimitMargin(std::nan("")), vpException);
+  EXPECT_EQ(planner.getJointLimitMargin(), 0.5);
+}
+
 TEST(PathPlanner, PlansStayInsideLimitsAndView)
 {
   const ArmSetup s = pumaEyeToHand();

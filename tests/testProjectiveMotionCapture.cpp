@@ -66,12 +66,6 @@ vpColVector trajectoryVelocity(double t, const std::vector<double> &amplitude)
 }
 
 const unsigned int kVelocityWindow = 12;
-
-double median(std::vector<double> x)
-{
-  std::sort(x.begin(), x.end());
-  return 0.5 * (x[(x.size() - 1) / 2] + x[x.size() / 2]);
-}
 } // namespace
 
 /*

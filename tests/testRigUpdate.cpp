@@ -365,13 +365,6 @@ BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind)
   return c;
 }
 
-double median(std::vector<double> x)
-{
-  std::sort(x.begin(), x.end());
-  const size_t n = x.size();
-  return n % 2 == 1 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
-}
-
 double quantile(std::vector<double> x, double p)
 {
   std::sort(x.begin(), x.end());

@@ -345,6 +345,14 @@ inline Eigen::Vector4d singularValues(const Eigen::Matrix4d &A)
   return Eigen::JacobiSVD<Eigen::Matrix4d>(A).singularValues();
 }
 
+//! The median of \e x (not empty): the middle value, or the mean of the two middle values.
+inline double median(std::vector<double> x)
+{
+  std::sort(x.begin(), x.end());
+  const size_t n = x.size();
+  return n % 2 == 1 ? x[n / 2] : 0.5 * (x[n / 2 - 1] + x[n / 2]);
+}
+
 } // namespace vpProjectiveTest
 
 #endif

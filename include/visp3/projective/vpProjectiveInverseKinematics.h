@@ -75,15 +75,45 @@ public:
     Every branch of the inverse kinematics it can find (multi-start): the minimisation of solve() from \e q0 and from
     \e starts configurations drawn uniformly between \e qmin and \e qmax (n x 1 each, with a fixed seed: equal
     inputs give equal outputs). Two minima are one branch when every joint agrees within 1e-3 (revolute joints modulo
-    a turn). A branch explains the pixels: its RMS residual per coordinate is at most the larger of 1 px and twice the
-    best one found (a wrong local minimum leaves them far off). Returns the branches sorted by residual (the best
+    a turn). With \e seen (not null: the pixels at which \e points were seen at \e q0, see solveWithPoints()) each
+    minimum is then refined with the points by both views, and a branch's residual is that of both views: at most 1.5
+    times the best one plus 0.01 px (the branches of one pose tie; another pose that few points nearly explain leaves
+    more). Without it the points are taken as exact, and a branch's residual is at most the larger of 1 px and twice
+    the best one (a wrong local minimum leaves the pixels far off). Returns the branches sorted by residual (the best
     first), their residuals in \e residuals if not null; none if no start converged.
+    \exception vpProjectiveException (dimensionError) if \e seen is not null and not of the size of \e points.
   */
   static std::vector<vpProjectiveArmModel::JointVector>
   solveAll(const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
            const std::vector<Eigen::Vector4d> &points, const vpProjectiveArmModel::JointVector &q0,
            const vpProjectiveArmModel::JointVector &qmin, const vpProjectiveArmModel::JointVector &qmax,
-           unsigned int starts, std::vector<double> *residuals = nullptr);
+           unsigned int starts, std::vector<double> *residuals = nullptr,
+           const std::vector<Eigen::Vector4d> *seen = nullptr);
+  /*!
+    The target's joint values and the points together, from two views: minimises
+    \f[ \sum_k \| s_k - \pi(H(q) M_k) \|^2 + \| s^0_k - \pi(H(q_0) M_k) \|^2 \f]
+    over \f$ q \f$ (n x 1) and the points \f$ M_k \f$ (4x1 at the zero reference, each on its unit sphere), where
+    \e seen holds the pixels \f$ s^0_k \f$ at which \e points were seen at \e q0 (the features they were
+    triangulated from) and \e s the pixels wanted at \f$ q \f$. The points triangulated at \e q0 alone carry the
+    depth error of the stereo pair into the prediction at \f$ q \f$ when the motion turns it sideways; refined with
+    both views, the residual of the true target falls to the image noise. Levenberg-Marquardt from \e q and
+    \e points (replaced by the refined ones), on the dense normal equations (n + 3N unknowns).
+    \param model : the arm's model.
+    \param s : pixels \f$ (u, v, u', v') \f$ wanted at \f$ q \f$, one per point.
+    \param seen : pixels at which the points were seen at \e q0, one per point.
+    \param q0 : the joint values (n x 1) where the points were seen.
+    \param q : the starting joint values of the target (n x 1), e.g. a minimum of solve().
+    \param points : the points (4x1, zero reference) in, the refined ones (unit norm) out.
+    \param residual : if not null, receives the RMS pixel error per coordinate over both views (8 per point).
+    \exception vpProjectiveException (dimensionError) if \e s, \e seen and \e points differ in size or the joint
+    vectors are not n x 1; (nonFiniteValueError) on a non-finite input; (estimationFailedError) if a point lies on a
+    camera's focal plane at the start. \e points is left unchanged when it throws.
+  */
+  static vpProjectiveArmModel::JointVector
+  solveWithPoints(const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
+                  const std::vector<Eigen::Vector4d> &seen, const vpProjectiveArmModel::JointVector &q0,
+                  const vpProjectiveArmModel::JointVector &q, std::vector<Eigen::Vector4d> &points,
+                  double *residual = nullptr);
 };
 
 END_VISP_NAMESPACE

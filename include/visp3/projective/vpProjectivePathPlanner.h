@@ -23,6 +23,7 @@
 #include <visp3/projective/vpProjectiveConfig.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -41,11 +42,15 @@ BEGIN_VISP_NAMESPACE
   The task: points \f$ M_k(0) \f$ of the moving end (4x1 projective points at the zero reference, e.g. a servo
   task's features triangulated at the current joints \f$ q \f$ and carried there by \f$ H(q)^{-1} \f$, which needs no
   marker identity) and their desired pixels \f$ s^*_k = (u, v, u', v') \f$. plan()
-  -# solves the inverse kinematics of \f$ s^* \f$ from many starts (vpProjectiveInverseKinematics::solveAll()): every
-     branch it finds; none if the best leaves more than setMaxResidual() pixels;
+  -# solves the inverse kinematics of \f$ s^* \f$ from many starts (vpProjectiveInverseKinematics::solveAll()), each
+     minimum refined together with the points by their two views (the points' images at \f$ q \f$, where they were
+     triangulated, and \f$ s^* \f$ at the target: vpProjectiveInverseKinematics::solveWithPoints()): every branch
+     it finds whose residual is within 1.5 times the best one (the branches of one gripper pose tie; another pose
+     that three points nearly explain does not), none if the best leaves more than setMaxResidual() pixels;
   -# chooses the target \f$ q^* \f$: among the branches, the representative (revolute joints modulo a turn) nearest
      to \f$ q \f$ in joint space that is inside the joint limits with the features in view (inside the image window,
-     and in front of both cameras: their depths keep the signs they have at \f$ q \f$, where they are seen);
+     and in front of both cameras: their depths keep the signs they have at \f$ q \f$, where they are seen), out of
+     the margins of setJointLimitMargin() if one is;
   -# plans the joint path from \f$ q \f$ to \f$ q^* \f$, sampled so that no joint moves more than setMaxJointStep()
      between samples, and keeps it only if at every sample the joints are inside their limits and the features in
      view. Candidates, in this order:
@@ -111,16 +116,27 @@ public:
   */
   void setMaxJointStep(double step);
   /*!
+    A margin kept from the joint limits at the target when a branch allows it: a branch whose target has a joint
+    within \e fraction of that joint's range \f$ q_{max} - q_{min} \f$ from a limit is chosen only if no branch
+    inside the limits keeps every joint out of the margins (default 0: the nearest branch inside the limits).
+    vpServoProjective sets the activation band \f$ \rho \f$ of its joint-limit avoidance (setJointLimits()), which
+    would otherwise hold the arm short of a target inside the band and leave law (47) at a compromise.
+    \exception vpProjectiveException (invalidValueError) if it is not in [0, 1/2].
+  */
+  void setJointLimitMargin(double fraction);
+  //! The margin of setJointLimitMargin() (fraction of each joint's range).
+  double getJointLimitMargin() const { return m_limitMargin; }
+  /*!
     The number of random starts of the inverse kinematics (default 24), besides the current joint values.
     \exception vpProjectiveException (invalidValueError) if 0.
   */
   void setNumberOfStarts(unsigned int starts);
   /*!
     The largest RMS pixel residual per coordinate of the best inverse-kinematic solution for the target to exist
-    (default 20 px); above it plan() reports PLAN_NO_INVERSE_KINEMATICS. The residual of the true target is not that
-    of the images' noise: the task's points are triangulated at the start from noisy pixels, and the depth error of a
-    point becomes an image error once the motion turns it sideways (\ref servo_meas_planning gives measured values;
-    the law (47) that finishes the task does not suffer from it).
+    (default 5 px); above it plan() reports PLAN_NO_INVERSE_KINEMATICS. The residual is that of both views of the
+    points after their refinement (vpProjectiveInverseKinematics::solveWithPoints()): at the image noise for the true
+    target, the model's prediction error included (\ref servo_meas_planning gives measured values); a desired
+    feature 150 px off its place in both images leaves about 6 px, the refined points absorbing part of it.
     \exception vpProjectiveException if it is not positive and finite.
   */
   void setMaxResidual(double pixels);
@@ -155,8 +171,14 @@ public:
 
 private:
   bool inside(const JointVector &q) const;
-  bool chooseTarget(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
-                    bool &anyInside);
+  std::vector<std::pair<JointVector, unsigned int>> targetCandidates(const vpProjectiveArmModel &model,
+                                                                     const JointVector &q,
+                                                                     const std::vector<Eigen::Vector4d> &points,
+                                                                     bool &anyInside) const;
+  bool planPath(const vpProjectiveArmModel &model, const JointVector &q, const JointVector &target,
+                const std::vector<Eigen::Vector4d> &points, const JointVector &qmin, const JointVector &qmax,
+                std::vector<JointVector> &path, std::vector<std::vector<Eigen::Vector4d>> &features,
+                vpPathKind &kind) const;
   bool visible(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
                std::vector<Eigen::Vector4d> &s) const;
   bool feasible(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
@@ -172,6 +194,7 @@ private:
   double m_maxStep;
   unsigned int m_starts;
   double m_maxResidual;
+  double m_limitMargin;
   std::vector<Eigen::Vector2d> m_front; // per point: its depths in both cameras at the planning q
 
   vpPlanStatus m_status;
