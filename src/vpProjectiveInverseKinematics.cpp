@@ -33,6 +33,9 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
+//! The largest step of a revolute joint per Levenberg-Marquardt iteration of solve() (rad): 20 deg.
+const double kMaxRevoluteStep = 0.35;
+
 /*!
   The normal equations of the pixel error at \e q: \f$ J^T J \f$ (n x n), \f$ J^T r \f$ and the cost \f$ r^T r \f$,
   accumulated marker by marker (4 rows of \f$ J \f$, eq. (46), at a time: nothing is allocated), plus the prior's
@@ -110,6 +113,17 @@ vpProjectiveInverseKinematics::solve(const vpProjectiveArmModel &model, const st
     A = JtJ;
     A.diagonal() += lambda * JtJ.diagonal().cwiseMax(1e-12 * JtJ.diagonal().maxCoeff());
     step = A.ldlt().solve(-Jtr);
+    // From afar a (nearly) Gauss-Newton step can leap into another branch's basin: at most kMaxRevoluteStep on any
+    // revolute joint, the direction kept (still a descent direction).
+    double largest = 0.0;
+    for (Eigen::Index i = 0; i < step.size(); ++i) {
+      if (model.jointType(static_cast<unsigned int>(i)) == vpProjectiveJoint::REVOLUTE) {
+        largest = std::max(largest, std::abs(step(i)));
+      }
+    }
+    if (largest > kMaxRevoluteStep) {
+      step *= kMaxRevoluteStep / largest;
+    }
     // The decrease the local quadratic model promises: below the rounding of the cost, the minimum is reached (this
     // saves the evaluations that would only find it out).
     const double promised = -Jtr.dot(step) - 0.5 * step.dot(JtJ * step);
@@ -151,7 +165,7 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solveWithPoints
     std::vector<Eigen::Vector4d> &points, double *residual)
 {
   // The state: the joint values at the target and the points on their unit spheres; a step moves q additively and
-  // each point in its tangent space (3 parameters), the parameters ordered (q, M_0, M_1, ...).
+  // each free point (seen pixels finite) in its tangent space (3 parameters), the parameters ordered (q, free points).
   struct State {
     vpProjectiveArmModel::JointVector q;
     std::vector<Eigen::Vector4d> M;
@@ -168,13 +182,21 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solveWithPoints
   }
   bool finite = q0.allFinite() && q.allFinite();
   for (Eigen::Index k = 0; k < N; ++k) {
-    finite = finite && s[k].allFinite() && seen[k].allFinite() && points[k].allFinite() && points[k].norm() > 0.0;
+    finite = finite && s[k].allFinite() && points[k].allFinite() && points[k].norm() > 0.0;
   }
   if (!finite) {
     fail(vpProjectiveException::nonFiniteValueError, where,
-         "a pixel, a point or a joint value is not finite, or a point is zero: track every point");
+         "a desired pixel, a point or a joint value is not finite, or a point is zero: track every point");
   }
-  const Eigen::Index D = n + 3 * N;
+  // Column of each free point's 3 parameters (-1: a fixed point).
+  std::vector<Eigen::Index> column(static_cast<size_t>(N), -1);
+  Eigen::Index D = n;
+  for (size_t k = 0; k < column.size(); ++k) {
+    if (seen[k].allFinite()) {
+      column[k] = D;
+      D += 3;
+    }
+  }
   const Eigen::Matrix4d H0 = model.displacement(q0);
   const auto &P = model.getStereoRig().leftProjection(), &Pp = model.getStereoRig().rightProjection();
   auto evaluate = [&](const State &x, Matrix *A, Vector *g, double &cost) {
@@ -190,19 +212,20 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solveWithPoints
     Eigen::Vector4d sM;
     Eigen::Matrix4d L;
     for (Eigen::Index k = 0; k < N; ++k) {
-      const Eigen::Matrix<double, 4, 3> B = sphereTangentBasis(x.M[k]);
-      const Eigen::Index c = n + 3 * k;
-      // The view at q0: only the point moves its image.
-      const Eigen::Vector4d M0 = H0 * x.M[k];
-      if (!projectStereo(P, Pp, M0, sM, &L)) {
-        return false;
-      }
-      const Eigen::Vector4d r0 = sM - seen[k];
-      cost += r0.squaredNorm();
-      if (A != nullptr) {
-        const Eigen::Matrix<double, 4, 3> Jm = L * H0 * B;
-        A->block(c, c, 3, 3).noalias() += Jm.transpose() * Jm;
-        g->segment(c, 3).noalias() += Jm.transpose() * r0;
+      const Eigen::Index c = column[static_cast<size_t>(k)];
+      const Eigen::Matrix<double, 4, 3> B = c >= 0 ? sphereTangentBasis(x.M[k]) : Eigen::Matrix<double, 4, 3>::Zero();
+      // The view at q0 (free points): only the point moves its image.
+      if (c >= 0) {
+        if (!projectStereo(P, Pp, Eigen::Vector4d(H0 * x.M[k]), sM, &L)) {
+          return false;
+        }
+        const Eigen::Vector4d r0 = sM - seen[k];
+        cost += r0.squaredNorm();
+        if (A != nullptr) {
+          const Eigen::Matrix<double, 4, 3> Jm = L * H0 * B;
+          A->block(c, c, 3, 3).noalias() += Jm.transpose() * Jm;
+          g->segment(c, 3).noalias() += Jm.transpose() * r0;
+        }
       }
       // The view at the target: the joints and the point.
       const Eigen::Vector4d M = H * x.M[k];
@@ -212,16 +235,18 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solveWithPoints
       const Eigen::Vector4d r = sM - s[k];
       cost += r.squaredNorm();
       if (A != nullptr) {
-        const Eigen::Matrix<double, 4, 3> Jm = L * H * B;
         A->topLeftCorner(n, n).noalias() += Jq.transpose() * Jq;
-        A->block(0, c, n, 3).noalias() += Jq.transpose() * Jm;
-        A->block(c, c, 3, 3).noalias() += Jm.transpose() * Jm;
         g->head(n).noalias() += Jq.transpose() * r;
-        g->segment(c, 3).noalias() += Jm.transpose() * r;
+        if (c >= 0) {
+          const Eigen::Matrix<double, 4, 3> Jm = L * H * B;
+          A->block(0, c, n, 3).noalias() += Jq.transpose() * Jm;
+          A->block(c, c, 3, 3).noalias() += Jm.transpose() * Jm;
+          g->segment(c, 3).noalias() += Jm.transpose() * r;
+        }
       }
     }
     if (A != nullptr) {
-      A->bottomLeftCorner(3 * N, n) = A->topRightCorner(n, 3 * N).transpose();
+      A->bottomLeftCorner(D - n, n) = A->topRightCorner(n, D - n).transpose();
     }
     return std::isfinite(cost);
   };
@@ -231,7 +256,8 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solveWithPoints
     xNew.q = x.q + step.head(n);
     xNew.M.resize(static_cast<size_t>(N));
     for (Eigen::Index k = 0; k < N; ++k) {
-      xNew.M[k] = (x.M[k] + sphereTangentBasis(x.M[k]) * step.segment<3>(n + 3 * k)).normalized();
+      const Eigen::Index c = column[static_cast<size_t>(k)];
+      xNew.M[k] = c >= 0 ? (x.M[k] + sphereTangentBasis(x.M[k]) * step.segment<3>(c)).normalized() : x.M[k];
     }
     return step.allFinite();
   };
@@ -246,7 +272,7 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solveWithPoints
   }
   points = x.M;
   if (residual != nullptr) {
-    *residual = std::sqrt(cost / static_cast<double>(8 * N));
+    *residual = std::sqrt(cost / static_cast<double>(4 * N + 4 * (D - n) / 3));
   }
   return x.q;
 }

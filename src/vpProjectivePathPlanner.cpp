@@ -39,6 +39,10 @@ namespace
 {
 //! Number of configurations drawn in the search of a waypoint.
 const unsigned int kWaypointDraws = 200;
+//! A point within this RMS pixel distance of one acquired marker's predicted images at q (and twice as far from any
+//! other) is that marker: several times the model's prediction error and a tracker's noise, a fraction of the
+//! markers' spacing in the image.
+const double kMarkerMatchPx = 2.0;
 //! Weight of the joint-space line in the tracking of straight image lines (pixels per radian).
 const double kPriorWeight = 30.0;
 } // namespace
@@ -360,16 +364,43 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
     }
   }
   // The points' images at q (the features they were triangulated from, less their epipolar error) are the second view
-  // of the two-view refinement of every minimum.
-  std::vector<Eigen::Vector4d> seen(points.size());
+  // of the two-view refinement of every minimum. A point whose images at q are those the model predicts for one of its
+  // acquired markers, and for no other, is that marker: the bundle adjustment placed it from every acquisition image,
+  // far better than one stereo pair, so it replaces the triangulation and stays fixed (its seen pixels not finite).
+  std::vector<Eigen::Vector4d> X = points, seen(points.size());
   const Eigen::Matrix4d Hq = model.displacement(q);
-  for (size_t k = 0; k < points.size(); ++k) {
-    if (!model.getStereoRig().project(Hq * points[k], seen[k])) {
+  for (size_t k = 0; k < X.size(); ++k) {
+    if (!model.getStereoRig().project(Hq * X[k], seen[k])) {
       fail(vpProjectiveException::invalidValueError, where, "a point lies on a camera's focal plane at q");
     }
   }
-  m_branches =
-      vpProjectiveInverseKinematics::solveAll(model, sStar, points, q, qmin, qmax, m_starts, &m_residuals, &seen);
+  unsigned int matched = 0;
+  std::vector<bool> taken(model.markers().size(), false);
+  for (size_t k = 0; k < X.size(); ++k) {
+    size_t nearest = taken.size();
+    double d1 = std::numeric_limits<double>::infinity(), d2 = d1; // the two smallest RMS pixel distances
+    for (size_t j = 0; j < taken.size(); ++j) {
+      Eigen::Vector4d m;
+      if (!model.getStereoRig().project(Hq * model.markers()[j], m)) {
+        continue;
+      }
+      const double d = std::sqrt((m - seen[k]).squaredNorm() / 4.0);
+      if (d < d1) {
+        d2 = d1;
+        d1 = d;
+        nearest = j;
+      } else if (d < d2) {
+        d2 = d;
+      }
+    }
+    if (d1 <= kMarkerMatchPx && d2 > 2.0 * kMarkerMatchPx && !taken[nearest]) {
+      taken[nearest] = true;
+      X[k] = model.markers()[nearest].normalized();
+      seen[k].setConstant(std::numeric_limits<double>::quiet_NaN());
+      ++matched;
+    }
+  }
+  m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, X, q, qmin, qmax, m_starts, &m_residuals, &seen);
   m_path.clear();
   m_features.clear();
   std::ostringstream os;
@@ -387,17 +418,18 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
     return m_status;
   }
   // The depth signs where the points are seen, at q: the reference of "in front of the cameras".
-  m_front.resize(points.size());
-  for (size_t k = 0; k < points.size(); ++k) {
-    const Eigen::Vector4d M = Hq * points[k];
+  m_front.resize(X.size());
+  for (size_t k = 0; k < X.size(); ++k) {
+    const Eigen::Vector4d M = Hq * X[k];
     m_front[k] << model.getStereoRig().leftProjection().row(2).dot(M),
         model.getStereoRig().rightProjection().row(2).dot(M);
   }
   // 2. The target, and 3. a path keeping the features in view and the joints within their limits: the preferred
   // target first, the nearest if no path leads to the preferred one.
-  os << m_branches.size() << " inverse-kinematic branch" << (m_branches.size() > 1 ? "es" : "") << " found";
+  os << matched << " of " << X.size() << " points are acquired markers; " << m_branches.size()
+     << " inverse-kinematic branch" << (m_branches.size() > 1 ? "es" : "") << " found";
   bool anyInside = false;
-  const std::vector<std::pair<JointVector, unsigned int>> candidates = targetCandidates(model, q, points, anyInside);
+  const std::vector<std::pair<JointVector, unsigned int>> candidates = targetCandidates(model, q, X, anyInside);
   if (candidates.empty()) {
     m_status = anyInside ? PLAN_NO_VISIBLE_PATH : PLAN_OUTSIDE_JOINT_LIMITS;
     os << (anyInside ? "; at every one inside the joint limits a feature is out of the image window or behind a camera"
@@ -408,8 +440,7 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
   std::vector<JointVector> path;
   std::vector<std::vector<Eigen::Vector4d>> features;
   size_t c = 0;
-  while (c < candidates.size() &&
-         !planPath(model, q, candidates[c].first, points, qmin, qmax, path, features, m_kind)) {
+  while (c < candidates.size() && !planPath(model, q, candidates[c].first, X, qmin, qmax, path, features, m_kind)) {
     ++c;
   }
   if (c == candidates.size()) {

@@ -273,20 +273,93 @@ TEST_P(PathPlannerArms, TwoViewRefinementBringsTheResidualToTheNoise)
       &rms);
   EXPECT_LT((q - toJoints(qTarget)).cwiseAbs().maxCoeff(), 1e-6) << s.name;
   EXPECT_LT(rms, 1e-6) << s.name;
+  // A point without seen pixels is exact: it stays where it is, the others and q still converge.
+  std::vector<Eigen::Vector4d> seenFixed = seen, fixedPoints = modelPoints(robot, tracked);
+  seenFixed[1].setConstant(std::nan(""));
+  const Eigen::Vector4d exact = fixedPoints[1].normalized();
+  const JointVector qFixed = vpProjectiveInverseKinematics::solveWithPoints(
+      model, sStar, seenFixed, toJoints(qStart), toJoints(qTarget) + JointVector::Constant(s.n(), vpMath::rad(3.0)),
+      fixedPoints, &rms);
+  EXPECT_LT((qFixed - toJoints(qTarget)).cwiseAbs().maxCoeff(), 1e-6) << s.name;
+  EXPECT_LT((fixedPoints[1] - exact).norm(), 1e-15);
+  EXPECT_LT(rms, 1e-6) << s.name;
 
   // Bad input throws and leaves the points as they were.
   const std::vector<Eigen::Vector4d> before = points;
-  std::vector<Eigen::Vector4d> shortSeen(seen.begin(), seen.end() - 1), nanSeen = seen;
-  nanSeen[0](1) = std::nan("");
+  std::vector<Eigen::Vector4d> shortSeen(seen.begin(), seen.end() - 1), nanStar = sStar;
+  nanStar[0](1) = std::nan("");
   EXPECT_THROW(vpProjectiveInverseKinematics::solveWithPoints(model, sStar, shortSeen, toJoints(qStart), q, points),
                vpException);
-  EXPECT_THROW(vpProjectiveInverseKinematics::solveWithPoints(model, sStar, nanSeen, toJoints(qStart), q, points),
+  EXPECT_THROW(vpProjectiveInverseKinematics::solveWithPoints(model, nanStar, seen, toJoints(qStart), q, points),
                vpException);
   EXPECT_THROW(vpProjectiveInverseKinematics::solveWithPoints(model, sStar, seen, JointVector::Zero(2), q, points),
                vpException);
   for (size_t k = 0; k < points.size(); ++k) {
     EXPECT_EQ(points[k], before[k]);
   }
+}
+
+TEST(PathPlanner, UsesTheAcquiredMarkersItRecognises)
+{
+  // Noisy features of three acquired markers, triangulated at the start: the planner recognises them (their images at
+  // q are the model's predictions) and solves the target with the bundle adjustment's points, which the two-view
+  // refinement of one stereo pair cannot match. A feature between two markers is no marker: it stays triangulated.
+  const ArmSetup s = pumaEyeToHand();
+  const vpProjectiveRobot robot = acquireNoiseFree(s);
+  const vpProjectiveArmModel &model = robot.getModel();
+  const std::vector<unsigned int> tracked = {0, 1, 2};
+  const double sigma = 0.5;
+  vpUniRand rng(31);
+  vpGaussRand noise(sigma, 0.0, 37);
+  const std::vector<double> range(s.n(), vpMath::rad(30.0));
+  std::vector<double> plannedError, refinedError;
+  vpProjectivePathPlanner planner;
+  for (int task = 0; task < 20; ++task) {
+    const vpColVector qStart = s.randomVisibleJoints(rng, range), qTarget = s.randomVisibleJoints(rng, range);
+    std::vector<Eigen::Vector4d> seen = trueImages(s, qStart, tracked), sStar = trueImages(s, qTarget, tracked);
+    for (size_t k = 0; k < tracked.size(); ++k) {
+      for (int c = 0; c < 4; ++c) {
+        seen[k](c) += noise();
+        sStar[k](c) += noise();
+      }
+    }
+    const Eigen::PartialPivLU<Eigen::Matrix4d> H(model.displacement(toJoints(qStart)));
+    std::vector<Eigen::Vector4d> points;
+    for (const Eigen::Vector4d &p : seen) {
+      points.push_back(H.solve(model.getStereoRig().triangulate(p.head<2>(), p.tail<2>())));
+    }
+    ASSERT_EQ(planner.plan(model, toJoints(qStart), points, sStar), vpProjectivePathPlanner::PLAN_FOUND)
+        << planner.getDescription();
+    EXPECT_NE(planner.getDescription().find("3 of 3 points are acquired markers"), std::string::npos)
+        << planner.getDescription();
+    plannedError.push_back(vpMath::deg((planner.getTarget() - toJoints(qTarget)).norm()));
+    const JointVector refined =
+        vpProjectiveInverseKinematics::solveWithPoints(model, sStar, seen, toJoints(qStart), toJoints(qTarget), points);
+    refinedError.push_back(vpMath::deg((refined - toJoints(qTarget)).norm()));
+  }
+  std::cout << "target joint error, median over 20 tasks: " << median(plannedError) << " deg planned (markers), "
+            << median(refinedError) << " deg by the two-view refinement of triangulated points" << std::endl;
+  EXPECT_LT(median(plannedError), 0.75 * median(refinedError));
+
+  // A feature at the centre of markers 0, 1 and 2 (a point of the gripper, off the line of markers 0 and 1 that the
+  // other two features are) matches no marker.
+  const vpColVector q0(s.n(), 0.0), q1(s.n(), vpMath::rad(10.0));
+  const Eigen::Matrix4d H1 = model.displacement(toJoints(q1));
+  std::vector<Eigen::Vector4d> points = modelPoints(robot, tracked), sStar(tracked.size());
+  Eigen::Vector4d centre = Eigen::Vector4d::Zero();
+  for (unsigned int j : tracked) {
+    const Eigen::Vector4d M = model.markers()[j].normalized();
+    centre += M.dot(model.markers()[0]) < 0.0 ? Eigen::Vector4d(-M) : M; // one sign: the sum lies between them
+  }
+  points[2] = centre.normalized();
+  for (size_t k = 0; k < points.size(); ++k) {
+    ASSERT_TRUE(model.getStereoRig().project(H1 * points[k], sStar[k]));
+  }
+  ASSERT_EQ(planner.plan(model, toJoints(q0), points, sStar), vpProjectivePathPlanner::PLAN_FOUND)
+      << planner.getDescription();
+  EXPECT_NE(planner.getDescription().find("2 of 3 points are acquired markers"), std::string::npos)
+      << planner.getDescription();
+  EXPECT_LT((planner.getTarget() - toJoints(q1)).cwiseAbs().maxCoeff(), 1e-4) << planner.getDescription();
 }
 
 TEST(PathPlanner, KeepsTheTargetOutOfTheJointLimitMargins)

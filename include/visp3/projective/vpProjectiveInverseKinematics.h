@@ -91,23 +91,26 @@ public:
            const std::vector<Eigen::Vector4d> *seen = nullptr);
   /*!
     The target's joint values and the points together, from two views: minimises
-    \f[ \sum_k \| s_k - \pi(H(q) M_k) \|^2 + \| s^0_k - \pi(H(q_0) M_k) \|^2 \f]
-    over \f$ q \f$ (n x 1) and the points \f$ M_k \f$ (4x1 at the zero reference, each on its unit sphere), where
-    \e seen holds the pixels \f$ s^0_k \f$ at which \e points were seen at \e q0 (the features they were
-    triangulated from) and \e s the pixels wanted at \f$ q \f$. The points triangulated at \e q0 alone carry the
-    depth error of the stereo pair into the prediction at \f$ q \f$ when the motion turns it sideways; refined with
-    both views, the residual of the true target falls to the image noise. Levenberg-Marquardt from \e q and
-    \e points (replaced by the refined ones), on the dense normal equations (n + 3N unknowns).
+    \f[ \sum_k \| s_k - \pi(H(q) M_k) \|^2 + \sum_{k\ free} \| s^0_k - \pi(H(q_0) M_k) \|^2 \f]
+    over \f$ q \f$ (n x 1) and the free points \f$ M_k \f$ (4x1 at the zero reference, each on its unit sphere),
+    where \e seen holds the pixels \f$ s^0_k \f$ at which \e points were seen at \e q0 (the features they were
+    triangulated from) and \e s the pixels wanted at \f$ q \f$. A point whose seen pixels are not finite is exact
+    (e.g. a marker of the model's bundle adjustment) and stays fixed. The points triangulated at \e q0 alone carry
+    the depth error of the stereo pair into the prediction at \f$ q \f$ when the motion turns it sideways; refined
+    with both views, the residual of the true target falls to the image noise. Levenberg-Marquardt from \e q and
+    \e points (replaced by the refined ones), on the dense normal equations (n + 3 unknowns per free point).
     \param model : the arm's model.
     \param s : pixels \f$ (u, v, u', v') \f$ wanted at \f$ q \f$, one per point.
-    \param seen : pixels at which the points were seen at \e q0, one per point.
+    \param seen : pixels at which the points were seen at \e q0, one per point (not finite: the point is exact).
     \param q0 : the joint values (n x 1) where the points were seen.
     \param q : the starting joint values of the target (n x 1), e.g. a minimum of solve().
     \param points : the points (4x1, zero reference) in, the refined ones (unit norm) out.
-    \param residual : if not null, receives the RMS pixel error per coordinate over both views (8 per point).
+    \param residual : if not null, receives the RMS pixel error per coordinate over both views (4 per desired pixel
+    and 4 per free point's seen pixel).
     \exception vpProjectiveException (dimensionError) if \e s, \e seen and \e points differ in size or the joint
-    vectors are not n x 1; (nonFiniteValueError) on a non-finite input; (estimationFailedError) if a point lies on a
-    camera's focal plane at the start. \e points is left unchanged when it throws.
+    vectors are not n x 1; (nonFiniteValueError) on a non-finite desired pixel, point or joint value;
+    (estimationFailedError) if a point lies on a camera's focal plane at the start. \e points is left unchanged when
+    it throws.
   */
   static vpProjectiveArmModel::JointVector
   solveWithPoints(const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
