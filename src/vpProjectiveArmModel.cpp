@@ -14,6 +14,7 @@
 #include <visp3/projective/vpProjectiveArmModel.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include <Eigen/Dense>
@@ -202,4 +203,25 @@ bool vpProjectiveArmModel::imageJacobian(const Eigen::Matrix4d *HhatKq, const Ei
 bool vpProjectiveArmModel::predictMarker(unsigned int j, const Eigen::Matrix4d &H, Eigen::Vector4d &s) const
 {
   return m_rig.project(Eigen::Vector4d(H * m_M0[j]), s);
+}
+
+int vpProjectiveArmModel::matchMarker(const Eigen::Matrix4d &H, const Eigen::Vector4d &s, double pixels) const
+{
+  int nearest = -1;
+  double d1 = std::numeric_limits<double>::infinity(), d2 = d1; // the two smallest RMS pixel distances
+  for (size_t j = 0; j < m_M0.size(); ++j) {
+    Eigen::Vector4d m;
+    if (!m_rig.project(H * m_M0[j], m)) {
+      continue;
+    }
+    const double d = std::sqrt((m - s).squaredNorm() / 4.0);
+    if (d < d1) {
+      d2 = d1;
+      d1 = d;
+      nearest = static_cast<int>(j);
+    } else if (d < d2) {
+      d2 = d;
+    }
+  }
+  return d1 <= pixels && d2 > 2.0 * pixels ? nearest : -1;
 }

@@ -39,10 +39,6 @@ namespace
 {
 //! Number of configurations drawn in the search of a waypoint.
 const unsigned int kWaypointDraws = 200;
-//! A point within this RMS pixel distance of one acquired marker's predicted images at q (and twice as far from any
-//! other) is that marker: several times the model's prediction error and a tracker's noise, a fraction of the
-//! markers' spacing in the image.
-const double kMarkerMatchPx = 2.0;
 //! Weight of the joint-space line in the tracking of straight image lines (pixels per radian).
 const double kPriorWeight = 30.0;
 } // namespace
@@ -377,25 +373,10 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
   unsigned int matched = 0;
   std::vector<bool> taken(model.markers().size(), false);
   for (size_t k = 0; k < X.size(); ++k) {
-    size_t nearest = taken.size();
-    double d1 = std::numeric_limits<double>::infinity(), d2 = d1; // the two smallest RMS pixel distances
-    for (size_t j = 0; j < taken.size(); ++j) {
-      Eigen::Vector4d m;
-      if (!model.getStereoRig().project(Hq * model.markers()[j], m)) {
-        continue;
-      }
-      const double d = std::sqrt((m - seen[k]).squaredNorm() / 4.0);
-      if (d < d1) {
-        d2 = d1;
-        d1 = d;
-        nearest = j;
-      } else if (d < d2) {
-        d2 = d;
-      }
-    }
-    if (d1 <= kMarkerMatchPx && d2 > 2.0 * kMarkerMatchPx && !taken[nearest]) {
-      taken[nearest] = true;
-      X[k] = model.markers()[nearest].normalized();
+    const int j = model.matchMarker(Hq, seen[k]);
+    if (j >= 0 && !taken[static_cast<size_t>(j)]) {
+      taken[static_cast<size_t>(j)] = true;
+      X[k] = model.markers()[static_cast<size_t>(j)].normalized();
       seen[k].setConstant(std::numeric_limits<double>::quiet_NaN());
       ++matched;
     }

@@ -59,6 +59,7 @@ void vpServoModelMismatch::reset()
     r.distance = -1.0;
     r.usable = false;
     r.hasMemory = false;
+    r.exact = false;
   }
   m_disagreeing = 0;
   m_mismatch = false;
@@ -103,7 +104,15 @@ bool vpServoModelMismatch::endIteration()
   if (!disagrees && m_model != nullptr) {
     const vpProjectiveStereoRig &rig = m_model->getStereoRig();
     for (vpRecord &r : m_records) {
-      if (!r.usable || (r.hasMemory && (r.distance < 0.0 || r.distance > m_threshold))) {
+      if (r.exact || !r.usable || (r.hasMemory && (r.distance < 0.0 || r.distance > m_threshold))) {
+        continue;
+      }
+      // A feature that is an acquired marker is remembered as that marker's point: one stereo pair's depth error,
+      // turned sideways by a large motion, would otherwise exceed the threshold for every feature of a 3-point task.
+      const int j = m_model->matchMarker(m_H, r.s);
+      if (j >= 0) {
+        r.sum = m_model->markers()[static_cast<size_t>(j)].normalized();
+        r.hasMemory = r.exact = true;
         continue;
       }
       const Eigen::Vector4d M = m_Hlu.solve(rig.triangulateLinear(r.s.head<2>(), r.s.tail<2>())).normalized();

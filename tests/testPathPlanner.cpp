@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -360,6 +361,48 @@ TEST(PathPlanner, UsesTheAcquiredMarkersItRecognises)
   EXPECT_NE(planner.getDescription().find("2 of 3 points are acquired markers"), std::string::npos)
       << planner.getDescription();
   EXPECT_LT((planner.getTarget() - toJoints(q1)).cwiseAbs().maxCoeff(), 1e-4) << planner.getDescription();
+}
+
+TEST(PathPlanner, MatchMarkerRecognisesEachAcquiredMarker)
+{
+  // vpProjectiveArmModel::matchMarker() on the true images of every marker with 0.5 px of noise, at random joints:
+  // each is its own marker; a point between two markers and a marker's image 10 px off are none.
+  const ArmSetup s = pumaEyeToHand();
+  const vpProjectiveRobot robot = acquireNoiseFree(s);
+  const vpProjectiveArmModel &model = robot.getModel();
+  vpUniRand rng(41);
+  vpGaussRand noise(0.5, 0.0, 43);
+  const std::vector<double> range(s.n(), vpMath::rad(30.0));
+  const std::vector<unsigned int> all = allMarkers(s);
+  unsigned int ambiguous = 0;
+  for (int pose = 0; pose < 10; ++pose) {
+    const vpColVector q = s.randomVisibleJoints(rng, range);
+    const Eigen::Matrix4d H = model.displacement(toJoints(q));
+    const std::vector<Eigen::Vector4d> images = trueImages(s, q, all);
+    for (size_t j = 0; j < images.size(); ++j) {
+      Eigen::Vector4d noisy = images[j];
+      for (int c = 0; c < 4; ++c) {
+        noisy(c) += noise();
+      }
+      // Markers whose images nearly coincide (another within 6 px RMS: twice the 2 px match plus the noise) are
+      // ambiguous: no match rather than a wrong one.
+      double separation = std::numeric_limits<double>::infinity();
+      for (size_t o = 0; o < images.size(); ++o) {
+        separation = o == j ? separation : std::min(separation, std::sqrt((images[o] - images[j]).squaredNorm() / 4.0));
+      }
+      const int match = model.matchMarker(H, noisy);
+      if (separation > 6.0) {
+        EXPECT_EQ(match, static_cast<int>(j)) << "pose " << pose;
+      } else {
+        EXPECT_TRUE(match == static_cast<int>(j) || match == -1) << "pose " << pose << ": " << match;
+        ++ambiguous;
+      }
+      EXPECT_EQ(model.matchMarker(H, images[j] + Eigen::Vector4d(10.0, 0.0, 10.0, 0.0)), -1) << "pose " << pose;
+    }
+    EXPECT_EQ(model.matchMarker(H, 0.5 * (images[0] + images[1])), -1) << "pose " << pose;
+  }
+  EXPECT_LE(ambiguous, 7u) << "most markers stand apart in the images";
+  std::cout << ambiguous << " of 70 marker images within 6 px of another" << std::endl;
 }
 
 TEST(PathPlanner, KeepsTheTargetOutOfTheJointLimitMargins)

@@ -22,6 +22,7 @@
 #include "tutorial-projective-figures.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -324,17 +325,22 @@ std::string summary(const World &world, const Results &results)
         "(damped near singular targets), so success can rise with the noise. Broyden's Jacobian comes from the "
         "task's own noisy measurements (6 differences over 2 deg, then updates on the steps), whereas the projective "
         "model averages 13 images of 7 markers in a bundle adjustment and IBVS estimates nothing.\n";
-  unsigned int runs = 0, alarmRuns = 0, alarmIterations = 0;
+  // Per method, over every case and noise level.
+  std::map<std::string, std::array<unsigned int, 3>> alarms; // runs, runs with an alarm, alarm iterations
   for (const Cell &c : results.cells) {
     if (c.method.compare(0, 10, "projective") == 0 || c.method == "planned") {
-      runs += c.tasks;
-      alarmRuns += c.mismatchRuns;
-      alarmIterations += c.mismatchIterations;
+      std::array<unsigned int, 3> &a = alarms[c.method];
+      a[0] += c.tasks;
+      a[1] += c.mismatchRuns;
+      a[2] += c.mismatchIterations;
     }
   }
-  os << "- Model mismatch: no camera moves in this study, so every SERVO_MODEL_MISMATCH is a false alarm: "
-     << alarmIterations << " iterations in " << alarmRuns << " of " << runs
-     << " projective and planned runs (every case and noise level).\n";
+  os << "- Model mismatch: no camera moves in this study, so every SERVO_MODEL_MISMATCH is a false alarm (every case "
+        "and noise level):";
+  for (const auto &a : alarms) {
+    os << " " << a.first << " " << a.second[2] << " iterations in " << a.second[1] << " of " << a.second[0] << " runs;";
+  }
+  os << "\n";
   return os.str();
 }
 

@@ -146,6 +146,15 @@ public:
   const Eigen::Matrix4d &generator(unsigned int i) const { return m_Hhat[i]; }
   //! The markers' projective points \f$ M_j(0) \f$ (4x1) at the zero reference.
   const std::vector<Eigen::Vector4d> &markers() const { return m_M0; }
+  /*!
+    The marker a feature is, if any: the index \f$ j \f$ of the marker whose predicted pixels
+    \f$ \pi(H M_j(0)) \f$ at the displacement \e H (4x4, e.g. displacement(q)) are within \e pixels (RMS over
+    \f$ (u, v, u', v') \f$) of the feature's pixels \e s, every other marker being more than twice as far; -1 if
+    none. A feature that is a marker gets that marker's point, which the acquisition placed from all its images, in
+    place of one stereo pair's triangulation (vpProjectivePathPlanner, vpServoModelMismatch). The default 2 px is
+    several times a tracker's noise and the model's prediction error, a fraction of the markers' spacing in the image.
+  */
+  int matchMarker(const Eigen::Matrix4d &H, const Eigen::Vector4d &s, double pixels = 2.0) const;
   //! Joint values \f$ q_{ref} \f$ (n x 1) at the zero reference.
   const JointVector &zeroReferenceJoints() const { return m_qRef; }
   /*!

@@ -42,8 +42,10 @@ BEGIN_VISP_NAMESPACE
   \f[ \bar M_i \propto \sum_k \pm H(q_k)^{-1} M_{ik}, \f]
   \f$ M_{ik} \f$ the point linearly triangulated (vpProjectiveStereoRig::triangulateLinear()) at the iterations
   \f$ k \f$ where the feature agreed with the model, each term of unit norm with the sign of the sum (no coordinate is
-  divided by). Its prediction at joints \f$ q \f$ is the image \f$ \hat s_i \f$ of \f$ H(q) \bar M_i \f$ (4x1,
-  model frame), and its distance (pixels) the larger over both images of \f$ \|\hat s_i - s_i\| \f$ per image.
+  divided by); or, when the feature is one of the model's acquired markers (vpProjectiveArmModel::matchMarker() at
+  the first iteration it agrees), that marker's point, which no averaging of stereo pairs would improve. Its prediction
+  at joints \f$ q \f$ is the image \f$ \hat s_i \f$ of \f$ H(q) \bar M_i \f$ (4x1, model frame), and its distance
+  (pixels) the larger over both images of \f$ \|\hat s_i - s_i\| \f$ per image.
 
   <b>Decision.</b> An iteration disagrees when at least two features have a prediction and every one of them is
   farther than the threshold (setThreshold(), default 5 px: well above the noise of a tracked feature and the
@@ -108,6 +110,7 @@ private:
     double distance;     // this iteration's distance, -1: not evaluated
     bool usable;         // this iteration
     bool hasMemory;      // sum is set
+    bool exact;          // sum is an acquired marker's point (vpProjectiveArmModel::matchMarker())
   };
 
   std::vector<vpRecord> m_records;
