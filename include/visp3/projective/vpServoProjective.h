@@ -406,16 +406,18 @@ public:
   /*!
     Path planning (default off: law (47) alone, as before). On, the first computeControlLaw() for a target (and again
     whenever a desired feature changes) plans the task with vpProjectivePathPlanner: the features are triangulated
-    at the current joints and carried to the zero reference by \f$ H(q)^{-1} \f$ (no marker identity is needed), the
-    inverse kinematics of \f$ s^* \f$ gives every branch it can find, the target is the one inside the joint limits
-    (setJointLimits()) nearest to \f$ q \f$, and the path keeps the features' predicted images inside the image window
-    (setImageSize()) and the joints within their limits. The task then follows the path, one sample (no joint more than
-    vpProjectivePathPlanner::setMaxJointStep() away) per call, with image feedback: \f$ \dot q \f$ is the path's step
-    \f$ q_{k+1} - q_k \f$ plus law (47) with the gain setPathFollowingGain() on the error to the model's predicted
-    images at sample \f$ k \f$ (getError() then returns that error), saturated as a whole; after the last sample law
-    (47) toward \f$ s^* \f$ with the task's gain finishes the
-    motion, so the final accuracy is the law's. When no plan exists the status is SERVO_NO_PLAN and \f$ \dot q = 0
-    \f$. Planning allocates and takes a few milliseconds; following is as cheap as the law.
+    at the current joints and carried to the zero reference by \f$ H(q)^{-1} \f$ (no marker identity is needed; a
+    feature recognised as an acquired marker takes that marker's point), the inverse kinematics of \f$ s^* \f$ gives
+    every branch it can find, the target is the one inside the joint limits (setJointLimits()) nearest to \f$ q \f$,
+    out of the activation band \f$ \rho \f$ of the joint-limit avoidance when a branch allows it
+    (vpProjectivePathPlanner::setJointLimitMargin()), and the path keeps the features' predicted images inside the image
+    window (setImageSize()) and the joints within their limits. The task then follows the path, one sample (no joint
+    more than vpProjectivePathPlanner::setMaxJointStep() away) per call, with image feedback: \f$ \dot q \f$ is the
+    path's step \f$ q_{k+1} - q_k \f$ plus law (47) with the gain setPathFollowingGain() on the error to the model's
+    predicted images at sample \f$ k \f$ (getError() then returns that error), saturated as a whole; after the last
+    sample law (47) toward \f$ s^* \f$ with the task's gain finishes the motion, so the final accuracy is the law's.
+    When no plan exists the status is SERVO_NO_PLAN and \f$ \dot q = 0 \f$. Planning allocates and takes a few
+    milliseconds; following is as cheap as the law.
   */
   void setPathPlanning(bool planning);
   //! True if path planning is on.
