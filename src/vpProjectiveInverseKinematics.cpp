@@ -300,6 +300,21 @@ std::vector<vpProjectiveArmModel::JointVector> vpProjectiveInverseKinematics::so
     }
     return d;
   };
+  // Adds a minimum to the list, or keeps the lower residual of the one it meets.
+  const auto keep = [&](std::vector<JointVector> &minima, std::vector<double> &residual, const JointVector &q,
+                        double rms) {
+    size_t same = minima.size();
+    for (size_t b = 0; b < minima.size() && same == minima.size(); ++b) {
+      same = distance(minima[b], q) < 1e-3 ? b : same;
+    }
+    if (same == minima.size()) {
+      minima.push_back(q);
+      residual.push_back(rms);
+    } else if (rms < residual[same]) {
+      minima[same] = q;
+      residual[same] = rms;
+    }
+  };
   std::vector<JointVector> found;
   std::vector<double> cost;
   vpUniRand uniform(0x5eedULL);
@@ -315,17 +330,7 @@ std::vector<vpProjectiveArmModel::JointVector> vpProjectiveInverseKinematics::so
     } catch (const vpProjectiveException &) {
       continue; // a start from which a point is on a focal plane
     }
-    size_t same = found.size();
-    for (size_t b = 0; b < found.size() && same == found.size(); ++b) {
-      same = distance(found[b], q) < 1e-3 ? b : same;
-    }
-    if (same == found.size()) {
-      found.push_back(q);
-      cost.push_back(rms);
-    } else if (rms < cost[same]) {
-      found[same] = q;
-      cost[same] = rms;
-    }
+    keep(found, cost, q, rms);
   }
   if (seen != nullptr) {
     // Each minimum with the points refined by their two views; minima that meet are one.
@@ -340,17 +345,7 @@ std::vector<vpProjectiveArmModel::JointVector> vpProjectiveInverseKinematics::so
       } catch (const vpProjectiveException &) {
         continue;
       }
-      size_t same = refined.size();
-      for (size_t r = 0; r < refined.size() && same == refined.size(); ++r) {
-        same = distance(refined[r], q) < 1e-3 ? r : same;
-      }
-      if (same == refined.size()) {
-        refined.push_back(q);
-        refinedCost.push_back(rms);
-      } else if (rms < refinedCost[same]) {
-        refined[same] = q;
-        refinedCost[same] = rms;
-      }
+      keep(refined, refinedCost, q, rms);
     }
     found.swap(refined);
     cost.swap(refinedCost);

@@ -132,6 +132,35 @@ bool trulyInView(const ArmSetup &s, const vpColVector &q, const std::vector<unsi
   return true;
 }
 
+//! A task with noisy images: start and target drawn within \e range, the images of the markers \e tracked there with
+//! the noise \e noise (seen at the start, s* at the target), and the points triangulated from the seen images by the
+//! model's rig and carried to the zero reference by H(q_start)^-1, as vpServoProjective does.
+struct NoisyTask {
+  vpColVector qStart, qTarget;
+  std::vector<Eigen::Vector4d> seen, sStar, points;
+};
+
+NoisyTask noisyTask(const ArmSetup &s, const vpProjectiveArmModel &model, const std::vector<unsigned int> &tracked,
+                    const std::vector<double> &range, vpUniRand &rng, vpGaussRand &noise)
+{
+  NoisyTask t;
+  t.qStart = s.randomVisibleJoints(rng, range);
+  t.qTarget = s.randomVisibleJoints(rng, range);
+  t.seen = trueImages(s, t.qStart, tracked);
+  t.sStar = trueImages(s, t.qTarget, tracked);
+  for (size_t k = 0; k < tracked.size(); ++k) {
+    for (int c = 0; c < 4; ++c) {
+      t.seen[k](c) += noise();
+      t.sStar[k](c) += noise();
+    }
+  }
+  const Eigen::PartialPivLU<Eigen::Matrix4d> H(model.displacement(toJoints(t.qStart)));
+  for (const Eigen::Vector4d &p : t.seen) {
+    t.points.push_back(H.solve(model.getStereoRig().triangulate(p.head<2>(), p.tail<2>())));
+  }
+  return t;
+}
+
 struct SetupCase {
   const char *label;
   ArmSetup (*make)();
@@ -217,19 +246,10 @@ TEST_P(PathPlannerArms, TwoViewRefinementBringsTheResidualToTheNoise)
   const std::vector<double> range(s.n(), vpMath::rad(2.0 * GetParam().rangeDeg));
   std::vector<double> fixedError, refinedError, fixedResidual, refinedResidual;
   for (int task = 0; task < 30; ++task) {
-    const vpColVector qStart = s.randomVisibleJoints(rng, range), qTarget = s.randomVisibleJoints(rng, range);
-    std::vector<Eigen::Vector4d> seen = trueImages(s, qStart, tracked), sStar = trueImages(s, qTarget, tracked);
-    for (size_t k = 0; k < tracked.size(); ++k) {
-      for (int c = 0; c < 4; ++c) {
-        seen[k](c) += noise();
-        sStar[k](c) += noise();
-      }
-    }
-    const Eigen::PartialPivLU<Eigen::Matrix4d> H(model.displacement(toJoints(qStart)));
-    std::vector<Eigen::Vector4d> points;
-    for (const Eigen::Vector4d &p : seen) {
-      points.push_back(H.solve(model.getStereoRig().triangulate(p.head<2>(), p.tail<2>())));
-    }
+    NoisyTask t = noisyTask(s, model, tracked, range, rng, noise);
+    const vpColVector &qStart = t.qStart, &qTarget = t.qTarget;
+    const std::vector<Eigen::Vector4d> &seen = t.seen, &sStar = t.sStar;
+    std::vector<Eigen::Vector4d> &points = t.points;
     const std::vector<Eigen::Vector4d> triangulated = points;
     double fixedRms = 0.0, rms = 0.0;
     const JointVector fixed = vpProjectiveInverseKinematics::solve(model, sStar, points, toJoints(qTarget), &fixedRms);
@@ -316,19 +336,10 @@ TEST(PathPlanner, UsesTheAcquiredMarkersItRecognises)
   std::vector<double> plannedError, refinedError;
   vpProjectivePathPlanner planner;
   for (int task = 0; task < 20; ++task) {
-    const vpColVector qStart = s.randomVisibleJoints(rng, range), qTarget = s.randomVisibleJoints(rng, range);
-    std::vector<Eigen::Vector4d> seen = trueImages(s, qStart, tracked), sStar = trueImages(s, qTarget, tracked);
-    for (size_t k = 0; k < tracked.size(); ++k) {
-      for (int c = 0; c < 4; ++c) {
-        seen[k](c) += noise();
-        sStar[k](c) += noise();
-      }
-    }
-    const Eigen::PartialPivLU<Eigen::Matrix4d> H(model.displacement(toJoints(qStart)));
-    std::vector<Eigen::Vector4d> points;
-    for (const Eigen::Vector4d &p : seen) {
-      points.push_back(H.solve(model.getStereoRig().triangulate(p.head<2>(), p.tail<2>())));
-    }
+    NoisyTask t = noisyTask(s, model, tracked, range, rng, noise);
+    const vpColVector &qStart = t.qStart, &qTarget = t.qTarget;
+    const std::vector<Eigen::Vector4d> &seen = t.seen, &sStar = t.sStar;
+    std::vector<Eigen::Vector4d> &points = t.points;
     ASSERT_EQ(planner.plan(model, toJoints(qStart), points, sStar), vpProjectivePathPlanner::PLAN_FOUND)
         << planner.getDescription();
     EXPECT_NE(planner.getDescription().find("3 of 3 points are acquired markers"), std::string::npos)

@@ -42,8 +42,9 @@ BEGIN_VISP_NAMESPACE
   \f[ \bar M_i \propto \sum_k \pm H(q_k)^{-1} M_{ik}, \f]
   \f$ M_{ik} \f$ the point linearly triangulated (vpProjectiveStereoRig::triangulateLinear()) at the iterations
   \f$ k \f$ where the feature agreed with the model, each term of unit norm with the sign of the sum (no coordinate is
-  divided by); or, when the feature is one of the model's acquired markers (vpProjectiveArmModel::matchMarker() at
-  the first iteration it agrees), that marker's point, which no averaging of stereo pairs would improve. Its prediction
+  divided by); or, once the feature is recognised as one of the model's acquired markers
+  (vpProjectiveArmModel::matchMarker(), tried at every iteration it agrees until then), that marker's point, which
+  no averaging of stereo pairs would improve. Its prediction
   at joints \f$ q \f$ is the image \f$ \hat s_i \f$ of \f$ H(q) \bar M_i \f$ (4x1, model frame), and its distance
   (pixels) the larger over both images of \f$ \|\hat s_i - s_i\| \f$ per image.
 
