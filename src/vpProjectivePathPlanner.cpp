@@ -45,8 +45,9 @@ const double kPriorWeight = 30.0;
 
 vpProjectivePathPlanner::vpProjectivePathPlanner()
     : m_hasLimits(false), m_qmin(), m_qmax(), m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0),
-      m_starts(24), m_maxResidual(5.0), m_limitMargin(0.0), m_front(), m_status(PLAN_NONE), m_branches(), m_residuals(),
-      m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
+      m_maxExcursion(-1.0), m_starts(24), m_maxResidual(5.0), m_limitMargin(0.0), m_front(), m_status(PLAN_NONE),
+      m_branches(), m_residuals(), m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE),
+      m_description("no plan yet")
 {
 }
 
@@ -94,6 +95,20 @@ void vpProjectivePathPlanner::setMaxJointStep(double step)
          "the largest joint step between samples must be positive and finite");
   }
   m_maxStep = step;
+}
+
+void vpProjectivePathPlanner::setMaxExcursion(double excursion)
+{
+  if (!std::isfinite(excursion) || excursion < 0.0) {
+    fail(vpProjectiveException::invalidValueError, at("setMaxExcursion()"),
+         "the largest motion of a joint beyond its start and target values must be non-negative and finite");
+  }
+  m_maxExcursion = excursion;
+}
+
+double vpProjectivePathPlanner::getMaxExcursion() const
+{
+  return m_maxExcursion < 0.0 ? 2.0 * m_maxStep : m_maxExcursion;
 }
 
 void vpProjectivePathPlanner::setMaxResidual(double pixels)
@@ -191,28 +206,46 @@ bool vpProjectivePathPlanner::imagePath(const vpProjectiveArmModel &model, const
       return false;
     }
   }
-  // Tracked in steps four times finer than the path's, then thinned to steps of at most setMaxJointStep().
+  // Tracked in steps four times finer than the path's, then thinned to steps of at most setMaxJointStep(). A fine step
+  // in which a joint moves by more than setMaxJointStep() is tracked again in 2, 4 and 8 sub-steps: a joint that turns
+  // fast (a wrist near a singular configuration) is then followed continuously, while a jump to another branch stays a
+  // jump and rejects the path.
   const size_t samples = 4 * (jointLine(q, target).size() - 1);
+  const double excursion = getMaxExcursion();
+  const JointVector lowest = q.cwiseMin(target), highest = q.cwiseMax(target);
   std::vector<JointVector> tracked(1, q);
   for (size_t j = 1; j <= samples; ++j) {
-    const double t = static_cast<double>(j) / samples;
-    for (size_t k = 0; k < points.size(); ++k) {
-      s[k] = (1.0 - t) * s0[k] + t * s1[k];
+    const double t0 = static_cast<double>(j - 1) / samples, t1 = static_cast<double>(j) / samples;
+    std::vector<JointVector> steps;
+    for (int split = 1; split <= 8 && steps.empty(); split *= 2) {
+      for (int m = 1; m <= split; ++m) {
+        const double t = t0 + (t1 - t0) * m / split;
+        for (size_t k = 0; k < points.size(); ++k) {
+          s[k] = (1.0 - t) * s0[k] + t * s1[k];
+        }
+        const JointVector line = q + t * (target - q);
+        const JointVector &from = steps.empty() ? tracked.back() : steps.back();
+        try {
+          steps.push_back(vpProjectiveInverseKinematics::solve(model, s, points, from, nullptr, &line, kPriorWeight));
+        } catch (const vpProjectiveException &) {
+          return false;
+        }
+        if ((steps.back() - from).cwiseAbs().maxCoeff() > m_maxStep) {
+          steps.clear();
+          break;
+        }
+      }
     }
-    const JointVector line = q + t * (target - q);
-    try {
-      tracked.push_back(
-          vpProjectiveInverseKinematics::solve(model, s, points, tracked.back(), nullptr, &line, kPriorWeight));
-    } catch (const vpProjectiveException &) {
-      return false;
+    if (steps.empty()) {
+      return false; // a jump: the tracked joints left the branch
     }
-    // No jump between fine samples (the tracked joints left the branch), and no joint beyond its [start, target]
-    // interval by more than twice the step (a wrist spinning near a singular configuration reaches the same pose the
-    // long way): checked as it goes, to give up early.
-    if ((tracked[j] - tracked[j - 1]).cwiseAbs().maxCoeff() > m_maxStep ||
-        ((tracked[j] - q.cwiseMin(target)).array() < -2.0 * m_maxStep).any() ||
-        ((tracked[j] - q.cwiseMax(target)).array() > 2.0 * m_maxStep).any()) {
-      return false;
+    // No joint beyond its [start, target] interval by more than setMaxExcursion() (a wrist spinning near a singular
+    // configuration reaches the same pose the long way): checked as it goes, to give up early.
+    for (const JointVector &step : steps) {
+      if (((step - lowest).array() < -excursion).any() || ((step - highest).array() > excursion).any()) {
+        return false;
+      }
+      tracked.push_back(step);
     }
   }
   // It must end at the target.
@@ -301,14 +334,18 @@ bool vpProjectivePathPlanner::planPath(const vpProjectiveArmModel &model, const 
     kind = PATH_JOINT_LINE;
     return true;
   }
-  // A waypoint among configurations inside the limits with the features in view: the shortest feasible.
+  // A waypoint among configurations inside the limits with the features in view: the shortest feasible. Drawn about
+  // the middle of the joint-space line, in a box that grows from nothing to the whole of the limits over the draws:
+  // the short detours are tried densely before the long ones.
   vpUniRand uniform(0x5eedULL);
   double shortest = std::numeric_limits<double>::infinity();
   std::vector<Eigen::Vector4d> s;
+  const JointVector middle = 0.5 * (q + target);
   for (unsigned int draw = 0; draw < kWaypointDraws; ++draw) {
+    const double spread = (draw + 1.0) / kWaypointDraws;
     JointVector w(q.size());
     for (Eigen::Index i = 0; i < q.size(); ++i) {
-      w(i) = uniform.uniform(qmin(i), qmax(i));
+      w(i) = middle(i) + spread * uniform.uniform(qmin(i) - middle(i), qmax(i) - middle(i));
     }
     const double length = (w - q).norm() + (target - w).norm();
     if (!(length < shortest) || !inside(w) || !visible(model, w, points, s)) {

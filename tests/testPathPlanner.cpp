@@ -510,6 +510,86 @@ TEST(PathPlanner, PlansStayInsideLimitsAndView)
   EXPECT_GT(kinds[vpProjectivePathPlanner::PATH_IMAGE_LINE], 0u);
 }
 
+TEST(PathPlanner, FollowsStraightImageLinesWithinTheExcursionBound)
+{
+  // The main tutorial's task (the gripper moves by 82 cm and turns by 88 deg, start near the wrist singularity):
+  // straight image lines need joint 2 to fold some 30 deg past its target. Under the default bound (twice the 10 deg
+  // step) the plan is the joint-space line, every joint monotonic; allowed 40 deg, it follows the straight lines.
+  const ArmSetup s = pumaEyeToHand();
+  const vpProjectiveRobot robot = acquireNoiseFree(s);
+  const std::vector<unsigned int> tracked = {0, 1, 2};
+  const std::vector<Eigen::Vector4d> points = modelPoints(robot, tracked);
+  const double startDeg[6] = {15.4461, 54.9087, -48.3752, 62.3954, 29.0729, 1.7330};
+  const double targetDeg[6] = {8.1330, 7.0830, -56.4826, 90.4984, 76.3260, 57.1987};
+  vpColVector qStart(6), qTarget(6);
+  for (unsigned int i = 0; i < 6; ++i) {
+    qStart[i] = vpMath::rad(startDeg[i]);
+    qTarget[i] = vpMath::rad(targetDeg[i]);
+  }
+  const std::vector<Eigen::Vector4d> sStar = trueImages(s, qTarget, tracked);
+  const double border = 10.0, step = vpMath::rad(10.0);
+  vpProjectivePathPlanner planner;
+  planner.setImageSize(s.width, s.height, border);
+  planner.setMaxJointStep(step);
+  EXPECT_DOUBLE_EQ(planner.getMaxExcursion(), 2.0 * step);
+  // The largest motion of a joint beyond the interval of its values at the path's ends.
+  auto excursion = [](const std::vector<JointVector> &path) {
+    const JointVector lo = path.front().cwiseMin(path.back()), hi = path.front().cwiseMax(path.back());
+    double e = 0.0;
+    for (const JointVector &q : path) {
+      e = std::max(e, std::max((q - hi).maxCoeff(), (lo - q).maxCoeff()));
+    }
+    return e;
+  };
+
+  // The largest distance of the simulator's images of the tracked markers along a path to the straight lines from their
+  // images at the start to s*, in either image.
+  const std::vector<Eigen::Vector4d> s0 = trueImages(s, qStart, tracked);
+  auto lineDeviation = [&](const std::vector<JointVector> &path) {
+    double deviation = 0.0;
+    for (const JointVector &q : path) {
+      const std::vector<Eigen::Vector4d> sq = trueImages(s, toVisp(q), tracked);
+      for (size_t k = 0; k < tracked.size(); ++k) {
+        for (int c = 0; c < 4; c += 2) {
+          const Eigen::Vector2d chord = sStar[k].segment<2>(c) - s0[k].segment<2>(c);
+          const Eigen::Vector2d d = sq[k].segment<2>(c) - s0[k].segment<2>(c);
+          deviation = std::max(deviation, std::abs(chord(0) * d(1) - chord(1) * d(0)) / chord.norm());
+        }
+      }
+    }
+    return deviation;
+  };
+
+  ASSERT_EQ(planner.plan(robot.getModel(), toJoints(qStart), points, sStar), vpProjectivePathPlanner::PLAN_FOUND)
+      << planner.getDescription();
+  EXPECT_EQ(planner.getPathKind(), vpProjectivePathPlanner::PATH_JOINT_LINE) << planner.getDescription();
+  const std::vector<JointVector> jointLine = planner.getPath();
+  EXPECT_LT((planner.getTarget() - toJoints(qTarget)).cwiseAbs().maxCoeff(), 1e-3);
+  EXPECT_LT(excursion(planner.getPath()), 1e-12);
+
+  EXPECT_THROW(planner.setMaxExcursion(-0.1), vpException);
+  EXPECT_THROW(planner.setMaxExcursion(std::numeric_limits<double>::infinity()), vpException);
+  EXPECT_DOUBLE_EQ(planner.getMaxExcursion(), 2.0 * step);
+  planner.setMaxExcursion(vpMath::rad(40.0));
+  ASSERT_EQ(planner.plan(robot.getModel(), toJoints(qStart), points, sStar), vpProjectivePathPlanner::PLAN_FOUND)
+      << planner.getDescription();
+  ASSERT_EQ(planner.getPathKind(), vpProjectivePathPlanner::PATH_IMAGE_LINE) << planner.getDescription();
+  const std::vector<JointVector> &path = planner.getPath();
+  const double e = excursion(path);
+  EXPECT_GT(e, 2.0 * step) << "the straight lines needed the larger bound";
+  EXPECT_LE(e, vpMath::rad(40.0));
+  // Truly near the straight lines (the simulator's images of the planned joints), and in view.
+  for (size_t j = 0; j < path.size(); ++j) {
+    EXPECT_TRUE(trulyInView(s, toVisp(path[j]), tracked, border - 0.01)) << "sample " << j;
+    EXPECT_LE((path[j] - (j > 0 ? path[j - 1] : path[j])).cwiseAbs().maxCoeff(), step + 1e-12) << "sample " << j;
+  }
+  const double straight = lineDeviation(path), arc = lineDeviation(jointLine);
+  std::cout << "straight image lines: largest joint excursion " << vpMath::deg(e) << " deg, largest distance of a "
+            << "feature to its line " << straight << " px (the joint-space line: " << arc << " px), " << path.size() - 1
+            << " steps" << std::endl;
+  EXPECT_LT(straight, 0.25 * arc);
+}
+
 TEST(PathPlanner, FindsAWaypointWhenTheLinesLeaveTheView)
 {
   // Tasks drawn (seeded) in a wide box with a narrow image window, until one needs a waypoint: then the joint-space
@@ -574,6 +654,7 @@ TEST(PathPlanner, SaysWhenThereIsNoPlan)
   EXPECT_THROW(planner.setMaxJointStep(0.0), vpException);
   EXPECT_THROW(planner.setNumberOfStarts(0), vpException);
   EXPECT_THROW(planner.setMaxResidual(-1.0), vpException);
+  EXPECT_THROW(planner.setMaxExcursion(std::nan("")), vpException);
 
   // Limits that hold the start but no branch of the target.
   planner.setJointLimits(JointVector::Constant(6, vpMath::rad(-10.0)), JointVector::Constant(6, vpMath::rad(10.0)));

@@ -58,11 +58,13 @@ BEGIN_VISP_NAMESPACE
        ends), tracked by the inverse kinematics in steps four times finer, warm-started at the previous sample and
        with the joint-space line as a weak prior (30 px per radian: it settles the joints the pixels hardly see near a
        singular configuration); kept if it ends at \f$ q^* \f$, no fine step moves a joint by more than
-       setMaxJointStep() (a jump to another branch) and no joint goes beyond its [start, target] interval by more than
-       twice that step (no wrist spin);
+       setMaxJointStep() (a jump to another branch; a fine step is tracked again in up to 8 sub-steps first, so that a
+       joint turning fast is followed) and no joint goes beyond its [start, target] interval by more than
+       setMaxExcursion() (no wrist spin);
      - the straight line in joint space;
      - two straight lines through a waypoint, drawn (with a fixed seed) among the configurations inside the limits
-       with the features in view: the shortest feasible;
+       with the features in view, about the middle of the joint-space line in a box growing to the whole of the
+       limits: the shortest feasible;
   -# fails with a status (vpPlanStatus) when no branch explains \f$ s^* \f$, none is inside the limits, none
      inside them has the features in view, or no path keeps them in view.
 
@@ -115,6 +117,17 @@ public:
     \exception vpProjectiveException if it is not positive and finite.
   */
   void setMaxJointStep(double step);
+  /*!
+    The largest motion of a joint beyond the interval of its start and target values along a path of straight image
+    lines (radians for revolute joints, encoder units for prismatic ones; default: twice setMaxJointStep()). Straight
+    image lines can ask for it: on the main tutorial's task (a gripper motion of 82 cm and 88 deg) they need joint 2
+    to fold 31 deg past its target, and the default keeps the joint-space line, whose joints move monotonically and
+    whose images are arcs; \ref servo_meas_planning measures both.
+    \exception vpProjectiveException (invalidValueError) if it is negative or not finite.
+  */
+  void setMaxExcursion(double excursion);
+  //! The bound of setMaxExcursion(), or twice setMaxJointStep() when it was not set.
+  double getMaxExcursion() const;
   /*!
     A margin kept from the joint limits at the target when a branch allows it: a branch whose target has a joint
     within \e fraction of that joint's range \f$ q_{max} - q_{min} \f$ from a limit is chosen only if no branch
@@ -192,6 +205,7 @@ private:
   unsigned int m_width, m_height;
   double m_border;
   double m_maxStep;
+  double m_maxExcursion; // negative: twice m_maxStep
   unsigned int m_starts;
   double m_maxResidual;
   double m_limitMargin;
