@@ -225,14 +225,16 @@ struct ServoOptions {
   std::string modelFile;       //!< model file (.json): acquired and saved once, loaded by later runs
   std::string output;          //!< where to write data and figures
   bool display = hasDisplay(); //!< windows, if a display is available
+  double maxExcursionDeg = 20; //!< planned paths: a joint's largest motion beyond its start and target values
 };
 
 /*!
   Reads the options of a servo tutorial: --seeds N, --model FILE, --output DIR (only if \e withOutput; the default is
-  \e options.output as given), --no-display. Returns false if the program must stop with \e exitCode (see
-  CommandLine::parse()).
+  \e options.output as given), --max-excursion DEG (only if \e withPlanning), --no-display. Returns false if the
+  program must stop with \e exitCode (see CommandLine::parse()).
 */
-inline bool parseServoOptions(int argc, char **argv, ServoOptions &options, int &exitCode, bool withOutput)
+inline bool parseServoOptions(int argc, char **argv, ServoOptions &options, int &exitCode, bool withOutput,
+                              bool withPlanning = false)
 {
   CommandLine cmd;
   cmd.add("--seeds", options.seeds, "N", "noise seeds of the study", 1)
@@ -240,6 +242,10 @@ inline bool parseServoOptions(int argc, char **argv, ServoOptions &options, int 
            "model file (arm.json): acquired and saved once, loaded by later runs");
   if (withOutput) {
     cmd.add("--output", options.output, "DIR", "where to write the run's data and figures");
+  }
+  if (withPlanning) {
+    cmd.add("--max-excursion", options.maxExcursionDeg, "DEG",
+            "largest motion of a joint beyond its start and target values on the plan (40: straight image lines)", 0.0);
   }
   cmd.flag("--no-display", options.display, false, "no window even if a display is available");
   return cmd.parse(argc, argv, exitCode);

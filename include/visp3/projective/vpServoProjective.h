@@ -411,7 +411,9 @@ public:
     every branch it can find, the target is the one inside the joint limits (setJointLimits()) nearest to \f$ q \f$,
     out of the activation band \f$ \rho \f$ of the joint-limit avoidance when a branch allows it
     (vpProjectivePathPlanner::setJointLimitMargin()), and the path keeps the features' predicted images inside the image
-    window (setImageSize()) and the joints within their limits. The task then follows the path, one sample (no joint
+    window (setImageSize()) and the joints within their limits: straight image lines when no joint needs to go
+    farther than vpProjectivePathPlanner::setMaxExcursion() beyond its start and target values, else the joint-space
+    line (monotonic joints), else two lines through a waypoint. The task then follows the path, one sample (no joint
     more than vpProjectivePathPlanner::setMaxJointStep() away) per call, with image feedback: \f$ \dot q \f$ is the
     path's step \f$ q_{k+1} - q_k \f$ plus law (47) with the gain setPathFollowingGain() on the error to the model's
     predicted images at sample \f$ k \f$ (getError() then returns that error), saturated as a whole; after the last
@@ -439,7 +441,7 @@ public:
   bool isFollowingPath() const { return m_following; }
   //! The planner, its settings and its last plan (target, branches, path, description).
   const vpProjectivePathPlanner &getPathPlanner() const { return m_planner; }
-  //! The planner, to change its settings (setMaxJointStep(), setNumberOfStarts()).
+  //! The planner, to change its settings (setMaxJointStep(), setMaxExcursion(), setNumberOfStarts()).
   vpProjectivePathPlanner &getPathPlanner() { return m_planner; }
   //@}
 
