@@ -224,7 +224,7 @@ bool vpProjectivePathPlanner::imagePath(const vpProjectiveArmModel &model, const
           s[k] = (1.0 - t) * s0[k] + t * s1[k];
         }
         const JointVector line = q + t * (target - q);
-        const JointVector &from = steps.empty() ? tracked.back() : steps.back();
+        const JointVector from = steps.empty() ? tracked.back() : steps.back(); // a copy: push_back() reallocates
         try {
           steps.push_back(vpProjectiveInverseKinematics::solve(model, s, points, from, nullptr, &line, kPriorWeight));
         } catch (const vpProjectiveException &) {
