@@ -45,9 +45,10 @@ const double kPriorWeight = 30.0;
 
 vpProjectivePathPlanner::vpProjectivePathPlanner()
     : m_hasLimits(false), m_qmin(), m_qmax(), m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0),
-      m_maxExcursion(-1.0), m_starts(24), m_maxResidual(5.0), m_limitMargin(0.0), m_front(), m_status(PLAN_NONE),
-      m_branches(), m_residuals(), m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE),
-      m_description("no plan yet")
+      m_maxExcursion(-1.0), m_starts(24), m_maxResidual(5.0), m_limitMargin(0.0), m_front(), m_points(), m_sStar(),
+      m_hasLaw(false), m_lambda(0.5), m_law(), m_avoidance(), m_rehearsalBudget(50), m_rehearsalOk(false),
+      m_rehearsalIterations(0), m_rehearsalResidual(-1.0), m_status(PLAN_NONE), m_branches(), m_residuals(),
+      m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
 {
 }
 
@@ -106,6 +107,12 @@ void vpProjectivePathPlanner::setMaxExcursion(double excursion)
   m_maxExcursion = excursion;
 }
 
+double vpProjectivePathPlanner::getMaxJointStep() const
+{
+  const double saturation = m_hasLaw ? m_law.getMaxJointVelocity() : 0.0;
+  return saturation > 0.0 ? std::min(m_maxStep, 2.0 / 3.0 * saturation) : m_maxStep;
+}
+
 double vpProjectivePathPlanner::getMaxExcursion() const
 {
   return m_maxExcursion < 0.0 ? 2.0 * m_maxStep : m_maxExcursion;
@@ -136,6 +143,15 @@ void vpProjectivePathPlanner::setNumberOfStarts(unsigned int starts)
          "the inverse kinematics needs at least one random start to look for other branches");
   }
   m_starts = starts;
+}
+
+void vpProjectivePathPlanner::setControlLaw(const vpAdaptiveGain &lambda, const vpServoDampedLeastSquares &law,
+                                            const vpServoJointLimitAvoidance &avoidance)
+{
+  m_lambda = lambda;
+  m_law = law;
+  m_avoidance = avoidance;
+  m_hasLaw = true;
 }
 
 bool vpProjectivePathPlanner::inside(const JointVector &q) const
@@ -183,7 +199,7 @@ std::vector<vpProjectivePathPlanner::JointVector> vpProjectivePathPlanner::joint
                                                                                      const JointVector &to) const
 {
   const double largest = (to - from).cwiseAbs().maxCoeff();
-  const int samples = std::max(1, static_cast<int>(std::ceil(largest / m_maxStep)));
+  const int samples = std::max(1, static_cast<int>(std::ceil(largest / getMaxJointStep())));
   std::vector<JointVector> path;
   for (int j = 0; j <= samples; ++j) {
     path.push_back(from + (static_cast<double>(j) / samples) * (to - from));
@@ -211,6 +227,7 @@ bool vpProjectivePathPlanner::imagePath(const vpProjectiveArmModel &model, const
   // fast (a wrist near a singular configuration) is then followed continuously, while a jump to another branch stays a
   // jump and rejects the path.
   const size_t samples = 4 * (jointLine(q, target).size() - 1);
+  const double step = getMaxJointStep();
   const double excursion = getMaxExcursion();
   const JointVector lowest = q.cwiseMin(target), highest = q.cwiseMax(target);
   std::vector<JointVector> tracked(1, q);
@@ -230,7 +247,7 @@ bool vpProjectivePathPlanner::imagePath(const vpProjectiveArmModel &model, const
         } catch (const vpProjectiveException &) {
           return false;
         }
-        if ((steps.back() - from).cwiseAbs().maxCoeff() > m_maxStep) {
+        if ((steps.back() - from).cwiseAbs().maxCoeff() > step) {
           steps.clear();
           break;
         }
@@ -255,11 +272,115 @@ bool vpProjectivePathPlanner::imagePath(const vpProjectiveArmModel &model, const
   tracked.back() = target; // the same configuration up to the inverse kinematics' convergence
   path.assign(1, q);
   for (size_t j = 1; j < tracked.size(); ++j) {
-    if (j + 1 == tracked.size() || (tracked[j + 1] - path.back()).cwiseAbs().maxCoeff() > m_maxStep) {
+    if (j + 1 == tracked.size() || (tracked[j + 1] - path.back()).cwiseAbs().maxCoeff() > step) {
       path.push_back(tracked[j]);
     }
   }
   return true;
+}
+
+double vpProjectivePathPlanner::residual(const vpProjectiveArmModel &model, const JointVector &q,
+                                         const std::vector<Eigen::Vector4d> &points,
+                                         const std::vector<Eigen::Vector4d> &sStar)
+{
+  const Eigen::Matrix4d H = model.displacement(q);
+  double sum = 0.0;
+  Eigen::Vector4d s;
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (!model.getStereoRig().project(Eigen::Vector4d(H * points[k]), s)) {
+      return std::numeric_limits<double>::infinity();
+    }
+    sum += (s - sStar[k]).squaredNorm();
+  }
+  return std::sqrt(sum / (4.0 * points.size()));
+}
+
+unsigned int vpProjectivePathPlanner::guardStep(const vpProjectiveArmModel &model, const JointVector &q,
+                                                JointVector &qdot) const
+{
+  if (m_status != PLAN_FOUND || q.size() != qdot.size() ||
+      static_cast<unsigned int>(q.size()) != model.getNumberOfJoints()) {
+    return 0;
+  }
+  return halveWhileRising(model, q, qdot);
+}
+
+unsigned int vpProjectivePathPlanner::halveWhileRising(const vpProjectiveArmModel &model, const JointVector &q,
+                                                       JointVector &qdot) const
+{
+  const double now = residual(model, q, m_points, m_sStar);
+  unsigned int halvings = 0;
+  while (halvings < 5 && residual(model, JointVector(q + qdot), m_points, m_sStar) > now + 0.5) {
+    qdot *= 0.5;
+    ++halvings;
+  }
+  return halvings;
+}
+
+bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, const JointVector &q,
+                                          const std::vector<Eigen::Vector4d> &points,
+                                          const std::vector<Eigen::Vector4d> &sStar, std::vector<JointVector> &path,
+                                          std::vector<std::vector<Eigen::Vector4d>> &features)
+{
+  // Law (47) as the task runs it (vpServoProjective::computeControlLaw(): gain of the largest error component, damped
+  // least squares with saturation, joint-limit avoidance added and saturated again), on the model's predictions, one
+  // step q <- q + qdot per iteration. Planning time, not the loop's: the stacked J and e may allocate.
+  const Eigen::Index n = q.size();
+  const Eigen::Index rows = 4 * static_cast<Eigen::Index>(points.size());
+  vpServoDampedLeastSquares law = m_law; // computeVelocity() writes its report: a copy keeps the setting const
+  Eigen::MatrixXd J(rows, n);
+  Eigen::VectorXd e(rows);
+  vpProjectiveArmModel::JointMatrix JtJ;
+  JointVector Jte, qdot, qdot2;
+  Eigen::Matrix4d HhatKq[vpProjectiveArmModel::maxJoints];
+  vpProjectiveArmModel::PointJacobian Ji;
+  JointVector qk = q;
+  path.assign(1, q);
+  features.clear();
+  m_rehearsalIterations = 0;
+  m_rehearsalResidual = -1.0;
+  std::vector<Eigen::Vector4d> s;
+  for (unsigned int it = 0;; ++it) {
+    if (!inside(qk) || !visible(model, qk, points, s)) {
+      return false; // a joint limit, or a feature out of the window or behind a camera: law (47) would lose it
+    }
+    features.push_back(s);
+    const Eigen::Matrix4d H = model.displacement(qk);
+    model.jointMotions(qk, HhatKq);
+    for (size_t k = 0; k < points.size(); ++k) {
+      if (!model.imageJacobian(HhatKq, Eigen::Vector4d(H * points[k]), Ji)) {
+        return false;
+      }
+      const Eigen::Index r = 4 * static_cast<Eigen::Index>(k);
+      J.middleRows(r, 4) = Ji;
+      e.segment<4>(r) = s[k] - sStar[k];
+    }
+    m_rehearsalIterations = it;
+    m_rehearsalResidual = std::sqrt(e.squaredNorm() / static_cast<double>(rows));
+    if (it == m_rehearsalBudget || (it > 0 && (path[it] - path[it - 1]).cwiseAbs().maxCoeff() < 1e-7)) {
+      break; // the budget, or a fixed point of the law
+    }
+    vpServoDampedLeastSquares::computeNormalEquations(J, e, JtJ, Jte);
+    law.computeVelocity(JtJ, Jte, m_lambda.value_const(e.cwiseAbs().maxCoeff()), qdot);
+    if (m_avoidance.hasJointLimits()) {
+      m_avoidance.computeVelocity(qk, qdot, JtJ, Jte, e.norm(), law, qdot2);
+      qdot += qdot2;
+      law.saturate(qdot);
+    }
+    if (!qdot.allFinite()) {
+      return false;
+    }
+    halveWhileRising(model, qk, qdot);
+    qk += qdot;
+    path.push_back(qk);
+  }
+  // Solved if it ends at the global minimum: no worse than the best branch with the same points (the law minimises
+  // that residual, so in the branch's basin it ends at or below it; a local minimum of three points leaves pixels).
+  double best = std::numeric_limits<double>::infinity();
+  for (const JointVector &b : m_branches) {
+    best = std::min(best, residual(model, b, points, sStar));
+  }
+  return m_rehearsalResidual <= std::min(1.5 * best + 0.05, m_maxResidual);
 }
 
 std::vector<std::pair<vpProjectivePathPlanner::JointVector, unsigned int>>
@@ -421,6 +542,9 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
   m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, X, q, qmin, qmax, m_starts, &m_residuals, &seen);
   m_path.clear();
   m_features.clear();
+  m_rehearsalOk = false;
+  m_rehearsalIterations = 0;
+  m_rehearsalResidual = -1.0;
   std::ostringstream os;
   if (m_branches.empty() || m_residuals.front() > m_maxResidual) {
     m_status = PLAN_NO_INVERSE_KINEMATICS;
@@ -442,10 +566,47 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
     m_front[k] << model.getStereoRig().leftProjection().row(2).dot(M),
         model.getStereoRig().rightProjection().row(2).dot(M);
   }
-  // 2. The target, and 3. a path keeping the features in view and the joints within their limits: the preferred
-  // target first, the nearest if no path leads to the preferred one.
+  m_points = X;
+  m_sStar = sStar;
+  // 2. Law (47) alone, if its rehearsal on the model solves the task: never worse than the law.
   os << matched << " of " << X.size() << " points are acquired markers; " << m_branches.size()
      << " inverse-kinematic branch" << (m_branches.size() > 1 ? "es" : "") << " found";
+  m_rehearsalOk = false;
+  if (m_hasLaw && m_rehearsalBudget > 0) {
+    std::vector<JointVector> path;
+    std::vector<std::vector<Eigen::Vector4d>> features;
+    m_rehearsalOk = rehearseLaw(model, q, X, sStar, path, features);
+    if (m_rehearsalOk) {
+      m_target = path.back();
+      m_branch = 0;
+      double nearest = std::numeric_limits<double>::infinity();
+      for (size_t b = 0; b < m_branches.size(); ++b) {
+        double d = 0.0;
+        for (Eigen::Index i = 0; i < n; ++i) {
+          const double delta = m_branches[b](i) - m_target(i);
+          d = std::max(d, std::abs(model.jointType(static_cast<unsigned int>(i)) == vpProjectiveJoint::REVOLUTE
+                                       ? std::remainder(delta, 2.0 * M_PI)
+                                       : delta));
+        }
+        if (d < nearest) {
+          nearest = d;
+          m_branch = static_cast<unsigned int>(b);
+        }
+      }
+      m_kind = PATH_LAW;
+      m_path = path;
+      m_features = features;
+      m_status = PLAN_FOUND;
+      os << "; path: law (47) alone, its rehearsal on the model solves the task in " << m_rehearsalIterations
+         << " iterations (" << m_rehearsalResidual << " px RMS)";
+      m_description = os.str();
+      return m_status;
+    }
+    os << "; law (47) alone fails in its rehearsal (" << m_rehearsalIterations << " iterations, " << m_rehearsalResidual
+       << " px RMS)";
+  }
+  // 3. The target, and 4. a path keeping the features in view and the joints within their limits: the preferred
+  // target first, the nearest if no path leads to the preferred one.
   bool anyInside = false;
   const std::vector<std::pair<JointVector, unsigned int>> candidates = targetCandidates(model, q, X, anyInside);
   if (candidates.empty()) {

@@ -13,6 +13,7 @@
 
 #include <visp3/projective/vpServoJointLimitAvoidance.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -169,7 +170,8 @@ void vpServoJointLimitAvoidance::computeLargeProjectionOperator(const JointMatri
 
 void vpServoJointLimitAvoidance::computeVelocity(const JointVector &q, const JointVector &qdot1, const JointMatrix &JtJ,
                                                  const JointVector &Jte, double errorNorm,
-                                                 const vpServoDampedLeastSquares &law, JointVector &qdot2) const
+                                                 const vpServoDampedLeastSquares &law, JointVector &qdot2,
+                                                 const JointVector *target) const
 {
   // vpServo::secondaryTaskJointLimitAvoidance() with the large projection operator, qdot1 its dq.
   const Eigen::Index n = q.size();
@@ -181,8 +183,8 @@ void vpServoJointLimitAvoidance::computeVelocity(const JointVector &q, const Joi
   bool haveP = false;
   for (Eigen::Index i = 0; i < n; ++i) {
     const double range = m_qmax(i) - m_qmin(i);
-    const double l0min = m_qmin(i) + m_rho * range;
-    const double l0max = m_qmax(i) - m_rho * range;
+    const double l0min = target ? std::min(m_qmin(i) + m_rho * range, (*target)(i)) : m_qmin(i) + m_rho * range;
+    const double l0max = target ? std::max(m_qmax(i) - m_rho * range, (*target)(i)) : m_qmax(i) - m_rho * range;
     double g = 0.0;
     if (q(i) < l0min) {
       g = -1.0;
@@ -215,6 +217,19 @@ void vpServoJointLimitAvoidance::computeVelocity(const JointVector &q, const Joi
     }
     qdot2.noalias() -= (lambdaL * (1.0 + m_lambdaTune) * b * g) * P.col(i);
   }
+}
+
+double vpServoJointLimitAvoidance::stepInside(const JointVector &q, const JointVector &qdot) const
+{
+  double t = 1.0;
+  for (Eigen::Index i = 0; m_enabled && i < q.size(); ++i) {
+    if (q(i) + qdot(i) > m_qmax(i) && q(i) <= m_qmax(i)) {
+      t = std::min(t, (m_qmax(i) - q(i)) / qdot(i) * (1.0 - 1e-12)); // rounding: land inside, not on the limit
+    } else if (q(i) + qdot(i) < m_qmin(i) && q(i) >= m_qmin(i)) {
+      t = std::min(t, (m_qmin(i) - q(i)) / qdot(i) * (1.0 - 1e-12));
+    }
+  }
+  return t;
 }
 
 vpMatrix vpServoJointLimitAvoidance::computeLargeProjectionOperator(const vpMatrix &J, const vpColVector &e,

@@ -124,7 +124,7 @@ vpServoProjective::vpServoProjective()
     : m_robot(nullptr), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(),
       m_jointLimits(), m_mismatch(), m_targets(), m_mismatchRigGeneration(0), m_mismatchModelGeneration(0),
       m_mismatchRobot(nullptr), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
-      m_pathSample(0), m_following(false), m_followGain(1.0)
+      m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_followGain(1.0)
 {
 }
 
@@ -391,7 +391,7 @@ inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot) const
   it.saturated = false;
 }
 
-inline void vpServoProjective::computePrimaryVelocity(vpIteration &it, JointVector &qdot)
+inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIteration &it, JointVector &qdot)
 {
   // qdot1 = -lambda (J^T J + mu^2 I)^-1 J^T e, saturated: the motion the arm really makes. Along a planned path it is
   // the path's step to the next sample (feedforward) plus the law on the error to the current sample (feedback, with
@@ -399,8 +399,16 @@ inline void vpServoProjective::computePrimaryVelocity(vpIteration &it, JointVect
   it.lambda = m_following ? m_followGain : m_lambda.value_const(it.e.cwiseAbs().maxCoeff());
   m_law.computeVelocity(it.JtJ, it.Jte, it.lambda, qdot);
   if (m_following) {
+    // The feedback corrects the model's error, a few pixels: bounded by half a path step, so that near a singular
+    // configuration (where its least-squares step is large) it cannot throw the arm off its path.
+    const double largest = qdot.cwiseAbs().maxCoeff(), bound = 0.5 * m_planner.getMaxJointStep();
+    if (largest > bound) {
+      qdot *= bound / largest;
+    }
     qdot += m_planner.getPath()[m_pathSample] - m_planner.getPath()[m_pathSample - 1];
     m_law.saturate(qdot);
+  } else if (m_planning) {
+    m_planner.guardStep(m_robot->getModel(), q, qdot); // law (47) toward a planned task: no overshoot
   }
   it.damping = m_law.getDamping();
   it.saturated = m_law.isSaturated();
@@ -412,10 +420,21 @@ inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIt
   if (!m_jointLimits.hasJointLimits()) {
     return;
   }
-  m_jointLimits.computeVelocity(q, qdot, it.JtJ, it.Jte, it.errorNorm, m_law, it.qdot2);
+  // A planned path stays inside the limits and ends at a target inside them: the avoidance lets the arm go where the
+  // plan sends it, the next sample while following, the target after (law (47) alone, even planned, is left as is);
+  // and the step never crosses a limit (the planned servo's promise, which the avoidance alone cannot keep with a
+  // step of the path's size).
+  const bool planned = m_planning && m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND &&
+                       m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
+  const JointVector *target =
+      m_following ? &m_planner.getPath()[m_pathSample] : (planned ? &m_planner.getTarget() : nullptr);
+  m_jointLimits.computeVelocity(q, qdot, it.JtJ, it.Jte, it.errorNorm, m_law, it.qdot2, target);
   qdot += it.qdot2;
   if (m_law.saturate(qdot)) {
     it.saturated = true;
+  }
+  if (planned) {
+    qdot *= m_jointLimits.stepInside(q, qdot);
   }
   if (!qdot.allFinite()) {
     fail(vpProjectiveException::estimationFailedError, at("computeControlLaw()"),
@@ -427,8 +446,9 @@ inline void vpServoProjective::commit()
 {
   m_lastIteration = 1 - m_lastIteration;
   m_health.endIteration();
-  if (m_following) {
-    ++m_pathSample; // the next call aims at the next sample
+  const vpServoStatus status = m_iterations[m_lastIteration].status;
+  if (m_planning && m_pathSample < m_planner.getPath().size() && (status == SERVO_RUNNING || status == SERVO_REDUCED)) {
+    ++m_pathSample; // the next call aims at the next sample (of the path, or of law (47)'s rehearsal)
   }
 }
 
@@ -441,14 +461,15 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
   vpIteration &it = m_iterations[1 - m_lastIteration];
   refreshTargets();
   const bool planned = !m_planning || planIfNeeded(q);
-  m_following = m_planning && planned && m_pathSample < m_planner.getPath().size();
+  m_following = m_planning && planned && m_pathSample < m_planner.getPath().size() &&
+                m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
   buildTask(q, it, method);
   const bool mismatch = detectMismatch(q); // after the last step that may throw
   it.status = mismatch ? SERVO_MODEL_MISMATCH : (planned ? decideStatus(it) : SERVO_NO_PLAN);
   if (it.status == SERVO_STOPPED || it.status == SERVO_NO_PLAN || it.status == SERVO_MODEL_MISMATCH) {
     stop(it, qdot);
   } else {
-    computePrimaryVelocity(it, qdot);
+    computePrimaryVelocity(q, it, qdot);
     addJointLimitAvoidance(q, it, qdot);
   }
   commit();

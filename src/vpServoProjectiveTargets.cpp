@@ -110,6 +110,12 @@ vpColVector vpServoProjective::getDesiredFeature(unsigned int i) const
   return toVispVector(m_targets[i].valid ? m_targets[i].effective : m_desired[i]->getFeature());
 }
 
+namespace
+{
+//! Plans again from an off-path configuration per target, before the task gives the path up for law (47).
+const unsigned int kMaxReplans = 2;
+} // namespace
+
 bool vpServoProjective::planIfNeeded(const JointVector &q)
 {
   // Plan once per target: again only when a desired feature changed.
@@ -117,7 +123,27 @@ bool vpServoProjective::planIfNeeded(const JointVector &q)
   for (size_t i = 0; i < m_desired.size() && !changed; ++i) {
     changed = !(m_targets[i].effective == m_plannedFor[i]);
   }
+  // Off the path: the arm should be near the sample before the one the call aims at (following, the feedforward
+  // brought it there and the feedback keeps it within the noise; running law (47), the rehearsal went there). Two
+  // steps away, it does not move as the model predicted: plan again from here, or give the path up for law (47) once
+  // the re-plans are spent. Law (47) that left its rehearsal is not rehearsed again: near a singular configuration
+  // its course depends on the noise, which no rehearsal predicts.
+  bool replan = false;
   if (changed) {
+    m_replans = 0;
+    m_lawLeftRehearsal = false;
+  } else if (m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND && m_pathSample > 0 &&
+             m_pathSample < m_planner.getPath().size() &&
+             (q - m_planner.getPath()[m_pathSample - 1]).cwiseAbs().maxCoeff() > 2.0 * m_planner.getMaxJointStep()) {
+    if (m_replans < kMaxReplans) {
+      ++m_replans;
+      replan = true;
+      m_lawLeftRehearsal = m_lawLeftRehearsal || m_planner.getPathKind() == vpProjectivePathPlanner::PATH_LAW;
+    } else {
+      m_pathSample = m_planner.getPath().size(); // law (47) from here
+    }
+  }
+  if (changed || replan) {
     // The features' points, triangulated at q and carried to the zero reference by H(q)^-1.
     const vpProjectiveArmModel &model = m_robot->getModel();
     const Eigen::PartialPivLU<Eigen::Matrix4d> H(model.displacement(q));
@@ -136,8 +162,12 @@ bool vpServoProjective::planIfNeeded(const JointVector &q)
       qmax = toEigenVector<JointVector>(m_jointLimits.getUpperLimits(), q.size(), at("computeControlLaw()"), "qmax");
     }
     m_planner.setJointLimits(qmin, qmax);
-    m_planner.setJointLimitMargin(m_jointLimits.hasJointLimits() ? m_jointLimits.getRho() : 0.0);
     m_planner.setImageSize(m_health.getImageWidth(), m_health.getImageHeight(), m_health.getImageBorder());
+    if (m_lawLeftRehearsal) {
+      m_planner.clearControlLaw();
+    } else {
+      m_planner.setControlLaw(m_lambda, m_law, m_jointLimits);
+    }
     m_planner.plan(model, q, points, sStar);
     m_plannedFor = sStar;
     m_pathSample = 1; // sample 0 is q

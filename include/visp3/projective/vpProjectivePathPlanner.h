@@ -28,7 +28,11 @@
 
 #include <Eigen/Core>
 
+#include <visp3/vs/vpAdaptiveGain.h>
+
 #include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpServoDampedLeastSquares.h>
+#include <visp3/projective/vpServoJointLimitAvoidance.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -65,6 +69,14 @@ BEGIN_VISP_NAMESPACE
      - two straight lines through a waypoint, drawn (with a fixed seed) among the configurations inside the limits
        with the features in view, about the middle of the joint-space line in a box growing to the whole of the
        limits: the shortest feasible;
+  -# never does worse than law (47) alone: given the task's control law (setControlLaw()), plan() first rehearses
+     it on the model from \f$ q \f$ (the features predicted by \f$ H(q) \f$, the same gain, damping, saturation
+     and joint-limit avoidance, one model step per iteration as the loop's \f$ q \leftarrow q + \dot q \f$). If
+     the rehearsal stays inside the joint limits with the features in view and ends where the task is solved (its
+     residual within 1.5 times that of the best branch, plus 0.05 px: the global minimum, not a local one) within
+     setRehearsalBudget() iterations, the plan is law (47) itself (PATH_LAW): the task runs it unchanged. Only
+     when the rehearsal fails (a joint limit, a lost feature, a stall in a local minimum) does the task follow a
+     path;
   -# fails with a status (vpPlanStatus) when no branch explains \f$ s^* \f$, none is inside the limits, none
      inside them has the features in view, or no path keeps them in view.
 
@@ -93,7 +105,8 @@ public:
   enum vpPathKind {
     PATH_IMAGE_LINE, //!< Straight image lines from the current to the desired pixels.
     PATH_JOINT_LINE, //!< The straight line in joint space.
-    PATH_WAYPOINT    //!< Two straight joint-space lines through a waypoint.
+    PATH_WAYPOINT,   //!< Two straight joint-space lines through a waypoint.
+    PATH_LAW         //!< Law (47) alone: its rehearsal on the model solves the task (setControlLaw()).
   };
 
   vpProjectivePathPlanner();
@@ -113,10 +126,15 @@ public:
   void setImageSize(unsigned int width, unsigned int height, double border = 0.0);
   /*!
     The largest motion of a joint between two samples of the path (radians for revolute joints, encoder units for
-    prismatic ones; default 5 deg): the follower moves by one sample per iteration at most.
+    prismatic ones; default 5 deg): the follower moves by one sample per iteration at most. With a control law whose
+    velocity is saturated (setControlLaw(), vpServoDampedLeastSquares::setMaxJointVelocity()), the step is at most
+    two thirds of that saturation: the follower adds its image feedback to the path's step, and a step that the
+    saturation cuts would leave the arm behind its plan.
     \exception vpProjectiveException if it is not positive and finite.
   */
   void setMaxJointStep(double step);
+  //! The step of the path's samples: setMaxJointStep(), at most two thirds of the control law's saturation.
+  double getMaxJointStep() const;
   /*!
     The largest motion of a joint beyond the interval of its start and target values along a path of straight image
     lines (radians for revolute joints, encoder units for prismatic ones; default: twice setMaxJointStep()). Straight
@@ -139,6 +157,24 @@ public:
   void setJointLimitMargin(double fraction);
   //! The margin of setJointLimitMargin() (fraction of each joint's range).
   double getJointLimitMargin() const { return m_limitMargin; }
+  /*!
+    The control law that the task runs when it follows no path, rehearsed on the model by plan() before any path is
+    planned (see the class documentation): the gain \e lambda (a function of the largest error component, pixels),
+    the damped least squares with its saturation \e law, and the joint-limit avoidance \e avoidance (in the joint
+    values of plan()'s \e q; no limits: none). vpServoProjective passes its own. Without a call, no rehearsal: a path
+    is always planned.
+  */
+  void setControlLaw(const vpAdaptiveGain &lambda, const vpServoDampedLeastSquares &law,
+                     const vpServoJointLimitAvoidance &avoidance);
+  //! No control law: plan() rehearses nothing and always plans a path (its step no longer capped by a saturation).
+  void clearControlLaw() { m_hasLaw = false; }
+  /*!
+    The largest number of iterations of the rehearsal of law (47) (default 50; 0: no rehearsal). A law that needs
+    more in the model is slow in the loop too, where the noise slows it further: a path is planned instead.
+  */
+  void setRehearsalBudget(unsigned int iterations) { m_rehearsalBudget = iterations; }
+  //! The budget of setRehearsalBudget().
+  unsigned int getRehearsalBudget() const { return m_rehearsalBudget; }
   /*!
     The number of random starts of the inverse kinematics (default 24), besides the current joint values.
     \exception vpProjectiveException (invalidValueError) if 0.
@@ -179,6 +215,25 @@ public:
   const std::vector<std::vector<Eigen::Vector4d>> &getPredictedFeatures() const { return m_features; }
   //! The kind of the planned path.
   vpPathKind getPathKind() const { return m_kind; }
+  /*!
+    Guards a step of law (47) toward the planned task (after the path, or along PATH_LAW; the rehearsal guards its
+    steps the same way): while the model predicts that the joint step \e qdot (n x 1, changed in place) from \e q
+    raises the RMS pixel error of the planned points to \f$ s^* \f$ by more than 0.5 px (well above the noise and the
+    model's error, so that the end of the motion is the law's), the step is halved, at most 5 times. Near a singular
+    configuration law (47)'s full step overshoots by tens of pixels and the arm chatters about the target; the guard
+    damps that without touching a step that the model predicts to descend. Returns the number of halvings. No
+    allocation. Needs a plan (PLAN_FOUND) of this model; does nothing otherwise.
+  */
+  unsigned int guardStep(const vpProjectiveArmModel &model, const JointVector &q, JointVector &qdot) const;
+  /*!
+    The outcome of the last rehearsal of law (47): true if it solved the task (then getPathKind() is PATH_LAW).
+    getRehearsalIterations() and getRehearsalResidual() say how far it got.
+  */
+  bool getRehearsalSucceeded() const { return m_rehearsalOk; }
+  //! Iterations of the last rehearsal of law (47) (0 if none ran).
+  unsigned int getRehearsalIterations() const { return m_rehearsalIterations; }
+  //! RMS pixel residual per coordinate at the end of the last rehearsal of law (47) (negative if none ran).
+  double getRehearsalResidual() const { return m_rehearsalResidual; }
   //! A sentence describing the last plan (branches, target, path kind) or why there is none.
   const std::string &getDescription() const { return m_description; }
 
@@ -199,6 +254,12 @@ private:
   std::vector<JointVector> jointLine(const JointVector &from, const JointVector &to) const;
   bool imagePath(const vpProjectiveArmModel &model, const JointVector &q, const JointVector &target,
                  const std::vector<Eigen::Vector4d> &points, std::vector<JointVector> &path) const;
+  bool rehearseLaw(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
+                   const std::vector<Eigen::Vector4d> &sStar, std::vector<JointVector> &path,
+                   std::vector<std::vector<Eigen::Vector4d>> &features);
+  unsigned int halveWhileRising(const vpProjectiveArmModel &model, const JointVector &q, JointVector &qdot) const;
+  static double residual(const vpProjectiveArmModel &model, const JointVector &q,
+                         const std::vector<Eigen::Vector4d> &points, const std::vector<Eigen::Vector4d> &sStar);
 
   bool m_hasLimits;
   JointVector m_qmin, m_qmax;
@@ -209,7 +270,17 @@ private:
   unsigned int m_starts;
   double m_maxResidual;
   double m_limitMargin;
-  std::vector<Eigen::Vector2d> m_front; // per point: its depths in both cameras at the planning q
+  std::vector<Eigen::Vector2d> m_front;  // per point: its depths in both cameras at the planning q
+  std::vector<Eigen::Vector4d> m_points; // the planned points (zero reference) and their desired pixels
+  std::vector<Eigen::Vector4d> m_sStar;
+  bool m_hasLaw;
+  vpAdaptiveGain m_lambda;
+  vpServoDampedLeastSquares m_law;
+  vpServoJointLimitAvoidance m_avoidance;
+  unsigned int m_rehearsalBudget;
+  bool m_rehearsalOk;
+  unsigned int m_rehearsalIterations;
+  double m_rehearsalResidual;
 
   vpPlanStatus m_status;
   std::vector<JointVector> m_branches;

@@ -169,9 +169,21 @@ public:
   /*!
     \f$ \dot q_2 \f$ (n x 1, resized) at joint values \e q for the primary velocity \e qdot1 and the primary task's
     normal equations; 0 without joint limits. \f$ P \f$ is computed only when a joint is outside its free interval.
+    \param target : if given (n x 1), the joint values the primary task converges to, known inside the limits (a
+    planned target, vpProjectivePathPlanner): the free interval of each joint grows to contain it,
+    \f$ q_{l_0,i}^{min} \leftarrow \min(q_{l_0,i}^{min}, q^*_i) \f$ and \f$ q_{l_0,i}^{max} \leftarrow
+    \max(q_{l_0,i}^{max}, q^*_i) \f$, the bands moving with it. Without it a target inside a band holds the arm short,
+    at the compromise where the avoidance balances the primary task; with it a joint is pushed back only beyond the
+    target, toward its limit.
   */
   void computeVelocity(const JointVector &q, const JointVector &qdot1, const JointMatrix &JtJ, const JointVector &Jte,
-                       double errorNorm, const vpServoDampedLeastSquares &law, JointVector &qdot2) const;
+                       double errorNorm, const vpServoDampedLeastSquares &law, JointVector &qdot2,
+                       const JointVector *target = nullptr) const;
+  /*!
+    The largest \f$ t \in [0, 1] \f$ such that \f$ q + t \dot q \f$ (n x 1 each) stays within the limits on every
+    joint inside them at \e q (a joint already beyond a limit is not held); 1 without limits.
+  */
+  double stepInside(const JointVector &q, const JointVector &qdot) const;
   //@}
 
 private:

@@ -405,7 +405,10 @@ public:
   //@{
   /*!
     Path planning (default off: law (47) alone, as before). On, the first computeControlLaw() for a target (and again
-    whenever a desired feature changes) plans the task with vpProjectivePathPlanner: the features are triangulated
+    whenever a desired feature changes) plans the task with vpProjectivePathPlanner. Planning is never worse than law
+    (47): the planner first rehearses the task's own law (gain, damping, saturation, joint-limit avoidance) on the
+    model, and when that rehearsal solves the task inside the limits with the features in view, the task runs law
+    (47) unchanged (vpProjectivePathPlanner::PATH_LAW). Otherwise the features are triangulated
     at the current joints and carried to the zero reference by \f$ H(q)^{-1} \f$ (no marker identity is needed; a
     feature recognised as an acquired marker takes that marker's point), the inverse kinematics of \f$ s^* \f$ gives
     every branch it can find, the target is the one inside the joint limits (setJointLimits()) nearest to \f$ q \f$,
@@ -418,6 +421,11 @@ public:
     path's step \f$ q_{k+1} - q_k \f$ plus law (47) with the gain setPathFollowingGain() on the error to the model's
     predicted images at sample \f$ k \f$ (getError() then returns that error), saturated as a whole; after the last
     sample law (47) toward \f$ s^* \f$ with the task's gain finishes the motion, so the final accuracy is the law's.
+    While following a path, or running law (47) along its rehearsal, a joint more than two path steps away from the
+    sample it should be at (the arm does not move as the model predicts: a velocity saturation, the joint-limit
+    avoidance, a model error, or law (47) near a singular configuration, whose course depends on the noise) makes
+    the task plan again from where it is, at most twice per target, without rehearsing law (47) again once it left
+    its rehearsal; a third time it gives the path up and runs law (47).
     When no plan exists the status is SERVO_NO_PLAN and \f$ \dot q = 0 \f$. Planning allocates and takes a few
     milliseconds; following is as cheap as the law.
   */
@@ -485,7 +493,7 @@ private:
   void checkJoints(const JointVector &q, const char *method) const;
   void buildTask(const JointVector &q, vpIteration &it, const char *method);
   vpServoStatus decideStatus(const vpIteration &it) const;
-  void computePrimaryVelocity(vpIteration &it, JointVector &qdot);
+  void computePrimaryVelocity(const JointVector &q, vpIteration &it, JointVector &qdot);
   void addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const;
   void stop(vpIteration &it, JointVector &qdot) const;
   void commit();
@@ -528,8 +536,10 @@ private:
   bool m_planning;
   vpProjectivePathPlanner m_planner;
   std::vector<Eigen::Vector4d> m_plannedFor;
-  size_t m_pathSample; // the sample the next call aims at
-  bool m_following;    // the last call followed the path
+  size_t m_pathSample;     // the sample the next call aims at
+  bool m_following;        // the last call followed the path
+  unsigned int m_replans;  // plans again from an off-path configuration since the target was set
+  bool m_lawLeftRehearsal; // law (47) left its rehearsal since the target was set: plan paths only
   double m_followGain;
 };
 
