@@ -339,6 +339,14 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
   features.clear();
   m_rehearsalIterations = 0;
   m_rehearsalResidual = -1.0;
+  // Solved when it reaches the global minimum: the residual of the best branch with the same points (the law
+  // minimises that residual, so in the branch's basin it comes down to it; a local minimum of three points leaves
+  // pixels), within 1.5 times plus 0.05 px.
+  double best = std::numeric_limits<double>::infinity();
+  for (const JointVector &b : m_branches) {
+    best = std::min(best, residual(model, b, points, sStar));
+  }
+  const double solved = std::min(1.5 * best + 0.05, m_maxResidual);
   std::vector<Eigen::Vector4d> s;
   for (unsigned int it = 0;; ++it) {
     if (!inside(qk) || !visible(model, qk, points, s)) {
@@ -357,8 +365,11 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
     }
     m_rehearsalIterations = it;
     m_rehearsalResidual = std::sqrt(e.squaredNorm() / static_cast<double>(rows));
+    if (m_rehearsalResidual <= solved) {
+      return true;
+    }
     if (it == m_rehearsalBudget || (it > 0 && (path[it] - path[it - 1]).cwiseAbs().maxCoeff() < 1e-7)) {
-      break; // the budget, or a fixed point of the law
+      return false; // the budget, or a fixed point of the law that is not the solution
     }
     vpServoDampedLeastSquares::computeNormalEquations(J, e, JtJ, Jte);
     law.computeVelocity(JtJ, Jte, m_lambda.value_const(e.cwiseAbs().maxCoeff()), qdot);
@@ -374,13 +385,6 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
     qk += qdot;
     path.push_back(qk);
   }
-  // Solved if it ends at the global minimum: no worse than the best branch with the same points (the law minimises
-  // that residual, so in the branch's basin it ends at or below it; a local minimum of three points leaves pixels).
-  double best = std::numeric_limits<double>::infinity();
-  for (const JointVector &b : m_branches) {
-    best = std::min(best, residual(model, b, points, sStar));
-  }
-  return m_rehearsalResidual <= std::min(1.5 * best + 0.05, m_maxResidual);
 }
 
 std::vector<std::pair<vpProjectivePathPlanner::JointVector, unsigned int>>
@@ -593,12 +597,19 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
           m_branch = static_cast<unsigned int>(b);
         }
       }
+      // The law ends in the branch whose basin it reached: the target is that branch's representative there.
+      for (Eigen::Index i = 0; !m_branches.empty() && i < n; ++i) {
+        const double delta = m_branches[m_branch](i) - m_target(i);
+        m_target(i) += model.jointType(static_cast<unsigned int>(i)) == vpProjectiveJoint::REVOLUTE
+                           ? std::remainder(delta, 2.0 * M_PI)
+                           : delta;
+      }
       m_kind = PATH_LAW;
       m_path = path;
       m_features = features;
       m_status = PLAN_FOUND;
-      os << "; path: law (47) alone, its rehearsal on the model solves the task in " << m_rehearsalIterations
-         << " iterations (" << m_rehearsalResidual << " px RMS)";
+      os << "; path: law (47) alone, its rehearsal on the model reaches branch " << m_branch << " in "
+         << m_rehearsalIterations << " iterations (" << m_rehearsalResidual << " px RMS)";
       m_description = os.str();
       return m_status;
     }

@@ -55,6 +55,7 @@ void vpServoModelMismatch::reset()
 {
   for (vpRecord &r : m_records) {
     r.sum.setZero();
+    r.recent.setZero();
     r.s.setZero();
     r.distance = -1.0;
     r.usable = false;
@@ -81,9 +82,13 @@ void vpServoModelMismatch::observe(unsigned int i, const Eigen::Vector4d &s, boo
   if (!r.usable || !r.hasMemory || m_model == nullptr) {
     return;
   }
-  Eigen::Vector4d sHat;
-  if (m_model->getStereoRig().project(m_H * r.sum.normalized(), sHat)) {
-    r.distance = std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm());
+  // The smaller of the distances to the absolute and the recent predictions (each the larger over both images).
+  for (const Eigen::Vector4d &M : {Eigen::Vector4d(r.sum.normalized()), r.recent}) {
+    Eigen::Vector4d sHat;
+    if (m_model->getStereoRig().project(m_H * M, sHat)) {
+      const double d = std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm());
+      r.distance = r.distance < 0.0 ? d : std::min(r.distance, d);
+    }
   }
 }
 
@@ -104,7 +109,15 @@ bool vpServoModelMismatch::endIteration()
   if (!disagrees && m_model != nullptr) {
     const vpProjectiveStereoRig &rig = m_model->getStereoRig();
     for (vpRecord &r : m_records) {
-      if (r.exact || !r.usable || (r.hasMemory && (r.distance < 0.0 || r.distance > m_threshold))) {
+      if (!r.usable || (r.hasMemory && (r.distance < 0.0 || r.distance > m_threshold))) {
+        continue;
+      }
+      const Eigen::Vector4d M = m_Hlu.solve(rig.triangulateLinear(r.s.head<2>(), r.s.tail<2>())).normalized();
+      if (!M.allFinite()) {
+        continue;
+      }
+      r.recent = r.hasMemory ? Eigen::Vector4d((r.recent + (r.recent.dot(M) < 0.0 ? -M : M)).normalized()) : M;
+      if (r.exact) {
         continue;
       }
       // A feature that is an acquired marker is remembered as that marker's point: one stereo pair's depth error,
@@ -113,10 +126,6 @@ bool vpServoModelMismatch::endIteration()
       if (j >= 0) {
         r.sum = m_model->markers()[static_cast<size_t>(j)].normalized();
         r.hasMemory = r.exact = true;
-        continue;
-      }
-      const Eigen::Vector4d M = m_Hlu.solve(rig.triangulateLinear(r.s.head<2>(), r.s.tail<2>())).normalized();
-      if (!M.allFinite()) {
         continue;
       }
       r.sum += r.hasMemory && r.sum.dot(M) < 0.0 ? Eigen::Vector4d(-M) : M;

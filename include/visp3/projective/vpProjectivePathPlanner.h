@@ -71,12 +71,12 @@ BEGIN_VISP_NAMESPACE
        limits: the shortest feasible;
   -# never does worse than law (47) alone: given the task's control law (setControlLaw()), plan() first rehearses
      it on the model from \f$ q \f$ (the features predicted by \f$ H(q) \f$, the same gain, damping, saturation
-     and joint-limit avoidance, one model step per iteration as the loop's \f$ q \leftarrow q + \dot q \f$). If
-     the rehearsal stays inside the joint limits with the features in view and ends where the task is solved (its
-     residual within 1.5 times that of the best branch, plus 0.05 px: the global minimum, not a local one) within
-     setRehearsalBudget() iterations, the plan is law (47) itself (PATH_LAW): the task runs it unchanged. Only
-     when the rehearsal fails (a joint limit, a lost feature, a stall in a local minimum) does the task follow a
-     path;
+     and joint-limit avoidance, steps guarded as guardStep() does, one model step per iteration as the loop's
+     \f$ q \leftarrow q + \dot q \f$). If the rehearsal stays inside the joint limits with the features in view and
+     reaches the global minimum (a residual within 1.5 times that of the best branch plus 0.05 px, where a local
+     minimum of three points leaves pixels) within setRehearsalBudget() iterations, the plan is law (47) itself
+     (PATH_LAW, its target the branch it reached): the task runs it. Only when the rehearsal fails (a joint limit, a
+     lost feature, a local minimum, a slow law) does the task follow a path;
   -# fails with a status (vpPlanStatus) when no branch explains \f$ s^* \f$, none is inside the limits, none
      inside them has the features in view, or no path keeps them in view.
 

@@ -48,6 +48,14 @@ BEGIN_VISP_NAMESPACE
   at joints \f$ q \f$ is the image \f$ \hat s_i \f$ of \f$ H(q) \bar M_i \f$ (4x1, model frame), and its distance
   (pixels) the larger over both images of \f$ \|\hat s_i - s_i\| \f$ per image.
 
+  <b>Local prediction.</b> The model gets a control step right anywhere, but its absolute prediction drifts by
+  several pixels far from the acquisition's configurations (a Viper850 turned 90 deg from its zero reference), which
+  alone would stop a healthy task. So each feature also has a recent memory \f$ \tilde M_i \f$, the sign-aligned
+  unit mean of the last memory and the point triangulated at the last iteration where the feature agreed (weights
+  1/2, 1/2: a few iterations' average, following the drift), predicted as the image of \f$ H(q) \tilde M_i \f$. A
+  feature disagrees only when both predictions are farther than the threshold: the distance reported is the smaller
+  of the two. A bump is sudden: both memories, frozen from the iteration before it, disagree at once and stay so.
+
   <b>Decision.</b> An iteration disagrees when at least two features have a prediction and every one of them is
   farther than the threshold (setThreshold(), default 5 px: well above the noise of a tracked feature and the
   prediction error of an acquired model, well below the image motion of a camera turned by 1 degree or moved by
@@ -112,6 +120,7 @@ private:
     bool usable;         // this iteration
     bool hasMemory;      // sum is set
     bool exact;          // sum is an acquired marker's point (vpProjectiveArmModel::matchMarker())
+    Eigen::Vector4d recent; // the recent memory (unit, zero reference), set with hasMemory
   };
 
   std::vector<vpRecord> m_records;
