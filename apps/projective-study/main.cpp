@@ -109,7 +109,9 @@ int main(int argc, char **argv)
       .add("--rig", rigName, "paper|random", "the paper's rig, or a random verged rig drawn per task")
       .add("--tasks", nbTasks, "N", "number of random tasks", 1)
       .add("--seed", seed, "S", "seed of the first task")
-      .add("--box", boxDeg, "DEG", "start and target uniformly within +-DEG of the zero reference on every joint")
+      .add("--box", boxDeg, "DEG",
+           "start and target uniformly within +-DEG of the zero reference on every joint (a prismatic joint: 2 mm "
+           "per degree), clipped to the joint limits")
       .choice("--markers", markers, {3, 7}, "the servo tracks the 7 gripper markers, or the main tutorial's 0-2")
       .add("--sigma", sigma, "PX", "one noise level only (default: 0.1, 0.5 and 1 px)")
       .flag("--any-branch", anyBranch, true, "targets in any inverse-kinematic branch, not only the start's")
