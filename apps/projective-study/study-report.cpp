@@ -374,6 +374,37 @@ std::string worldDescription(const World &world)
   return os.str();
 }
 
+std::string plannedAgainstLaw(const World &world, const Results &results)
+{
+  std::ostringstream os;
+  for (double sigma : world.sigmas) {
+    const Cell &law = results.get("nominal", "projective", sigma), &planned = results.get("nominal", "planned", sigma);
+    unsigned int lawOnly = 0, plannedOnly = 0, lawSolved = 0, both = 0;
+    std::vector<unsigned int> seeds;
+    for (size_t t = 0; t < law.successes.size() && t < planned.successes.size() && t < results.tasks.size(); ++t) {
+      lawSolved += law.successes[t];
+      both += law.successes[t] && planned.successes[t];
+      plannedOnly += planned.successes[t] && !law.successes[t];
+      if (law.successes[t] && !planned.successes[t]) {
+        ++lawOnly;
+        if (seeds.size() < 10) {
+          seeds.push_back(results.tasks[t].seed);
+        }
+      }
+    }
+    os << "Planned against law (47) at " << fixed(sigma, 1) << " px, the same tasks and models: " << lawOnly
+       << " tasks solved by law (47) and not by the planned servo";
+    for (size_t k = 0; k < seeds.size(); ++k) {
+      os << (k ? ", " : " (seeds ") << seeds[k]
+         << (k + 1 == seeds.size() ? (lawOnly > seeds.size() ? ", ...)" : ")") : "");
+    }
+    os << ", " << plannedOnly << " by the planned servo only; among the " << lawSolved
+       << " tasks law (47) solves, the planned servo solves " << fixed(lawSolved ? 100.0 * both / lawSolved : 0.0, 1)
+       << " %.\n";
+  }
+  return os.str();
+}
+
 std::string rigDistribution(const std::vector<RigDraw> &draws)
 {
   std::vector<double> distance, baseline, vergence, focal, azimuth, elevation, attempts;
@@ -476,6 +507,7 @@ std::string markdownReport(const World &world, const Results &results, unsigned 
       md << tableRow(fixed(sigma, 1), *c);
     }
   }
+  md << "\n" << plannedAgainstLaw(world, results);
   md << "\nSuccess by the tool rotation of the task:\n\n" << rotationBreakdown(world, results);
 
   if (!world.robustness) {
