@@ -14,8 +14,10 @@
 /*!
   \file main.cpp
   \brief projective-study: which servo should I use? The projective servo of Ruf & Horaud against two baselines, on
-  many random tasks of the main tutorial's world (the paper's rig watching the PUMA-like arm, its 7 gripper markers
-  tracked):
+  many random tasks of one world: by default the main tutorial's (the paper's rig watching the PUMA-like arm, its 7
+  gripper markers tracked); --world viper850 (ViSP's Viper850 kinematics and joint limits) or prismatic (an
+  R-R-P-R-R-R arm), --rig random (a verged rig drawn per task: baseline, vergence, focal length, image size); see
+  makeWorld() and randomRig() in study-world.h. Each run reports one world; the CSV files name it.
   - calibrated joint-space stereo IBVS written with ViSP's metric features (vpFeaturePoint interaction matrices of
     both cameras, the arm's Jacobian from its DH table by the product of exponentials, vpVelocityTwistMatrix from
     the world to each camera), with the exact calibration and with calibration errors of 1, 2 and 4 times
@@ -32,8 +34,10 @@
   tutorial (study-projective.h); a failed acquisition counts as its failure and is reported apart.
 
   The tasks: start and target drawn uniformly in the box |q_i| <= 30 deg (--box) around the acquisition's zero
-  reference, kept if the tracked markers are 20 px inside both images at both ends and the target is in the start's
-  inverse-kinematic branch (same shoulder, elbow and wrist configuration). They are the same for the three noise
+  reference (clipped to the arm's joint limits; a prismatic joint's box is 2 mm per degree), kept if the tracked
+  markers are 20 px inside both images at both ends and the target is in the start's inverse-kinematic branch (same
+  shoulder, elbow and wrist configuration; PUMA only: the other arms have no closed-form branch test and take their
+  targets in any branch, as --any-branch). They are the same for the three noise
   levels 0.1, 0.5 and 1 px. Robustness cases at 0.5 px: 5 % gross outliers, one feature occluded for 5 iterations,
   a start near the wrist singularity. With --markers 3 the servo tracks only the main tutorial's markers 0-2: the
   image error of three points has local minima where every method stalls (a third of the tasks); with --box 90 the
@@ -46,7 +50,8 @@
   the image window with a 10 px border) runs beside them on the nominal tasks; with --any-branch the targets need
   not be in the start's branch, and the report counts the plans that chose another branch than the true target's.
 
-  Usage: projective-study [--tasks N (default 500)] [--seed S (default 1)] [--box DEG (default 30)]
+  Usage: projective-study [--world puma|viper850|prismatic] [--rig paper|random] [--tasks N (default 500)]
+  [--seed S (default 1)] [--box DEG (default 30)]
   [--markers 3|7 (default 7)] [--sigma PX (one noise level)] [--any-branch] [--nominal-only] [--output DIR]
   Task k uses the seed S + k for everything random about it: projective-study --seed S+k --tasks 1 reproduces it
   alone.
@@ -97,11 +102,16 @@ int main(int argc, char **argv)
   unsigned int nbTasks = 500, seed = 1, markers = 7;
   double boxDeg = 30.0, sigma = 0.0, checkPlanned = 0.0;
   bool anyBranch = false, robustness = true;
-  std::string output = ".";
+  std::string output = ".", worldName = "puma", rigName = "paper";
   tutorial::CommandLine cmd;
-  cmd.add("--tasks", nbTasks, "N", "number of random tasks", 1)
+  cmd.add("--world", worldName, "puma|viper850|prismatic",
+          "the arm: the PUMA-like arm, ViSP's Viper850, or an R-R-P-R-R-R arm with a prismatic joint")
+      .add("--rig", rigName, "paper|random", "the paper's rig, or a random verged rig drawn per task")
+      .add("--tasks", nbTasks, "N", "number of random tasks", 1)
       .add("--seed", seed, "S", "seed of the first task")
-      .add("--box", boxDeg, "DEG", "start and target uniformly within +-DEG of the zero reference on every joint")
+      .add("--box", boxDeg, "DEG",
+           "start and target uniformly within +-DEG of the zero reference on every joint (a prismatic joint: 2 mm "
+           "per degree), clipped to the joint limits")
       .choice("--markers", markers, {3, 7}, "the servo tracks the 7 gripper markers, or the main tutorial's 0-2")
       .add("--sigma", sigma, "PX", "one noise level only (default: 0.1, 0.5 and 1 px)")
       .flag("--any-branch", anyBranch, true, "targets in any inverse-kinematic branch, not only the start's")
@@ -117,9 +127,15 @@ int main(int argc, char **argv)
     return exitCode;
   }
 
+  if (rigName != "paper" && rigName != "random") {
+    std::cerr << "Error: --rig " << rigName << ": use paper or random" << std::endl;
+    return EXIT_FAILURE;
+  }
+
   try {
     const double start = vpTime::measureTimeMs();
-    World world;
+    World world = makeWorld(worldName);
+    world.rigName = rigName;
     world.boxDeg = boxDeg;
     world.tracked.resize(markers);
     world.anyBranch = anyBranch;
@@ -133,29 +149,46 @@ int main(int argc, char **argv)
     std::ofstream csv((output + "/study-runs.csv").c_str());
     csv << "seed,case,method,sigma_px,calibration_error,outcome,converged_at,last_iteration,final_image_rms_px,"
            "joint_error_over_floor,straightness,exploration_moves,model_error_target_px,outliers_seen,"
-           "outliers_rejected,clean_seen,clean_rejected,joint_path_ratio,excursion_deg,no_plan,other_branch,message\n";
+           "outliers_rejected,clean_seen,clean_rejected,joint_path_ratio,excursion_deg,no_plan,other_branch,message,"
+           "world,rig\n";
     std::cout << "Servo study: the projective servo against calibrated stereo IBVS and Broyden servoing, " << nbTasks
-              << " random tasks from seed " << seed << "\n";
+              << " random tasks from seed " << seed << ", world " << world.name << ", rig " << world.rigName << "\n";
+
+    // The world of task \e taskSeed: its own random rig with --rig random (the same for its singular start).
+    std::vector<RigDraw> rigDraws;
+    const auto worldOf = [&](unsigned int taskSeed, bool record) {
+      World w = world;
+      if (world.rigName == "random") {
+        RigDraw draw;
+        w.rig = randomRig(world, taskSeed, draw);
+        if (record) {
+          rigDraws.push_back(draw);
+        }
+      }
+      return w;
+    };
+    World reportWorld = worldOf(seed, false);
 
     //! [Main study]
     const std::vector<double> robustFactors = {0.0, 1.0};
     for (unsigned int t = 0; t < nbTasks; ++t) {
       double t0 = vpTime::measureTimeMs();
-      results.tasks.push_back(makeTask(world, seed + t, false));
+      const World taskWorld = worldOf(seed + t, true);
+      results.tasks.push_back(makeTask(taskWorld, seed + t, false));
       results.timeMs["task generation"] += vpTime::measureTimeMs() - t0;
       const Task &task = results.tasks.back();
       for (unsigned int s = 0; s < world.sigmas.size(); ++s) {
         std::string message;
         const std::unique_ptr<vpProjectiveRobot> robot =
-            acquireForTask(world, task, world.sigmas[s], noiseStream(world.sigmas[s], s), message, results);
-        runMethods(world, task, world.sigmas[s], robot.get(), message, NOMINAL, "nominal", world.calibrationFactors,
+            acquireForTask(taskWorld, task, world.sigmas[s], noiseStream(world.sigmas[s], s), message, results);
+        runMethods(taskWorld, task, world.sigmas[s], robot.get(), message, NOMINAL, "nominal", world.calibrationFactors,
                    false, results, csv);
         if (world.robustness && world.sigmas[s] == world.robustnessSigma) {
           // Robustness (a) and (b) on the same tasks and models as the nominal case.
-          runMethods(world, task, world.sigmas[s], robot.get(), message, OUTLIERS, "outliers", robustFactors, true,
+          runMethods(taskWorld, task, world.sigmas[s], robot.get(), message, OUTLIERS, "outliers", robustFactors, true,
                      results, csv);
-          runMethods(world, task, world.sigmas[s], robot.get(), message, OCCLUSION, "occlusion", robustFactors, true,
-                     results, csv);
+          runMethods(taskWorld, task, world.sigmas[s], robot.get(), message, OCCLUSION, "occlusion", robustFactors,
+                     true, results, csv);
         }
       }
       if ((t + 1) % 50 == 0) {
@@ -169,7 +202,8 @@ int main(int argc, char **argv)
     // Robustness (c): starts near the wrist singularity, a fresh acquisition per task.
     for (unsigned int t = 0; world.robustness && t < nbTasks; ++t) {
       double t0 = vpTime::measureTimeMs();
-      results.singularTasks.push_back(makeTask(world, seed + t, true));
+      const World taskWorld = worldOf(seed + t, false);
+      results.singularTasks.push_back(makeTask(taskWorld, seed + t, true));
       results.timeMs["task generation"] += vpTime::measureTimeMs() - t0;
       const Task &task = results.singularTasks.back();
       const unsigned int s = noiseStream(
@@ -178,8 +212,8 @@ int main(int argc, char **argv)
                                     world.sigmas.begin()));
       std::string message;
       const std::unique_ptr<vpProjectiveRobot> robot =
-          acquireForTask(world, task, world.robustnessSigma, s, message, results);
-      runMethods(world, task, world.robustnessSigma, robot.get(), message, NOMINAL, "singular start", robustFactors,
+          acquireForTask(taskWorld, task, world.robustnessSigma, s, message, results);
+      runMethods(taskWorld, task, world.robustnessSigma, robot.get(), message, NOMINAL, "singular start", robustFactors,
                  true, results, csv);
     }
     //! [Singular start]
@@ -187,7 +221,10 @@ int main(int argc, char **argv)
 
     const double t0 = vpTime::measureTimeMs();
     std::ostringstream md;
-    md << markdownReport(world, results, nbTasks, seed);
+    md << markdownReport(reportWorld, results, nbTasks, seed);
+    if (!rigDraws.empty()) {
+      md << "\n## Random rigs\n\n" << rigDistribution(rigDraws);
+    }
     results.timeMs["report"] += vpTime::measureTimeMs() - t0;
 
     std::ostringstream log;

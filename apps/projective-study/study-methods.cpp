@@ -37,8 +37,8 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace study
 {
-void writeRun(std::ofstream &csv, const std::string &scenario, const std::string &method, double sigma, double factor,
-              const Task &task, const RunResult &r)
+void writeRun(std::ofstream &csv, const World &world, const std::string &scenario, const std::string &method,
+              double sigma, double factor, const Task &task, const RunResult &r)
 {
   std::string message = r.message;
   std::replace(message.begin(), message.end(), '"', '\'');
@@ -47,7 +47,8 @@ void writeRun(std::ofstream &csv, const std::string &scenario, const std::string
       << r.convergedAt << "," << r.lastIteration << "," << r.finalImageRms << "," << r.errorOverFloor << ","
       << r.straightness << "," << r.moves << "," << r.modelErrorTarget << "," << r.outliersSeen << ","
       << r.outliersRejected << "," << r.cleanSeen << "," << r.cleanRejected << "," << r.jointPathRatio << ","
-      << r.excursionDeg << "," << r.noPlan << "," << r.otherBranch << ",\"" << message << "\"\n";
+      << r.excursionDeg << "," << r.noPlan << "," << r.otherBranch << ",\"" << message << "\"," << world.name << ","
+      << world.rigName << "\n";
 }
 
 void runMethods(const World &world, const Task &task, double sigma, const vpProjectiveRobot *robot,
@@ -73,7 +74,7 @@ void runMethods(const World &world, const Task &task, double sigma, const vpProj
       r.modelErrorTarget = modelPredictionError(world, *robot, task.qTarget);
     }
     results.cell(scenarioName, method, sigma).add(r, task.seed);
-    writeRun(csv, scenarioName, method, sigma, -1, task, r);
+    writeRun(csv, world, scenarioName, method, sigma, -1, task, r);
   };
 
   const double t0 = vpTime::measureTimeMs();
@@ -102,7 +103,7 @@ void runMethods(const World &world, const Task &task, double sigma, const vpProj
         [&](const ProjectiveServo &servo, RunResult &r) {
           r.noPlan = servo.getNoPlan();
           if (servo.getPlannedTarget().size() == world.arm.getNumberOfJoints()) {
-            r.otherBranch = branchOf(world.arm, servo.getPlannedTarget()) == branchOf(world.arm, task.qTarget) ? 0 : 1;
+            r.otherBranch = otherBranch(world, servo.getPlannedTarget(), task.qTarget) ? 1 : 0;
           }
         });
   }
@@ -114,7 +115,7 @@ void runMethods(const World &world, const Task &task, double sigma, const vpProj
     StereoIbvs ibvs(believed, world.tracked, leftStar, rightStar, world.control);
     const RunResult r = runServo(world, task, sigma, ibvs, scenario);
     results.cell(scenarioName, "IBVS", sigma, factor).add(r, task.seed);
-    writeRun(csv, scenarioName, "IBVS", sigma, factor, task, r);
+    writeRun(csv, world, scenarioName, "IBVS", sigma, factor, task, r);
   }
   const double t2 = vpTime::measureTimeMs();
   results.timeMs["IBVS"] += t2 - t1;
@@ -122,7 +123,7 @@ void runMethods(const World &world, const Task &task, double sigma, const vpProj
   BroydenServo broyden(world.arm.getNumberOfJoints(), world.exploration, sigma, leftStar, rightStar, world.control);
   const RunResult r = runServo(world, task, sigma, broyden, scenario);
   results.cell(scenarioName, "Broyden", sigma).add(r, task.seed);
-  writeRun(csv, scenarioName, "Broyden", sigma, -1, task, r);
+  writeRun(csv, world, scenarioName, "Broyden", sigma, -1, task, r);
   results.timeMs["Broyden"] += vpTime::measureTimeMs() - t2;
 }
 

@@ -40,8 +40,8 @@ namespace study
 {
 //! [Run all methods]
 //! One line of study-runs.csv.
-void writeRun(std::ofstream &csv, const std::string &scenario, const std::string &method, double sigma, double factor,
-              const Task &task, const RunResult &r);
+void writeRun(std::ofstream &csv, const World &world, const std::string &scenario, const std::string &method,
+              double sigma, double factor, const Task &task, const RunResult &r);
 
 /*!
   Runs every method on \e task at noise \e sigma in \e scenario and records them: the projective servo on \e robot

@@ -21,6 +21,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <visp3/projective/vpProjectiveStereoRig.h>
+
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
@@ -29,12 +31,48 @@ namespace study
 {
 vpProjectiveRobot acquire(const World &world, double sigma, vpGaussRand &noise)
 {
-  return tutorial::acquireByTrials(
-      world.trialDeg,
-      [&](const vpColVector &q, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
-        return world.rig.project(world.arm.getMarkers(q), left, right, sigma, noise);
-      },
-      std::max(1.0, 4.0 * sigma), false);
+  // tutorial::acquireByTrials() for any joint kinds: the same images in the same order (hence the same noise draws),
+  // the trial amounts in the joints' units.
+  const unsigned int n = world.arm.getNumberOfJoints();
+  const auto imagesAt = [&](const vpColVector &q, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
+    return world.rig.project(world.arm.getMarkers(q), left, right, sigma, noise);
+  };
+  std::vector<vpImagePoint> left0, right0;
+  imagesAt(vpColVector(n, 0.0), left0, right0);
+  std::vector<tutorial::TrialMotion> trials;
+  for (unsigned int i = 0; i < n; ++i) {
+    for (double sign : {1.0, -1.0}) {
+      tutorial::TrialMotion t{i, sign * world.trials[i], {}, {}};
+      vpColVector q(n, 0.0);
+      q[i] = t.amount;
+      while (!imagesAt(q, t.left, t.right)) {
+        t.amount /= 2.0; // the markers left the view: a smaller trial
+        q[i] = t.amount;
+      }
+      trials.push_back(t);
+    }
+  }
+  std::vector<vpImagePoint> allLeft = left0, allRight = right0;
+  for (const tutorial::TrialMotion &t : trials) {
+    allLeft.insert(allLeft.end(), t.left.begin(), t.left.end());
+    allRight.insert(allRight.end(), t.right.begin(), t.right.end());
+  }
+  vpProjectiveStereoRig rig;
+  rig.estimate(allLeft, allRight, std::max(1.0, 4.0 * sigma));
+  std::vector<vpProjectiveRobot::vpJointType> types(n);
+  for (unsigned int i = 0; i < n; ++i) {
+    types[i] = world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? vpProjectiveRobot::PRISMATIC
+                                                                      : vpProjectiveRobot::REVOLUTE;
+  }
+  vpProjectiveRobot robot(types);
+  robot.setRigMounting(vpProjectiveRobot::EYE_TO_HAND);
+  robot.setStereoRig(rig);
+  robot.setZeroReference(left0, right0);
+  for (const tutorial::TrialMotion &t : trials) {
+    robot.addTrialMotion(t.joint, t.amount, t.left, t.right);
+  }
+  robot.calibrate();
+  return robot;
 }
 
 double modelPredictionError(const World &world, const vpProjectiveRobot &robot, const vpColVector &q)

@@ -41,9 +41,9 @@ using namespace VISP_NAMESPACE_NAME;
 namespace study
 {
 //! [Acquisition]
-//! The main tutorial's acquisition: q = 0, then each joint alone both ways by the paper's trials (halved until in
-//! view); F from the same images with the inlier threshold max(1, 4 sigma); calibrate(). Throws a vpException on
-//! failure.
+//! The main tutorial's acquisition (tutorial::acquireByTrials(), any joint kinds): q = 0, then each joint alone both
+//! ways by the world's trials (halved until in view); F from the same images with the inlier threshold
+//! max(1, 4 sigma); calibrate(). Throws a vpException on failure.
 vpProjectiveRobot acquire(const World &world, double sigma, vpGaussRand &noise);
 //! [Acquisition]
 

@@ -88,7 +88,8 @@ std::string taskDistribution(const World &world, const std::vector<Task> &tasks)
   std::map<std::string, unsigned int> branches;
   for (const Task &task : tasks) {
     for (unsigned int i = 0; i < n; ++i) {
-      dq[i].push_back(vpMath::deg(std::abs(task.qTarget[i] - task.qStart[i])));
+      const double dqi = std::abs(task.qTarget[i] - task.qStart[i]);
+      dq[i].push_back(world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? 100.0 * dqi : vpMath::deg(dqi));
     }
     const vpHomogeneousMatrix d = world.arm.get_wMt(task.qStart).inverse() * world.arm.get_wMt(task.qTarget);
     translation.push_back(100.0 * d.getTranslationVector().frobeniusNorm());
@@ -101,6 +102,9 @@ std::string taskDistribution(const World &world, const std::vector<Task> &tasks)
     rms.push_back(std::sqrt(sum / (4.0 * world.nbPoints())));
     floor.push_back(vpMath::deg(0.5 * task.unitFloor.getMaxValue()));
     draws.push_back(task.drawnStart + task.drawnTarget);
+    if (!world.pumaBranches) {
+      continue;
+    }
     const Branch b = branchOf(world.arm, task.qStart);
     std::string label = std::string(b.shoulder > 0 ? "+" : "-") + (b.elbow > 0 ? "+" : "-") + (b.wrist > 0 ? "+" : "-");
     ++branches[label];
@@ -112,18 +116,22 @@ std::string taskDistribution(const World &world, const std::vector<Task> &tasks)
        << " | " << fixed(percentile(x, 0.95), digits) << " |\n";
   };
   for (unsigned int i = 0; i < n; ++i) {
-    row("abs(q*_" + std::to_string(i) + " - q0_" + std::to_string(i) + ") (deg)", dq[i], 1);
+    row("abs(q*_" + std::to_string(i) + " - q0_" + std::to_string(i) + ") (" +
+            (world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? "cm" : "deg") + ")",
+        dq[i], 1);
   }
   row("tool translation (cm)", translation, 1);
   row("tool rotation (deg)", rotation, 1);
   row("initial image error, RMS (px)", rms, 1);
   row("largest joint noise floor at 0.5 px (deg)", floor, 3);
   row("configurations drawn per task (start + target)", draws, 0);
-  os << "\nBranches (shoulder, elbow, wrist signs) of the start and target:";
-  for (const auto &kv : branches) {
-    os << " " << kv.first << " " << kv.second;
+  if (world.pumaBranches) {
+    os << "\nBranches (shoulder, elbow, wrist signs) of the start and target:";
+    for (const auto &kv : branches) {
+      os << " " << kv.first << " " << kv.second;
+    }
+    os << "\n";
   }
-  os << "\n";
   return os.str();
 }
 
@@ -344,10 +352,112 @@ std::string summary(const World &world, const Results &results)
   return os.str();
 }
 
+std::string worldDescription(const World &world)
+{
+  std::ostringstream os;
+  os << "`--world " << world.name << " --rig " << world.rigName << "`: ";
+  os << (world.name == "puma"       ? "the main tutorial's PUMA-like arm"
+         : world.name == "viper850" ? "ViSP's Viper850 (vpSimulatorArm::viper850(), its true joint limits), zero "
+                                      "reference (0, -150, 190, 0, -75, 0) deg"
+                                    : "an R-R-P-R-R-R arm (Stanford-arm structure, a prismatic joint 2 in metres), "
+                                      "zero reference (0, 60 deg, 0.45 m, 0, -50 deg, 0)");
+  os << ", the gripper's markers facing the rig at the zero reference; "
+     << (world.rigName == "random" ? "a random verged rig per task (see Random rigs)"
+                                   : "the paper's rig (20 deg vergence at 1 m, 640 x 480)")
+     << "; trials";
+  for (unsigned int i = 0; i < world.trials.size(); ++i) {
+    const bool prismatic = world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC;
+    os << (i ? ", " : " ") << fixed(prismatic ? 100.0 * world.trials[i] : vpMath::deg(world.trials[i]), 0)
+       << (prismatic ? " cm" : " deg");
+  }
+  os << ".";
+  return os.str();
+}
+
+std::string plannedAgainstLaw(const World &world, const Results &results)
+{
+  std::ostringstream os;
+  for (double sigma : world.sigmas) {
+    const Cell &law = results.get("nominal", "projective", sigma), &planned = results.get("nominal", "planned", sigma);
+    unsigned int lawOnly = 0, plannedOnly = 0, lawSolved = 0, both = 0;
+    std::vector<unsigned int> seeds;
+    for (size_t t = 0; t < law.successes.size() && t < planned.successes.size() && t < results.tasks.size(); ++t) {
+      lawSolved += law.successes[t];
+      both += law.successes[t] && planned.successes[t];
+      plannedOnly += planned.successes[t] && !law.successes[t];
+      if (law.successes[t] && !planned.successes[t]) {
+        ++lawOnly;
+        if (seeds.size() < 10) {
+          seeds.push_back(results.tasks[t].seed);
+        }
+      }
+    }
+    os << "Planned against law (47) at " << fixed(sigma, 1) << " px, the same tasks and models: " << lawOnly
+       << " tasks solved by law (47) and not by the planned servo";
+    for (size_t k = 0; k < seeds.size(); ++k) {
+      os << (k ? ", " : " (seeds ") << seeds[k]
+         << (k + 1 == seeds.size() ? (lawOnly > seeds.size() ? ", ...)" : ")") : "");
+    }
+    os << ", " << plannedOnly << " by the planned servo only; among the " << lawSolved
+       << " tasks law (47) solves, the planned servo solves " << fixed(lawSolved ? 100.0 * both / lawSolved : 0.0, 1)
+       << " %.\n";
+  }
+  return os.str();
+}
+
+std::string rigDistribution(const std::vector<RigDraw> &draws)
+{
+  std::vector<double> distance, baseline, vergence, focal, azimuth, elevation, attempts;
+  std::map<std::string, unsigned int> sizes;
+  for (const RigDraw &d : draws) {
+    distance.push_back(100.0 * d.distance);
+    baseline.push_back(100.0 * d.baseline);
+    vergence.push_back(d.vergenceDeg);
+    focal.push_back(d.focal);
+    azimuth.push_back(d.azimuthDeg);
+    elevation.push_back(d.elevationDeg);
+    attempts.push_back(d.draws);
+    ++sizes[std::to_string(d.width) + " x " + std::to_string(d.height)];
+  }
+  std::ostringstream os;
+  os << "| quantity | 5 % | median | 95 % |\n|---|---|---|---|\n";
+  auto row = [&](const std::string &name, const std::vector<double> &x, int digits) {
+    os << "| " << name << " | " << fixed(percentile(x, 0.05), digits) << " | " << fixed(percentile(x, 0.5), digits)
+       << " | " << fixed(percentile(x, 0.95), digits) << " |\n";
+  };
+  row("distance to the fixation point (cm)", distance, 0);
+  row("baseline (cm)", baseline, 0);
+  row("vergence (deg)", vergence, 1);
+  row("focal length (px)", focal, 0);
+  row("azimuth (deg)", azimuth, 1);
+  row("elevation (deg)", elevation, 1);
+  row("rigs drawn per task (until the markers are in view)", attempts, 0);
+  os << "\nImage sizes:";
+  for (const auto &kv : sizes) {
+    os << " " << kv.first << " (" << kv.second << " tasks);";
+  }
+  os << "\n";
+  return os.str();
+}
+
+std::string jointLimits(const World &world)
+{
+  std::ostringstream os;
+  os << "relative to the zero reference:";
+  for (unsigned int i = 0; i < world.arm.getNumberOfJoints(); ++i) {
+    const bool prismatic = world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC;
+    const double k = prismatic ? 100.0 : 180.0 / M_PI;
+    os << (i ? ", " : " ") << "[" << fixed(k * world.arm.getJointMin()[i], 0) << ", "
+       << fixed(k * world.arm.getJointMax()[i], 0) << "]" << (prismatic ? " cm" : " deg");
+  }
+  return os.str();
+}
+
 std::string markdownReport(const World &world, const Results &results, unsigned int nbTasks, unsigned int seed)
 {
   std::ostringstream md;
   md << "# Servo study: projective servo, calibrated stereo IBVS, Broyden\n\n"
+     << "World: " << worldDescription(world) << "\n\n"
      << nbTasks << " random tasks (seeds " << seed << " to " << seed + nbTasks - 1
      << "), the same for every method and noise level; budget " << world.budget << " iterations; tasks within +-"
      << world.boxDeg
@@ -372,12 +482,23 @@ std::string markdownReport(const World &world, const Results &results, unsigned 
      << std::setprecision(1) << checkIbvsJacobian(world, results.tasks.front()) << std::defaultfloat
      << std::setprecision(6) << " (relative).\n\n";
 
-  md << "## Tasks\n\nStart and target drawn uniformly in |q_i| <= " << world.boxDeg
-     << " deg (joint limits +-170 deg), kept when the tracked markers are " << world.marginPx
-     << " px inside both images at both ends"
+  md << "## Tasks\n\nStart and target drawn uniformly in |q_i| <= " << world.boxDeg << " deg";
+  for (unsigned int i = 0; i < world.arm.getNumberOfJoints(); ++i) {
+    if (world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC) {
+      md << " (prismatic joint " << i << ": +-" << 100.0 * world.prismaticPerDeg * world.boxDeg << " cm)";
+    }
+  }
+  md << " of the zero reference, clipped to the joint limits (" << jointLimits(world)
+     << "), kept when the tracked markers are " << world.marginPx << " px inside both images at both ends"
      << (world.anyBranch ? " (--any-branch: the target in any inverse-kinematic branch).\n\n"
-                         : " and the target has the start's inverse-kinematic branch (signs of the shoulder reach, "
-                           "cos(theta_2) and sin(theta_4)).\n\n")
+         : !world.pumaBranches
+             ? " (the " + world.name +
+                   " arm has no closed-form branch test: the target in any inverse-kinematic branch, as with "
+                   "--any-branch; \"other branch\" counts the plans whose target leads Gauss-Newton inverse kinematics "
+                   "of "
+                   "the true target's tool pose to another solution than the true target).\n\n"
+             : std::string(" and the target has the start's inverse-kinematic branch (signs of the shoulder reach, "
+                           "cos(theta_2) and sin(theta_4)).\n\n"))
      << taskDistribution(world, results.tasks) << "\n";
 
   md << "## Nominal: Gaussian noise\n\n" << tableHeader("noise (px)");
@@ -386,6 +507,7 @@ std::string markdownReport(const World &world, const Results &results, unsigned 
       md << tableRow(fixed(sigma, 1), *c);
     }
   }
+  md << "\n" << plannedAgainstLaw(world, results);
   md << "\nSuccess by the tool rotation of the task:\n\n" << rotationBreakdown(world, results);
 
   if (!world.robustness) {

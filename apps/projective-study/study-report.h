@@ -37,6 +37,15 @@ namespace study
 //! Paired comparison of two methods on the same tasks: "wins against", "ties with" or "loses to" (McNemar's test at
 //! about 95 %: a tie when |b - c| <= 2 sqrt(b + c), b and c the tasks only one of them solves).
 std::string verdict(const Cell &a, const Cell &b, unsigned int &onlyA, unsigned int &onlyB);
+//! One sentence naming the world (--world and --rig), its arm, zero reference, rig and trials.
+std::string worldDescription(const World &world);
+//! The planned servo against law (47) on the same nominal tasks: the tasks each solves and the other does not (the
+//! first seeds of those law (47) solves alone), and the planned servo's success among the tasks law (47) solves.
+std::string plannedAgainstLaw(const World &world, const Results &results);
+//! Distribution of the random rigs of --rig random (percentiles, image sizes).
+std::string rigDistribution(const std::vector<RigDraw> &draws);
+//! The joint limits relative to the zero reference, in words.
+std::string jointLimits(const World &world);
 //! The header of a markdown table of cells, first column \e first.
 std::string tableHeader(const std::string &first);
 //! One markdown row of a cell.

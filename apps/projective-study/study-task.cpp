@@ -52,7 +52,10 @@ Task makeTask(const World &world, unsigned int seed, bool singularStart)
   auto draw = [&](bool nearSingular) {
     vpColVector q(n);
     for (unsigned int i = 0; i < n; ++i) {
-      q[i] = vpMath::rad(rng.uniform(-world.boxDeg, world.boxDeg));
+      double lower, upper;
+      world.box(i, lower, upper);
+      q[i] = world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? rng.uniform(lower, upper)
+                                                                    : vpMath::rad(rng.uniform(lower, upper));
     }
     if (nearSingular) {
       // Within nearSingularDeg of the singularity, on the side of the zero reference (the box's centre): the wrist
@@ -67,11 +70,12 @@ Task makeTask(const World &world, unsigned int seed, bool singularStart)
     task.qStart = draw(singularStart);
     ++task.drawnStart;
   } while (!acceptable(world, task.qStart) && task.drawnStart < maxDraws);
-  const Branch branch = branchOf(world.arm, task.qStart);
+  const Branch branch = world.pumaBranches ? branchOf(world.arm, task.qStart) : Branch{0, 0, 0};
   do {
     task.qTarget = draw(false);
     ++task.drawnTarget;
-  } while ((!acceptable(world, task.qTarget) || (!world.anyBranch && !(branchOf(world.arm, task.qTarget) == branch))) &&
+  } while ((!acceptable(world, task.qTarget) ||
+            (!world.anyBranchTargets() && !(branchOf(world.arm, task.qTarget) == branch))) &&
            task.drawnTarget < maxDraws);
   if (task.drawnStart >= maxDraws || task.drawnTarget >= maxDraws) {
     throw vpException(vpException::fatalError, "task " + std::to_string(seed) +

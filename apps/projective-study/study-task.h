@@ -63,7 +63,9 @@ vpColVector unitNoiseFloor(const World &world, const vpColVector &q);
 /*!
   Draws a task: the start uniformly in the box (for a singular start, q_4 within nearSingularDeg of the wrist
   singularity instead) until it is within the joint limits and the tracked markers are marginPx inside both images;
-  then the target uniformly in the box until it is too and (unless World::anyBranch) in the start's branch. Then all the
+  then the target uniformly in the box until it is too and (unless World::anyBranchTargets()) in the start's branch.
+  The box is World::box(): +-boxDeg (prismatic joints: World::prismaticPerDeg metres per degree) clipped to the
+  joint limits. Then all the
   noise, outliers and the calibration error direction, from their own streams of the task's seed.
 */
 Task makeTask(const World &world, unsigned int seed, bool singularStart);
