@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <vector>
 
@@ -792,4 +793,180 @@ TEST(PathPlanner, ServoStopsWithoutAPlan)
   task.computeControlLaw(q);
   EXPECT_NE(task.getStatus(), vpServoProjective::SERVO_NO_PLAN);
   EXPECT_LT((task.getPlannedTarget() - qTarget).frobeniusNorm(), 1e-4);
+}
+
+namespace
+{
+/*!
+  ViSP's Viper850 (vpViper850 kinematics and joint limits) watched by a verged rig of other cameras than the paper's
+  (30 cm baseline, 1.2 m away, 1200 px focal length), acquired as vpProjectiveAcquisitionProcedure does: each joint
+  alone both ways, as far as 30 deg while the markers stay 10 px inside both images, pixel noise \e sigma.
+*/
+struct ViperWorld {
+  ArmSetup s;
+  vpProjectiveRobot robot;
+  vpColVector qmin, qmax; //!< the true joint limits, in the model's joint values
+
+  ViperWorld(double sigma, long seed) : s(viperEyeToHand()), robot(s.jointTypes())
+  {
+    const vpSimulatorStereoRig sim = vpSimulatorStereoRig::vergingRig(
+        point3(0.0, 0.0, 0.0), 1.2, 0.3, vpCameraParameters(1200.0, 1200.0, 320.0, 240.0), 640, 480);
+    s.camLeft = sim.getLeftCameraParameters();
+    s.camRight = sim.getRightCameraParameters();
+    s.rMl = sim.get_rMl();
+    s.wMl = sim.get_wMl();
+    qmin = s.arm.getJointMin() - s.qRef;
+    qmax = s.arm.getJointMax() - s.qRef;
+    vpGaussRand noise(sigma, 0.0, seed);
+    std::vector<vpImagePoint> left, right;
+    robot.setStereoRig(s.rig());
+    s.images(s.qRef, left, right, sigma, noise);
+    robot.setZeroReference(left, right);
+    for (unsigned int i = 0; i < s.n(); ++i) {
+      for (int sign = -1; sign <= 1; sign += 2) {
+        vpColVector q(s.n(), 0.0);
+        for (int deg = 1; deg <= 30; ++deg) {
+          vpColVector next(s.n(), 0.0);
+          next[i] = sign * vpMath::rad(deg);
+          if (next[i] < qmin[i] || next[i] > qmax[i] || !s.visible(s.armJoints(next), 10.0)) {
+            break;
+          }
+          q = next;
+        }
+        s.images(s.armJoints(q), left, right, sigma, noise);
+        robot.addTrialMotion(i, q[i], left, right);
+      }
+    }
+    robot.calibrate();
+  }
+
+  //! Model joints within +-range of the zero reference, inside the limits, the markers 20 px inside both images.
+  vpColVector draw(vpUniRand &rng, double range) const
+  {
+    for (;;) {
+      const vpColVector q = s.randomVisibleJoints(rng, std::vector<double>(s.n(), range), 20.0);
+      bool inside = q.size() == s.n();
+      for (unsigned int i = 0; inside && i < q.size(); ++i) {
+        inside = q[i] >= qmin[i] && q[i] <= qmax[i];
+      }
+      if (inside) {
+        return q;
+      }
+    }
+  }
+};
+
+struct NoisyRun {
+  bool reached = false;       //!< image RMS error below 2 sigma within the budget, markers in view, no limit crossed
+  double largestStep = 0.0;   //!< largest |qdot_i| commanded (joint units per call)
+  double largestSample = 0.0; //!< largest joint step between two samples of the plan
+};
+
+//! A servo run as a user writes it (gain 0.5, no damping setting, the true limits, a 640 x 480 window with a 10 px
+//! border), noisy images (sigma) of markers 0-2, s* measured once at the target; q <- q + qdot per call.
+NoisyRun runNoisy(const ViperWorld &w, vpColVector q, const vpColVector &qTarget, bool planning, double sigma,
+                  double qdotMax, long seed, int budget = 150)
+{
+  const ArmSetup &s = w.s;
+  const std::vector<unsigned int> tracked = {0, 1, 2};
+  vpGaussRand noise(sigma, 0.0, seed);
+  auto measure = [&](const vpColVector &qm, std::vector<vpFeatureStereoPoint> &f) {
+    for (size_t k = 0; k < tracked.size(); ++k) {
+      const Eigen::Vector4d p = s.imageOf(s.armJoints(qm), tracked[k]);
+      f[k].buildFrom(p(0) + noise(), p(1) + noise(), p(2) + noise(), p(3) + noise());
+    }
+  };
+  std::vector<vpFeatureStereoPoint> f(tracked.size()), fStar(tracked.size());
+  measure(qTarget, fStar);
+  vpServoProjective task;
+  task.setRobot(w.robot);
+  task.setLambda(0.5);
+  task.setMaxJointVelocity(qdotMax);
+  task.setJointLimits(w.qmin, w.qmax);
+  task.setImageSize(640, 480, 10.0);
+  task.setPathPlanning(planning);
+  for (size_t k = 0; k < tracked.size(); ++k) {
+    task.addFeature(f[k], fStar[k]);
+  }
+  NoisyRun run;
+  for (int it = 0; it <= budget; ++it) {
+    if (!trulyInView(s, q, tracked, 0.0)) {
+      return run;
+    }
+    const std::vector<Eigen::Vector4d> sNow = trueImages(s, q, tracked);
+    double error = 0.0;
+    for (size_t k = 0; k < tracked.size(); ++k) {
+      error += (sNow[k] - fStar[k].getFeature()).squaredNorm();
+    }
+    if (std::sqrt(error / (4.0 * tracked.size())) < 2.0 * sigma) {
+      run.reached = true;
+      return run;
+    }
+    measure(q, f);
+    const vpColVector qdot = task.computeControlLaw(q);
+    if (it == 0 && planning && task.getStatus() != vpServoProjective::SERVO_NO_PLAN) {
+      const std::vector<JointVector> &path = task.getPathPlanner().getPath();
+      for (size_t j = 1; path.size() > 1 && j < path.size() &&
+                         task.getPathPlanner().getPathKind() != vpProjectivePathPlanner::PATH_LAW;
+           ++j) {
+        run.largestSample = std::max(run.largestSample, (path[j] - path[j - 1]).cwiseAbs().maxCoeff());
+      }
+    }
+    for (unsigned int i = 0; i < q.size(); ++i) {
+      run.largestStep = std::max(run.largestStep, std::abs(qdot[i]));
+      if (q[i] + qdot[i] < w.qmin[i] || q[i] + qdot[i] > w.qmax[i]) {
+        return run;
+      }
+    }
+    q += qdot;
+  }
+  return run;
+}
+} // namespace
+
+// Issue 18: on ViSP's Viper850, with the user's settings (15 deg steps, the true limits, the image window), planning
+// never loses a task that law (47) solves, and solves most of those that it does not.
+TEST(PathPlanner, PlannedServoOnViper850NeverLosesWhatLawSolves)
+{
+  const double sigma = 0.5;
+  const ViperWorld w(sigma, 3);
+  vpUniRand rng(11);
+  int law = 0, planned = 0, lawOnly = 0;
+  const int tasks = 16;
+  for (int t = 0; t < tasks; ++t) {
+    const vpColVector qStart = w.draw(rng, vpMath::rad(60.0)), qTarget = w.draw(rng, vpMath::rad(60.0));
+    const bool byLaw = runNoisy(w, qStart, qTarget, false, sigma, vpMath::rad(15.0), 100 + t).reached;
+    const bool byPlan = runNoisy(w, qStart, qTarget, true, sigma, vpMath::rad(15.0), 100 + t).reached;
+    law += byLaw;
+    planned += byPlan;
+    lawOnly += byLaw && !byPlan;
+    EXPECT_TRUE(!byLaw || byPlan) << "task " << t << ": law (47) reaches it, the planned servo does not";
+  }
+  EXPECT_EQ(lawOnly, 0);
+  EXPECT_GE(planned, law + 4) << "wide tasks: planning must solve some that law (47) does not";
+  EXPECT_GE(planned, tasks - 2);
+  if (std::getenv("VISP_PROJECTIVE_TEST_VERBOSE") != nullptr) {
+    std::cout << "Viper850 +-60 deg: planned " << planned << "/" << tasks << ", law (47) " << law << "/" << tasks
+              << std::endl;
+  }
+}
+
+// The plan respects the user's step limit: with setMaxJointVelocity() below the planner's step, the path's samples
+// are at most two thirds of it apart (room for the feedback), no call commands more, and the task is still reached.
+TEST(PathPlanner, PlansRespectTheUserStepLimit)
+{
+  const double sigma = 0.5, qdotMax = vpMath::rad(3.0);
+  const ViperWorld w(sigma, 5);
+  vpUniRand rng(17);
+  int reached = 0, followed = 0;
+  for (int t = 0; t < 4; ++t) {
+    const vpColVector qStart = w.draw(rng, vpMath::rad(45.0)), qTarget = w.draw(rng, vpMath::rad(45.0));
+    const NoisyRun run = runNoisy(w, qStart, qTarget, true, sigma, qdotMax, 300 + t, 600);
+    reached += run.reached;
+    followed += run.largestSample > 0.0;
+    EXPECT_LE(run.largestStep, qdotMax * (1.0 + 1e-9)) << "task " << t;
+    EXPECT_LE(run.largestSample, 2.0 / 3.0 * qdotMax * (1.0 + 1e-9)) << "task " << t;
+  }
+  EXPECT_GE(reached, 3);
+  EXPECT_GE(followed, 1) << "at least one task needs a path (the others run law (47) as rehearsed)";
 }
