@@ -550,8 +550,15 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
   m_rehearsalIterations = 0;
   m_rehearsalResidual = -1.0;
   std::ostringstream os;
-  if (m_branches.empty() || m_residuals.front() > m_maxResidual) {
-    m_status = PLAN_NO_INVERSE_KINEMATICS;
+  // The depth signs where the points are seen, at q: the reference of "in front of the cameras".
+  m_front.resize(X.size());
+  for (size_t k = 0; k < X.size(); ++k) {
+    const Eigen::Vector4d M = Hq * X[k];
+    m_front[k] << model.getStereoRig().leftProjection().row(2).dot(M),
+        model.getStereoRig().rightProjection().row(2).dot(M);
+  }
+  const bool explained = !m_branches.empty() && m_residuals.front() <= m_maxResidual;
+  if (!explained) {
     os << "no joint values explain the desired features (";
     if (m_branches.empty()) {
       os << "the inverse kinematics failed from every start)";
@@ -560,21 +567,11 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
     }
     m_branches.clear();
     m_residuals.clear();
-    m_description = os.str();
-    return m_status;
   }
-  // The depth signs where the points are seen, at q: the reference of "in front of the cameras".
-  m_front.resize(X.size());
-  for (size_t k = 0; k < X.size(); ++k) {
-    const Eigen::Vector4d M = Hq * X[k];
-    m_front[k] << model.getStereoRig().leftProjection().row(2).dot(M),
-        model.getStereoRig().rightProjection().row(2).dot(M);
-  }
-  m_points = X;
-  m_sStar = sStar;
-  // 2. Law (47) alone, if its rehearsal on the model solves the task: never worse than the law.
-  os << matched << " of " << X.size() << " points are acquired markers; " << m_branches.size()
-     << " inverse-kinematic branch" << (m_branches.size() > 1 ? "es" : "") << " found";
+  // 2. Law (47) alone, if its rehearsal on the model solves the task: never worse than the law (which may get there
+  // where the inverse kinematics of a model that is off by a few pixels does not).
+  os << (explained ? "" : "; ") << matched << " of " << X.size() << " points are acquired markers; "
+     << m_branches.size() << " inverse-kinematic branch" << (m_branches.size() > 1 ? "es" : "") << " found";
   m_rehearsalOk = false;
   if (m_hasLaw && m_rehearsalBudget > 0) {
     std::vector<JointVector> path;
@@ -615,6 +612,11 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
     }
     os << "; law (47) alone fails in its rehearsal (" << m_rehearsalIterations << " iterations, " << m_rehearsalResidual
        << " px RMS)";
+  }
+  if (!explained) {
+    m_status = PLAN_NO_INVERSE_KINEMATICS;
+    m_description = os.str();
+    return m_status;
   }
   // 3. The target, and 4. a path keeping the features in view and the joints within their limits: the preferred
   // target first, the nearest if no path leads to the preferred one.

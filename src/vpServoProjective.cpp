@@ -124,7 +124,8 @@ vpServoProjective::vpServoProjective()
     : m_robot(nullptr), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(),
       m_jointLimits(), m_mismatch(), m_targets(), m_mismatchRigGeneration(0), m_mismatchModelGeneration(0),
       m_mismatchRobot(nullptr), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
-      m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_followGain(1.0)
+      m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
+      m_replanFailed(false), m_followGain(1.0)
 {
 }
 

@@ -123,24 +123,33 @@ bool vpServoProjective::planIfNeeded(const JointVector &q)
   for (size_t i = 0; i < m_desired.size() && !changed; ++i) {
     changed = !(m_targets[i].effective == m_plannedFor[i]);
   }
-  // Off the path: the arm should be near the sample before the one the call aims at (following, the feedforward
-  // brought it there and the feedback keeps it within the noise; running law (47), the rehearsal went there). Two
-  // steps away, it does not move as the model predicted: plan again from here, or give the path up for law (47) once
-  // the re-plans are spent. Law (47) that left its rehearsal is not rehearsed again: near a singular configuration
-  // its course depends on the noise, which no rehearsal predicts.
+  // Off the plan. Following a path, the arm should be near the sample before the one the call aims at (the
+  // feedforward brought it there and the feedback keeps it within the noise): two steps away, it does not move as the
+  // model predicted. Running law (47) as rehearsed, its course may differ (near a singular configuration it depends on
+  // the noise) as long as it converges: only a law still far from its rehearsed residual after twice the rehearsed
+  // iterations and 10 more has stalled. Either way: plan again from here (a path: a law that left its rehearsal is
+  // not rehearsed again), or give the path up for law (47) once the re-plans are spent.
   bool replan = false;
+  const std::vector<JointVector> &path = m_planner.getPath();
+  const bool lawPlan = m_planner.getPathKind() == vpProjectivePathPlanner::PATH_LAW;
+  ++m_sincePlan;
   if (changed) {
     m_replans = 0;
     m_lawLeftRehearsal = false;
-  } else if (m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND && m_pathSample > 0 &&
-             m_pathSample < m_planner.getPath().size() &&
-             (q - m_planner.getPath()[m_pathSample - 1]).cwiseAbs().maxCoeff() > 2.0 * m_planner.getMaxJointStep()) {
-    if (m_replans < kMaxReplans) {
+  } else if (m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND && m_replans <= kMaxReplans) {
+    const vpIteration &it = last();
+    const double rms = it.e.size() > 0 ? it.errorNorm / std::sqrt(static_cast<double>(it.e.size())) : 0.0;
+    const bool off =
+        lawPlan ? m_sincePlan > 2 * (path.size() - 1) + 10 && rms > 2.0 * m_planner.getRehearsalResidual() + 2.0
+                : m_pathSample > 0 && m_pathSample < path.size() &&
+                      (q - path[m_pathSample - 1]).cwiseAbs().maxCoeff() > 2.0 * m_planner.getMaxJointStep();
+    if (off && m_replans < kMaxReplans) {
       ++m_replans;
       replan = true;
-      m_lawLeftRehearsal = m_lawLeftRehearsal || m_planner.getPathKind() == vpProjectivePathPlanner::PATH_LAW;
-    } else {
-      m_pathSample = m_planner.getPath().size(); // law (47) from here
+      m_lawLeftRehearsal = m_lawLeftRehearsal || lawPlan;
+    } else if (off) {
+      ++m_replans;                // spent: law (47) from here, no more checks
+      m_pathSample = path.size(); // not following
     }
   }
   if (changed || replan) {
@@ -171,8 +180,11 @@ bool vpServoProjective::planIfNeeded(const JointVector &q)
     m_planner.plan(model, q, points, sStar);
     m_plannedFor = sStar;
     m_pathSample = 1; // sample 0 is q
+    m_sincePlan = 0;
+    m_replanFailed = replan && m_planner.getStatus() != vpProjectivePathPlanner::PLAN_FOUND;
   }
-  return m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND;
+  // A re-plan that finds nothing leaves law (47) running where the first plan had brought the arm.
+  return m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND || m_replanFailed;
 }
 
 void vpServoProjective::setPathPlanning(bool planning)

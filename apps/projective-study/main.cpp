@@ -100,6 +100,7 @@ unsigned int noiseStream(double sigma, unsigned int s)
 int main(int argc, char **argv)
 {
   unsigned int nbTasks = 500, seed = 1, markers = 7;
+  double rehearsal = -1.0;
   double boxDeg = 30.0, sigma = 0.0, checkPlanned = 0.0;
   bool anyBranch = false, robustness = true;
   std::string output = ".", worldName = "puma", rigName = "paper";
@@ -116,6 +117,9 @@ int main(int argc, char **argv)
       .add("--sigma", sigma, "PX", "one noise level only (default: 0.1, 0.5 and 1 px)")
       .flag("--any-branch", anyBranch, true, "targets in any inverse-kinematic branch, not only the start's")
       .flag("--nominal-only", robustness, false, "skip the robustness cases (outliers, occlusion, singular start)")
+      .add("--rehearsal", rehearsal, "N",
+           "planned servo: the law (47) rehearsal's budget in iterations (0: always a path; default: the planner's)",
+           -1.0)
       .add("--check-planned", checkPlanned, "PCT",
            "exit with failure if the planned servo succeeds on less than PCT % of the nominal tasks at a noise level",
            0.0)
@@ -139,6 +143,7 @@ int main(int argc, char **argv)
     world.boxDeg = boxDeg;
     world.tracked.resize(markers);
     world.anyBranch = anyBranch;
+    world.rehearsal = static_cast<int>(rehearsal);
     world.robustness = robustness;
     if (sigma > 0.0) {
       world.sigmas = {sigma};

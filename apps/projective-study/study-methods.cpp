@@ -98,7 +98,8 @@ void runMethods(const World &world, const Task &task, double sigma, const vpProj
         "planned",
         [&](ProjectiveServo &servo) {
           servo.setPlanned(world.rig.getWidth(), world.rig.getHeight(), world.planBorderPx,
-                           vpMath::rad(world.planStepDeg), world.arm.getJointMin(), world.arm.getJointMax());
+                           vpMath::rad(world.planStepDeg), world.arm.getJointMin(), world.arm.getJointMax(),
+                           world.rehearsal);
         },
         [&](const ProjectiveServo &servo, RunResult &r) {
           r.noPlan = servo.getNoPlan();

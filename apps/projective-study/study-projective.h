@@ -94,11 +94,15 @@ public:
   }
 
   //! Turns path planning on (global servoing), inside the joint limits and the image window with \e border px, the
-  //! path sampled every \e step rad at most.
+  //! path sampled every \e step rad at most; \e rehearsal, if not negative, is the planner's law rehearsal budget
+  //! (0: always a path).
   void setPlanned(unsigned int width, unsigned int height, double border, double step, const vpColVector &qmin,
-                  const vpColVector &qmax)
+                  const vpColVector &qmax, int rehearsal = -1)
   {
     m_task.getPathPlanner().setMaxJointStep(step);
+    if (rehearsal >= 0) {
+      m_task.getPathPlanner().setRehearsalBudget(static_cast<unsigned int>(rehearsal));
+    }
     m_task.setJointLimits(qmin, qmax);
     m_task.setImageSize(width, height, border);
     m_task.setPathPlanning(true);

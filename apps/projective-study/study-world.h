@@ -67,6 +67,7 @@ struct World {
   bool anyBranch = false;      // --any-branch: targets need not be in the start's inverse-kinematic branch
   double planBorderPx = 10.0;  // planned servo: the image window's border (setImageSize()), as the main tutorial
   double planStepDeg = 10.0;   // planned servo: the path's largest joint step per sample, as the main tutorial
+  int rehearsal = -1;          // planned servo: the law rehearsal's budget (--rehearsal; -1: the planner's default)
   double wristSingularDeg = 0; // q_4 where the axes of joints 3 and 5 align (set from the DH table)
   double nearSingularDeg = 2.0;
   unsigned int budget = 100;                    // iterations, every method

@@ -421,11 +421,12 @@ public:
     path's step \f$ q_{k+1} - q_k \f$ plus law (47) with the gain setPathFollowingGain() on the error to the model's
     predicted images at sample \f$ k \f$ (getError() then returns that error), saturated as a whole; after the last
     sample law (47) toward \f$ s^* \f$ with the task's gain finishes the motion, so the final accuracy is the law's.
-    While following a path, or running law (47) along its rehearsal, a joint more than two path steps away from the
-    sample it should be at (the arm does not move as the model predicts: a velocity saturation, the joint-limit
-    avoidance, a model error, or law (47) near a singular configuration, whose course depends on the noise) makes
-    the task plan again from where it is, at most twice per target, without rehearsing law (47) again once it left
-    its rehearsal; a third time it gives the path up and runs law (47).
+    While following a path, a joint more than two path steps away from the sample it should be at (the arm does not
+    move as the model predicts: a velocity saturation, the joint-limit avoidance, a model error), or, running law
+    (47) as rehearsed, an RMS error still above twice the rehearsed one plus 2 px after twice the rehearsed
+    iterations plus 10 (near a singular configuration the law's course depends on the noise), makes the task plan
+    again from where it is, at most twice per target, without rehearsing law (47) again once it left its rehearsal;
+    a third time, or when a re-plan finds nothing, it runs law (47) from there.
     When no plan exists the status is SERVO_NO_PLAN and \f$ \dot q = 0 \f$. Planning allocates and takes a few
     milliseconds; following is as cheap as the law.
   */
@@ -540,6 +541,8 @@ private:
   bool m_following;        // the last call followed the path
   unsigned int m_replans;  // plans again from an off-path configuration since the target was set
   bool m_lawLeftRehearsal; // law (47) left its rehearsal since the target was set: plan paths only
+  size_t m_sincePlan;      // calls since the last plan
+  bool m_replanFailed;     // the last plan was a re-plan that found nothing: law (47) runs
   double m_followGain;
 };
 
