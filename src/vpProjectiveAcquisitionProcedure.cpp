@@ -25,6 +25,9 @@
 
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveException.h>
+#include <visp3/robot/vpAfma4.h>
+#include <visp3/robot/vpAfma6.h>
+#include <visp3/robot/vpViper.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -282,7 +285,7 @@ vpProjectiveAcquisitionProcedure::vpProjectiveAcquisitionProcedure(const vpImage
       m_limitMargin(0.0), m_imageMargin(10.0), m_rotationSpeed(0.0), m_translationSpeed(0.0), m_epipolarThreshold(2.0),
       m_control(VELOCITY_CONTROL), m_moveTimeout(0.0), m_tolerance(1e-6), m_coplanarity(2.0), m_detectMounting(true),
       m_os(nullptr), m_callback(), m_motion(), m_reports(), m_mountingReport(), m_residual(0.0), m_parallax(-1.0),
-      m_commandPeriod(0.0), m_wallPeriod(0.0), m_types()
+      m_commandPeriod(0.0), m_wallPeriod(0.0), m_types(), m_lower(), m_upper()
 {
   if (!m_source) {
     throw vpProjectiveException(vpProjectiveException::invalidValueError,
@@ -432,6 +435,11 @@ double vpProjectiveAcquisitionProcedure::amountOf(const vpColVector &v, unsigned
   return v.size() == 0 ? fallback : v[i];
 }
 
+double vpProjectiveAcquisitionProcedure::stepOf(unsigned int i) const
+{
+  return amountOf(m_steps, i, m_types[i] == vpProjectiveJoint::REVOLUTE ? vpMath::rad(2.0) : 0.01);
+}
+
 void vpProjectiveAcquisitionProcedure::progress(const std::string &line) const
 {
   if (m_os) {
@@ -453,7 +461,7 @@ void vpProjectiveAcquisitionProcedure::checkArrival(vpRobot &robot, const vpColV
   robot.getPosition(vpRobot::ARTICULAR_FRAME, reading);
   for (unsigned int k = 0; k < q.size(); ++k) {
     const bool revolute = m_types[k] == vpProjectiveJoint::REVOLUTE;
-    const double allowed = std::max(tolerance, 0.1 * amountOf(m_steps, k, revolute ? vpMath::rad(1.0) : 0.005));
+    const double allowed = std::max(tolerance, 0.1 * stepOf(k));
     if (reading.size() != q.size() || !(std::abs(reading[k] - q[k]) <= allowed)) {
       std::ostringstream os;
       os << at("run") << ": joint " << k << " did not arrive: commanded " << jointValue(q[k], revolute) << ", read "
@@ -674,7 +682,7 @@ void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVect
 {
   const bool revolute = m_types[i] == vpProjectiveJoint::REVOLUTE;
   const double maxAmount = amountOf(m_maxAmounts, i, revolute ? vpMath::rad(30.0) : 0.1);
-  const double step = amountOf(m_steps, i, revolute ? vpMath::rad(1.0) : 0.005);
+  const double step = stepOf(i);
   amount = 0.0;
   reason = AMOUNT_REACHED;
   std::vector<vpImagePoint> l, r, prevL = left, prevR = right;
@@ -682,7 +690,7 @@ void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVect
     const double next = std::min(maxAmount, amount + step);
     vpColVector q = qRef;
     q[i] = qRef[i] + sign * next;
-    if (m_qmin.size() != 0 && (q[i] < m_qmin[i] + m_limitMargin || q[i] > m_qmax[i] - m_limitMargin)) {
+    if (m_lower.size() != 0 && (q[i] < m_lower[i] || q[i] > m_upper[i])) {
       reason = JOINT_LIMIT;
       break;
     }
@@ -845,8 +853,7 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::tellMounting(vpRobot &rob
   }
   double smallestStep = std::numeric_limits<double>::infinity();
   for (unsigned int k = 0; k < n; ++k) {
-    smallestStep = std::min(smallestStep,
-                            amountOf(m_steps, k, m_types[k] == vpProjectiveJoint::REVOLUTE ? vpMath::rad(1.0) : 0.005));
+    smallestStep = std::min(smallestStep, stepOf(k));
   }
   moveTo(robot, qCheck, std::max(m_tolerance, 0.05 * smallestStep));
   vpColVector reading;
@@ -918,6 +925,38 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
                                 at("run") + ": the acquisition has " + std::to_string(acquisition.getNumberOfJoints()) +
                                     " joints, the robot " + std::to_string(n) + ": give the robot's joint types.");
   }
+  // The joint range the trials stay in: the limits given, else those of ViSP's arms that know theirs (Viper650/850,
+  // Afma4/6, real or simulated) less 2 deg or 1 cm, else none.
+  m_lower = vpColVector();
+  m_upper = vpColVector();
+  std::string limitsFrom = "none";
+  if (m_qmin.size() != 0) {
+    m_lower = m_qmin + vpColVector(n, m_limitMargin);
+    m_upper = m_qmax - vpColVector(n, m_limitMargin);
+    limitsFrom = "setJointLimits()";
+  } else {
+    vpColVector qmin, qmax;
+    if (const vpViper *viper = dynamic_cast<const vpViper *>(&robot)) {
+      qmin = viper->getJointMin();
+      qmax = viper->getJointMax();
+    } else if (const vpAfma6 *afma6 = dynamic_cast<const vpAfma6 *>(&robot)) {
+      qmin = afma6->getJointMin();
+      qmax = afma6->getJointMax();
+    } else if (const vpAfma4 *afma4 = dynamic_cast<const vpAfma4 *>(&robot)) {
+      qmin = afma4->getJointMin();
+      qmax = afma4->getJointMax();
+    }
+    if (qmin.size() == n && qmax.size() == n) {
+      m_lower = qmin;
+      m_upper = qmax;
+      for (unsigned int k = 0; k < n; ++k) {
+        const double margin = m_types[k] == vpProjectiveJoint::REVOLUTE ? vpMath::rad(2.0) : 0.01;
+        m_lower[k] += margin;
+        m_upper[k] -= margin;
+      }
+      limitsFrom = "the robot's own, less 2 deg or 1 cm";
+    }
+  }
   std::vector<vpImagePoint> left, right;
   if (!m_source(left, right)) {
     throw vpProjectiveException(vpProjectiveException::notEnoughPointsError,
@@ -926,6 +965,7 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
                                             "moved.");
   }
   checkZeroReference(acquisition, left, right); // before the arm moves
+  progress("joint limits: " + limitsFrom);
   if (!m_motion) {
     robot.setRobotState(m_control == VELOCITY_CONTROL ? vpRobot::STATE_VELOCITY_CONTROL
                                                       : vpRobot::STATE_POSITION_CONTROL);

@@ -15,10 +15,10 @@
   vpProjectiveAcquisitionProcedure on the robots ViSP 3.5 ships: vpSimulatorViper850 (6 revolute joints) and
   vpSimulatorAfma6 (a gantry: 3 prismatic joints, then 3 revolute), in both their modes (real time, and constant
   sampling time: one step per setVelocity()), with its default motion (joint velocities). Each simulator runs its own
-  thread; the runs are kept short (a few seconds each: 4 deg or 1 cm steps). A stereo rig of paper cameras watches
-  markers on the tool (eye-to-hand) or rides on the flange looking at static markers (eye-in-hand, the mounting left
-  at its default EYE_TO_HAND: the procedure must tell it). The model must fit at the noise level, the mounting be
-  found, the robot end at the zero reference.
+  thread; the runs are kept short (a few seconds each: 4 deg or 1 cm steps, 3 times ViSP's default speeds). A stereo rig
+  of paper cameras watches markers on the tool (eye-to-hand) or rides on the flange looking at static markers
+  (eye-in-hand, the mounting left at its default EYE_TO_HAND: the procedure must tell it). The model must fit at the
+  noise level, the mounting be found, the robot end at the zero reference.
 */
 
 #include <gtest/gtest.h>
@@ -170,7 +170,12 @@ template <class Robot, class Kinematics> void acquire(Robot &robot, bool eyeInHa
   procedure.setSteps(steps);
   procedure.setMaxAmounts(amounts);
   procedure.setMinAmounts(minimum);
-  procedure.setJointLimits(robot.getJointMin(), robot.getJointMax(), vpMath::rad(2.0));
+  if (eyeInHand) {
+    procedure.setJointLimits(robot.getJointMin(), robot.getJointMax(), vpMath::rad(2.0));
+  } // else the procedure takes the robot's own (vpViper, vpAfma6 know theirs)
+  procedure.setSpeed(vpMath::rad(120.0), 0.3); // 3 times ViSP's defaults: a short test
+  std::ostringstream log;
+  procedure.setOutput(&log);
   vpProjectiveRobot model(types); // the mounting left at EYE_TO_HAND: eye-in-hand, the procedure must tell it
   model.setStereoRig([&cell]() {
     vpProjectiveStereoRig r;
@@ -179,10 +184,13 @@ template <class Robot, class Kinematics> void acquire(Robot &robot, bool eyeInHa
   }());
   procedure.run(robot, model);
 
-  EXPECT_LT(model.getCalibrationResidual(), 2.0 * cell.sigma) << name;
+  EXPECT_LT(model.getCalibrationResidual(), 2.0 * cell.sigma) << name << "\n" << log.str();
   EXPECT_EQ(model.getRigMounting(), eyeInHand ? vpProjectiveRobot::EYE_IN_HAND : vpProjectiveRobot::EYE_TO_HAND)
       << name;
   EXPECT_TRUE(procedure.getMountingReport().checked) << name;
+  EXPECT_NE(log.str().find(eyeInHand ? "joint limits: setJointLimits()" : "joint limits: the robot's own"),
+            std::string::npos)
+      << log.str();
   EXPECT_LT(procedure.getMountingReport().residual, 3.0 * cell.sigma) << name;
   vpColVector q;
   robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
