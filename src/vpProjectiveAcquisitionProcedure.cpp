@@ -574,14 +574,18 @@ void vpProjectiveAcquisitionProcedure::moveByVelocity(vpRobot &robot, const vpCo
   }
 }
 
-void vpProjectiveAcquisitionProcedure::moveTo(vpRobot &robot, const vpColVector &q, double tolerance)
+void vpProjectiveAcquisitionProcedure::moveTo(vpRobot &robot, const vpColVector &q, double tolerance, bool check)
 {
   if (m_motion) {
     m_motion(robot, q);
-    checkArrival(robot, q, tolerance, "the motion of setMotion()");
+    if (check) {
+      checkArrival(robot, q, tolerance, "the motion of setMotion()");
+    }
   } else if (m_control == POSITION_CONTROL) {
     robot.setPosition(vpRobot::ARTICULAR_FRAME, q);
-    checkArrival(robot, q, tolerance, "setPosition()");
+    if (check) {
+      checkArrival(robot, q, tolerance, "setPosition()");
+    }
   } else {
     moveByVelocity(robot, q, tolerance);
   }
@@ -694,12 +698,18 @@ void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVect
       reason = JOINT_LIMIT;
       break;
     }
-    moveTo(robot, q, std::max(m_tolerance, 0.05 * step));
+    // A position controller may stop short of a step where a marker is lost (a motion tracked frame by frame): the
+    // lost marker stops the joint; a step that is used must have arrived.
+    moveTo(robot, q, std::max(m_tolerance, 0.05 * step), false);
     vpColVector reading;
     robot.getPosition(vpRobot::ARTICULAR_FRAME, reading);
     if (!m_source(l, r)) {
       reason = MARKER_LOST;
       break;
+    }
+    if (m_motion || m_control == POSITION_CONTROL) {
+      checkArrival(robot, q, std::max(m_tolerance, 0.05 * step),
+                   m_motion ? "the motion of setMotion()" : "setPosition()");
     }
     if (m_callback) {
       m_callback(i, q, l, r);
@@ -855,11 +865,15 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::tellMounting(vpRobot &rob
   for (unsigned int k = 0; k < n; ++k) {
     smallestStep = std::min(smallestStep, stepOf(k));
   }
-  moveTo(robot, qCheck, std::max(m_tolerance, 0.05 * smallestStep));
+  moveTo(robot, qCheck, std::max(m_tolerance, 0.05 * smallestStep), false);
   vpColVector reading;
   robot.getPosition(vpRobot::ARTICULAR_FRAME, reading);
   std::vector<vpImagePoint> l, r;
   const bool seen = m_source(l, r) && l.size() == K && r.size() == K;
+  if (seen && (m_motion || m_control == POSITION_CONTROL)) {
+    checkArrival(robot, qCheck, std::max(m_tolerance, 0.05 * smallestStep),
+                 m_motion ? "the motion of setMotion()" : "setPosition()");
+  }
   moveTo(robot, qRef, m_tolerance);
   if (!seen) {
     os << at("run") << ": the image source lost a marker at the mounting's check motion, where both mountings "
@@ -1007,11 +1021,13 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
           trials.push_back(trial); // the encoders' readings, as the model will take them
           ++report.trials;
         }
-        moveTo(robot, qRef, m_tolerance);
+        if (sign > 0) {
+          moveTo(robot, qRef, m_tolerance); // from the negative side, the positive steps pass through it anyway
+        }
         std::ostringstream os;
         os << "joint " << i << (sign < 0 ? " -" : " +") << ": " << jointValue(amount, revolute) << " ("
-           << toString(reason) << "), back at the zero reference; " << std::fixed << std::setprecision(1)
-           << seconds() - tStart << " s";
+           << toString(reason) << ")" << (sign > 0 ? ", back at the zero reference" : "") << "; " << std::fixed
+           << std::setprecision(1) << seconds() - tStart << " s";
         progress(os.str());
       }
       const double minAmount = amountOf(m_minAmounts, i, revolute ? vpMath::rad(5.0) : 0.01);

@@ -85,7 +85,8 @@ BEGIN_VISP_NAMESPACE
   POSITION_CONTROL uses vpRobot::setPosition(ARTICULAR_FRAME, q) instead: a blocking call that ViSP gives no timeout
   (vpSimulatorViper850's takes about 1.7 s per 1-degree step), for robots whose setPosition() is the better
   controller; setMotion() gives a function of the caller's. After either, getPosition() must read the target within
-  a tenth of the step (the same error otherwise).
+  a tenth of the step (the same error otherwise), unless the image source reports a marker lost there (a motion
+  tracked frame by frame may stop short where tracking fails).
 
   <b>The rig's mounting.</b> The trials move one joint each, and one joint's motion looks the same whether the rig is
   on the hand or in the workspace: only the order of the product of exponentials (34) differs, which shows when two
@@ -304,7 +305,7 @@ private:
   bool inside(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right) const;
   double amountOf(const vpColVector &v, unsigned int i, double fallback) const;
   double stepOf(unsigned int i) const;
-  void moveTo(vpRobot &robot, const vpColVector &q, double tolerance);
+  void moveTo(vpRobot &robot, const vpColVector &q, double tolerance, bool check = true);
   void moveByVelocity(vpRobot &robot, const vpColVector &q, double tolerance);
   void checkArrival(vpRobot &robot, const vpColVector &q, double tolerance, const char *how) const;
   void stopRobot(vpRobot &robot) const;
