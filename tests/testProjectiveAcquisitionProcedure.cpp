@@ -660,6 +660,16 @@ TEST(ProjectiveAcquisitionProcedure, ForgottenMountingIsDetected)
     std::vector<vpImagePoint> left, right;
     setup.images(q, left, right, 0.0);
     EXPECT_LT(robot.getPredictionError(q, left, right), sigma) << setup.name;
+
+    // Detection off: the mounting as set, no check motion.
+    const vpProjectiveRobot::vpRigMounting wrong = report.set;
+    procedure.setMountingDetection(false);
+    vpProjectiveRobot asSet(setup.jointTypes());
+    asSet.setStereoRig(setup.rig());
+    asSet.setRigMounting(wrong);
+    procedure.run(arm, asSet);
+    EXPECT_FALSE(procedure.getMountingReport().checked);
+    EXPECT_EQ(asSet.getRigMounting(), wrong);
   }
 }
 } // namespace
