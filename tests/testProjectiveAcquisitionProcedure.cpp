@@ -198,7 +198,7 @@ TEST(ProjectiveAcquisitionProcedure, AcquiredModelPredictsMarkersAtNoiseLevel)
   }
   EXPECT_NE(log.str().find("joint 5"), std::string::npos);
   EXPECT_GT(steps, 12u);
-  EXPECT_LT((s.robot.q - vpColVector(6, 0.0)).frobeniusNorm(), 1e-6); // back at the zero reference
+  EXPECT_LT((s.robot.q - vpColVector(6, 0.0)).frobeniusNorm(), 3e-5); // back at the zero reference (1e-5 per joint)
   EXPECT_LT(predictionRms(s, procedure, model), s.sigma);             // 0.22 px at seed 12
   // Moved by joint velocities only, and the mounting told by a check motion of two joints.
   EXPECT_EQ(s.robot.positionCalls, 0u);
@@ -294,7 +294,7 @@ TEST(ProjectiveAcquisitionProcedure, CalibratesTheFacadeFromAbsoluteReadings)
   EXPECT_EQ(robot.getModelGeneration(), generation);
   EXPECT_EQ((robot.getProjectiveToMetric() - G).frobeniusNorm(), 0.0);
   EXPECT_EQ(robot.getAcquisition().getNumberOfTrials(), 12u);
-  EXPECT_LT((s.robot.q - qRef).frobeniusNorm(), 1e-6); // back at the zero reference
+  EXPECT_LT((s.robot.q - qRef).frobeniusNorm(), 3e-5); // back at the zero reference (1e-5 per joint)
 }
 
 TEST(ProjectiveAcquisitionProcedure, TightImageBoundsAmountsAndReportSaysSo)
@@ -377,7 +377,7 @@ TEST(ProjectiveAcquisitionProcedure, JointThatLosesMarkersThrowsAndChangesNothin
   }
   EXPECT_EQ(acq.getNumberOfTrials(), 0u);
   EXPECT_TRUE(procedure.getReports().empty());
-  EXPECT_LT((s.robot.q - vpColVector(6, 0.0)).frobeniusNorm(), 1e-6);
+  EXPECT_LT((s.robot.q - vpColVector(6, 0.0)).frobeniusNorm(), 3e-5);
 }
 
 TEST(ProjectiveAcquisitionProcedure, BadSettingsThrow)
@@ -649,7 +649,7 @@ TEST(ProjectiveAcquisitionProcedure, ForgottenMountingIsDetected)
     EXPECT_GT(report.otherResidual, 10.0 * report.residual);
     EXPECT_TRUE(contains(log.str(), std::string("the model uses ") + (eyeInHand ? "EYE_IN_HAND" : "EYE_TO_HAND")))
         << log.str();
-    EXPECT_LT((arm.q - setup.qRef).frobeniusNorm(), 1e-6);
+    EXPECT_LT((arm.q - setup.qRef).frobeniusNorm(), 3e-5);
 
     // The kept model predicts a motion of three joints together, within the noise.
     vpColVector q = setup.qRef;

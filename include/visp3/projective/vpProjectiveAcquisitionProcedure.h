@@ -83,10 +83,12 @@ BEGIN_VISP_NAMESPACE
   trial pairs the two. No call blocks without a bound: a move that does not arrive within setMoveTimeout() stops the
   robot and throws vpProjectiveException (robotMotionError) naming the joint, its commanded and its read value.
   POSITION_CONTROL uses vpRobot::setPosition(ARTICULAR_FRAME, q) instead: a blocking call that ViSP gives no timeout
-  (vpSimulatorViper850's takes about 1.7 s per 1-degree step), for robots whose setPosition() is the better
-  controller; setMotion() gives a function of the caller's. After either, getPosition() must read the target within
-  a tenth of the step (the same error otherwise), unless the image source reports a marker lost there (a motion
-  tracked frame by frame may stop short where tracking fails).
+  (in ViSP 3.5, vpSimulatorViper850::setPosition() sets a joint velocity that its own thread overwrites with the
+  last setVelocity() command, and progresses only when it wins that race: 1.7 s per 1-degree step in one
+  measurement, 45 s in another), for robots whose setPosition() is the better controller; setMotion() gives a function
+  of the caller's. After either, getPosition() must read the target within a tenth of the step (the same error
+  otherwise), unless the image source reports a marker lost there (a motion tracked frame by frame may stop short where
+  tracking fails).
 
   <b>The rig's mounting.</b> The trials move one joint each, and one joint's motion looks the same whether the rig is
   on the hand or in the workspace: only the order of the product of exponentials (34) differs, which shows when two
@@ -224,10 +226,11 @@ public:
   */
   void setMoveTimeout(double seconds);
   /*!
-    How close (rad or m, > 0) a velocity move brings the joints back to the zero reference (default 1e-6): the other
+    How close (rad or m, > 0) a velocity move brings the joints back to the zero reference (default 1e-5): the other
     joints stay there while one joint's trials are imaged, and an offset of \e tolerance moves the markers by about
-    \e tolerance times their pixels per joint unit (1e-6 rad: a few thousandths of a pixel). The steps in between
-    only need a reading: they stop within a twentieth of the step.
+    \e tolerance times their pixels per joint unit (1e-5 rad: about a hundredth of a pixel at 1,000 px per radian).
+    It must exceed the encoders' resolution and noise, or the moves time out. The steps in between only need a
+    reading: they stop within a twentieth of the step.
     \exception vpProjectiveException (invalidValueError) if not positive or not finite.
   */
   void setArrivalTolerance(double tolerance);
