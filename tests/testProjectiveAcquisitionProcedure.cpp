@@ -585,6 +585,24 @@ TEST(ProjectiveAcquisitionProcedure, FourOfFiveCoplanarMarkersFailWithTheCause)
   EXPECT_LT(cubeProcedure.getCalibrationResidual(), 2.0 * s.sigma);
 }
 
+//! Trials too small to observe: the calibration's failure comes with what the run saw and the fix.
+TEST(ProjectiveAcquisitionProcedure, TooSmallAMotionIsNamed)
+{
+  AcquisitionSetup s;
+  vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setMaxAmounts(vpColVector(6, vpMath::rad(0.2)));
+  procedure.setSteps(vpColVector(6, vpMath::rad(0.1)));
+  procedure.setMinAmounts(vpColVector(6, 0.0));
+  vpProjectiveArmAcquisition acq = s.acquisition();
+  int code = 0;
+  const std::string message = messageOf([&]() { procedure.run(s.robot, acq); }, code);
+  EXPECT_NE(code, -1);
+  EXPECT_TRUE(contains(message, "What the procedure saw")) << message;
+  EXPECT_TRUE(contains(message, "too small a motion")) << message;
+  EXPECT_TRUE(contains(message, "setMaxAmounts()")) << message;
+  EXPECT_EQ(acq.getNumberOfTrials(), 0u);
+}
+
 //! A tracker that swaps two markers during a trial: the run stops at that step and says so.
 TEST(ProjectiveAcquisitionProcedure, MarkerOrderChangeIsNamed)
 {
