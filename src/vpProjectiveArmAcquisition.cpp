@@ -118,7 +118,9 @@ void vpProjectiveArmAcquisition::setZeroReference(const vpColVector &qRef, const
   std::vector<Eigen::Vector4d> s = stackStereoImages(left0, right0, where);
   if (s.size() < 5) {
     std::ostringstream os;
-    os << "needs the images of at least 5 markers (no 4 coplanar) on the last link, got " << s.size();
+    os << "needs the images of at least 5 markers, 5 of them with no 4 coplanar (on the tool eye-to-hand, static "
+          "in the scene eye-in-hand), got "
+       << s.size() << "; add markers off the plane of the others";
     fail(vpProjectiveException::notEnoughPointsError, where, os.str());
   }
   m_zeroImages = s;

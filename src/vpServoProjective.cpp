@@ -105,7 +105,8 @@ const char *statusName(vpServoProjective::vpServoStatus status)
   case vpServoProjective::SERVO_NO_PLAN:
     return "SERVO_NO_PLAN (path planning found no plan for the target: qdot = 0)";
   case vpServoProjective::SERVO_MODEL_MISMATCH:
-    return "SERVO_MODEL_MISMATCH (every feature disagrees with the model: re-register the rig; qdot = 0)";
+    return "SERVO_MODEL_MISMATCH (every feature disagrees with the model: re-register a moved rig, or check the rig "
+           "mounting; qdot = 0)";
   }
   return "?";
 }
@@ -574,6 +575,13 @@ void vpServoProjective::print(std::ostream &os) const
     printVector(os, last().e);
     os << ", |e| = " << last().errorNorm << "\n";
     os << "  Status: " << statusName(last().status) << "\n";
+    if (last().status == SERVO_MODEL_MISMATCH && m_robot != nullptr && m_robot->getRigGeneration() == 0) {
+      // No re-registration since the acquisition: the model may never have fit, whatever moved.
+      os << "  Model never re-registered since its acquisition: if it never fit, check the rig mounting ("
+         << (m_robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "EYE_IN_HAND" : "EYE_TO_HAND")
+         << " now; EYE_IN_HAND when the cameras ride on the arm, vpProjectiveAcquisitionProcedure tells it) and the "
+            "markers' order; if the rig moved, re-register it\n";
+    }
     os << "  Last step: gain " << last().lambda << ", damping " << last().damping << ", "
        << (last().saturated ? "saturated" : "not saturated") << "\n";
   } else {

@@ -165,6 +165,8 @@ inline vpProjectiveRobot acquireByProcedure(Session &session, TrackingAccuracy &
   procedure.setMaxAmounts(vpColVector(n, vpMath::rad(45.0)));
   procedure.setSteps(vpColVector(n, vpMath::rad(2.0)));
   procedure.setEpipolarThreshold(1.0);
+  // The session's arm moves by setPosition() (frame by frame, tracked), not by joint velocities.
+  procedure.setMotionControl(vpProjectiveAcquisitionProcedure::POSITION_CONTROL);
   procedure.setOutput(verbose ? &std::cout : nullptr);
   session.accuracy = &accuracy;
   session.caption = "acquisition";

@@ -40,18 +40,69 @@ BEGIN_VISP_NAMESPACE
 /*!
   \class vpProjectiveAcquisitionProcedure
   \ingroup group_projective
-  \brief Drives a vpRobot through the acquisition of Ruf & Horaud (section 6) and calibrates the model.
+  \brief Drives a vpRobot through the acquisition of Ruf & Horaud (section 6), calibrates the model and tells the
+  rig's mounting.
 
-  run() reads the joints \f$ q_{ref} \f$ (ARTICULAR_FRAME, rad or m) and the marker images there (the zero
-  reference, recorded with \f$ q_{ref} \f$, so that the model takes absolute encoder readings). Then, for each joint
-  \f$ i \f$ and each sign \f$ s = \pm 1 \f$, it moves joint \f$ i \f$ alone (setPosition() in ARTICULAR_FRAME) to
-  \f$ q_{ref,i} + s\,k\,\delta_i \f$, \f$ k = 1, 2, \ldots \f$ (step \f$ \delta_i \f$, setSteps()), and stops at the
+  <b>Checks at the zero reference, before the arm moves.</b> run() reads the joints \f$ q_{ref} \f$
+  (ARTICULAR_FRAME, rad or m) and the marker images there (the zero reference, recorded with \f$ q_{ref} \f$, so that
+  the model takes absolute encoder readings), then checks, and throws before any motion, that
+  - there are at least 5 markers (markers: the points the rig tracks, on the tool eye-to-hand, static in the scene
+    eye-in-hand), every one tracked and inside the image margin in both images (the message names the marker);
+  - 5 of them have no 4 coplanar. That is what the mathematics needs, and no more: a projective displacement of
+    \f$ P^3 \f$ (15 degrees of freedom, 3 equations per point) is unique exactly when the points contain a projective
+    basis, 5 points of which no 4 are coplanar; points on a plane and one more, or on two lines, are left fixed by a
+    whole family of displacements. More markers may have 4 coplanar (the corners of a cube are fine). Numerically,
+    4 markers count as coplanar when the plane that fits their triangulated points best leaves them within
+    setCoplanarityThreshold() pixels RMS of plane parallax (a marker's plane parallax: the distance, in one image,
+    between its image and that of the point where the other camera's line of sight through it meets the plane): a
+    threshold on what the images show, above their noise, not on a metric size the rig does not know. With a known rig
+  the check uses the triangulated markers; without one, the zero reference's single image pair cannot give the epipolar
+  geometry, so run() then checks that the markers are not all on one plane (a homography maps the left images to the
+  right ones within the threshold, RMS), and checks the rest with the rig it estimates, before the calibration.
+
+  <b>Trial motions.</b> Then, for each joint \f$ i \f$ and each sign \f$ s = \pm 1 \f$, it moves joint \f$ i \f$ alone
+  to \f$ q_{ref,i} + s\,k\,\delta_i \f$, \f$ k = 1, 2, \ldots \f$ (step \f$ \delta_i \f$, setSteps()), and stops at the
   first of: the amount \f$ a_i \f$ reached (setMaxAmounts()); a marker closer than the margin to the image border
   (setImageMargin(), setImageSize()) or lost; the next step beyond the joint limits minus a margin
   (setJointLimits()). The encoder readings (getPosition()) at the last position with all markers inside is a trial
   motion (addTrialMotion()). The robot goes back to \f$ q_{ref} \f$ after each joint. A joint whose larger amount is
-  below its minimum (setMinAmounts()) makes run() throw. The model is then calibrated
-  (vpProjectiveArmAcquisition::calibrate()).
+  below its minimum (setMinAmounts()) makes run() throw. A marker that jumps between two steps to where another
+  marker was makes run() throw too: the image source changed the markers' order. The model is then calibrated
+  (vpProjectiveArmAcquisition::calibrate()); if that fails, the message lists the causes the run saw (small image
+  motions, nearly coplanar markers).
+
+  <b>Moving the robot.</b> By default (VELOCITY_CONTROL, setMotionControl()) every move is driven by joint velocities,
+  the way ViSP's servo examples drive vpSimulatorViper850, vpSimulatorAfma6 and the real arms:
+  vpRobot::setRobotState(STATE_VELOCITY_CONTROL), then vpRobot::setVelocity(ARTICULAR_FRAME, qdot) on the joints
+  that must move, at most vpRobot::getMaxRotationVelocity() (revolute) or getMaxTranslationVelocity() (prismatic;
+  see setSpeed()), \f$ \dot q = (q^* - q) / \Delta t \f$ near the target with \f$ \Delta t \f$ the time one command
+  was seen to last (one step of a simulator in its constant sampling time mode: it lands on the target), until
+  getPosition() reads the target within the tolerance, then a zero velocity and a reading that no longer changes.
+  The arm stops at each step before the images are taken: images and encoder readings of a moving arm are not taken
+  at the same instant (a camera's exposure and latency are tens of milliseconds, a degree at the speeds used), and a
+  trial pairs the two. No call blocks without a bound: a move that does not arrive within setMoveTimeout() stops the
+  robot and throws vpProjectiveException (robotMotionError) naming the joint, its commanded and its read value.
+  POSITION_CONTROL uses vpRobot::setPosition(ARTICULAR_FRAME, q) instead: a blocking call that ViSP gives no timeout
+  (in ViSP 3.5, vpSimulatorViper850::setPosition() sets a joint velocity that its own thread overwrites with the
+  last setVelocity() command, and progresses only when it wins that race: 1.7 s per 1-degree step in one
+  measurement, 45 s in another), for robots whose setPosition() is the better controller; setMotion() gives a function
+  of the caller's. After either, getPosition() must read the target within a tenth of the step (the same error
+  otherwise), unless the image source reports a marker lost there (a motion tracked frame by frame may stop short where
+  tracking fails).
+
+  <b>The rig's mounting.</b> The trials move one joint each, and one joint's motion looks the same whether the rig is
+  on the hand or in the workspace: only the order of the product of exponentials (34) differs, which shows when two
+  joints move together. After the calibration run() therefore builds the model for both mountings (the same
+  generators, the two orders), picks the configuration within the explored joint ranges where their predicted
+  images differ most with every marker inside the images, moves two joints there together, and keeps the mounting
+  whose prediction matches the images (getMountingReport(): the residuals of both). The acquisition's mounting
+  (vpProjectiveArmAcquisition::setRigMounting(), vpProjectiveRobot::setRigMounting()) is replaced by the one found,
+  and the output says so. When the two orders predict the same images everywhere in the explored ranges
+  (commuting joints, one joint) the mounting does not matter and is kept; when they differ but no check motion
+  keeps the markers in view, run() throws: set the mounting and call setMountingDetection(false).
+
+  <b>Progress.</b> With setOutput(), one line per step of the procedure (the zero reference's checks, each joint
+  and direction, the rig, the calibration, the mounting), each flushed as it is written.
 
   Given an acquisition without a stereo rig, run() weakly calibrates the rig itself: the fundamental matrix from
   every stereo pair it saw with all markers inside the margins (the zero reference and every step: 7 markers and 100
@@ -72,10 +123,16 @@ public:
                              const std::vector<vpImagePoint> &right)>
       vpStepCallback;
   /*!
-    Moves \e robot to the joints \e q (ARTICULAR_FRAME, rad or m) and returns once it is there; for a robot whose
-    setPosition() cannot be used (ViSP 3.5's vpSimulatorViper850 does not finish its moves: drive it by velocity).
+    Moves \e robot to the joints \e q (ARTICULAR_FRAME, rad or m) and returns once it is there (setMotion(): a
+    motion of the caller's in place of setMotionControl()'s).
   */
   typedef std::function<void(vpRobot &robot, const vpColVector &q)> vpMotion;
+
+  //! How run() moves the robot (see the class documentation).
+  enum vpMotionControl {
+    VELOCITY_CONTROL, //!< Joint velocities until getPosition() reads the target (default; bounded by a timeout).
+    POSITION_CONTROL  //!< vpRobot::setPosition(ARTICULAR_FRAME, q): blocking, without a timeout.
+  };
 
   //! Why the motion of a joint in one direction stopped.
   enum vpStopReason {
@@ -94,6 +151,17 @@ public:
     unsigned int trials;       //!< Trial motions recorded for this joint.
   };
 
+  //! What run() found about the rig's mounting.
+  struct vpMountingReport {
+    bool checked;                             //!< True if a check motion told the mounting.
+    vpProjectiveArmModel::vpRigMounting set;  //!< The mounting the acquisition had when run() started.
+    vpProjectiveArmModel::vpRigMounting kept; //!< The mounting of the model run() returned.
+    double residual;                          //!< RMS (px) of the kept model's prediction of the check images.
+    double otherResidual;                     //!< RMS (px) of the other mounting's prediction of them.
+    double separation;                        //!< RMS (px) between the two models' predictions there.
+    vpColVector q;                            //!< Joint readings of the check motion (empty if none).
+  };
+
   /*!
     A procedure reading the marker images from \e source, in images of \e width x \e height pixels.
     \exception vpProjectiveException (invalidValueError) if \e source is empty or a size is 0.
@@ -101,24 +169,28 @@ public:
   vpProjectiveAcquisitionProcedure(const vpImageSource &source, unsigned int width, unsigned int height);
 
   /*!
-    Largest amount per joint and direction (n x 1, rad or m, > 0). Default: 30 deg for every joint.
+    Largest amount per joint and direction (n x 1, rad or m, > 0). Default: 30 deg for a revolute joint, 10 cm
+    for a prismatic one.
     \exception vpProjectiveException (invalidValueError, nonFiniteValueError) on a value <= 0 or not finite.
   */
   void setMaxAmounts(const vpColVector &amounts);
   /*!
-    Step per joint (n x 1, rad or m, > 0). Default: 1 deg for every joint.
+    Step per joint (n x 1, rad or m, > 0): the arm stops and the markers are imaged every step. Default: 2 deg for a
+    revolute joint, 1 cm for a prismatic one (a run of ViSP's vpSimulatorViper850 at its default speed: about 20 s;
+    1 deg: about 30 s).
     \exception vpProjectiveException (invalidValueError, nonFiniteValueError) on a value <= 0 or not finite.
   */
   void setSteps(const vpColVector &steps);
   /*!
     Smallest acceptable amount per joint (n x 1, rad or m, >= 0): run() throws if a joint moves less, both ways.
-    Default: 5 deg for every joint.
+    Default: 5 deg for a revolute joint, 1 cm for a prismatic one.
     \exception vpProjectiveException (invalidValueError, nonFiniteValueError) on a negative or non-finite value.
   */
   void setMinAmounts(const vpColVector &amounts);
   /*!
     Joint limits (n x 1 each, rad or m, \e qmin < \e qmax) and the margin kept from them (>= 0, rad or m). Default:
-    no limits.
+    the robot's own limits less 2 deg (revolute) or 1 cm (prismatic) when it knows them (vpViper: vpRobotViper650,
+    vpRobotViper850, vpSimulatorViper850; vpAfma6: vpRobotAfma6, vpSimulatorAfma6; vpAfma4), otherwise none.
     \exception vpProjectiveException (dimensionError, invalidValueError, nonFiniteValueError) on mismatched sizes,
     qmin >= qmax, a negative margin or non-finite values.
   */
@@ -135,15 +207,52 @@ public:
   void setImageSize(unsigned int width, unsigned int height);
   /*!
     Speed given to the robot before the motions: vpRobot::setMaxRotationVelocity() (rad/s) and
-    vpRobot::setMaxTranslationVelocity() (m/s); 0 keeps the robot's. Default 0.
+    vpRobot::setMaxTranslationVelocity() (m/s); 0 keeps the robot's (ViSP's default: 0.7 rad/s, 0.2 m/s). The
+    velocity moves never command more than these.
     \exception vpProjectiveException (invalidValueError) if negative or not finite.
   */
   void setSpeed(double rotation, double translation);
   /*!
-    How to move the robot; empty (default): vpRobot::setRobotState(STATE_POSITION_CONTROL) at the start of run(),
-    then vpRobot::setPosition(ARTICULAR_FRAME, q). With a motion, run() leaves the robot's state to it.
+    How run() moves the robot (default VELOCITY_CONTROL; see the class documentation). setMotion() overrides both.
+    \exception vpProjectiveException (invalidValueError) on another value.
+  */
+  void setMotionControl(vpMotionControl control);
+  //! The motion control of setMotionControl().
+  vpMotionControl getMotionControl() const { return m_control; }
+  /*!
+    Longest time (seconds, >= 0) a velocity move may take before run() stops the robot and throws; 0 (default): 2 s
+    plus 4 times the move's duration at the speed (setSpeed()).
+    \exception vpProjectiveException (invalidValueError) if negative or not finite.
+  */
+  void setMoveTimeout(double seconds);
+  /*!
+    How close (rad or m, > 0) a velocity move brings the joints back to the zero reference (default 1e-5): the other
+    joints stay there while one joint's trials are imaged, and an offset of \e tolerance moves the markers by about
+    \e tolerance times their pixels per joint unit (1e-5 rad: about a hundredth of a pixel at 1,000 px per radian).
+    It must exceed the encoders' resolution and noise, or the moves time out. The steps in between only need a
+    reading: they stop within a twentieth of the step.
+    \exception vpProjectiveException (invalidValueError) if not positive or not finite.
+  */
+  void setArrivalTolerance(double tolerance);
+  /*!
+    A motion of the caller's: empty (default) for setMotionControl()'s; otherwise \e motion moves the robot (and
+    run() leaves the robot's state to it). getPosition() must then read the target within a tenth of the step.
   */
   void setMotion(const vpMotion &motion) { m_motion = motion; }
+  /*!
+    RMS plane parallax (pixels, > 0) below which 4 markers count as coplanar in the checks of the zero reference
+    (see the class documentation), and RMS homography transfer error below which all of them do. Default 2 px:
+    several times a tracker's noise (4 coplanar markers and 1 px of noise give about 1 px), below what markers that
+    span a few centimetres in depth give (the paper's 7 gripper markers, 10 cm across at 1 m: 6.6 px; the corners
+    of a 6 cm cube: 9 px).
+    \exception vpProjectiveException (invalidValueError) if not positive or not finite.
+  */
+  void setCoplanarityThreshold(double pixels);
+  /*!
+    Whether run() tells the rig's mounting by a check motion of two joints together (default true; see the class
+    documentation). With false the acquisition's mounting is used as set.
+  */
+  void setMountingDetection(bool detect) { m_detectMounting = detect; }
   /*!
     Epipolar inlier threshold (pixels, > 0) of the rig's estimation when the acquisition given to run() has no rig
     (vpProjectiveStereoRig::estimate()). Default 2 px, for noise up to about 0.5 px per coordinate: raise it in
@@ -151,56 +260,88 @@ public:
     \exception vpProjectiveException (invalidValueError) if not positive or not finite.
   */
   void setEpipolarThreshold(double pixels);
-  //! Where to write a line per joint (null: nothing). Default null.
+  //! Where to write the progress, a line per step of the procedure, flushed (null: nothing). Default null.
   void setOutput(std::ostream *os) { m_os = os; }
   //! Called after each step with the new images (live display); empty: nothing.
   void setStepCallback(const vpStepCallback &callback) { m_callback = callback; }
 
   /*!
-    Runs the acquisition on \e robot (put in POSITION_CONTROL, left at the zero reference) and calibrates
-    \e acquisition (joint types set by the caller, and its stereo rig if the rig is known; without one, the rig is
-    estimated from the images of the run; its zero reference and trials are replaced). Returns the model.
+    Runs the acquisition on \e robot (left at the zero reference: in velocity control at zero velocity by default)
+    and calibrates \e acquisition (joint types set by the caller, and its stereo rig if the rig is known; without
+    one, the rig is estimated from the images of the run; its zero reference and trials are replaced, its mounting
+    set to the one found). Returns the model.
     \exception vpProjectiveException (dimensionError) if a per-joint setting or the acquisition does not have the
-    robot's number of joints; (notEnoughPointsError) if the image source fails at the zero reference;
-    (degenerateConfigurationError) if a joint cannot move its minimum amount without a marker leaving the images
-    or reaching a limit: the message says which and what to change. On any error \e acquisition is unchanged and the
-    robot is sent back to the zero reference. Without a rig: (estimationFailedError) if the images of the run do not
-    determine one (see vpProjectiveStereoRig::estimate()).
+    robot's number of joints; (notEnoughPointsError) if there are fewer than 5 markers or the image source fails at
+    the zero reference; (degenerateConfigurationError) if a marker is outside the margins at the zero reference, no 5
+    markers have 4 non-coplanar ones, the markers change order, a joint cannot move its minimum amount without a
+    marker leaving the images or reaching a limit, or the mounting cannot be told; (robotMotionError) if a move does
+    not arrive: the message says which and what to change. Without a rig: (estimationFailedError) if the images of
+    the run do not determine one (see vpProjectiveStereoRig::estimate()). On any error \e acquisition is unchanged
+    and the robot is sent back to the zero reference (unless a move failed).
   */
   vpProjectiveArmModel run(vpRobot &robot, vpProjectiveArmAcquisition &acquisition);
   /*!
     The same for the facade: runs the acquisition on \e robot with the joint types, the rig mounting, the outlier
     threshold and, if it has one, the stereo rig of \e projectiveRobot, which is calibrated on success (as after
-    vpProjectiveRobot::calibrate(); its model takes absolute encoder readings) and unchanged on failure.
+    vpProjectiveRobot::calibrate(); its model takes absolute encoder readings; its mounting is the one found) and
+    unchanged on failure.
     \exception vpProjectiveException as run(vpRobot &, vpProjectiveArmAcquisition &).
   */
   void run(vpRobot &robot, vpProjectiveRobot &projectiveRobot);
 
   //! What the last run() did with each joint.
   const std::vector<vpJointReport> &getReports() const { return m_reports; }
+  //! What the last run() found about the mounting.
+  const vpMountingReport &getMountingReport() const { return m_mountingReport; }
   //! The model residual (RMS pixels) of the last run().
   double getCalibrationResidual() const { return m_residual; }
+  /*!
+    The general-position margin of the last run()'s markers (pixels): over the sets of 5 markers, the largest of the
+    smallest RMS plane parallax of 4 of them to the plane that fits them best (see setCoplanarityThreshold()); -1 if
+    not measured.
+  */
+  double getGeneralPositionParallax() const { return m_parallax; }
   //! A word for a stop reason ("amount", "image border", "marker lost", "joint limit").
   static std::string toString(vpStopReason reason);
 
 private:
   bool inside(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right) const;
   double amountOf(const vpColVector &v, unsigned int i, double fallback) const;
-  void moveTo(vpRobot &robot, const vpColVector &q) const;
+  double stepOf(unsigned int i) const;
+  void moveTo(vpRobot &robot, const vpColVector &q, double tolerance, bool check = true);
+  void moveByVelocity(vpRobot &robot, const vpColVector &q, double tolerance);
+  void checkArrival(vpRobot &robot, const vpColVector &q, double tolerance, const char *how) const;
+  void stopRobot(vpRobot &robot) const;
+  void checkZeroReference(const vpProjectiveArmAcquisition &acquisition, const std::vector<vpImagePoint> &left,
+                          const std::vector<vpImagePoint> &right);
+  void checkGeneralPosition(const vpProjectiveStereoRig &rig, const std::vector<vpImagePoint> &left,
+                            const std::vector<vpImagePoint> &right, const char *when);
   void moveJoint(vpRobot &robot, const vpColVector &qRef, unsigned int i, int sign, double &amount,
                  vpStopReason &reason, vpColVector &qReached, std::vector<vpImagePoint> &left,
                  std::vector<vpImagePoint> &right, std::vector<vpImagePoint> &allLeft,
                  std::vector<vpImagePoint> &allRight);
+  vpProjectiveArmModel tellMounting(vpRobot &robot, const vpColVector &qRef, const vpProjectiveArmModel &model,
+                                    const std::vector<vpJointReport> &reports);
+  void progress(const std::string &line) const;
 
   vpImageSource m_source;
   unsigned int m_width, m_height;
   vpColVector m_maxAmounts, m_steps, m_minAmounts, m_qmin, m_qmax;
   double m_limitMargin, m_imageMargin, m_rotationSpeed, m_translationSpeed, m_epipolarThreshold;
+  vpMotionControl m_control;
+  double m_moveTimeout, m_tolerance, m_coplanarity;
+  bool m_detectMounting;
   std::ostream *m_os;
   vpStepCallback m_callback;
   vpMotion m_motion;
   std::vector<vpJointReport> m_reports;
+  vpMountingReport m_mountingReport;
   double m_residual;
+  double m_parallax;
+  double m_commandPeriod; // seconds of motion one velocity command was seen to make (0: not yet measured)
+  double m_wallPeriod;    // wall-clock seconds from a velocity command to a new reading
+  std::vector<vpProjectiveJoint::vpJointType> m_types; // of the acquisition being run
+  vpColVector m_lower, m_upper;                        // the joint range of the run (empty: no limits)
 };
 
 END_VISP_NAMESPACE

@@ -76,7 +76,10 @@ public:
   unsigned int getNumberOfJoints() const { return static_cast<unsigned int>(m_types.size()); }
   //! The kinds of the joints, base to tip.
   const std::vector<vpJointType> &getJointTypes() const { return m_types; }
-  //! Sets where the rig is mounted (default EYE_TO_HAND); the acquisition is the same in both cases.
+  /*!
+    Sets where the rig is mounted (default EYE_TO_HAND). The trials are the same in both cases (one joint each):
+    only motions of several joints tell the mountings apart, which vpProjectiveAcquisitionProcedure makes.
+  */
   void setRigMounting(vpProjectiveArmModel::vpRigMounting mounting) { m_mounting = mounting; }
   //! Where the rig is mounted.
   vpProjectiveArmModel::vpRigMounting getRigMounting() const { return m_mounting; }
@@ -90,8 +93,9 @@ public:
   const vpProjectiveStereoRig &getStereoRig() const { return m_rig; }
 
   /*!
-    Images of the \f$ K \ge 5 \f$ markers (no 4 coplanar) at the zero reference, in a fixed order: pixels, left[j] and
-    right[j] of marker j. Clears the trials.
+    Images of the \f$ K \ge 5 \f$ markers at the zero reference (5 of them with no 4 coplanar: a projective basis;
+    on the tool eye-to-hand, static in the scene eye-in-hand), in a fixed order: pixels, left[j] and right[j] of
+    marker j. Clears the trials.
     \exception vpProjectiveException (notEnoughPointsError, dimensionError, nonFiniteValueError, notInitializedError)
     on fewer than 5 markers, a size mismatch, a non-finite coordinate, no rig.
   */

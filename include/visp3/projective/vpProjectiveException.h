@@ -48,7 +48,8 @@ public:
     invalidValueError,            //!< A value is out of its domain (zero trial motion, negative gain, ...).
     pointAtInfinityError,         //!< A point cannot be projected: it lies on a camera's focal plane or behind it.
     fileError,                    //!< A model file is missing, truncated, corrupted or of another version.
-    estimationFailedError         //!< An estimator did not converge to a usable result.
+    estimationFailedError,        //!< An estimator did not converge to a usable result.
+    robotMotionError              //!< A robot did not reach a commanded position within its timeout.
   };
 
   //! An error of kind \e code (errorProjectiveCodeEnum) with a message saying what was wrong and what to do.

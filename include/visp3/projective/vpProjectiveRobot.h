@@ -101,7 +101,10 @@ public:
   unsigned int getNumberOfJoints() const { return m_acquisition.getNumberOfJoints(); }
   //! Type of joint \e i. \exception vpProjectiveException (dimensionError) on a bad index.
   vpJointType getJointType(unsigned int i) const;
-  //! Sets where the rig is mounted (default EYE_TO_HAND); the acquisition is the same in both cases.
+  /*!
+    Sets where the rig is mounted (default EYE_TO_HAND). The trial motions look the same in both cases (one joint
+    each); vpProjectiveAcquisitionProcedure tells the mounting by a motion of two joints and sets the one it finds.
+  */
   void setRigMounting(vpRigMounting mounting);
   //! Where the rig is mounted.
   vpRigMounting getRigMounting() const { return m_acquisition.getRigMounting(); }
@@ -113,8 +116,8 @@ public:
   //! The rig of the model (or, before calibrate(), the one set by setStereoRig()).
   const vpProjectiveStereoRig &getStereoRig() const;
   /*!
-    Images of the \f$ K \ge 5 \f$ markers of the last link at the zero reference (pixels), in a fixed order (no 4
-    coplanar); the zero reference's joint values are then 0.
+    Images of the \f$ K \ge 5 \f$ markers at the zero reference (pixels; on the last link eye-to-hand, static in the
+    scene eye-in-hand), in a fixed order, 5 of them with no 4 coplanar; the zero reference's joint values are then 0.
     \exception vpProjectiveException on fewer than 5 markers, a size mismatch, a non-finite coordinate, a missing rig.
   */
   void setZeroReference(const std::vector<vpImagePoint> &left0, const std::vector<vpImagePoint> &right0);

@@ -133,7 +133,8 @@ public:
                          //!< \f$ \dot q = 0 \f$.
     SERVO_MODEL_MISMATCH //!< Every usable feature disagrees with the model's prediction, over consecutive
                          //!< iterations (a moved camera, slipped markers; see setModelMismatchThreshold()):
-                         //!< \f$ \dot q = 0 \f$. Re-register the rig (vpProjectiveRobot::updateRig()).
+                         //!< \f$ \dot q = 0 \f$. Re-register the rig (vpProjectiveRobot::updateRig()); a model
+                         //!< that never fit since its acquisition may have the wrong rig mounting (print() says so).
   };
 
   //! A task without robot or feature: gain 0.5, damping (1, 10), no saturation, no check, no joint limit.
