@@ -568,89 +568,100 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
     m_branches.clear();
     m_residuals.clear();
   }
-  // 2. Law (47) alone, if its rehearsal on the model solves the task: never worse than the law (which may get there
-  // where the inverse kinematics of a model that is off by a few pixels does not).
+  // 2. Law (47) alone, rehearsed on the model: never worse than the law (which may get there where the inverse
+  // kinematics of a model that is off by a few pixels does not).
   os << (explained ? "" : "; ") << matched << " of " << X.size() << " points are acquired markers; "
      << m_branches.size() << " inverse-kinematic branch" << (m_branches.size() > 1 ? "es" : "") << " found";
-  m_rehearsalOk = false;
+  std::vector<JointVector> lawPath;
+  std::vector<std::vector<Eigen::Vector4d>> lawFeatures;
+  m_rehearsalOk = m_hasLaw && m_rehearsalBudget > 0 && rehearseLaw(model, q, X, sStar, lawPath, lawFeatures);
   if (m_hasLaw && m_rehearsalBudget > 0) {
-    std::vector<JointVector> path;
-    std::vector<std::vector<Eigen::Vector4d>> features;
-    m_rehearsalOk = rehearseLaw(model, q, X, sStar, path, features);
-    if (m_rehearsalOk) {
-      m_target = path.back();
-      m_branch = 0;
-      double nearest = std::numeric_limits<double>::infinity();
-      for (size_t b = 0; b < m_branches.size(); ++b) {
-        double d = 0.0;
-        for (Eigen::Index i = 0; i < n; ++i) {
-          const double delta = m_branches[b](i) - m_target(i);
-          d = std::max(d, std::abs(model.jointType(static_cast<unsigned int>(i)) == vpProjectiveJoint::REVOLUTE
-                                       ? std::remainder(delta, 2.0 * M_PI)
-                                       : delta));
-        }
-        if (d < nearest) {
-          nearest = d;
-          m_branch = static_cast<unsigned int>(b);
-        }
-      }
-      // The law ends in the branch whose basin it reached: the target is that branch's representative there.
-      for (Eigen::Index i = 0; !m_branches.empty() && i < n; ++i) {
-        const double delta = m_branches[m_branch](i) - m_target(i);
-        m_target(i) += model.jointType(static_cast<unsigned int>(i)) == vpProjectiveJoint::REVOLUTE
-                           ? std::remainder(delta, 2.0 * M_PI)
-                           : delta;
-      }
-      m_kind = PATH_LAW;
-      m_path = path;
-      m_features = features;
-      m_status = PLAN_FOUND;
-      os << "; path: law (47) alone, its rehearsal on the model reaches branch " << m_branch << " in "
-         << m_rehearsalIterations << " iterations (" << m_rehearsalResidual << " px RMS)";
-      m_description = os.str();
-      return m_status;
-    }
-    os << "; law (47) alone fails in its rehearsal (" << m_rehearsalIterations << " iterations, " << m_rehearsalResidual
-       << " px RMS)";
-  }
-  if (!explained) {
-    m_status = PLAN_NO_INVERSE_KINEMATICS;
-    m_description = os.str();
-    return m_status;
+    os << "; law (47) alone " << (m_rehearsalOk ? "solves the task" : "fails") << " in its rehearsal ("
+       << m_rehearsalIterations << " iterations, " << m_rehearsalResidual << " px RMS)";
   }
   // 3. The target, and 4. a path keeping the features in view and the joints within their limits: the preferred
-  // target first, the nearest if no path leads to the preferred one.
+  // target first, the nearest if no path leads to the preferred one. 5. Of the law and the path, both predicted to
+  // solve the task, the faster: the path's samples and 3 iterations of the law after them, against the law's
+  // rehearsed iterations.
+  if (!explained) {
+    return m_rehearsalOk ? adoptLaw(model, lawPath, lawFeatures, os) : failWith(PLAN_NO_INVERSE_KINEMATICS, os);
+  }
   bool anyInside = false;
   const std::vector<std::pair<JointVector, unsigned int>> candidates = targetCandidates(model, q, X, anyInside);
   if (candidates.empty()) {
-    m_status = anyInside ? PLAN_NO_VISIBLE_PATH : PLAN_OUTSIDE_JOINT_LIMITS;
     os << (anyInside ? "; at every one inside the joint limits a feature is out of the image window or behind a camera"
                      : ", none inside the joint limits");
-    m_description = os.str();
-    return m_status;
+    return m_rehearsalOk ? adoptLaw(model, lawPath, lawFeatures, os)
+                         : failWith(anyInside ? PLAN_NO_VISIBLE_PATH : PLAN_OUTSIDE_JOINT_LIMITS, os);
   }
   std::vector<JointVector> path;
   std::vector<std::vector<Eigen::Vector4d>> features;
+  vpPathKind kind = PATH_JOINT_LINE;
   size_t c = 0;
-  while (c < candidates.size() && !planPath(model, q, candidates[c].first, X, qmin, qmax, path, features, m_kind)) {
+  while (c < candidates.size() && !planPath(model, q, candidates[c].first, X, qmin, qmax, path, features, kind)) {
     ++c;
   }
   if (c == candidates.size()) {
-    m_status = PLAN_NO_VISIBLE_PATH;
     os << "; no path keeps the features in view within the joint limits";
-    m_description = os.str();
-    return m_status;
+    return m_rehearsalOk ? adoptLaw(model, lawPath, lawFeatures, os) : failWith(PLAN_NO_VISIBLE_PATH, os);
+  }
+  const char *const kinds[] = {"straight image lines", "the straight joint-space line", "through a waypoint"};
+  os << "; target: branch " << candidates[c].second << ", "
+     << vpMath::deg((candidates[c].first - q).cwiseAbs().maxCoeff()) << " deg away at most per joint"
+     << (c > 0 ? " (no path to the one out of the joint-limit margins)" : "") << "; path: " << kinds[kind] << " in "
+     << path.size() - 1 << " steps";
+  if (m_rehearsalOk && path.size() - 1 + 3 >= m_rehearsalIterations) {
+    return adoptLaw(model, lawPath, lawFeatures, os);
   }
   m_target = candidates[c].first;
   m_branch = candidates[c].second;
-  const char *const kinds[] = {"straight image lines", "the straight joint-space line", "through a waypoint"};
-  os << "; target: branch " << m_branch << ", " << vpMath::deg((m_target - q).cwiseAbs().maxCoeff())
-     << " deg away at most per joint" << (c > 0 ? " (no path to the one out of the joint-limit margins)" : "")
-     << "; path: " << kinds[m_kind];
-  os << " in " << path.size() - 1 << " steps";
+  m_kind = kind;
   m_path = path;
   m_features = features;
   m_status = PLAN_FOUND;
+  m_description = os.str();
+  return m_status;
+}
+
+vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::failWith(vpPlanStatus status, std::ostringstream &os)
+{
+  m_status = status;
+  m_description = os.str();
+  return m_status;
+}
+
+vpProjectivePathPlanner::vpPlanStatus
+vpProjectivePathPlanner::adoptLaw(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
+                                  const std::vector<std::vector<Eigen::Vector4d>> &features, std::ostringstream &os)
+{
+  // The law ends in the branch whose basin it reached: the target is that branch's representative there (the last
+  // rehearsed configuration without branches).
+  const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
+  m_target = path.back();
+  m_branch = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  JointVector delta(n);
+  for (size_t b = 0; b < m_branches.size(); ++b) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      delta(i) = m_branches[b](i) - path.back()(i);
+      if (model.jointType(static_cast<unsigned int>(i)) == vpProjectiveJoint::REVOLUTE) {
+        delta(i) = std::remainder(delta(i), 2.0 * M_PI);
+      }
+    }
+    if (delta.cwiseAbs().maxCoeff() < nearest) {
+      nearest = delta.cwiseAbs().maxCoeff();
+      m_branch = static_cast<unsigned int>(b);
+      m_target = path.back() + delta;
+    }
+  }
+  m_kind = PATH_LAW;
+  m_path = path;
+  m_features = features;
+  m_status = PLAN_FOUND;
+  os << "; plan: law (47) alone" << (m_branches.empty() ? "" : ", to branch ");
+  if (!m_branches.empty()) {
+    os << m_branch;
+  }
   m_description = os.str();
   return m_status;
 }

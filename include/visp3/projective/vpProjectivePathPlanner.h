@@ -22,6 +22,7 @@
 
 #include <visp3/projective/vpProjectiveConfig.h>
 
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -69,14 +70,16 @@ BEGIN_VISP_NAMESPACE
      - two straight lines through a waypoint, drawn (with a fixed seed) among the configurations inside the limits
        with the features in view, about the middle of the joint-space line in a box growing to the whole of the
        limits: the shortest feasible;
-  -# never does worse than law (47) alone: given the task's control law (setControlLaw()), plan() first rehearses
-     it on the model from \f$ q \f$ (the features predicted by \f$ H(q) \f$, the same gain, damping, saturation
-     and joint-limit avoidance, steps guarded as guardStep() does, one model step per iteration as the loop's
-     \f$ q \leftarrow q + \dot q \f$). If the rehearsal stays inside the joint limits with the features in view and
-     reaches the global minimum (a residual within 1.5 times that of the best branch plus 0.05 px, where a local
-     minimum of three points leaves pixels) within setRehearsalBudget() iterations, the plan is law (47) itself
-     (PATH_LAW, its target the branch it reached): the task runs it. Only when the rehearsal fails (a joint limit, a
-     lost feature, a local minimum, a slow law) does the task follow a path;
+  -# never does worse than law (47) alone: given the task's control law (setControlLaw()), plan() rehearses it on
+     the model from \f$ q \f$ (the features predicted by \f$ H(q) \f$, the same gain, damping, saturation and
+     joint-limit avoidance, steps guarded as guardStep() does, one model step per iteration as the loop's
+     \f$ q \leftarrow q + \dot q \f$). The rehearsal solves the task if it stays inside the joint limits with the
+     features in view and reaches the global minimum (a residual within 1.5 times that of the best branch plus
+     0.05 px, where a local minimum of three points leaves pixels) within setRehearsalBudget() iterations. The plan
+     is then law (47) itself (PATH_LAW, its target the branch it reached), unless a path exists that is faster (its
+     samples and 3 iterations of the law after them, fewer than the rehearsed iterations); and law (47) whenever no
+     path exists. Without a successful rehearsal (a joint limit, a lost feature, a local minimum, a slow law) the
+     task follows the path;
   -# fails with a status (vpPlanStatus) when no branch explains \f$ s^* \f$, none is inside the limits, none
      inside them has the features in view, or no path keeps them in view.
 
@@ -106,7 +109,7 @@ public:
     PATH_IMAGE_LINE, //!< Straight image lines from the current to the desired pixels.
     PATH_JOINT_LINE, //!< The straight line in joint space.
     PATH_WAYPOINT,   //!< Two straight joint-space lines through a waypoint.
-    PATH_LAW         //!< Law (47) alone: its rehearsal on the model solves the task (setControlLaw()).
+    PATH_LAW         //!< Law (47) alone: its rehearsal on the model solves the task, no faster path (setControlLaw()).
   };
 
   vpProjectivePathPlanner();
@@ -226,7 +229,8 @@ public:
   */
   unsigned int guardStep(const vpProjectiveArmModel &model, const JointVector &q, JointVector &qdot) const;
   /*!
-    The outcome of the last rehearsal of law (47): true if it solved the task (then getPathKind() is PATH_LAW).
+    The outcome of the last rehearsal of law (47): true if it solved the task (then getPathKind() is PATH_LAW unless a
+    faster path was found).
     getRehearsalIterations() and getRehearsalResidual() say how far it got.
   */
   bool getRehearsalSucceeded() const { return m_rehearsalOk; }
@@ -258,6 +262,9 @@ private:
                    const std::vector<Eigen::Vector4d> &sStar, std::vector<JointVector> &path,
                    std::vector<std::vector<Eigen::Vector4d>> &features);
   unsigned int halveWhileRising(const vpProjectiveArmModel &model, const JointVector &q, JointVector &qdot) const;
+  vpPlanStatus failWith(vpPlanStatus status, std::ostringstream &os);
+  vpPlanStatus adoptLaw(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
+                        const std::vector<std::vector<Eigen::Vector4d>> &features, std::ostringstream &os);
   static double residual(const vpProjectiveArmModel &model, const JointVector &q,
                          const std::vector<Eigen::Vector4d> &points, const std::vector<Eigen::Vector4d> &sStar);
 
