@@ -153,8 +153,8 @@ public:
     A margin kept from the joint limits at the target when a branch allows it: a branch whose target has a joint
     within \e fraction of that joint's range \f$ q_{max} - q_{min} \f$ from a limit is chosen only if no branch
     inside the limits keeps every joint out of the margins (default 0: the nearest branch inside the limits).
-    vpServoProjective sets the activation band \f$ \rho \f$ of its joint-limit avoidance (setJointLimits()), which
-    would otherwise hold the arm short of a target inside the band and leave law (47) at a compromise.
+    vpServoProjective leaves it at 0: its joint-limit avoidance lets the arm reach a planned target inside the
+    activation band, and a branch out of the band can be half a turn away (the taught configuration is the nearest).
     \exception vpProjectiveException (invalidValueError) if it is not in [0, 1/2].
   */
   void setJointLimitMargin(double fraction);

@@ -407,14 +407,14 @@ public:
   /*!
     Path planning (default off: law (47) alone, as before). On, the first computeControlLaw() for a target (and again
     whenever a desired feature changes) plans the task with vpProjectivePathPlanner. Planning is never worse than law
-    (47): the planner first rehearses the task's own law (gain, damping, saturation, joint-limit avoidance) on the
-    model, and when that rehearsal solves the task inside the limits with the features in view, the task runs law
-    (47) unchanged (vpProjectivePathPlanner::PATH_LAW). Otherwise the features are triangulated
+    (47): the planner rehearses the task's own law (gain, damping, saturation, joint-limit avoidance) on the model,
+    and when that rehearsal solves the task inside the limits with the features in view, the task runs law (47)
+    (vpProjectivePathPlanner::PATH_LAW) unless a path is faster. The features are triangulated
     at the current joints and carried to the zero reference by \f$ H(q)^{-1} \f$ (no marker identity is needed; a
     feature recognised as an acquired marker takes that marker's point), the inverse kinematics of \f$ s^* \f$ gives
-    every branch it can find, the target is the one inside the joint limits (setJointLimits()) nearest to \f$ q \f$,
-    out of the activation band \f$ \rho \f$ of the joint-limit avoidance when a branch allows it
-    (vpProjectivePathPlanner::setJointLimitMargin()), and the path keeps the features' predicted images inside the image
+    every branch it can find, the target is the one inside the joint limits (setJointLimits()) nearest to \f$ q \f$
+    (the joint-limit avoidance then lets the arm reach it inside its activation band, and no planned step crosses a
+    limit), and the path keeps the features' predicted images inside the image
     window (setImageSize()) and the joints within their limits: straight image lines when no joint needs to go
     farther than vpProjectivePathPlanner::setMaxExcursion() beyond its start and target values, else the joint-space
     line (monotonic joints), else two lines through a waypoint. The task then follows the path, one sample (no joint
