@@ -57,6 +57,9 @@ BEGIN_VISP_NAMESPACE
   then saturated (vpServoDampedLeastSquares, getDampedLeastSquares()).
 
   Like vpServo, the task keeps references to the features: the loop updates them and calls computeControlLaw().
+  Coming from vpServo: \ref page_porting maps each of its calls to this task's (and says which have no meaning here
+  and why): setJointPositions() plays set_eJe(), setAdaptiveGainInput() evaluates an adaptive gain as vpServo does,
+  setErrorUnit() gives its normalised error, print() its layout.
 
   <b>Lost features, outliers and singularities.</b> At every computeControlLaw() each feature \f$ i \f$ gets a state
   (getFeatureState(), vpServoFeatureHealth): FEATURE_NOT_TRACKED (setFeatureTracked()), FEATURE_NOT_FINITE,
