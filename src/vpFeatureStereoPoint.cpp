@@ -14,8 +14,10 @@
 #include <visp3/projective/vpFeatureStereoPoint.h>
 
 #include <iostream>
+#include <sstream>
 
 #include <visp3/core/vpDisplay.h>
+#include <visp3/core/vpMeterPixelConversion.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
 #include "vpProjectiveInternal.h"
@@ -66,6 +68,37 @@ void vpFeatureStereoPoint::buildFrom(double u, double v, double up, double vp)
 void vpFeatureStereoPoint::buildFrom(const vpImagePoint &ipLeft, const vpImagePoint &ipRight)
 {
   buildFrom(ipLeft.get_u(), ipLeft.get_v(), ipRight.get_u(), ipRight.get_v());
+}
+
+void vpFeatureStereoPoint::buildFrom(const vpPoint &P, const vpCameraParameters &camLeft,
+                                     const vpHomogeneousMatrix &cLeftMo, const vpCameraParameters &camRight,
+                                     const vpHomogeneousMatrix &cRightMo)
+{
+  const std::string where = at("buildFrom()");
+  const double oP[3] = {P.get_oX(), P.get_oY(), P.get_oZ()};
+  for (unsigned int k = 0; k < 3; ++k) {
+    requireFinite(oP[k], where, "the point's object-frame coordinates");
+  }
+  const vpHomogeneousMatrix *poses[2] = {&cLeftMo, &cRightMo};
+  const vpCameraParameters *cams[2] = {&camLeft, &camRight};
+  const char *const names[2] = {"left", "right"};
+  double uv[4];
+  for (unsigned int c = 0; c < 2; ++c) {
+    const vpHomogeneousMatrix &cMo = *poses[c];
+    double cP[3];
+    for (unsigned int i = 0; i < 3; ++i) {
+      cP[i] = cMo[i][0] * oP[0] + cMo[i][1] * oP[1] + cMo[i][2] * oP[2] + cMo[i][3];
+      requireFinite(cP[i], where, std::string("the point in the ") + names[c] + " camera (check the pose)");
+    }
+    if (!(cP[2] > 0.0)) {
+      std::ostringstream os;
+      os << "the point (" << oP[0] << ", " << oP[1] << ", " << oP[2] << ") is not in front of the " << names[c]
+         << " camera (Z = " << cP[2] << " m); check the pose given for that camera";
+      fail(vpProjectiveException::pointAtInfinityError, where, os.str());
+    }
+    vpMeterPixelConversion::convertPoint(*cams[c], cP[0] / cP[2], cP[1] / cP[2], uv[2 * c], uv[2 * c + 1]);
+  }
+  buildFrom(uv[0], uv[1], uv[2], uv[3]);
 }
 
 vpImagePoint vpFeatureStereoPoint::getLeft() const

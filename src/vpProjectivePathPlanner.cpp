@@ -46,7 +46,7 @@ const double kPriorWeight = 30.0;
 vpProjectivePathPlanner::vpProjectivePathPlanner()
     : m_hasLimits(false), m_qmin(), m_qmax(), m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0),
       m_maxExcursion(-1.0), m_starts(24), m_maxResidual(5.0), m_limitMargin(0.0), m_front(), m_points(), m_sStar(),
-      m_hasLaw(false), m_lambda(0.5), m_law(), m_avoidance(), m_rehearsalBudget(50), m_rehearsalOk(false),
+      m_hasLaw(false), m_gain(), m_errorScale(1.0), m_law(), m_avoidance(), m_rehearsalBudget(50), m_rehearsalOk(false),
       m_rehearsalIterations(0), m_rehearsalResidual(-1.0), m_status(PLAN_NONE), m_branches(), m_residuals(),
       m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
 {
@@ -145,10 +145,15 @@ void vpProjectivePathPlanner::setNumberOfStarts(unsigned int starts)
   m_starts = starts;
 }
 
-void vpProjectivePathPlanner::setControlLaw(const vpAdaptiveGain &lambda, const vpServoDampedLeastSquares &law,
-                                            const vpServoJointLimitAvoidance &avoidance)
+void vpProjectivePathPlanner::setControlLaw(const vpGain &gain, const vpServoDampedLeastSquares &law,
+                                            const vpServoJointLimitAvoidance &avoidance, double errorScale)
 {
-  m_lambda = lambda;
+  if (!gain || !std::isfinite(errorScale) || !(errorScale > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, at("setControlLaw()"),
+         "give a gain function and a positive, finite error scale (1 for pixels)");
+  }
+  m_gain = gain;
+  m_errorScale = errorScale;
   m_law = law;
   m_avoidance = avoidance;
   m_hasLaw = true;
@@ -372,9 +377,9 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
       return false; // the budget, or a fixed point of the law that is not the solution
     }
     vpServoDampedLeastSquares::computeNormalEquations(J, e, JtJ, Jte);
-    law.computeVelocity(JtJ, Jte, m_lambda.value_const(e.cwiseAbs().maxCoeff()), qdot);
+    law.computeVelocity(JtJ, Jte, m_gain(JtJ, Jte, e.cwiseAbs().maxCoeff()), qdot);
     if (m_avoidance.hasJointLimits()) {
-      m_avoidance.computeVelocity(qk, qdot, JtJ, Jte, e.norm(), law, qdot2);
+      m_avoidance.computeVelocity(qk, qdot, JtJ, Jte, e.norm() / m_errorScale, law, qdot2);
       qdot += qdot2;
       law.saturate(qdot);
     }

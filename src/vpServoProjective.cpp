@@ -121,13 +121,86 @@ template <typename Vector> void printVector(std::ostream &os, const Vector &v)
 }
 } // namespace
 
+double vpServoProjective::taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale,
+                                   const JointMatrix &JtJ, const JointVector &Jte, double errorInf)
+{
+  if (input == GAIN_INPUT_ERROR) {
+    return lambda.value_const(errorInf / errorScale);
+  }
+  // vpServo's e1 = J^+ e (full column rank here: J^T J is invertible unless the task is singular, then the gain at
+  // infinity); fixed-size storage, no allocation.
+  const Eigen::LDLT<JointMatrix> ldlt(JtJ);
+  const JointVector e1 = ldlt.solve(Jte);
+  const double x = e1.allFinite() && ldlt.info() == Eigen::Success ? e1.cwiseAbs().maxCoeff()
+                                                                   : std::numeric_limits<double>::infinity();
+  return lambda.value_const(x);
+}
+
 vpServoProjective::vpServoProjective()
     : m_robot(nullptr), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(),
       m_jointLimits(), m_mismatch(), m_targets(), m_mismatchRigGeneration(0), m_mismatchModelGeneration(0),
       m_mismatchRobot(nullptr), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
       m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
-      m_replanFailed(false), m_followGain(1.0)
+      m_replanFailed(false), m_followGain(1.0), m_gainInput(GAIN_INPUT_ERROR), m_errorUnit(ERROR_PIXELS),
+      m_focalLength(0.0), m_errorScale(1.0), m_q(), m_qFresh(false)
 {
+}
+
+namespace
+{
+//! The mean focal length sqrt(px py) (pixels) of the two cameras of the model's metric self-calibration.
+double estimatedFocalLength(const vpProjectiveRobot &robot, const std::string &where)
+{
+  vpMatrix Kl, Kr;
+  vpHomogeneousMatrix lMr;
+  try {
+    robot.getMetricStereoRig(Kl, Kr, lMr);
+  } catch (const vpException &e) {
+    fail(vpProjectiveException::estimationFailedError, where,
+         std::string("the model's metric self-calibration gives no focal length (") + e.getStringMessage() +
+             "); give it: setErrorUnit(ERROR_NORMALIZED, f) with f in pixels");
+  }
+  const double fl = std::sqrt(std::abs(Kl[0][0] * Kl[1][1])), fr = std::sqrt(std::abs(Kr[0][0] * Kr[1][1]));
+  const double f = 0.5 * (fl + fr);
+  if (!std::isfinite(f) || !(f > 0.0)) {
+    fail(vpProjectiveException::estimationFailedError, where,
+         "the model's metric self-calibration gives no finite focal length; give it: setErrorUnit(ERROR_NORMALIZED, "
+         "f) with f in pixels");
+  }
+  return f;
+}
+} // namespace
+
+void vpServoProjective::setAdaptiveGainInput(vpGainInput input)
+{
+  if (input != GAIN_INPUT_ERROR && input != GAIN_INPUT_JOINT_VELOCITY) {
+    fail(vpProjectiveException::invalidValueError, at("setAdaptiveGainInput()"),
+         "unknown input; use GAIN_INPUT_ERROR or GAIN_INPUT_JOINT_VELOCITY");
+  }
+  m_gainInput = input;
+}
+
+void vpServoProjective::setErrorUnit(vpErrorUnit unit, double focalLength)
+{
+  const std::string where = at("setErrorUnit()");
+  requireFinite(focalLength, where, "the focal length");
+  if (focalLength < 0.0) {
+    fail(vpProjectiveException::invalidValueError, where,
+         "the focal length must be positive (pixels), or 0 to estimate it from the model");
+  }
+  if (unit != ERROR_PIXELS && unit != ERROR_NORMALIZED) {
+    fail(vpProjectiveException::invalidValueError, where, "unknown unit; use ERROR_PIXELS or ERROR_NORMALIZED");
+  }
+  double scale = 1.0;
+  if (unit == ERROR_NORMALIZED) {
+    scale = focalLength;
+    if (focalLength == 0.0 && m_robot != nullptr) {
+      scale = estimatedFocalLength(*m_robot, where);
+    }
+  }
+  m_errorUnit = unit;
+  m_focalLength = focalLength;
+  m_errorScale = scale; // 0 until setRobot() estimates it
 }
 
 void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
@@ -135,6 +208,9 @@ void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
   if (!robot.isCalibrated()) {
     fail(vpProjectiveException::notInitializedError, at("setRobot()"),
          "the robot model is not acquired; call calibrate() or loadModel() on it first");
+  }
+  if (m_errorUnit == ERROR_NORMALIZED && m_focalLength == 0.0) {
+    m_errorScale = estimatedFocalLength(robot, at("setRobot()")); // before anything changes
   }
   m_robot = &robot;
   for (vpTarget &t : m_targets) {
@@ -368,7 +444,7 @@ inline void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, 
   }
   it.nbActive = active;
   vpServoDampedLeastSquares::computeNormalEquations(it.J, it.e, it.JtJ, it.Jte);
-  it.errorNorm = it.e.norm();
+  it.errorNorm = it.e.norm() / m_errorScale; // in the unit of setErrorUnit(), for the large projection thresholds
 }
 
 inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vpIteration &it) const
@@ -398,7 +474,8 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
   // qdot1 = -lambda (J^T J + mu^2 I)^-1 J^T e, saturated: the motion the arm really makes. Along a planned path it is
   // the path's step to the next sample (feedforward) plus the law on the error to the current sample (feedback, with
   // the follower's gain), saturated as a whole.
-  it.lambda = m_following ? m_followGain : m_lambda.value_const(it.e.cwiseAbs().maxCoeff());
+  it.lambda = m_following ? m_followGain
+                          : taskGain(m_lambda, m_gainInput, m_errorScale, it.JtJ, it.Jte, it.e.cwiseAbs().maxCoeff());
   m_law.computeVelocity(it.JtJ, it.Jte, it.lambda, qdot);
   if (m_following) {
     // The feedback corrects the model's error, a few pixels: bounded by half a path step, so that near a singular
@@ -493,14 +570,51 @@ vpColVector vpServoProjective::computeControlLaw(const vpColVector &q)
   return toVispVector(qdot);
 }
 
+void vpServoProjective::setJointPositions(const vpColVector &q)
+{
+  const std::string where = at("setJointPositions()");
+  if (m_robot != nullptr && q.getRows() != m_robot->getNumberOfJoints()) {
+    std::ostringstream os;
+    os << "q must have " << m_robot->getNumberOfJoints() << " entries, got " << q.getRows();
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  const unsigned int maxJoints = vpProjectiveRobot::maxJoints;
+  if (q.getRows() == 0 || q.getRows() > maxJoints) {
+    std::ostringstream os;
+    os << "q must have 1 to " << maxJoints << " entries, got " << q.getRows();
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  for (unsigned int i = 0; i < q.getRows(); ++i) {
+    requireFinite(q[i], where, "a joint value");
+  }
+  m_q.resize(q.getRows());
+  for (unsigned int i = 0; i < q.getRows(); ++i) {
+    m_q(i) = q[i];
+  }
+  m_qFresh = true;
+}
+
+vpColVector vpServoProjective::computeControlLaw()
+{
+  if (!m_qFresh) {
+    fail(vpProjectiveException::notInitializedError, at("computeControlLaw()"),
+         "no joint values since the last computeControlLaw(); read the encoders (vpRobot::getPosition(vpRobot::"
+         "ARTICULAR_FRAME, q)) and call setJointPositions(q) before each call, or call computeControlLaw(q)");
+  }
+  JointVector qdot(m_q.size());
+  computeControlLaw(m_q, qdot); // throws, changing nothing, if q does not fit the robot
+  m_qFresh = false;
+  return toVispVector(qdot);
+}
+
 vpColVector vpServoProjective::getError() const
 {
-  return toVispVector(last().e);
+  return toVispVector(last().e / m_errorScale);
 }
 
 vpMatrix vpServoProjective::getTaskJacobian() const
 {
-  return toVisp(last().J);
+  return toVisp(last().J / m_errorScale);
 }
 
 vpColVector vpServoProjective::getTaskSingularValues() const
@@ -508,7 +622,7 @@ vpColVector vpServoProjective::getTaskSingularValues() const
   if (last().J.size() == 0) {
     return vpColVector();
   }
-  return toVispVector(Eigen::JacobiSVD<Eigen::MatrixXd>(last().J).singularValues());
+  return toVispVector(Eigen::JacobiSVD<Eigen::MatrixXd>(last().J / m_errorScale).singularValues());
 }
 
 double vpServoProjective::getSingularValueRatio() const
@@ -539,25 +653,28 @@ vpColVector vpServoProjective::getJointLimitVelocity() const
 
 void vpServoProjective::print(std::ostream &os) const
 {
-  os << "Non-metric stereo visual servo task (vpServoProjective)\n";
-  if (m_robot == nullptr) {
-    os << "  Robot: none (setRobot())\n";
-  } else {
-    os << "  Robot: " << m_robot->getNumberOfJoints() << " joints, "
-       << (m_robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "eye-in-hand" : "eye-to-hand") << "\n";
-  }
+  // The sections of vpServo::print(vpServo::ALL), in its order and with its titles, then what only this task has.
   const bool computed = last().J.rows() == static_cast<Eigen::Index>(getDimension()) && last().J.rows() > 0;
-  os << "  Features: " << m_features.size() << " stereo points s = (u, v, u', v') (pixels), task dimension "
-     << getDimension();
+  const char *const unit = m_errorUnit == ERROR_PIXELS ? "pixels" : "normalised: pixels / f";
+  os << "Visual servoing task: non-metric stereo (vpServoProjective)\n";
+  os << "Type of control law\n";
+  if (m_robot == nullptr) {
+    os << "Robot: none (setRobot())\n";
+  } else {
+    os << (m_robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "Eye-in-hand" : "Eye-to-hand")
+       << " configuration\n";
+    os << "Control in the articular frame: qdot = -lambda J^+ (s - s*), " << m_robot->getNumberOfJoints()
+       << " joints, J from the projective model\n";
+  }
+  os << "List of visual features : s (" << m_features.size() << " stereo points s = (u, v, u', v') (pixels), task "
+     << "dimension " << getDimension();
   if (computed) {
     os << ", " << m_health.getNumberOfActiveFeatures() << " active at the last computeControlLaw()";
   }
-  os << "\n";
+  os << ")\n";
   for (unsigned int i = 0; i < m_features.size(); ++i) {
-    os << "    " << i << ": s = ";
+    os << "  " << i << ": s = ";
     printVector(os, m_features[i]->getFeature());
-    os << ", s* = ";
-    printVector(os, m_desired[i]->getFeature());
     os << (m_health.isFeatureTracked(i) ? "" : ", not tracked");
     if (computed) {
       os << "; last state " << stateName(m_health.getFeatureState(i));
@@ -570,10 +687,33 @@ void vpServoProjective::print(std::ostream &os) const
     }
     os << "\n";
   }
+  os << "List of desired visual features : s*\n";
+  for (unsigned int i = 0; i < m_desired.size(); ++i) {
+    os << "  " << i << ": s* = ";
+    printVector(os, m_desired[i]->getFeature());
+    os << "\n";
+  }
+  os << "Task Jacobian J (" << unit << " per joint unit; vpServo's interaction matrix Ls)\n";
   if (computed) {
-    os << "  Error e = s - s* (pixels, rows of the features set aside zero): ";
-    printVector(os, last().e);
-    os << ", |e| = " << last().errorNorm << "\n";
+    os << toVisp(last().J / m_errorScale) << "\n";
+  } else {
+    os << "not yet computed\n";
+  }
+  os << "Error vector (s-s*) (" << unit << ", rows of the features set aside zero)\n";
+  if (computed) {
+    os << toVispVector(last().e / m_errorScale).t() << "\n";
+    os << "|e| = " << last().errorNorm << "\n";
+  } else {
+    os << "not yet computed (No computeControlLaw() yet)\n";
+  }
+  os << "Gain : " << m_lambda << " (of "
+     << (m_gainInput == GAIN_INPUT_ERROR ? "||e||_inf" : "||J^+ e||_inf, as vpServo");
+  if (m_errorUnit == ERROR_NORMALIZED) {
+    os << "; f = " << m_errorScale << " px" << (m_focalLength > 0.0 ? " given" : " estimated");
+  }
+  os << ")\n";
+  os << "Status and settings\n";
+  if (computed) {
     os << "  Status: " << statusName(last().status) << "\n";
     if (last().status == SERVO_MODEL_MISMATCH && m_robot != nullptr && m_robot->getRigGeneration() == 0) {
       // No re-registration since the acquisition: the model may never have fit, whatever moved.
@@ -584,10 +724,7 @@ void vpServoProjective::print(std::ostream &os) const
     }
     os << "  Last step: gain " << last().lambda << ", damping " << last().damping << ", "
        << (last().saturated ? "saturated" : "not saturated") << "\n";
-  } else {
-    os << "  No computeControlLaw() yet\n";
   }
-  os << "  Gain: " << m_lambda << "\n";
   os << "  Damped least squares: sigma_0 " << m_law.getSigmaThreshold() << ", mu_max " << m_law.getMaxDamping()
      << " (pixels per joint unit); saturation ";
   if (m_law.getMaxJointVelocity() > 0.0) {
@@ -627,7 +764,8 @@ void vpServoProjective::print(std::ostream &os) const
     os << ", qmax ";
     printVector(os, qmax);
     os << ", rho " << m_jointLimits.getRho() << ", rho1 " << m_jointLimits.getRho1() << ", lambda_t "
-       << m_jointLimits.getLambdaTune() << "; large projection thresholds e0 " << e0 << ", e1 " << e1 << " px";
+       << m_jointLimits.getLambdaTune() << "; large projection thresholds e0 " << e0 << ", e1 " << e1
+       << (m_errorUnit == ERROR_PIXELS ? " px" : " (normalised)");
   } else {
     os << "none";
   }

@@ -175,7 +175,14 @@ bool vpServoProjective::planIfNeeded(const JointVector &q)
     if (m_lawLeftRehearsal) {
       m_planner.clearControlLaw();
     } else {
-      m_planner.setControlLaw(m_lambda, m_law, m_jointLimits);
+      const vpAdaptiveGain lambda = m_lambda;
+      const vpGainInput input = m_gainInput;
+      const double scale = m_errorScale;
+      m_planner.setControlLaw(
+          [lambda, input, scale](const JointMatrix &JtJ, const JointVector &Jte, double errorInf) {
+            return taskGain(lambda, input, scale, JtJ, Jte, errorInf);
+          },
+          m_law, m_jointLimits, scale);
     }
     m_planner.plan(model, q, points, sStar);
     m_plannedFor = sStar;

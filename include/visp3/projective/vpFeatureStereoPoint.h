@@ -23,9 +23,12 @@
 
 #include <Eigen/Core>
 
+#include <visp3/core/vpCameraParameters.h>
 #include <visp3/core/vpColor.h>
+#include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpPoint.h>
 #include <visp3/core/vpRGBa.h>
 #include <visp3/visual_features/vpBasicFeature.h>
 
@@ -66,6 +69,26 @@ public:
   void buildFrom(const vpImagePoint &ipLeft, const vpImagePoint &ipRight);
   //! Sets \f$ s = (u, v, u', v') \f$ directly.
   void buildFrom(double u, double v, double up, double vp);
+  /*!
+    For simulations, what vpFeatureBuilder::create(vpFeaturePoint &, const vpPoint &) is to vpFeaturePoint: sets
+    \f$ s \f$ from the images of the 3D point \e P (its object-frame coordinates, vpPoint::setWorldCoordinates())
+    through two known cameras: \f$ {}^{c}P = {}^{c}M_o\, {}^{o}P \f$ in each camera, \f$ x = X/Z \f$, \f$ y = Y/Z
+    \f$, then the pixels of vpMeterPixelConversion::convertPoint() with the camera's model (its distortion included).
+    \e P is not changed (unlike vpPoint::track()).
+    \code
+    vpPoint point(0.045, -0.045, 0.0);            // object frame, metres
+    vpHomogeneousMatrix cRightMcLeft(0.1, 0, 0, 0, -0.13, 0);
+    s.buildFrom(point, cam, cMo, cam, cRightMcLeft * cMo); // the left camera at cMo, the right one 10 cm beside it
+    \endcode
+    A real rig has no such calibration: its features come from the images (buildFrom(ipLeft, ipRight)).
+    \param P : the point; only its object-frame coordinates are used.
+    \param camLeft, camRight : the intrinsics of the left and right cameras.
+    \param cLeftMo, cRightMo : the object frame in the left and right camera frames.
+    \exception vpProjectiveException (nonFiniteValueError) if a coordinate or a pose is not finite;
+    (pointAtInfinityError) if the point is not in front of both cameras (Z <= 0). \f$ s \f$ is then unchanged.
+  */
+  void buildFrom(const vpPoint &P, const vpCameraParameters &camLeft, const vpHomogeneousMatrix &cLeftMo,
+                 const vpCameraParameters &camRight, const vpHomogeneousMatrix &cRightMo);
 
   //! The point in the left image, \f$ (u, v) \f$.
   vpImagePoint getLeft() const;

@@ -23,13 +23,12 @@
 #include <visp3/projective/vpProjectiveConfig.h>
 
 #include <sstream>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
-
-#include <visp3/vs/vpAdaptiveGain.h>
 
 #include <visp3/projective/vpProjectiveArmModel.h>
 #include <visp3/projective/vpServoDampedLeastSquares.h>
@@ -161,14 +160,22 @@ public:
   //! The margin of setJointLimitMargin() (fraction of each joint's range).
   double getJointLimitMargin() const { return m_limitMargin; }
   /*!
-    The control law that the task runs when it follows no path, rehearsed on the model by plan() before any path is
-    planned (see the class documentation): the gain \e lambda (a function of the largest error component, pixels),
-    the damped least squares with its saturation \e law, and the joint-limit avoidance \e avoidance (in the joint
-    values of plan()'s \e q; no limits: none). vpServoProjective passes its own. Without a call, no rehearsal: a path
-    is always planned.
+    The gain of the control law: from \f$ J^T J \f$ (n x n), \f$ J^T e \f$ (n x 1) and \f$ \|e\|_\infty \f$
+    (pixels) of the task, as the task computes it (vpServoProjective: setLambda(), setAdaptiveGainInput()).
   */
-  void setControlLaw(const vpAdaptiveGain &lambda, const vpServoDampedLeastSquares &law,
-                     const vpServoJointLimitAvoidance &avoidance);
+  typedef std::function<double(const vpProjectiveArmModel::JointMatrix &JtJ,
+                               const vpProjectiveArmModel::JointVector &Jte, double errorInf)>
+      vpGain;
+  /*!
+    The control law that the task runs when it follows no path, rehearsed on the model by plan() before any path is
+    planned (see the class documentation): the gain \e gain, the damped least squares with its saturation \e law, the
+    joint-limit avoidance \e avoidance (in the joint values of plan()'s \e q; no limits: none) and the scale
+    \e errorScale of the error norm the avoidance's large projection thresholds are in (pixels per unit: 1 for pixels;
+    vpServoProjective::setErrorUnit()). vpServoProjective passes its own. Without a call, no rehearsal: a path is
+    always planned.
+  */
+  void setControlLaw(const vpGain &gain, const vpServoDampedLeastSquares &law,
+                     const vpServoJointLimitAvoidance &avoidance, double errorScale = 1.0);
   //! No control law: plan() rehearses nothing and always plans a path (its step no longer capped by a saturation).
   void clearControlLaw() { m_hasLaw = false; }
   /*!
@@ -281,7 +288,8 @@ private:
   std::vector<Eigen::Vector4d> m_points; // the planned points (zero reference) and their desired pixels
   std::vector<Eigen::Vector4d> m_sStar;
   bool m_hasLaw;
-  vpAdaptiveGain m_lambda;
+  vpGain m_gain;
+  double m_errorScale;
   vpServoDampedLeastSquares m_law;
   vpServoJointLimitAvoidance m_avoidance;
   unsigned int m_rehearsalBudget;

@@ -57,6 +57,9 @@ BEGIN_VISP_NAMESPACE
   then saturated (vpServoDampedLeastSquares, getDampedLeastSquares()).
 
   Like vpServo, the task keeps references to the features: the loop updates them and calls computeControlLaw().
+  Coming from vpServo: \ref page_porting maps each of its calls to this task's (and says which have no meaning here
+  and why): setJointPositions() plays set_eJe(), setAdaptiveGainInput() evaluates an adaptive gain as vpServo does,
+  setErrorUnit() gives its normalised error, print() its layout.
 
   <b>Lost features, outliers and singularities.</b> At every computeControlLaw() each feature \f$ i \f$ gets a state
   (getFeatureState(), vpServoFeatureHealth): FEATURE_NOT_TRACKED (setFeatureTracked()), FEATURE_NOT_FINITE,
@@ -137,6 +140,22 @@ public:
                          //!< that never fit since its acquisition may have the wrong rig mounting (print() says so).
   };
 
+  /*!
+    The unit of the task error \f$ e \f$ that the gain sees (see setErrorUnit()).
+  */
+  enum vpErrorUnit {
+    ERROR_PIXELS,    //!< Pixels (the default).
+    ERROR_NORMALIZED //!< Pixels divided by a focal length in pixels, the unit of vpServo's \f$ x = (u - u_0)/p_x \f$.
+  };
+
+  /*!
+    What an adaptive gain is a function of (see setAdaptiveGainInput()).
+  */
+  enum vpGainInput {
+    GAIN_INPUT_ERROR,         //!< \f$ \|e\|_\infty \f$ in the unit of setErrorUnit() (the default).
+    GAIN_INPUT_JOINT_VELOCITY //!< \f$ \|J^+ e\|_\infty \f$ (joint units): what vpServo evaluates its gain on.
+  };
+
   //! A task without robot or feature: gain 0.5, damping (1, 10), no saturation, no check, no joint limit.
   vpServoProjective();
 
@@ -153,7 +172,11 @@ public:
     \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if it is not positive and finite.
   */
   void setLambda(double lambda);
-  //! Adaptive gain, a function of the infinity norm of the error in pixels (see vpAdaptiveGain).
+  /*!
+    Adaptive gain (see vpAdaptiveGain): by default a function of the infinity norm of the error \f$ e \f$, in the unit
+    of setErrorUnit() (pixels by default); setAdaptiveGainInput(GAIN_INPUT_JOINT_VELOCITY) evaluates it as vpServo
+    does, on \f$ \|J^+ e\|_\infty \f$.
+  */
   void setLambda(const vpAdaptiveGain &lambda);
   /*!
     Adaptive gain from its value at zero error, at infinite error and its slope at zero (per pixel).
@@ -161,6 +184,50 @@ public:
     \f$ gainAtZero \ge gainAtInfinity > 0 \f$, \f$ slopeAtZero \ge 0 \f$, all finite.
   */
   void setLambda(double gainAtZero, double gainAtInfinity, double slopeAtZero);
+  /*!
+    What the adaptive gain of setLambda() is evaluated on, \f$ \lambda(x) \f$:
+    - GAIN_INPUT_ERROR (default): \f$ x = \|e\|_\infty \f$, in the unit of setErrorUnit();
+    - GAIN_INPUT_JOINT_VELOCITY: \f$ x = \|J^+ e\|_\infty \f$, the joint velocity of a unit gain (radians or the
+      prismatic joints' unit, whatever the image unit), with \f$ J^+ = (J^T J)^{-1} J^T \f$ (\f$ x = \infty \f$,
+      hence the gain at infinity, if \f$ J^T J \f$ is singular). This is what vpServo does: ViSP 3.5's
+      vpServo::computeControlLaw() sets \f$ e_1 = J_1^+ e \f$ and \f$ \dot q = -\lambda(e_1)\, e_1 \f$, and
+      vpAdaptiveGain::operator()(const vpColVector &) takes the infinity norm of \f$ e_1 \f$, not of the error. A
+      gain tuned on a joint-space vpServo program (EYEINHAND_L_cVe_eJe, EYETOHAND_L_cVe_eJe, ...) therefore gets
+      the same argument here when the Jacobians agree; on a camera-frame program (EYEINHAND_CAMERA) its argument was
+      the largest component of the camera velocity (m/s, rad/s), of the same order as the joint rates of an arm.
+    Measured against vpServo on a simulated task: tests/testServoProjectiveParity.cpp.
+  */
+  void setAdaptiveGainInput(vpGainInput input);
+  //! What the adaptive gain is evaluated on (setAdaptiveGainInput()).
+  vpGainInput getAdaptiveGainInput() const { return m_gainInput; }
+  /*!
+    The unit of the error \f$ e \f$: getError(), getTaskJacobian(), getTaskSingularValues(), print(), the
+    \f$ \|e\| \f$ of the large projection thresholds (setLargeProjectionThresholds(): vpServo's 0.1 and 0.7 are
+    normalised units) and the \f$ \|e\|_\infty \f$ that an adaptive gain sees with GAIN_INPUT_ERROR.
+
+    - ERROR_PIXELS (default): \f$ e = s - s^* \f$ in pixels.
+    - ERROR_NORMALIZED: \f$ e = (s - s^*) / f \f$, \f$ f \f$ a focal length in pixels: \e focalLength if it is
+      positive, else the mean \f$ \sqrt{p_x p_y} \f$ of the two cameras of the model's metric self-calibration
+      (vpProjectiveRobot::getMetricStereoRig()), computed here, or at setRobot() if no robot is set yet. For a camera
+      with \f$ p_x = p_y = f \f$ these are vpServo's normalised coordinates: \f$ (u - u^*)/f = x - x^* \f$ with
+      \f$ x = (u - u_0)/p_x \f$: getError() is then a vpServo program's error on the same points in both images, and
+      the printed norms compare (the principal point \f$ u_0 \f$ cancels in the difference; with
+      \f$ p_x \neq p_y \f$ the rows are off by \f$ \sqrt{p_y/p_x} \f$ and its inverse).
+
+    A constant gain and the control law itself do not depend on the unit: \f$ J^+ e \f$ is unchanged when
+    \f$ e \f$ and \f$ J \f$ are divided by the same \f$ f \f$. The settings in pixels stay in pixels: the damping
+    (\f$ \sigma_0 \f$, \f$ \mu_{max} \f$ per joint unit), the image window, the outlier and model-mismatch
+    thresholds. Nothing is needed from the cameras but that one number: the intrinsics of the rig are unknown to
+    the task, hence the estimate.
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if \e focalLength is negative or not
+    finite; (notInitializedError, estimationFailedError) if the estimate is needed and the model gives none (the
+    message says to give \e focalLength). The unit is then unchanged.
+  */
+  void setErrorUnit(vpErrorUnit unit, double focalLength = 0.0);
+  //! The unit of setErrorUnit().
+  vpErrorUnit getErrorUnit() const { return m_errorUnit; }
+  //! Pixels per unit of the error: 1 for ERROR_PIXELS, the focal length \f$ f \f$ for ERROR_NORMALIZED.
+  double getErrorScale() const { return m_errorScale; }
   //@}
 
   /*! \name Control law (forwarded to vpServoDampedLeastSquares) */
@@ -285,9 +352,10 @@ public:
   void setJointLimits(const vpColVector &qmin, const vpColVector &qmax, double rho = 0.1, double rho1 = 0.3,
                       double lambdaTune = 0.7);
   /*!
-    The error norms \f$ 0 \le e_0 < e_1 \f$ (pixels) of the switch \f$ \bar\lambda(\|e\|) \f$ between the large
-    projection operator \f$ P_{\|e\|} \f$ (above \f$ e_1 \f$) and the classical \f$ I_n - J^+ J \f$ (below
-    \f$ e_0 \f$), see vpServoJointLimitAvoidance. Default: vpServo's 0.1 and 0.7, taken in pixels. Raise
+    The error norms \f$ 0 \le e_0 < e_1 \f$ (in the unit of setErrorUnit(): pixels by default) of the switch \f$
+    \bar\lambda(\|e\|) \f$ between the large projection operator \f$ P_{\|e\|} \f$ (above \f$ e_1 \f$) and the classical
+    \f$ I_n - J^+ J \f$ (below \f$ e_0 \f$), see vpServoJointLimitAvoidance. Default: vpServo's 0.1 and 0.7, taken in
+    that unit (vpServo's values mean normalised units: with ERROR_NORMALIZED they mean what they mean in vpServo). Raise
     \f$ e_0 \f$ above the noise level of \f$ \|e\| \f$ (about \f$ \sqrt{8N} \sigma \f$ for N points and a noisy
     \f$ s \f$ and \f$ s^* \f$ of \f$ \sigma \f$ px) if a joint may rest in its activation band at the target.
     \exception vpProjectiveException if they are not finite or not \f$ 0 \le e_0 < e_1 \f$.
@@ -330,17 +398,35 @@ public:
   vpColVector computeControlLaw(const vpColVector &q);
   //! The same on Eigen types, without allocation once the sizes are known.
   void computeControlLaw(const vpProjectiveRobot::JointVector &q, vpProjectiveRobot::JointVector &qdot);
+  /*!
+    The joint values (n x 1, encoder readings) for the next computeControlLaw() without argument: the counterpart of
+    vpServo::set_eJe(), which a vpServo program calls at every iteration with the robot's current Jacobian. This task
+    cannot do without them: its Jacobian (46) is the model's at the current joints, and nothing else gives them.
+    \exception vpProjectiveException (nonFiniteValueError, dimensionError) if \e q has a non-finite entry or, once
+    setRobot() was called, not one entry per joint.
+  */
+  void setJointPositions(const vpColVector &q);
+  /*!
+    computeControlLaw(q) at the joints of the last setJointPositions(), as vpServo::computeControlLaw() uses the
+    Jacobian of the last set_eJe(). Each setJointPositions() serves one call: a second call without new joints throws
+    rather than compute a velocity for where the arm was.
+    \exception vpProjectiveException (notInitializedError) if setJointPositions() was not called since the last
+    computeControlLaw() without argument; otherwise as computeControlLaw(q).
+  */
+  vpColVector computeControlLaw();
   //@}
 
   /*! \name State of the last computeControlLaw() */
   //@{
-  //! \f$ e = s - s^* \f$ (4N, pixels) of the last computeControlLaw(); the 4 rows of a feature set aside are zero.
+  //! \f$ e = s - s^* \f$ (4N, in the unit of setErrorUnit(): pixels by default) of the last computeControlLaw(); the
+  //! 4 rows of a feature set aside are zero.
   vpColVector getError() const;
-  //! \f$ J \f$ (4N x n, pixels per joint unit) of the last computeControlLaw(); the 4 rows of a feature set aside are
-  //! zero.
+  //! \f$ J \f$ (4N x n, unit of setErrorUnit() per joint unit) of the last computeControlLaw(); the 4 rows of a
+  //! feature set aside are zero.
   vpMatrix getTaskJacobian() const;
   /*!
-    Singular values of the \f$ J \f$ of the last computeControlLaw() (n x 1, pixels per joint unit, decreasing), as
+    Singular values of the \f$ J \f$ of the last computeControlLaw() (n x 1, unit of setErrorUnit() per joint unit,
+    decreasing), as
     vpServo::getTaskSingularValues(); empty before the first computeControlLaw(). Computed on demand by an SVD of
     \f$ J \f$.
   */
@@ -466,8 +552,11 @@ public:
   //@}
 
   /*!
-    Prints the task as vpServo::print() does: the robot, the features (current and desired values, state,
-    distances), the error, the status and the settings of the gain, the law, the checks and the joint limits.
+    Prints the task in the layout of vpServo::print(vpServo::ALL): the type of control law (the rig's mounting, the
+    joint-space law), the list of visual features s, the list of desired features s*, the task Jacobian J (in place of
+    vpServo's interaction matrix Ls), the error vector (s - s*), the gain; then what vpServo has not: the status of the
+    last computeControlLaw(), each feature's state and distances, and the settings of the law, the checks and the
+    joint limits.
   */
   void print(std::ostream &os = std::cout) const;
 
@@ -496,6 +585,9 @@ private:
   void buildTask(const JointVector &q, vpIteration &it, const char *method);
   vpServoStatus decideStatus(const vpIteration &it) const;
   void computePrimaryVelocity(const JointVector &q, vpIteration &it, JointVector &qdot);
+  // The task's gain (setLambda(), setAdaptiveGainInput(), setErrorUnit()) for the normal equations and |e|_inf (px).
+  static double taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale, const JointMatrix &JtJ,
+                         const JointVector &Jte, double errorInf);
   void addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const;
   void stop(vpIteration &it, JointVector &qdot) const;
   void commit();
@@ -545,6 +637,15 @@ private:
   size_t m_sincePlan;      // calls since the last plan
   bool m_replanFailed;     // the last plan was a re-plan that found nothing: law (47) runs
   double m_followGain;
+
+  // setErrorUnit(): the unit, the focal length given (0: estimated), pixels per unit of error.
+  vpGainInput m_gainInput;
+  vpErrorUnit m_errorUnit;
+  double m_focalLength;
+  double m_errorScale;
+  // setJointPositions(): the joints for computeControlLaw() without argument, and whether they are new.
+  JointVector m_q;
+  bool m_qFresh;
 };
 
 END_VISP_NAMESPACE
