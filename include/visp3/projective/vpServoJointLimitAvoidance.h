@@ -169,6 +169,12 @@ public:
   /*!
     \f$ \dot q_2 \f$ (n x 1, resized) at joint values \e q for the primary velocity \e qdot1 and the primary task's
     normal equations; 0 without joint limits. \f$ P \f$ is computed only when a joint is outside its free interval.
+    \param q : joint values (n x 1).
+    \param qdot1 : the primary velocity (n x 1), after its saturation.
+    \param JtJ, Jte : \f$ J^T J \f$ (n x n) and \f$ J^T e \f$ (n x 1) of the primary task.
+    \param errorNorm : \f$ \|e\| \f$, in the unit of setLargeProjectionThresholds().
+    \param law : the primary law (its pseudo-inverse threshold for \f$ I_n - J^+ J \f$).
+    \param qdot2 : \f$ \dot q_2 \f$ (n x 1, resized).
     \param target : if given (n x 1), the joint values the primary task converges to, known inside the limits (a
     planned target, vpProjectivePathPlanner): the free interval of each joint grows to contain it,
     \f$ q_{l_0,i}^{min} \leftarrow \min(q_{l_0,i}^{min}, q^*_i) \f$ and \f$ q_{l_0,i}^{max} \leftarrow
