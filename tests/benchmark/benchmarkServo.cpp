@@ -466,10 +466,20 @@ void BM_vpServoProjective_Eigen_Following(benchmark::State &state)
   ProjectiveTask t(paperRobot());
   t.task.setPathPlanning(true);
   t.task.getPathPlanner().setMaxJointStep(vpMath::rad(0.03));
+  t.task.getPathPlanner().setRehearsalBudget(0); // a path, even where law (47) would do: this times the follower
   const vpProjectiveRobot::JointVector q = jointVector(t.q);
   vpProjectiveRobot::JointVector qdot(6);
-  t.task.computeControlLaw(q, qdot); // plans
-  timeControlLaw(state, t.task, q);
+  t.task.computeControlLaw(q, qdot); // plans; the next call aims at sample 2 with the arm at sample 1
+  // The arm where the plan puts it at every call (a fixed q would leave the path: the task would plan again).
+  const std::vector<vpProjectiveRobot::JointVector> &path = t.task.getPathPlanner().getPath();
+  size_t sample = 1;
+  const unsigned long long before = mallocCalls();
+  for (auto _ : state) {
+    t.task.computeControlLaw(path[std::min(sample++, path.size() - 1)], qdot);
+    benchmark::DoNotOptimize(qdot.data());
+    benchmark::ClobberMemory();
+  }
+  reportAllocations(state, before);
   state.SetLabel(std::string(t.task.isFollowingPath() ? "following, " : "NOT following, ") +
                  std::to_string(t.task.getPathPlanner().getPath().size()) + " samples");
 }
