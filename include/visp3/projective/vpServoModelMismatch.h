@@ -114,12 +114,12 @@ public:
 
 private:
   struct vpRecord {
-    Eigen::Vector4d sum; // sum of the sign-aligned unit points at the zero reference
-    Eigen::Vector4d s;   // this iteration's value
-    double distance;     // this iteration's distance, -1: not evaluated
-    bool usable;         // this iteration
-    bool hasMemory;      // sum is set
-    bool exact;          // sum is an acquired marker's point (vpProjectiveArmModel::matchMarker())
+    Eigen::Vector4d sum;    // sum of the sign-aligned unit points at the zero reference
+    Eigen::Vector4d s;      // this iteration's value
+    double distance;        // this iteration's distance, -1: not evaluated
+    bool usable;            // this iteration
+    bool hasMemory;         // sum is set
+    bool exact;             // sum is an acquired marker's point (vpProjectiveArmModel::matchMarker())
     Eigen::Vector4d recent; // the recent memory (unit, zero reference), set with hasMemory
   };
 
