@@ -392,6 +392,19 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
   }
 }
 
+vpProjectivePathPlanner::JointVector vpProjectivePathPlanner::nearestRepresentative(const vpProjectiveArmModel &model,
+                                                                                    const JointVector &branch,
+                                                                                    const JointVector &q)
+{
+  JointVector t = branch;
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    if (model.jointType(static_cast<unsigned int>(i)) == vpProjectiveJoint::REVOLUTE) {
+      t(i) = q(i) + std::remainder(t(i) - q(i), 2.0 * M_PI);
+    }
+  }
+  return t;
+}
+
 std::vector<std::pair<vpProjectivePathPlanner::JointVector, unsigned int>>
 vpProjectivePathPlanner::targetCandidates(const vpProjectiveArmModel &model, const JointVector &q,
                                           const std::vector<Eigen::Vector4d> &points, bool &anyInside) const
@@ -405,12 +418,11 @@ vpProjectivePathPlanner::targetCandidates(const vpProjectiveArmModel &model, con
   std::vector<Eigen::Vector4d> s;
   anyInside = false;
   for (size_t b = 0; b < m_branches.size(); ++b) {
-    JointVector t = m_branches[b];
+    JointVector t = nearestRepresentative(model, m_branches[b], q);
     for (Eigen::Index i = 0; i < q.size(); ++i) {
       if (model.jointType(static_cast<unsigned int>(i)) != vpProjectiveJoint::REVOLUTE) {
         continue;
       }
-      t(i) = q(i) + std::remainder(t(i) - q(i), 2.0 * M_PI);
       for (double turn : {-2.0 * M_PI, 2.0 * M_PI}) {
         if (m_hasLimits && (t(i) < m_qmin(i) || t(i) > m_qmax(i)) && t(i) + turn >= m_qmin(i) &&
             t(i) + turn <= m_qmax(i)) {
@@ -641,22 +653,15 @@ vpProjectivePathPlanner::adoptLaw(const vpProjectiveArmModel &model, const std::
 {
   // The law ends in the branch whose basin it reached: the target is that branch's representative there (the last
   // rehearsed configuration without branches).
-  const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
   m_target = path.back();
   m_branch = 0;
   double nearest = std::numeric_limits<double>::infinity();
-  JointVector delta(n);
   for (size_t b = 0; b < m_branches.size(); ++b) {
-    for (Eigen::Index i = 0; i < n; ++i) {
-      delta(i) = m_branches[b](i) - path.back()(i);
-      if (model.jointType(static_cast<unsigned int>(i)) == vpProjectiveJoint::REVOLUTE) {
-        delta(i) = std::remainder(delta(i), 2.0 * M_PI);
-      }
-    }
-    if (delta.cwiseAbs().maxCoeff() < nearest) {
-      nearest = delta.cwiseAbs().maxCoeff();
+    const JointVector t = nearestRepresentative(model, m_branches[b], path.back());
+    if ((t - path.back()).cwiseAbs().maxCoeff() < nearest) {
+      nearest = (t - path.back()).cwiseAbs().maxCoeff();
       m_branch = static_cast<unsigned int>(b);
-      m_target = path.back() + delta;
+      m_target = t;
     }
   }
   m_kind = PATH_LAW;

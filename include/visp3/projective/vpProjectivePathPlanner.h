@@ -269,6 +269,9 @@ private:
                    const std::vector<Eigen::Vector4d> &sStar, std::vector<JointVector> &path,
                    std::vector<std::vector<Eigen::Vector4d>> &features);
   unsigned int halveWhileRising(const vpProjectiveArmModel &model, const JointVector &q, JointVector &qdot) const;
+  //! \e branch's representative nearest to \e q: each revolute joint within half a turn of q's.
+  static JointVector nearestRepresentative(const vpProjectiveArmModel &model, const JointVector &branch,
+                                           const JointVector &q);
   vpPlanStatus failWith(vpPlanStatus status, std::ostringstream &os);
   vpPlanStatus adoptLaw(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
                         const std::vector<std::vector<Eigen::Vector4d>> &features, std::ostringstream &os);
