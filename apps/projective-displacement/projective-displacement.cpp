@@ -15,7 +15,7 @@
   Projective kinematics of a rotation seen by an uncalibrated stereo rig (Ruf & Horaud, ICCV'99, sections 2 to 5).
 
   A stereo rig that nobody calibrated watches 7 markers on a rigid body that rotates by 30 deg about an axis.
-  From the images alone, the tutorial
+  From the images alone, the program
   1. weakly calibrates the rig: the fundamental matrix F from noisy matches of a random scene;
   2. images the 7 markers before and after the rotation;
   3. estimates the projective displacement H (4x4): linearly from triangulated points, then by maximum likelihood
@@ -104,7 +104,7 @@ void estimateMotion(const vpProjectiveStereoRig &rig, const std::vector<vpImageP
 //! [Displacement]
 
 /*!
-  One experiment with noise seed \e seed and pixel noise \e sigma: steps 1 to 5 of the tutorial. Prints every step
+  One experiment with noise seed \e seed and pixel noise \e sigma: steps 1 to 5 of the program. Prints every step
   when \e verbose.
 */
 Result runExperiment(const Scene &scene, unsigned int seed, double sigma, bool verbose)

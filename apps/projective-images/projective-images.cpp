@@ -12,7 +12,7 @@
  */
 
 /*!
-  The paper's experiment of projective-paper.cpp with the loop closed on images: the same arm, rig, trial
+  The paper's experiment of apps/projective-paper with the loop closed on images: the same arm, rig, trial
   motions and servo task, but every pixel the plugin gets is the centre of a blob that vpStereoDotTracker (vpDot2 in
   both images) followed in 8-bit images rendered by vpSimulatorMarkerRenderer (6 mm lit balls, exact silhouettes,
   supersampled, blurred, noisy). No ground-truth projection enters the loop: a simulated user clicks each marker once
@@ -20,8 +20,8 @@
   during the acquisition and by the acquired model afterwards, its correspondences checked by the model's epipolar
   geometry. The acquisition (F, zero reference, trial motions), the teaching of the target and the servo all use the
   tracked centres; a marker lost during a motion ends a trial at its last good frame, or the servo run. It prints the
-  main tutorial's table, the tracking accuracy (against the truth, for the report only) and the final joint errors
-  against the main job's at 0.5 px. See the tutorial's page for the markers (active, seen from all around).
+  main job's table, the tracking accuracy (against the truth, for the report only) and the final joint errors
+  against the main job's at 0.5 px. See its documentation page for the markers (active, seen from all around).
 
   Usage: projective-images [--seeds N] [--model FILE] [--output DIR] [--no-display] [--help]
   With --model arm.json, the model is loaded if the file exists, otherwise acquired by seed 1 and saved; the other

@@ -28,12 +28,15 @@
   5. writes the trajectories of seed 1 as CSV and as PNG figures like the paper's Fig. 2, 4 and 5 (with gnuplot);
      with a display it also shows them live.
 
-  Usage: projective-paper [--seeds N] [--output DIR] [--model FILE] [--max-excursion DEG] [--no-display]
-                         [--help]
+  Usage: projective-paper [--seeds N] [--output DIR] [--model FILE] [--max-excursion DEG] [--no-display] [--help]
   --max-excursion 40 lets the plan follow straight image lines (Fig. 2) at the price of joints folding past their
   targets (Fig. 4); the default 20 keeps the joints monotonic.
   With --model FILE, the first run acquires the arm and saves its model; later runs load it instead of acquiring
   (the multi-seed study always acquires anew, since it measures the acquisition's noise too).
+
+  The steps (acquisition, servo run, study) are in paper-experiment.cpp; the paper's world, the report and the
+  figures in apps/common/ (paper-world.h, servo-report.h, figures.h). tutorials/tutorial-projective-servo.cpp is the
+  same acquisition and servo, once, in one main() to copy.
 */
 
 #include <cstdlib>

@@ -14,7 +14,7 @@
 /*!
   \file viper850-robot.h
   \brief Driving ViSP's vpSimulatorViper850 deterministically: constant sampling time, one simulator step per command,
-  positioning by velocity steps; and the scene helpers of the Viper850 tutorials.
+  positioning by velocity steps; and the scene helpers of projective-viper850.
 */
 
 #ifndef _app_projective_servo_viper850_robot_h_
