@@ -29,6 +29,7 @@
 
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpSimulatorRobotArm.h>
 #include <visp3/robot/vpAfma4.h>
 #include <visp3/robot/vpAfma6.h>
 #include <visp3/robot/vpViper.h>
@@ -266,7 +267,7 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
                                     " joints, the robot " + std::to_string(n) + ": give the robot's joint types.");
   }
   // The joint range the trials stay in: the limits given, else those of ViSP's arms that know theirs (Viper650/850,
-  // Afma4/6, real or simulated) less 2 deg or 1 cm, else none.
+  // Afma4/6, real or simulated, and vpSimulatorRobotArm) less 2 deg or 1 cm, else none.
   m_lower = vpColVector();
   m_upper = vpColVector();
   std::string limitsFrom = "none";
@@ -285,6 +286,9 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
     } else if (const vpAfma4 *afma4 = dynamic_cast<const vpAfma4 *>(&robot)) {
       qmin = afma4->getJointMin();
       qmax = afma4->getJointMax();
+    } else if (const vpSimulatorRobotArm *arm = dynamic_cast<const vpSimulatorRobotArm *>(&robot)) {
+      qmin = arm->getJointMin(); // in encoder readings
+      qmax = arm->getJointMax();
     }
     if (qmin.size() == n && qmax.size() == n) {
       m_lower = qmin;
