@@ -195,7 +195,7 @@ TEST(ProjectiveAcquisitionProcedure, AcquiredModelPredictsMarkersAtNoiseLevel)
   EXPECT_NE(log.str().find("joint 5"), std::string::npos);
   EXPECT_GT(steps, 12u);
   EXPECT_LT((s.robot.q() - vpColVector(6, 0.0)).frobeniusNorm(), 3e-5); // back at the zero reference (1e-5 per joint)
-  EXPECT_LT(predictionRms(s, procedure, model), s.sigma);             // 0.22 px at seed 12
+  EXPECT_LT(predictionRms(s, procedure, model), s.sigma);               // 0.22 px at seed 12
   // Moved by joint velocities only, and the mounting told by a check motion of two joints.
   EXPECT_EQ(s.robot.positionCalls, 0u);
   EXPECT_GT(s.robot.velocityCalls, 100u);
