@@ -246,7 +246,7 @@ public:
     Off by default: law (47) as is, vpServo's constant gain, and a velocity proportional to the error whatever its
     history. Settling assumes a target at rest: a target that moves slowly (tracking), below the F-test, is followed
     with the lag of an average over up to 100 frames; turn it on to hold a static pose at the best accuracy the
-    cameras give (measured: \ref page_servo_measurements).
+    cameras give (measured: \ref servo_meas_settling).
   */
   void setSettling(bool settling);
   //! True if settling is on (setSettling()).
