@@ -36,10 +36,10 @@ BEGIN_VISP_NAMESPACE
   \f$ \lambda = 0.5 \f$): the end pose jitters at the single-frame floor. Settled, the \f$ k \f$-th call
   (\f$ k = 0, 1, \ldots \f$) uses
   \f[ \lambda_k = \frac{\lambda}{1 + \lambda k}, \qquad k \le K \f]
-  (\f$ K \f$: the horizon): \f$ \lambda_0 = \lambda \f$ (no jump at the switch) and the joints after \f$ k \f$
-  settled calls are the mean of the \f$ k \f$ frames' estimates plus \f$ (1/\lambda - 1)/(k + 1/\lambda - 1) \f$
-  times the error they had when settling began; beyond \f$ K \f$ the gain stays at \f$ \lambda_K \f$, an exponential
-  average over about \f$ K \f$ frames, which follows a slow drift.
+  (\f$ K \f$: the horizon): \f$ \lambda_0 = \lambda \f$ (no jump at the switch) and, where the task is linear (no
+  damping, no saturation), the joints after \f$ k \f$ settled calls are the mean of the \f$ k \f$ frames' estimates and
+  of the joints settling began at, counted as \f$ 1/\lambda - 1 \f$ frames; beyond \f$ K \f$ the gain stays at \f$
+  \lambda_K \f$, an exponential average over about \f$ K \f$ frames, which follows a slow drift.
 
   Every quantity comes from the normal equations of the call (\f$ J^T J \f$, \f$ J^T e \f$, \f$ \|e\|^2 \f$, in
   pixels) and the number \f$ m = 4 N_{active} \f$ of rows, without allocation, with the Gauss-Newton step
