@@ -70,6 +70,27 @@ void vpFeatureStereoPoint::buildFrom(const vpImagePoint &ipLeft, const vpImagePo
   buildFrom(ipLeft.get_u(), ipLeft.get_v(), ipRight.get_u(), ipRight.get_v());
 }
 
+void vpFeatureStereoPoint::buildFrom(const std::vector<vpImagePoint> &ipLeft, const std::vector<vpImagePoint> &ipRight)
+{
+  const std::string where = at("buildFrom()");
+  if (ipLeft.empty() || ipLeft.size() != ipRight.size()) {
+    std::ostringstream os;
+    os << "got " << ipLeft.size() << " left and " << ipRight.size()
+       << " right observations; give the point's image in both cameras for each frame, at least one frame";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  double sum[4] = {0.0, 0.0, 0.0, 0.0};
+  for (size_t f = 0; f < ipLeft.size(); ++f) {
+    const double values[4] = {ipLeft[f].get_u(), ipLeft[f].get_v(), ipRight[f].get_u(), ipRight[f].get_v()};
+    for (unsigned int i = 0; i < 4; ++i) {
+      requireFinite(values[i], where, std::string("the coordinate ") + kNames[i]);
+      sum[i] += values[i];
+    }
+  }
+  const double count = static_cast<double>(ipLeft.size());
+  buildFrom(sum[0] / count, sum[1] / count, sum[2] / count, sum[3] / count);
+}
+
 void vpFeatureStereoPoint::buildFrom(const vpPoint &P, const vpCameraParameters &camLeft,
                                      const vpHomogeneousMatrix &cLeftMo, const vpCameraParameters &camRight,
                                      const vpHomogeneousMatrix &cRightMo)

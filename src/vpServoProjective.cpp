@@ -98,7 +98,7 @@ vpServoProjective::vpServoProjective()
       m_mismatchRobot(nullptr), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
       m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
       m_replanFailed(false), m_followGain(1.0), m_gainInput(GAIN_INPUT_ERROR), m_errorUnit(ERROR_PIXELS),
-      m_focalLength(0.0), m_errorScale(1.0), m_q(), m_qFresh(false)
+      m_focalLength(0.0), m_errorScale(1.0), m_q(), m_qFresh(false), m_settling(), m_targetGeneration(0)
 {
 }
 
@@ -416,8 +416,9 @@ inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vp
   return stopped ? SERVO_STOPPED : SERVO_REDUCED;
 }
 
-inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot) const
+inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot)
 {
+  m_settling.reset(); // stopped: converge anew before settling
   qdot.setZero(it.JtJ.rows());
   it.qdot2.setZero(it.JtJ.rows());
   it.lambda = 0.0;
@@ -432,6 +433,16 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
   // the follower's gain), saturated as a whole.
   it.lambda = m_following ? m_followGain
                           : taskGain(m_lambda, m_gainInput, m_errorScale, it.JtJ, it.Jte, it.e.cwiseAbs().maxCoeff());
+  if (m_following) {
+    m_settling.reset(); // a path is not a rest: settle on law (47) after it
+  } else if (m_settling.isEnabled()) {
+    // Settling restarts with another set of active features or another target (their signature).
+    unsigned long context = m_targetGeneration;
+    for (unsigned int i = 0; i < m_features.size(); ++i) {
+      context = 31 * context + (m_health.getFeatureState(i) == FEATURE_ACTIVE ? i + 1 : 0);
+    }
+    it.lambda = m_settling.gain(it.lambda, it.JtJ, it.Jte, it.e.squaredNorm(), 4 * it.nbActive, context);
+  }
   m_law.computeVelocity(it.JtJ, it.Jte, it.lambda, qdot);
   if (m_following) {
     // The feedback corrects the model's error, a few pixels: bounded by half a path step, so that near a singular
@@ -481,6 +492,7 @@ inline void vpServoProjective::commit()
 {
   m_lastIteration = 1 - m_lastIteration;
   m_health.endIteration();
+  m_settling.commit();
   const vpServoStatus status = m_iterations[m_lastIteration].status;
   if (m_planning && m_pathSample < m_planner.getPath().size() && (status == SERVO_RUNNING || status == SERVO_REDUCED)) {
     ++m_pathSample; // the next call aims at the next sample (of the path, or of law (47)'s rehearsal)
@@ -600,6 +612,11 @@ vpMatrix vpServoProjective::getLargeProjectionOperator() const
   JointMatrix P;
   m_jointLimits.computeLargeProjectionOperator(last().JtJ, last().Jte, last().errorNorm, m_law, P);
   return toVisp(P);
+}
+
+void vpServoProjective::setSettling(bool settling)
+{
+  m_settling.setEnabled(settling, m_settling.getHorizon());
 }
 
 vpColVector vpServoProjective::getJointLimitVelocity() const

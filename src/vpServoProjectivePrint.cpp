@@ -150,6 +150,15 @@ void vpServoProjective::print(std::ostream &os) const
     os << "  Last step: gain " << last().lambda << ", damping " << last().damping << ", "
        << (last().saturated ? "saturated" : "not saturated") << "\n";
   }
+  os << "  Settling: ";
+  if (!m_settling.isEnabled()) {
+    os << "off (law (47) with the task's gain)\n";
+  } else if (m_settling.isSettled()) {
+    os << "settled for " << m_settling.getSettledIterations() << " calls (gain lambda / (1 + lambda k)), noise "
+       << m_settling.getNoiseEstimate() << " px per row\n";
+  } else {
+    os << "on, not settled (full gain until the error a joint motion explains is within the noise)\n";
+  }
   os << "  Damped least squares: sigma_0 " << m_law.getSigmaThreshold() << ", mu_max " << m_law.getMaxDamping()
      << " (pixels per joint unit); saturation ";
   if (m_law.getMaxJointVelocity() > 0.0) {

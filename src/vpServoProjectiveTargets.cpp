@@ -49,6 +49,8 @@ void vpServoProjective::refreshTargets()
   const vpProjectiveStereoRig &rig = m_robot->getModel().getStereoRig();
   for (size_t i = 0; i < m_targets.size(); ++i) {
     vpTarget &t = m_targets[i];
+    const Eigen::Vector4d before = t.effective;
+    const bool wasValid = t.valid;
     const Eigen::Vector4d user = m_desired[i]->getFeature();
     if (!t.valid || t.modelGeneration != modelGeneration || !(user == t.user)) {
       t.user = user;
@@ -68,6 +70,9 @@ void vpServoProjective::refreshTargets()
         t.effective = user; // no point: the user's value, which the health then judges
       }
       t.rigGeneration = rigGeneration;
+    }
+    if (!wasValid || !(t.effective == before)) {
+      ++m_targetGeneration; // another target: the settling gain converges anew
     }
   }
 }

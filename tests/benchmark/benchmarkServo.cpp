@@ -373,6 +373,37 @@ void BM_vpServoProjective_Eigen_NoMismatchCheck(benchmark::State &state)
 }
 
 /*!
+  The same task settled (setSettling(true)): s at the target, s* taught from 16 frames there, both noisy at 0.5 px,
+  and enough calls before the loop that the settling gain decreases as lambda / (1 + lambda k) in every timed call
+  (its F-tests and its noise estimate included); the label tells whether it was settled at the end.
+*/
+void BM_vpServoProjective_Eigen_Settling(benchmark::State &state)
+{
+  const PaperWorld &w = paperWorld();
+  ProjectiveTask t(paperRobot());
+  vpGaussRand noise(1.0, 0.0, 11);
+  const std::vector<vpColVector> targets = w.arm.getMarkers(degToRad(w.targetDeg));
+  for (unsigned int k = 0; k < 3; ++k) {
+    std::vector<vpImagePoint> left(16), right(16);
+    for (unsigned int f = 0; f < 16; ++f) {
+      w.rig.project(targets[w.tracked[k]], left[f], right[f], kNoiseSigma, noise);
+    }
+    t.sStar[k].buildFrom(left, right);
+    vpImagePoint l, r;
+    w.rig.project(targets[w.tracked[k]], l, r, kNoiseSigma, noise);
+    t.s[k].buildFrom(l, r);
+  }
+  t.task.setSettling(true);
+  const vpProjectiveRobot::JointVector q = jointVector(degToRad(w.targetDeg));
+  vpProjectiveRobot::JointVector qdot(q.size());
+  for (unsigned int i = 0; i < 5; ++i) {
+    t.task.computeControlLaw(q, qdot); // converged: settled from the second call on
+  }
+  timeControlLaw(state, t.task, q);
+  state.SetLabel(t.task.isSettled() ? "settled" : "NOT settled");
+}
+
+/*!
   The same task with every check of issue 6 on, so that each one runs in the timed loop: an image window
   (setImageSize), outlier rejection (setOutlierThreshold: epipolar distance and prediction H(q) H(q_l)^-1 M_l, the
   features accepted once before the loop), a 4th marker declared lost (SERVO_REDUCED: the rank test's
@@ -844,6 +875,10 @@ BENCHMARK(BM_vpServo_Viper850)->Repetitions(10)->ReportAggregatesOnly(true)->Uni
 BENCHMARK(BM_vpServoProjective_vpColVector)->Repetitions(10)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_vpServoProjective_Eigen)->Repetitions(10)->ReportAggregatesOnly(true)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_vpServoProjective_Eigen_NoMismatchCheck)
+    ->Repetitions(10)
+    ->ReportAggregatesOnly(true)
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_vpServoProjective_Eigen_Settling)
     ->Repetitions(10)
     ->ReportAggregatesOnly(true)
     ->Unit(benchmark::kMicrosecond);

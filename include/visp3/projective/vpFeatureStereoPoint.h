@@ -21,6 +21,8 @@
 
 #include <visp3/projective/vpProjectiveConfig.h>
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include <visp3/core/vpCameraParameters.h>
@@ -69,6 +71,26 @@ public:
   void buildFrom(const vpImagePoint &ipLeft, const vpImagePoint &ipRight);
   //! Sets \f$ s = (u, v, u', v') \f$ directly.
   void buildFrom(double u, double v, double up, double vp);
+  /*!
+    Teaching \f$ s^* \f$ from several frames: sets \f$ s \f$ to the mean of the F observations of the point
+    \f$ (u_f, v_f, u'_f, v'_f) \f$, \e ipLeft[f] and \e ipRight[f] (pixels), taken with the arm and the target at rest.
+    Each frame's noise, \f$ \sigma \f$ px per coordinate, becomes \f$ \sigma / \sqrt F \f$ (the mean of
+    independent observations of one point, and its maximum-likelihood estimate under Gaussian noise): a target taught
+    from one frame keeps that frame's noise for the whole servo, which then ends at that floor whatever it averages
+    (vpServoProjective::setSettling()). The mean of matched observations of one point is itself a matched
+    observation (the epipolar constraint holds for the true point, and the noise is averaged in each coordinate).
+    \code
+    std::vector<vpImagePoint> left, right; // one per frame, the arm at the target
+    for (unsigned int f = 0; f < 16; ++f) {
+      // ... grab and track, then
+      left.push_back(ipLeft); right.push_back(ipRight);
+    }
+    s_star.buildFrom(left, right);
+    \endcode
+    \exception vpProjectiveException (dimensionError) if the lists are empty or of different sizes;
+    (nonFiniteValueError) if a coordinate is not finite. \f$ s \f$ is then unchanged.
+  */
+  void buildFrom(const std::vector<vpImagePoint> &ipLeft, const std::vector<vpImagePoint> &ipRight);
   /*!
     For simulations, what vpFeatureBuilder::create(vpFeaturePoint &, const vpPoint &) is to vpFeaturePoint: sets
     \f$ s \f$ from the images of the 3D point \e P (its object-frame coordinates, vpPoint::setWorldCoordinates())

@@ -35,6 +35,7 @@
 #include <visp3/projective/vpServoFeatureHealth.h>
 #include <visp3/projective/vpServoJointLimitAvoidance.h>
 #include <visp3/projective/vpServoModelMismatch.h>
+#include <visp3/projective/vpServoSettling.h>
 #include <visp3/vs/vpAdaptiveGain.h>
 
 BEGIN_VISP_NAMESPACE
@@ -228,6 +229,32 @@ public:
   vpErrorUnit getErrorUnit() const { return m_errorUnit; }
   //! Pixels per unit of the error: 1 for ERROR_PIXELS, the focal length \f$ f \f$ for ERROR_NORMALIZED.
   double getErrorScale() const { return m_errorScale; }
+  /*!
+    Settling (default off): once converged, the gain of law (47) decreases as \f$ \lambda / (1 + \lambda k) \f$ at
+    the \f$ k \f$-th settled call (vpServoSettling), so that the joints become the running mean of the frames'
+    estimates of the target instead of chasing each frame's noise: at rest, the joint error falls as
+    \f$ 1/\sqrt{k} \f$ below the single-frame floor, down to what \f$ s^* \f$ allows (teach it from several
+    frames: vpFeatureStereoPoint::buildFrom(const std::vector<vpImagePoint> &, const std::vector<vpImagePoint> &)).
+    Converged means that the error a joint motion explains is within the noise of one frame (the noise estimated from
+    what no joint motion explains: no setting), on 2 consecutive calls; the convergence from far is the law's, as
+    off. The full gain comes back at once when the explained error is no longer noise (an F-test at \f$ 10^{-4} \f$:
+    the target moved, the arm was bumped), and settling starts anew with another set of active features (feature
+    health), another target (a user's \f$ s^* \f$, a re-registered rig), after a stop (SERVO_STOPPED,
+    SERVO_MODEL_MISMATCH, SERVO_NO_PLAN) and while a planned path is followed. The gain it gives is what
+    getLambda() reports and what the joint-limit avoidance sees.
+
+    Off by default: law (47) as is, vpServo's constant gain, and a velocity proportional to the error whatever its
+    history. Settling assumes a target at rest: a target that moves slowly (tracking), below the F-test, is followed
+    with the lag of an average over up to 100 frames; turn it on to hold a static pose at the best accuracy the
+    cameras give (measured: \ref servo_meas_settling).
+  */
+  void setSettling(bool settling);
+  //! True if settling is on (setSettling()).
+  bool getSettling() const { return m_settling.isEnabled(); }
+  //! True if the last computeControlLaw() used the settling gain.
+  bool isSettled() const { return m_settling.isSettled(); }
+  //! The settling gain's state: settled calls, noise estimate, last test statistic.
+  const vpServoSettling &getSettlingState() const { return m_settling; }
   //@}
 
   /*! \name Control law (forwarded to vpServoDampedLeastSquares) */
@@ -589,7 +616,7 @@ private:
   static double taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale, const JointMatrix &JtJ,
                          const JointVector &Jte, double errorInf);
   void addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const;
-  void stop(vpIteration &it, JointVector &qdot) const;
+  void stop(vpIteration &it, JointVector &qdot);
   void commit();
   const vpIteration &last() const { return m_iterations[m_lastIteration]; }
   bool planIfNeeded(const JointVector &q);
@@ -646,6 +673,9 @@ private:
   // setJointPositions(): the joints for computeControlLaw() without argument, and whether they are new.
   JointVector m_q;
   bool m_qFresh;
+  // setSettling(): the settling gain, and the generation of the task's targets (refreshTargets()) it settles on.
+  vpServoSettling m_settling;
+  unsigned long m_targetGeneration;
 };
 
 END_VISP_NAMESPACE
