@@ -97,8 +97,9 @@ vpServoProjective::vpServoProjective()
       m_jointLimits(), m_mismatch(), m_targets(), m_mismatchRigGeneration(0), m_mismatchModelGeneration(0),
       m_mismatchRobot(nullptr), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
       m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
-      m_replanFailed(false), m_followGain(1.0), m_gainInput(GAIN_INPUT_ERROR), m_errorUnit(ERROR_PIXELS),
-      m_focalLength(0.0), m_errorScale(1.0), m_q(), m_qFresh(false), m_settling(), m_targetGeneration(0)
+      m_replanFailed(false), m_followGain(1.0), m_period(1.0), m_qdotMax(0.0), m_gainInput(GAIN_INPUT_ERROR),
+      m_errorUnit(ERROR_PIXELS), m_focalLength(0.0), m_errorScale(1.0), m_q(), m_qFresh(false), m_settling(),
+      m_targetGeneration(0)
 {
 }
 
@@ -209,7 +210,20 @@ void vpServoProjective::setDamping(double sigmaThreshold, double maxDamping)
 
 void vpServoProjective::setMaxJointVelocity(double qdotMax)
 {
-  m_law.setMaxJointVelocity(qdotMax);
+  m_law.setMaxJointVelocity(qdotMax * m_period); // throws on a bad value, before anything changes
+  m_qdotMax = qdotMax;
+}
+
+void vpServoProjective::setControlPeriod(double seconds)
+{
+  if (!std::isfinite(seconds) || !(seconds > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, at("setControlPeriod()"),
+         "the control period is the time between two calls of computeControlLaw(), in seconds: positive and finite");
+  }
+  // Inside, the law works per call (a joint step, as the planner's paths and rehearsals do); the user's gain and
+  // saturation are per second.
+  m_law.setMaxJointVelocity(m_qdotMax * seconds);
+  m_period = seconds;
 }
 
 void vpServoProjective::setPseudoInverseThreshold(double threshold)
@@ -432,7 +446,8 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
   // the path's step to the next sample (feedforward) plus the law on the error to the current sample (feedback, with
   // the follower's gain), saturated as a whole.
   it.lambda = m_following ? m_followGain
-                          : taskGain(m_lambda, m_gainInput, m_errorScale, it.JtJ, it.Jte, it.e.cwiseAbs().maxCoeff());
+                          : m_period * taskGain(m_lambda, m_gainInput, m_errorScale, it.JtJ, it.Jte,
+                                                it.e.cwiseAbs().maxCoeff());
   if (m_following) {
     m_settling.reset(); // a path is not a rest: settle on law (47) after it
   } else if (m_settling.isEnabled()) {
@@ -518,6 +533,7 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
   } else {
     computePrimaryVelocity(q, it, qdot);
     addJointLimitAvoidance(q, it, qdot);
+    qdot /= m_period; // the step of this call, as a velocity held for one period
   }
   commit();
 }

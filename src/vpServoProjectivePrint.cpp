@@ -161,8 +161,8 @@ void vpServoProjective::print(std::ostream &os) const
   }
   os << "  Damped least squares: sigma_0 " << m_law.getSigmaThreshold() << ", mu_max " << m_law.getMaxDamping()
      << " (pixels per joint unit); saturation ";
-  if (m_law.getMaxJointVelocity() > 0.0) {
-    os << m_law.getMaxJointVelocity() << " joint units";
+  if (m_qdotMax > 0.0) {
+    os << m_qdotMax << " joint units per second";
   } else {
     os << "off";
   }
@@ -204,4 +204,9 @@ void vpServoProjective::print(std::ostream &os) const
     os << "none";
   }
   os << std::endl;
+}
+
+std::string vpServoProjective::toString(vpServoStatus status)
+{
+  return statusName(status);
 }

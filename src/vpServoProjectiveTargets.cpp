@@ -182,10 +182,10 @@ bool vpServoProjective::planIfNeeded(const JointVector &q)
     } else {
       const vpAdaptiveGain lambda = m_lambda;
       const vpGainInput input = m_gainInput;
-      const double scale = m_errorScale;
-      m_planner.setControlLaw(
-          [lambda, input, scale](const JointMatrix &JtJ, const JointVector &Jte, double errorInf) {
-            return taskGain(lambda, input, scale, JtJ, Jte, errorInf);
+      const double scale = m_errorScale, period = m_period;
+      m_planner.setControlLaw( // rehearsed per call, as the task runs it (setControlPeriod())
+          [lambda, input, scale, period](const JointMatrix &JtJ, const JointVector &Jte, double errorInf) {
+            return period * taskGain(lambda, input, scale, JtJ, Jte, errorInf);
           },
           m_law, m_jointLimits, scale);
     }

@@ -267,11 +267,26 @@ public:
   */
   void setDamping(double sigmaThreshold, double maxDamping);
   /*!
-    Velocity saturation at \e qdotMax (joint units per call, or per second), keeping the direction of
-    \f$ \dot q \f$; 0 (the default) disables it. See vpServoDampedLeastSquares::setMaxJointVelocity().
+    Velocity saturation at \e qdotMax (joint units per second, i.e. per control period when that is 1 s: see
+    setControlPeriod()), keeping the direction of \f$ \dot q \f$; 0 (the default) disables it. See
+    vpServoDampedLeastSquares::setMaxJointVelocity().
     \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if it is negative or not finite.
   */
   void setMaxJointVelocity(double qdotMax);
+  /*!
+    The time \e T (seconds, > 0) between two calls of computeControlLaw(): the period of the loop that sends
+    \f$ \dot q \f$ to the robot as a velocity (vpRobot::setVelocity(), held until the next call). Default 1: one
+    call is one step of the discrete law, \f$ \dot q \f$ the joint step to make before the next call (the paper's
+    loop, and the study's). The task moves the arm by \f$ T \dot q \f$ per call: the gain (setLambda()) and the
+    saturation (setMaxJointVelocity()) are per second, and what acts per call is scaled by \f$ T \f$: a planned
+    path's samples (at most 2/3 of \f$ T \dot q_{max} \f$ apart, one per call), the rehearsal of law (47)
+    (setRehearsalBudget() calls), settling (an average over calls). Law (47) alone gives the same
+    \f$ \dot q = -\lambda J^+ e \f$ for any \f$ T \f$.
+    \exception vpProjectiveException (invalidValueError) if not positive and finite; the period is then unchanged.
+  */
+  void setControlPeriod(double seconds);
+  //! The control period (seconds; see setControlPeriod()).
+  double getControlPeriod() const { return m_period; }
   /*!
     Relative threshold \f$ \tau_+ \f$ of the pseudo-inverse, as vpServo::setPseudoInverseThreshold() (default
     \f$ 10^{-6} \f$): singular values of \f$ J \f$ below \f$ \tau_+ \sigma_{max} \f$ count as zero in the projector
@@ -461,6 +476,8 @@ public:
 
   //! Outcome of the last computeControlLaw() (SERVO_RUNNING before the first one).
   vpServoStatus getStatus() const { return last().status; }
+  //! The status's name and what it means (as print() gives it), e.g. for a program's log when it stops.
+  static std::string toString(vpServoStatus status);
   /*!
     State of feature \e i (index in addFeature() order) at the last computeControlLaw() (FEATURE_ACTIVE before).
     \exception vpProjectiveException (dimensionError) on a bad index.
@@ -664,6 +681,8 @@ private:
   size_t m_sincePlan;      // calls since the last plan
   bool m_replanFailed;     // the last plan was a re-plan that found nothing: law (47) runs
   double m_followGain;
+  double m_period;  // seconds per computeControlLaw() call (setControlPeriod())
+  double m_qdotMax; // the user's saturation, per second (the law's is per call: m_qdotMax * m_period)
 
   // setErrorUnit(): the unit, the focal length given (0: estimated), pixels per unit of error.
   vpGainInput m_gainInput;
