@@ -67,7 +67,8 @@ public:
   const json &member(const json &object, const char *key, const std::string &owner) const
   {
     if (!object.is_object() || !object.contains(key)) {
-      bad(owner + " has no '" + key + "' entry; add it (see the session format in vpProjectiveSession's documentation)");
+      bad(owner + " has no '" + key +
+          "' entry; add it (see the session format in vpProjectiveSession's documentation)");
     }
     return object[key];
   }

@@ -192,8 +192,8 @@ void vpProjectiveSessionCalibration::setEpipolarThreshold(double pixels)
 
 void vpProjectiveSessionCalibration::setOutlierThreshold(double pixels)
 {
-  m_outlier = nonNegative(pixels, at("setOutlierThreshold()"), "the outlier threshold",
-                          "pixels; 0 keeps every observation");
+  m_outlier =
+      nonNegative(pixels, at("setOutlierThreshold()"), "the outlier threshold", "pixels; 0 keeps every observation");
 }
 
 void vpProjectiveSessionCalibration::setCoplanarityThreshold(double pixels)
@@ -246,8 +246,9 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
   for (unsigned int i = 0; i < n; ++i) {
     if (trialsOf[i] == 0) {
       fail(vpProjectiveException::notInitializedError, where,
-           "joint " + std::to_string(i) + " has no trial frame in the session; record trials of every joint (each "
-                                          "joint alone, both ways from the zero reference)");
+           "joint " + std::to_string(i) +
+               " has no trial frame in the session; record trials of every joint (each "
+               "joint alone, both ways from the zero reference)");
     }
   }
   {
@@ -268,8 +269,8 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
        << vpProjectiveSession::toString(session.getFrame(k).role);
     const int joint = session.getTrialJoint(k);
     if (joint >= 0) {
-      const double amount =
-          session.getFrame(k).q[static_cast<unsigned int>(joint)] - session.getFrame(zero).q[static_cast<unsigned int>(joint)];
+      const double amount = session.getFrame(k).q[static_cast<unsigned int>(joint)] -
+                            session.getFrame(zero).q[static_cast<unsigned int>(joint)];
       os << " of joint " << joint << " by " << amountText(types[static_cast<size_t>(joint)], amount);
     }
     os << "): " << markers[k].ids.size() << " markers";
@@ -345,8 +346,8 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
   }
   std::vector<Eigen::Vector4d> X;
   for (size_t j = 0; j < l0.size(); ++j) {
-    X.push_back(rig.triangulate(Eigen::Vector2d(l0[j].get_u(), l0[j].get_v()),
-                                Eigen::Vector2d(r0[j].get_u(), r0[j].get_v())));
+    X.push_back(
+        rig.triangulate(Eigen::Vector2d(l0[j].get_u(), l0[j].get_v()), Eigen::Vector2d(r0[j].get_u(), r0[j].get_v())));
   }
   std::vector<unsigned int> best;
   const double parallax = vpProjectiveAcquisitionInternal::generalPositionParallax(rig, X, best);

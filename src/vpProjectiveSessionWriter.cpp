@@ -105,8 +105,9 @@ vpProjectiveSessionWriter::vpProjectiveSessionWriter(const std::string &folder, 
   std::error_code error;
   if (std::filesystem::exists(folder + "/session.json", error)) {
     fail(vpProjectiveException::fileError, where,
-         "'" + folder + "' already holds a session (session.json); record into a new folder (a recording is never "
-                        "overwritten)");
+         "'" + folder +
+             "' already holds a session (session.json); record into a new folder (a recording is never "
+             "overwritten)");
   }
   for (const char *sub : {"", "/left", "/right"}) {
     const std::string path = folder + sub;
@@ -140,7 +141,8 @@ unsigned int vpProjectiveSessionWriter::add(vpProjectiveSession::vpFrameRole rol
   frame.right = std::string("right/") + name;
   const int joint = m_session.checkFrame(frame, where, "frame " + std::to_string(k));
   if (Ileft.getSize() == 0 || Iright.getSize() == 0) {
-    fail(vpProjectiveException::fileError, where, "frame " + std::to_string(k) + ": an image is empty; nothing written");
+    fail(vpProjectiveException::fileError, where,
+         "frame " + std::to_string(k) + ": an image is empty; nothing written");
   }
   for (int side = 0; side < 2; ++side) {
     const std::string path = m_session.getFolder() + "/" + (side == 0 ? frame.left : frame.right);

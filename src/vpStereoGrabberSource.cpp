@@ -59,8 +59,7 @@ std::unique_ptr<vpFrameGrabber> openV4l2(const std::string &device, unsigned int
 
 vpStereoGrabberSource::vpStereoGrabberSource(const std::string &leftDevice, const std::string &rightDevice,
                                              unsigned int scale)
-    : m_ownedLeft(), m_ownedRight(), m_left(nullptr), m_right(nullptr), m_leftName(leftDevice),
-      m_rightName(rightDevice)
+    : m_ownedLeft(), m_ownedRight(), m_left(nullptr), m_right(nullptr), m_leftName(leftDevice), m_rightName(rightDevice)
 {
 #if defined(VISP_HAVE_MODULE_SENSOR) && defined(VISP_HAVE_V4L2)
   if (scale == 0) {
@@ -99,8 +98,9 @@ bool vpStereoGrabberSource::acquire(vpImage<unsigned char> &Ileft, vpImage<unsig
       (camera == 0 ? m_left : m_right)->acquire(camera == 0 ? Ileft : Iright);
     } catch (const vpException &e) {
       fail(vpProjectiveException::fileError, at("acquire()"),
-           "the " + std::string(camera == 0 ? "left" : "right") + " camera '" + (camera == 0 ? m_leftName : m_rightName) +
-               "' failed to give an image (" + e.getStringMessage() + "); check its cable and that no other program uses it");
+           "the " + std::string(camera == 0 ? "left" : "right") + " camera '" +
+               (camera == 0 ? m_leftName : m_rightName) + "' failed to give an image (" + e.getStringMessage() +
+               "); check its cable and that no other program uses it");
     }
   }
   return true;

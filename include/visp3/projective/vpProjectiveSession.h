@@ -43,9 +43,9 @@ class vpProjectiveSessionWriter;
   { "format": "visp-projective-session", "version": 1,
     "joint_types": ["revolute", "revolute", "prismatic", "revolute", "revolute", "revolute"],
     "frames": [
-      { "role": "zero",  "q": [0.1, -0.2, 0.05, 0, 0, 0], "t": 0.0, "left": "left/000000.png", "right": "right/000000.png" },
-      { "role": "trial", "q": [0.6, -0.2, 0.05, 0, 0, 0], "t": 1.5, "left": "left/000001.png", "right": "right/000001.png" } ] }
-  \endcode
+      { "role": "zero",  "q": [0.1, -0.2, 0.05, 0, 0, 0], "t": 0.0, "left": "left/000000.png", "right":
+  "right/000000.png" }, { "role": "trial", "q": [0.6, -0.2, 0.05, 0, 0, 0], "t": 1.5, "left": "left/000001.png",
+  "right": "right/000001.png" } ] } \endcode
   - \c q: the encoder readings as read (radians, metres), one per joint;
   - \c role: \c "zero" (exactly one: the zero reference), \c "trial" (exactly one joint differs from the zero frame's
     readings; any number of trials per joint, both ways), \c "observation" (a view for re-registering the rig, or

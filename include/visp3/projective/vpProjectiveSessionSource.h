@@ -51,9 +51,9 @@ public:
     Replays \e session (read from its folder), all frames, or only those whose role is in \e roles (if not empty).
     \exception vpProjectiveException (notInitializedError) if the session was not read from a folder (no images).
   */
-  explicit vpProjectiveSessionSource(const vpProjectiveSession &session,
-                                     const std::vector<vpProjectiveSession::vpFrameRole> &roles =
-                                         std::vector<vpProjectiveSession::vpFrameRole>());
+  explicit vpProjectiveSessionSource(
+      const vpProjectiveSession &session,
+      const std::vector<vpProjectiveSession::vpFrameRole> &roles = std::vector<vpProjectiveSession::vpFrameRole>());
 
   /*!
     The images of the next frame (grey); false, and the images untouched, after the last one.
