@@ -13,6 +13,8 @@
 
 #include <visp3/projective/vpStereoGrabberSource.h>
 
+#include <filesystem>
+
 #include <visp3/core/vpConfig.h>
 #include <visp3/core/vpException.h>
 
@@ -39,6 +41,12 @@ std::unique_ptr<vpFrameGrabber> openV4l2(const std::string &device, unsigned int
   if (device.empty() || device.size() >= FILENAME_MAX) {
     fail(vpProjectiveException::invalidValueError, at("vpStereoGrabberSource()"),
          std::string("the ") + side + " camera's device name is empty or too long; give a path such as /dev/video0");
+  }
+  std::error_code error;
+  if (!std::filesystem::exists(device, error)) {
+    fail(vpProjectiveException::fileError, at("vpStereoGrabberSource()"),
+         std::string("cannot open the ") + side + " camera '" + device +
+             "': no such device; check that the camera is plugged in and its name (ls /dev/video*)");
   }
   std::unique_ptr<vpV4l2Grabber> g(new vpV4l2Grabber());
   g->setDevice(device);
