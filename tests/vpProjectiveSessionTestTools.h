@@ -38,6 +38,10 @@
 
 #include "vpProjectiveArmTestTools.h"
 
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
 namespace vpProjectiveTest
 {
 //! A fresh temporary folder, removed with the object.

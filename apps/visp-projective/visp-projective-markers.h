@@ -23,6 +23,10 @@
 
 #include <visp3/projective/vpProjectiveSessionCalibration.h>
 
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
 namespace vispProjective
 {
 /*!

@@ -17,6 +17,12 @@
 #include <cmath>
 #include <cstdlib>
 
+#include <visp3/core/vpConfig.h>
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
 namespace vispProjective
 {
 Arguments::Arguments(const std::string &command, const std::vector<std::string> &positional,
