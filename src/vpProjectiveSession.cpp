@@ -174,6 +174,9 @@ std::string vpProjectiveSession::toString(vpFrameRole role)
 int vpProjectiveSession::checkFrame(const vpFrame &frame, const std::string &where, const std::string &what) const
 {
   const std::string name = what;
+  if (static_cast<int>(frame.role) < static_cast<int>(ZERO) || static_cast<int>(frame.role) > static_cast<int>(SERVO)) {
+    fail(vpProjectiveException::fileError, where, name + " has an unknown role; use one of vpFrameRole's values");
+  }
   if (frame.q.getRows() != m_types.size()) {
     fail(vpProjectiveException::fileError, where,
          name + " has " + std::to_string(frame.q.getRows()) + " readings in 'q', the session has " +

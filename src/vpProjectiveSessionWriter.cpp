@@ -204,7 +204,9 @@ vpProjectiveSession::vpFrameRole vpProjectiveSessionWriter::addAcquisitionFrame(
     role = vpProjectiveSession::OBSERVATION;
     const vpColVector &q0 = m_session.m_frames[static_cast<size_t>(m_session.m_zero)].q;
     std::string why;
-    if (q.getRows() == q0.getRows() && vpProjectiveSessionInternal::trialJoint(q0, q, why) >= 0) {
+    const int joint = q.getRows() == q0.getRows() ? vpProjectiveSessionInternal::trialJoint(q0, q, why) : -1;
+    // A motion below 1e-3 (rad or m) is the arm back at the zero reference within its encoders' noise, not a trial.
+    if (joint >= 0 && std::fabs(q[static_cast<unsigned int>(joint)] - q0[static_cast<unsigned int>(joint)]) >= 1e-3) {
       role = vpProjectiveSession::TRIAL;
     }
   }

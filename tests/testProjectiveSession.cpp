@@ -251,6 +251,8 @@ TEST(ProjectiveSession, AcquisitionFramesGetTheirRoleFromTheReadings)
             vpProjectiveSession::OBSERVATION);
   EXPECT_EQ(writer.addAcquisitionFrame(joints(0.1, 0.2, 0.3), 3.0, pattern(0), pattern(1)),
             vpProjectiveSession::OBSERVATION);
+  EXPECT_EQ(writer.addAcquisitionFrame(joints(0.1, 0.2 + 1e-5, 0.3), 3.0, pattern(0), pattern(1)),
+            vpProjectiveSession::OBSERVATION); // back at the zero reference within the encoders' noise
   const vpProjectiveSession session = vpProjectiveSession::read(tmp / "s");
   EXPECT_EQ(session.getTrialJoint(1), 1);
   EXPECT_EQ(session.getTrialJoint(2), 2);

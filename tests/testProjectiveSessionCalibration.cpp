@@ -25,6 +25,7 @@
 
 #include <gtest/gtest.h>
 
+#include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 
@@ -271,4 +272,73 @@ TEST(ProjectiveSessionCalibration, CoplanarMarkersAreRefused)
   } catch (const vpProjectiveException &e) {
     EXPECT_NE(e.getStringMessage().find("coplanar"), std::string::npos) << e.getStringMessage();
   }
+}
+
+namespace
+{
+//! A vpRobot whose joints jump to setPosition()'s target (POSITION_CONTROL), for the acquisition procedure.
+class vpJumpingRobot : public vpRobot
+{
+public:
+  explicit vpJumpingRobot(const vpColVector &q0) : q(q0) {}
+  void get_eJe(vpMatrix &eJe) override { eJe.resize(6, q.size(), true); }
+  void get_fJe(vpMatrix &fJe) override { fJe.resize(6, q.size(), true); }
+  void getDisplacement(const vpRobot::vpControlFrameType, vpColVector &d) override { d.resize(q.size(), true); }
+  void getPosition(const vpRobot::vpControlFrameType, vpColVector &qOut) override { qOut = q; }
+  void init() override {}
+  void setPosition(const vpRobot::vpControlFrameType, const vpColVector &qIn) override { q = qIn; }
+  void setVelocity(const vpRobot::vpControlFrameType, const vpColVector &) override {}
+  vpColVector q;
+};
+} // namespace
+
+TEST(ProjectiveSessionCalibration, TheAcquisitionProcedureRecordsASessionThatCalibratesAsWell)
+{
+  // The writer attached to the procedure's image source: every stereo pair the procedure sees is recorded with the
+  // robot's readings, its role found from them; the recording then calibrates offline.
+  const ArmSetup s = viperEyeToHand();
+  TemporaryFolder tmp;
+  auto rec = std::make_shared<Recording>();
+  vpJumpingRobot robot(s.qRef);
+  vpGaussRand noise(1.0, 0.0, 5);
+  unsigned int roles[5] = {0, 0, 0, 0, 0};
+  {
+    vpProjectiveSessionWriter writer(tmp / "recorded", s.jointTypes());
+    vpProjectiveAcquisitionProcedure procedure(
+        [&](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
+          vpColVector q;
+          robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
+          if (!s.images(q, left, right, kSigma, noise, 0.0)) {
+            return false;
+          }
+          std::vector<Eigen::Vector4d> truth;
+          for (size_t j = 0; j < left.size(); ++j) {
+            truth.push_back(Eigen::Vector4d(left[j].get_u(), left[j].get_v(), right[j].get_u(), right[j].get_v()));
+          }
+          if (rec->ids.empty()) {
+            for (size_t j = 0; j < left.size(); ++j) {
+              rec->ids.push_back(static_cast<int>(4 * j + 1));
+            }
+          }
+          const unsigned int key = static_cast<unsigned int>(rec->truth.size());
+          rec->truth.push_back(truth);
+          rec->keep.push_back(static_cast<unsigned int>(-1));
+          ++roles[writer.addAcquisitionFrame(q, 0.1 * key, keyImage(key), keyImage(key))];
+          return true;
+        },
+        s.width, s.height);
+    procedure.setMotionControl(vpProjectiveAcquisitionProcedure::POSITION_CONTROL);
+    vpProjectiveArmAcquisition acquisition(s.jointTypes());
+    procedure.run(robot, acquisition);
+  }
+  EXPECT_EQ(roles[vpProjectiveSession::ZERO], 1u);
+  EXPECT_GE(roles[vpProjectiveSession::TRIAL], 24u);      // 2 deg steps, each joint both ways
+  EXPECT_GE(roles[vpProjectiveSession::OBSERVATION], 1u); // the mounting check (and the returns to the reference)
+  vpProjectiveSessionCalibration calibration(recordedMarkers(rec));
+  const vpProjectiveArmModel model = calibration.calibrate(vpProjectiveSession::read(tmp / "recorded"));
+  EXPECT_EQ(model.getRigMounting(), vpProjectiveArmModel::EYE_TO_HAND);
+  const double error = predictionError(s, model, 30, 9);
+  EXPECT_LE(error, 0.3);
+  RecordProperty("procedure_session_prediction_error_px", std::to_string(error));
+  RecordProperty("procedure_session_trials", std::to_string(roles[vpProjectiveSession::TRIAL]));
 }

@@ -85,8 +85,9 @@ public:
                         const vpImage<vpRGBa> &Ileft, const vpImage<vpRGBa> &Iright);
   /*!
     A frame of an acquisition, its role found from the readings: ZERO for the first frame, TRIAL if exactly one joint
-    differs from the zero frame's readings (the others within 1 % of its motion), OBSERVATION otherwise (a motion of
-    several joints, e.g. the procedure's mounting check, or no motion). Returns the role given.
+    differs from the zero frame's readings by 1e-3 (rad or m) or more (the others within 1 % of its motion),
+    OBSERVATION otherwise (a motion of several joints, e.g. the procedure's mounting check, or the arm back at the zero
+    reference within its encoders' noise). Returns the role given.
     \exception vpProjectiveException as addFrame().
   */
   vpProjectiveSession::vpFrameRole addAcquisitionFrame(const vpColVector &q, double t,
