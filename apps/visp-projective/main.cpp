@@ -162,9 +162,9 @@ int calibrate(int argc, char **argv)
     return usageError("calibrate", "--mounting takes auto, eye-to-hand or eye-in-hand, not '" + mounting + "'");
   }
   const auto start = std::chrono::steady_clock::now();
+  vpProjectiveSessionCalibration calibration(vispProjective::markerExtractor(args.value("--family", "36h11")));
   vpProjectiveSessionCalibration::checkWritable(output);
   const vpProjectiveSession session = vpProjectiveSession::read(args.positional(0));
-  vpProjectiveSessionCalibration calibration(vispProjective::markerExtractor(args.value("--family", "36h11")));
   calibration.setOutput(args.has("--quiet") ? nullptr : &std::cout);
   calibration.setEpipolarThreshold(epipolar);
   calibration.setOutlierThreshold(outlier);
@@ -201,6 +201,7 @@ int check(int argc, char **argv)
   if (!args.number("--threshold", 2.0, 1e-9, threshold, error)) {
     return usageError("check", error);
   }
+  vpProjectiveSessionCalibration calibration(vispProjective::markerExtractor(args.value("--family", "36h11")));
   std::vector<int> ids;
   double residual = 0.0, algebraic = 0.0;
   const vpProjectiveArmModel model = loadModel(args.positional(0), ids, residual, algebraic);
@@ -211,7 +212,6 @@ int check(int argc, char **argv)
                           "'visp-projective calibrate' to check it against sessions");
   }
   const vpProjectiveSession session = vpProjectiveSession::read(args.positional(1));
-  vpProjectiveSessionCalibration calibration(vispProjective::markerExtractor(args.value("--family", "36h11")));
   calibration.setOutput(args.has("--quiet") ? nullptr : &std::cout);
   calibration.setMismatchThreshold(threshold);
   const std::vector<vpProjectiveSessionCalibration::vpFrameCheck> checks = calibration.check(model, ids, session);
