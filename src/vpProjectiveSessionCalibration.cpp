@@ -18,11 +18,13 @@
 #include <cstdio>
 #include <iomanip>
 #include <map>
+#include <memory>
 #include <sstream>
 
 #include <unistd.h>
 
 #include <visp3/core/vpMath.h>
+#include <visp3/core/vpTime.h>
 #include <visp3/projective/vpProjectiveArmAcquisition.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
@@ -170,6 +172,60 @@ vpProjectiveSessionCalibration::vpMarkerExtractor vpProjectiveSessionCalibration
          "no marker detector for the AprilTag family " + family +
              " in this build (vpStereoAprilTagDetector is not wired in yet); give a marker extraction function");
   };
+}
+
+vpProjectiveAcquisitionProcedure::vpImageSource
+vpProjectiveSessionCalibration::markerSource(vpStereoImageSource &images, const vpMarkerExtractor &extractor,
+                                             vpRobot &robot, vpProjectiveSessionWriter *writer)
+{
+  if (!extractor) {
+    fail(vpProjectiveException::invalidValueError, at("markerSource()"), "the extraction function is empty");
+  }
+  struct State {
+    bool started = false;
+    double t0 = 0.0;
+    std::vector<int> ids; // the zero reference's markers
+    vpImage<unsigned char> Il, Ir;
+  };
+  auto state = std::make_shared<State>();
+  return
+      [state, &images, extractor, &robot, writer](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
+        if (!images.acquire(state->Il, state->Ir)) {
+          return false;
+        }
+        vpColVector q;
+        robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
+        const double now = vpTime::measureTimeSecond();
+        if (!state->started) {
+          state->t0 = now;
+        }
+        std::vector<int> ids;
+        std::vector<vpImagePoint> l, r;
+        const unsigned int n = extractor(state->Il, state->Ir, ids, l, r);
+        if (n != ids.size() || n != l.size() || n != r.size()) {
+          fail(vpProjectiveException::dimensionError, at("markerSource()"),
+               "the marker extraction must give one identifier, one left and one right point per marker");
+        }
+        if (!state->started) {
+          state->ids = ids;
+          state->started = true;
+        }
+        left.clear();
+        right.clear();
+        for (int id : state->ids) {
+          const auto it = std::find(ids.begin(), ids.end(), id);
+          if (it == ids.end()) {
+            return false; // a marker of the zero reference is lost
+          }
+          left.push_back(l[static_cast<size_t>(it - ids.begin())]);
+          right.push_back(r[static_cast<size_t>(it - ids.begin())]);
+        }
+        // Recorded once the markers are all seen: the session holds the frames that the procedure used.
+        if (writer != nullptr) {
+          writer->addAcquisitionFrame(q, now - state->t0, state->Il, state->Ir);
+        }
+        return true;
+      };
 }
 
 void vpProjectiveSessionCalibration::setMarkerExtractor(const vpMarkerExtractor &extractor)

@@ -290,46 +290,72 @@ public:
   void setVelocity(const vpRobot::vpControlFrameType, const vpColVector &) override {}
   vpColVector q;
 };
+
+/*!
+  The stereo images of a simulated cell as a vpStereoImageSource: key images of the markers' projections at the
+  robot's joints (with seeded noise), markers out of view left out (the extraction then misses them).
+*/
+class vpCellImages : public vpStereoImageSource
+{
+public:
+  vpCellImages(const ArmSetup &setup, vpRobot &robot, Recording &rec, long seed)
+      : m_setup(setup), m_robot(robot), m_rec(rec), m_noise(1.0, 0.0, seed)
+  {
+  }
+  bool acquire(vpImage<unsigned char> &Il, vpImage<unsigned char> &Ir) override
+  {
+    vpColVector q;
+    m_robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
+    std::vector<vpImagePoint> l, r;
+    const bool all = m_setup.images(q, l, r, kSigma, m_noise, 0.0);
+    std::vector<Eigen::Vector4d> truth;
+    for (size_t j = 0; j < l.size(); ++j) {
+      truth.push_back(Eigen::Vector4d(l[j].get_u(), l[j].get_v(), r[j].get_u(), r[j].get_v()));
+    }
+    if (m_rec.ids.empty()) {
+      for (size_t j = 0; j < l.size(); ++j) {
+        m_rec.ids.push_back(static_cast<int>(4 * j + 1));
+      }
+    }
+    const unsigned int key = static_cast<unsigned int>(m_rec.truth.size());
+    m_rec.truth.push_back(truth);
+    m_rec.keep.push_back(all ? static_cast<unsigned int>(-1) : 0u); // a marker out of view: none extracted
+    Il = keyImage(key);
+    Ir = keyImage(key);
+    return true;
+  }
+  unsigned int getWidth() const override { return m_setup.width; }
+  unsigned int getHeight() const override { return m_setup.height; }
+
+private:
+  const ArmSetup &m_setup;
+  vpRobot &m_robot;
+  Recording &m_rec;
+  vpGaussRand m_noise;
+};
 } // namespace
 
 TEST(ProjectiveSessionCalibration, TheAcquisitionProcedureRecordsASessionThatCalibratesAsWell)
 {
-  // The writer attached to the procedure's image source: every stereo pair the procedure sees is recorded with the
-  // robot's readings, its role found from them; the recording then calibrates offline.
+  // The writer attached to the procedure through markerSource(): every stereo pair the procedure sees is recorded with
+  // the robot's readings, its role found from them; the recording then calibrates offline.
   const ArmSetup s = viperEyeToHand();
   TemporaryFolder tmp;
   auto rec = std::make_shared<Recording>();
   vpJumpingRobot robot(s.qRef);
-  vpGaussRand noise(1.0, 0.0, 5);
   unsigned int roles[5] = {0, 0, 0, 0, 0};
+  vpCellImages cell(s, robot, *rec, 5);
   {
     vpProjectiveSessionWriter writer(tmp / "recorded", s.jointTypes());
     vpProjectiveAcquisitionProcedure procedure(
-        [&](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
-          vpColVector q;
-          robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
-          if (!s.images(q, left, right, kSigma, noise, 0.0)) {
-            return false;
-          }
-          std::vector<Eigen::Vector4d> truth;
-          for (size_t j = 0; j < left.size(); ++j) {
-            truth.push_back(Eigen::Vector4d(left[j].get_u(), left[j].get_v(), right[j].get_u(), right[j].get_v()));
-          }
-          if (rec->ids.empty()) {
-            for (size_t j = 0; j < left.size(); ++j) {
-              rec->ids.push_back(static_cast<int>(4 * j + 1));
-            }
-          }
-          const unsigned int key = static_cast<unsigned int>(rec->truth.size());
-          rec->truth.push_back(truth);
-          rec->keep.push_back(static_cast<unsigned int>(-1));
-          ++roles[writer.addAcquisitionFrame(q, 0.1 * key, keyImage(key), keyImage(key))];
-          return true;
-        },
-        s.width, s.height);
+        vpProjectiveSessionCalibration::markerSource(cell, recordedMarkers(rec), robot, &writer), s.width, s.height);
     procedure.setMotionControl(vpProjectiveAcquisitionProcedure::POSITION_CONTROL);
     vpProjectiveArmAcquisition acquisition(s.jointTypes());
     procedure.run(robot, acquisition);
+    const vpProjectiveSession &recorded = writer.getSession();
+    for (unsigned int k = 0; k < recorded.getNumberOfFrames(); ++k) {
+      ++roles[recorded.getFrame(k).role];
+    }
   }
   EXPECT_EQ(roles[vpProjectiveSession::ZERO], 1u);
   EXPECT_GE(roles[vpProjectiveSession::TRIAL], 24u);      // 2 deg steps, each joint both ways

@@ -28,8 +28,12 @@
 
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
+#include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
 #include <visp3/projective/vpProjectiveSession.h>
+#include <visp3/projective/vpProjectiveSessionWriter.h>
+#include <visp3/projective/vpStereoImageSource.h>
+#include <visp3/robot/vpRobot.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -128,6 +132,25 @@ public:
     detector.
   */
   static vpMarkerExtractor noDetector(const std::string &family);
+
+  /*!
+    The image source of vpProjectiveAcquisitionProcedure on a cell: each call takes a stereo pair from \e images,
+    reads the joints of \e robot (vpRobot::getPosition(ARTICULAR_FRAME)), extracts the markers with \e extractor and
+    gives those of the first call's identifiers (the zero reference), in that order; false if \e images has no more
+    pairs or one of those markers is missing. A pair whose markers are all found is recorded with the readings if
+    \e writer is not null (vpProjectiveSessionWriter::addAcquisitionFrame(): the zero frame, trials and the mounting
+    check's observations; time in seconds from the first call): the session holds the frames the procedure used, and
+    calibrates offline as the run did (visp-projective calibrate). \e images, \e robot and \e writer must outlive the
+    function. \code vpStereoGrabberSource cameras("/dev/video0", "/dev/video2"); vpProjectiveSessionWriter
+    writer("cell-2026-11-27", types); vpProjectiveAcquisitionProcedure procedure(
+        vpProjectiveSessionCalibration::markerSource(cameras, extractor, robot, &writer), width, height);
+    procedure.run(robot, projectiveRobot);
+    \endcode
+  */
+  static vpProjectiveAcquisitionProcedure::vpImageSource markerSource(vpStereoImageSource &images,
+                                                                      const vpMarkerExtractor &extractor,
+                                                                      vpRobot &robot,
+                                                                      vpProjectiveSessionWriter *writer = nullptr);
 
   //! The marker extraction function.
   void setMarkerExtractor(const vpMarkerExtractor &extractor);

@@ -43,17 +43,13 @@ BEGIN_VISP_NAMESPACE
   frames added so far. The frames are checked as vpProjectiveSession::read() checks them (readings, one zero frame,
   trials of one joint each), so a writer never records a session that the reader refuses.
 
-  Attaching it to the acquisition procedure: its image source is the user's function that takes a stereo pair,
-  extracts the markers and returns their images; it records the pair with the robot's readings too.
+  Attaching it to the acquisition procedure: vpProjectiveSessionCalibration::markerSource() makes the procedure's
+  image source from a vpStereoImageSource and a marker extraction function, and records every stereo pair the
+  procedure uses with the robot's readings (addAcquisitionFrame()).
   \code
-  vpProjectiveSessionWriter writer("cell-2026-11-27", robot.getJointTypes());
-  vpProjectiveAcquisitionProcedure procedure([&](std::vector<vpImagePoint> &l, std::vector<vpImagePoint> &r) {
-    cameras.acquire(Il, Ir);
-    vpColVector q;
-    arm.getPosition(vpRobot::ARTICULAR_FRAME, q);
-    writer.addAcquisitionFrame(q, vpTime::measureTimeSecond() - t0, Il, Ir); // zero, trial or observation
-    return extract(Il, Ir, l, r);
-  }, width, height);
+  vpProjectiveSessionWriter writer("cell-2026-11-27", types);
+  vpProjectiveAcquisitionProcedure procedure(
+      vpProjectiveSessionCalibration::markerSource(cameras, extractor, robot, &writer), width, height);
   \endcode
   A servo loop adds its frames with the role vpProjectiveSession::SERVO (and the images of its target with TARGET).
 */
