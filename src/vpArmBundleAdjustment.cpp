@@ -61,7 +61,7 @@ vpProjectiveArmModel bundleAdjust(const ArmCalibrationData &data, const std::vec
     const ArmTrial &trial = data.trials[k];
     const unsigned int i = trial.joint;
     for (size_t j = 0; j < K; ++j) {
-      if (!data.inlier[k][j] && !robustLoss) {
+      if (!trial.seen[j] || (!data.inlier[k][j] && !robustLoss)) {
         continue;
       }
       ++observations;

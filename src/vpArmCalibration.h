@@ -34,16 +34,20 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace vpProjectiveInternal
 {
-//! One trial motion: joint \e joint alone moved by \e amount; the pixels (u, v, u', v') of every marker after it.
+/*!
+  One trial motion: joint \e joint alone moved by \e amount; the pixels (u, v, u', v') of every marker after it,
+  NaN where \e seen is false (a marker the trial does not show: identified markers).
+*/
 struct ArmTrial {
   unsigned int joint;
   double amount;
   std::vector<Eigen::Vector4d> s;
+  std::vector<bool> seen;
 };
 
 /*!
   What the calibration works on: the acquisition's data, and which trial observations it uses (inlier[k][j]: marker
-  j of trial k).
+  j of trial k; always false where the trial does not show the marker).
 */
 struct ArmCalibrationData {
   std::vector<vpProjectiveJoint::vpJointType> types;

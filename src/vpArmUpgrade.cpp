@@ -288,6 +288,9 @@ bool initialTwists(const ArmCalibrationData &data, const Eigen::Matrix4d &G, con
       std::vector<Eigen::Vector3d> X0k, X1k;
       bool finite = true;
       for (size_t j = 0; j < K && finite; ++j) {
+        if (!data.trials[k].seen[j]) {
+          continue; // a missing marker
+        }
         Eigen::Vector3d X1;
         finite = euclidean(G * trialPoints[k][j], X1);
         if (data.inlier[k][j] || !verified) {
@@ -403,10 +406,16 @@ void algebraicGenerators(ArmCalibrationData &data, const std::vector<Eigen::Vect
     const ArmTrial &trial = data.trials[k];
     // A blocked joint or a tiny trial leaves the markers where they were: H = I has no logarithm to speak of.
     double motion = 0.0;
+    std::vector<Eigen::Vector4d> s0, s1; // the markers the trial shows (all, unless identified markers are missing)
     for (size_t j = 0; j < trial.s.size(); ++j) {
-      motion += (trial.s[j] - data.zeroImages[j]).squaredNorm();
+      if (trial.seen[j]) {
+        motion += (trial.s[j] - data.zeroImages[j]).squaredNorm();
+        s0.push_back(data.zeroImages[j]);
+        s1.push_back(trial.s[j]);
+      }
     }
-    motion = std::sqrt(motion / (2.0 * static_cast<double>(trial.s.size())));
+    const bool all = s1.size() == trial.s.size();
+    motion = std::sqrt(motion / (2.0 * static_cast<double>(s1.size())));
     if (motion < 1.0) {
       std::ostringstream os;
       os << "the trial of joint " << trial.joint << " by " << trial.amount << " moved the markers by only " << motion
@@ -420,11 +429,17 @@ void algebraicGenerators(ArmCalibrationData &data, const std::vector<Eigen::Vect
     try {
       // With an outlier threshold, mismatched markers are found by the 5-point consensus of estimateRobust() and
       // left out of everything that follows (the candidates' scores, the rigid motions, the bundle adjustment).
-      const Eigen::Matrix4d H =
-          data.outlierThreshold > 0.0
-              ? vpProjectiveDisplacement::estimateRobust(data.rig, data.zeroImages, trial.s, data.outlierThreshold,
-                                                         data.inlier[k])
-              : vpProjectiveDisplacement::estimateFromImages(data.rig, data.zeroImages, trial.s, 12);
+      Eigen::Matrix4d H;
+      if (data.outlierThreshold > 0.0) {
+        std::vector<bool> inlier;
+        H = vpProjectiveDisplacement::estimateRobust(data.rig, all ? data.zeroImages : s0, all ? trial.s : s1,
+                                                     data.outlierThreshold, inlier);
+        for (size_t j = 0, m = 0; j < trial.s.size(); ++j) {
+          data.inlier[k][j] = trial.seen[j] && inlier[m++];
+        }
+      } else {
+        H = vpProjectiveDisplacement::estimateFromImages(data.rig, all ? data.zeroImages : s0, all ? trial.s : s1, 12);
+      }
       candidates[trial.joint].push_back(
           vpProjectiveJoint::log(data.types[trial.joint], vpProjectiveDisplacement(H), trial.amount));
     } catch (const vpProjectiveException &) {
@@ -479,8 +494,11 @@ MetricModel initialMetricModel(const ArmCalibrationData &data, const std::vector
   const size_t n = data.types.size();
   std::vector<std::vector<Eigen::Vector4d>> trialPoints(data.trials.size());
   for (size_t k = 0; k < data.trials.size(); ++k) {
-    for (const Eigen::Vector4d &s : data.trials[k].s) {
-      trialPoints[k].push_back(data.rig.triangulate(Eigen::Vector2d(s.head<2>()), Eigen::Vector2d(s.tail<2>())));
+    for (size_t j = 0; j < data.trials[k].s.size(); ++j) {
+      const Eigen::Vector4d &s = data.trials[k].s[j];
+      trialPoints[k].push_back(data.trials[k].seen[j]
+                                   ? data.rig.triangulate(Eigen::Vector2d(s.head<2>()), Eigen::Vector2d(s.tail<2>()))
+                                   : Eigen::Vector4d::Zero());
     }
   }
   // The upgrade from every joint's generator, then leaving one or two joints out in turn: a joint whose axis is far

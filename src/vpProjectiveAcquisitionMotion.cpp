@@ -226,8 +226,8 @@ void vpProjectiveAcquisitionProcedure::moveTo(vpRobot &robot, const vpColVector 
 
 void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVector &qRef, unsigned int i, int sign,
                                                  double &amount, vpStopReason &reason, vpColVector &qReached,
-                                                 std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right,
-                                                 std::vector<vpImagePoint> &allLeft,
+                                                 std::vector<int> &ids, std::vector<vpImagePoint> &left,
+                                                 std::vector<vpImagePoint> &right, std::vector<vpImagePoint> &allLeft,
                                                  std::vector<vpImagePoint> &allRight)
 {
   const bool revolute = m_types[i] == vpProjectiveJoint::REVOLUTE;
@@ -235,6 +235,7 @@ void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVect
   const double step = stepOf(i);
   amount = 0.0;
   reason = AMOUNT_REACHED;
+  std::vector<int> lid;
   std::vector<vpImagePoint> l, r, prevL = left, prevR = right;
   while (amount < maxAmount) {
     const double next = std::min(maxAmount, amount + step);
@@ -249,7 +250,8 @@ void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVect
     moveTo(robot, q, std::max(m_tolerance, 0.05 * step), false);
     vpColVector reading;
     robot.getPosition(vpRobot::ARTICULAR_FRAME, reading);
-    if (!m_source(l, r)) {
+    // Identified markers: those of the zero reference only; fewer than 5 of them is a lost step.
+    if (!acquire(lid, l, r) || (m_identified && keepMarkers(m_refIds, lid, l, r) < 5)) {
       reason = MARKER_LOST;
       break;
     }
@@ -260,7 +262,7 @@ void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVect
     if (m_callback) {
       m_callback(i, q, l, r);
     }
-    if (l.size() != prevL.size() || r.size() != prevR.size()) {
+    if (!m_identified && (l.size() != prevL.size() || r.size() != prevR.size())) {
       std::ostringstream os;
       os << at("run") << ": the image source gave " << l.size() << " left and " << r.size()
          << " right marker images at step " << jointValue(sign * next, revolute) << " of joint " << i << ", "
@@ -270,7 +272,7 @@ void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVect
     }
     int other = -1;
     double dOwn = 0.0, dOther = 0.0;
-    const int jumped = orderChange(prevL, prevR, l, r, other, dOwn, dOther);
+    const int jumped = m_identified ? -1 : orderChange(prevL, prevR, l, r, other, dOwn, dOther);
     if (jumped >= 0) {
       std::ostringstream os;
       os << at("run") << ": marker " << jumped << " jumped, at step " << jointValue(sign * next, revolute)
@@ -288,6 +290,7 @@ void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVect
     }
     amount = next;
     qReached = reading;
+    ids = lid;
     left = l;
     right = r;
     allLeft.insert(allLeft.end(), l.begin(), l.end());

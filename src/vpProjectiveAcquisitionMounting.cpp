@@ -94,12 +94,17 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::tellMounting(vpRobot &rob
     }
     return true;
   };
-  auto rms = [K](const std::vector<Eigen::Vector4d> &a, const std::vector<Eigen::Vector4d> &b) {
+  std::vector<bool> shown(K, true); // the markers the check images show (identified markers may be missing)
+  auto rms = [K, &shown](const std::vector<Eigen::Vector4d> &a, const std::vector<Eigen::Vector4d> &b) {
     double sum = 0.0;
+    size_t count = 0;
     for (size_t j = 0; j < K; ++j) {
-      sum += (a[j] - b[j]).squaredNorm();
+      if (shown[j]) {
+        sum += (a[j] - b[j]).squaredNorm();
+        ++count;
+      }
     }
-    return std::sqrt(sum / (4.0 * static_cast<double>(K)));
+    return std::sqrt(sum / (4.0 * static_cast<double>(std::max<size_t>(count, 1))));
   };
   // The check configuration: two joints moved together within the explored ranges, every marker inside the margin
   // in both predictions, where the predictions differ most.
@@ -164,8 +169,29 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::tellMounting(vpRobot &rob
   moveTo(robot, qCheck, std::max(m_tolerance, 0.05 * smallestStep), false);
   vpColVector reading;
   robot.getPosition(vpRobot::ARTICULAR_FRAME, reading);
+  std::vector<int> ids;
   std::vector<vpImagePoint> l, r;
-  const bool seen = m_source(l, r) && l.size() == K && r.size() == K;
+  bool seen = acquire(ids, l, r);
+  if (seen && m_identified) {
+    // The model's markers the images show, in the model's order (ascending ids); at least 5.
+    std::vector<vpImagePoint> ml(K), mr(K);
+    shown.assign(K, false);
+    unsigned int count = 0;
+    for (size_t k = 0; k < ids.size(); ++k) {
+      const std::vector<int>::const_iterator it = std::lower_bound(m_modelIds.begin(), m_modelIds.end(), ids[k]);
+      if (it != m_modelIds.end() && *it == ids[k] && static_cast<size_t>(it - m_modelIds.begin()) < K) {
+        const size_t j = static_cast<size_t>(it - m_modelIds.begin());
+        ml[j] = l[k];
+        mr[j] = r[k];
+        shown[j] = true;
+        ++count;
+      }
+    }
+    l = ml;
+    r = mr;
+    seen = count >= 5;
+  }
+  seen = seen && l.size() == K && r.size() == K;
   if (seen && (m_motion || m_control == POSITION_CONTROL)) {
     checkArrival(robot, qCheck, std::max(m_tolerance, 0.05 * smallestStep),
                  m_motion ? "the motion of setMotion()" : "setPosition()");
@@ -190,6 +216,7 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::tellMounting(vpRobot &rob
   const double rB = okB ? rms(sB, measured) : std::numeric_limits<double>::infinity();
   report.checked = true;
   report.q = reading;
+  shown.assign(K, true);
   report.separation = okA && okB ? rms(sA, sB) : bestVisible;
   report.kept = rB < rA ? otherMounting : model.getRigMounting();
   report.residual = std::min(rA, rB);

@@ -29,6 +29,7 @@
 
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpSimulatorRobotArm.h>
 #include <visp3/robot/vpAfma4.h>
 #include <visp3/robot/vpAfma6.h>
 #include <visp3/robot/vpViper.h>
@@ -78,7 +79,8 @@ void checkPositive(double x, const char *method, const char *name)
 
 vpProjectiveAcquisitionProcedure::vpProjectiveAcquisitionProcedure(const vpImageSource &source, unsigned int width,
                                                                    unsigned int height)
-    : m_source(source), m_width(width), m_height(height), m_maxAmounts(), m_steps(), m_minAmounts(), m_qmin(), m_qmax(),
+    : m_source(source), m_idSource(), m_identified(false), m_minVisibility(0.5), m_refIds(), m_modelIds(), m_dropped(),
+      m_width(width), m_height(height), m_maxAmounts(), m_steps(), m_minAmounts(), m_qmin(), m_qmax(),
       m_limitMargin(0.0), m_imageMargin(10.0), m_rotationSpeed(0.0), m_translationSpeed(0.0), m_epipolarThreshold(2.0),
       m_control(VELOCITY_CONTROL), m_moveTimeout(0.0), m_tolerance(1e-5), m_coplanarity(2.0), m_detectMounting(true),
       m_os(nullptr), m_callback(), m_motion(), m_reports(), m_mountingReport(), m_residual(0.0), m_parallax(-1.0),
@@ -94,6 +96,88 @@ vpProjectiveAcquisitionProcedure::vpProjectiveAcquisitionProcedure(const vpImage
   m_mountingReport.set = m_mountingReport.kept = vpProjectiveArmModel::EYE_TO_HAND;
   m_mountingReport.residual = m_mountingReport.otherResidual = -1.0;
   m_mountingReport.separation = 0.0;
+}
+
+vpProjectiveAcquisitionProcedure::vpProjectiveAcquisitionProcedure(const vpIdentifiedImageSource &source,
+                                                                   unsigned int width, unsigned int height, bool)
+    : vpProjectiveAcquisitionProcedure(
+          source ? vpImageSource([](std::vector<vpImagePoint> &, std::vector<vpImagePoint> &) { return false; })
+                 : vpImageSource(),
+          width, height)
+{
+  m_idSource = source;
+  m_identified = true;
+}
+
+void vpProjectiveAcquisitionProcedure::setMinMarkerVisibility(double fraction)
+{
+  if (!(fraction >= 0.0 && fraction <= 1.0)) {
+    throw vpProjectiveException(vpProjectiveException::invalidValueError,
+                                at("setMinMarkerVisibility") + ": the fraction must be in [0, 1].");
+  }
+  m_minVisibility = fraction;
+}
+
+bool vpProjectiveAcquisitionProcedure::acquire(std::vector<int> &ids, std::vector<vpImagePoint> &left,
+                                               std::vector<vpImagePoint> &right) const
+{
+  if (!m_identified) {
+    const bool ok = m_source(left, right);
+    ids.resize(left.size());
+    for (size_t j = 0; j < ids.size(); ++j) {
+      ids[j] = static_cast<int>(j);
+    }
+    return ok;
+  }
+  std::vector<int> rawIds;
+  std::vector<vpImagePoint> l, r;
+  if (!m_idSource(rawIds, l, r)) {
+    return false;
+  }
+  if (rawIds.size() != l.size() || l.size() != r.size()) {
+    throw vpProjectiveException(vpProjectiveException::dimensionError,
+                                at("run") + ": the image source gave " + std::to_string(rawIds.size()) + " ids, " +
+                                    std::to_string(l.size()) + " left and " + std::to_string(r.size()) +
+                                    " right images: give one id and both images of every marker.");
+  }
+  std::vector<size_t> order(rawIds.size());
+  for (size_t j = 0; j < order.size(); ++j) {
+    order[j] = j;
+  }
+  std::sort(order.begin(), order.end(), [&rawIds](size_t a, size_t b) { return rawIds[a] < rawIds[b]; });
+  ids.resize(order.size());
+  left.resize(order.size());
+  right.resize(order.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    ids[k] = rawIds[order[k]];
+    left[k] = l[order[k]];
+    right[k] = r[order[k]];
+    if (k > 0 && ids[k] == ids[k - 1]) {
+      throw vpProjectiveException(vpProjectiveException::invalidValueError,
+                                  at("run") + ": the image source gave marker id " + std::to_string(ids[k]) +
+                                      " twice in one frame: each marker needs its own id.");
+    }
+  }
+  return true;
+}
+
+unsigned int vpProjectiveAcquisitionProcedure::keepMarkers(const std::vector<int> &keep, std::vector<int> &ids,
+                                                           std::vector<vpImagePoint> &left,
+                                                           std::vector<vpImagePoint> &right)
+{
+  size_t m = 0;
+  for (size_t k = 0; k < ids.size(); ++k) {
+    if (std::binary_search(keep.begin(), keep.end(), ids[k])) {
+      ids[m] = ids[k];
+      left[m] = left[k];
+      right[m] = right[k];
+      ++m;
+    }
+  }
+  ids.resize(m);
+  left.resize(m);
+  right.resize(m);
+  return static_cast<unsigned int>(m);
 }
 
 void vpProjectiveAcquisitionProcedure::setMaxAmounts(const vpColVector &amounts)
@@ -266,7 +350,7 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
                                     " joints, the robot " + std::to_string(n) + ": give the robot's joint types.");
   }
   // The joint range the trials stay in: the limits given, else those of ViSP's arms that know theirs (Viper650/850,
-  // Afma4/6, real or simulated) less 2 deg or 1 cm, else none.
+  // Afma4/6, real or simulated, and vpSimulatorRobotArm) less 2 deg or 1 cm, else none.
   m_lower = vpColVector();
   m_upper = vpColVector();
   std::string limitsFrom = "none";
@@ -285,6 +369,9 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
     } else if (const vpAfma4 *afma4 = dynamic_cast<const vpAfma4 *>(&robot)) {
       qmin = afma4->getJointMin();
       qmax = afma4->getJointMax();
+    } else if (const vpSimulatorRobotArm *arm = dynamic_cast<const vpSimulatorRobotArm *>(&robot)) {
+      qmin = arm->getJointMin(); // in encoder readings
+      qmax = arm->getJointMax();
     }
     if (qmin.size() == n && qmax.size() == n) {
       m_lower = qmin;
@@ -297,14 +384,18 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
       limitsFrom = "the robot's own, less 2 deg or 1 cm";
     }
   }
+  std::vector<int> ids;
   std::vector<vpImagePoint> left, right;
-  if (!m_source(left, right)) {
+  m_dropped.clear();
+  if (!acquire(ids, left, right)) {
     throw vpProjectiveException(vpProjectiveException::notEnoughPointsError,
                                 at("run") + ": the image source lost a marker at the zero reference: place the arm so "
                                             "that every marker is tracked in both images, then run again. Nothing "
                                             "moved.");
   }
   checkZeroReference(acquisition, left, right); // before the arm moves
+  m_refIds = ids;
+  m_modelIds = ids;
   progress("joint limits: " + limitsFrom);
   if (!m_motion) {
     robot.setRobotState(m_control == VELOCITY_CONTROL ? vpRobot::STATE_VELOCITY_CONTROL
@@ -324,6 +415,7 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
   }
   struct Trial {
     vpColVector q;
+    std::vector<int> ids;
     std::vector<vpImagePoint> left, right;
   };
   std::vector<Trial> trials;
@@ -338,9 +430,10 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
         double amount = 0.0;
         vpStopReason reason = AMOUNT_REACHED;
         Trial trial;
+        trial.ids = ids;
         trial.left = left;
         trial.right = right;
-        moveJoint(robot, qRef, i, sign, amount, reason, trial.q, trial.left, trial.right, allLeft, allRight);
+        moveJoint(robot, qRef, i, sign, amount, reason, trial.q, trial.ids, trial.left, trial.right, allLeft, allRight);
         (sign < 0 ? report.amountNegative : report.amountPositive) = amount;
         (sign < 0 ? report.stopNegative : report.stopPositive) = reason;
         if (amount > 0.0) {
@@ -364,14 +457,70 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
            << toString(report.stopPositive) << "), less than the minimum " << jointValue(minAmount, revolute)
            << ": too small a motion to observe; move the arm so that the markers are nearer the image centre and "
            << "the joint away from its limits, or lower the image margin or the minimum amount.";
+        if (m_identified && (report.stopNegative == MARKER_LOST || report.stopPositive == MARKER_LOST)) {
+          os << " With identified markers a step is lost when it shows fewer than 5 of the zero reference's markers "
+                "(too few common markers): put markers where the cameras see them whatever the joint's motion.";
+        }
         throw vpProjectiveException(vpProjectiveException::degenerateConfigurationError, os.str());
+      }
+    }
+    if (m_identified) {
+      // Markers seen in too few trials are left out of the model (and of the trials' images).
+      std::vector<unsigned int> seenIn(m_refIds.size(), 0);
+      for (const Trial &trial : trials) {
+        for (int id : trial.ids) {
+          ++seenIn[static_cast<size_t>(std::lower_bound(m_refIds.begin(), m_refIds.end(), id) - m_refIds.begin())];
+        }
+      }
+      std::vector<int> kept;
+      for (size_t j = 0; j < m_refIds.size(); ++j) {
+        if (static_cast<double>(seenIn[j]) >= m_minVisibility * static_cast<double>(trials.size())) {
+          kept.push_back(m_refIds[j]);
+        } else {
+          m_dropped.push_back(m_refIds[j]);
+          std::ostringstream os;
+          os << "marker " << m_refIds[j] << " left out: seen in " << seenIn[j] << " of " << trials.size()
+             << " trial motions (setMinMarkerVisibility(): " << m_minVisibility << ")";
+          progress(os.str());
+        }
+      }
+      if (kept.size() < 5) {
+        std::ostringstream os;
+        os << at("run") << ": only " << kept.size() << " of the zero reference's " << m_refIds.size()
+           << " markers are seen in at least " << m_minVisibility * 100.0
+           << " % of the trial motions (too few common markers; the model needs 5, of which no 4 coplanar): put "
+              "markers where the cameras see them whatever the joint's motion, or lower setMinMarkerVisibility().";
+        throw vpProjectiveException(vpProjectiveException::notEnoughPointsError, os.str());
+      }
+      if (!m_dropped.empty()) {
+        keepMarkers(kept, ids, left, right);
+        std::vector<Trial> usable;
+        for (Trial &trial : trials) {
+          if (keepMarkers(kept, trial.ids, trial.left, trial.right) >= 5) {
+            usable.push_back(trial);
+          } else {
+            progress("a trial motion left out: it shows fewer than 5 of the markers kept");
+          }
+        }
+        trials = usable;
+        if (rigKnown) {
+          checkGeneralPosition(acquisition.getStereoRig(), left, right, "zero reference, the markers kept");
+        }
+      }
+      m_modelIds = kept;
+      if (rigKnown) {
+        work.setZeroReference(qRef, ids, left, right);
       }
     }
     if (!rigKnown) {
       vpProjectiveStereoRig rig;
       rig.estimate(allLeft, allRight, m_epipolarThreshold);
       work.setStereoRig(rig);
-      work.setZeroReference(qRef, left, right);
+      if (m_identified) {
+        work.setZeroReference(qRef, ids, left, right);
+      } else {
+        work.setZeroReference(qRef, left, right);
+      }
       std::ostringstream os;
       os << "rig estimated from " << allLeft.size() << " matches, epipolar residual " << rig.getEstimationResidual()
          << " px";
@@ -379,7 +528,11 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
       checkGeneralPosition(rig, left, right, "zero reference, estimated rig");
     }
     for (const Trial &trial : trials) {
-      work.addTrialMotion(trial.q, trial.left, trial.right);
+      if (m_identified) {
+        work.addTrialMotion(trial.q, trial.ids, trial.left, trial.right);
+      } else {
+        work.addTrialMotion(trial.q, trial.left, trial.right);
+      }
     }
     vpProjectiveArmModel model;
     try {
@@ -392,11 +545,18 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
       unsigned int which = 0;
       for (size_t k = 0; k < trials.size(); ++k) {
         double sum = 0.0;
-        for (size_t j = 0; j < left.size(); ++j) {
-          sum += vpImagePoint::sqrDistance(left[j], trials[k].left[j]) +
-                 vpImagePoint::sqrDistance(right[j], trials[k].right[j]);
+        size_t common = 0;
+        for (size_t j = 0, m = 0; j < left.size(); ++j) {
+          while (m < trials[k].ids.size() && trials[k].ids[m] < ids[j]) {
+            ++m; // ids ascending in both (0, 1, ... without identified markers)
+          }
+          if (m < trials[k].ids.size() && trials[k].ids[m] == ids[j]) {
+            sum += vpImagePoint::sqrDistance(left[j], trials[k].left[m]) +
+                   vpImagePoint::sqrDistance(right[j], trials[k].right[m]);
+            ++common;
+          }
         }
-        const double motion = std::sqrt(sum / (2.0 * static_cast<double>(left.size())));
+        const double motion = std::sqrt(sum / (2.0 * static_cast<double>(std::max<size_t>(common, 1))));
         if (motion < smallest) {
           smallest = motion;
           which = static_cast<unsigned int>(k);

@@ -42,6 +42,9 @@ bool classifyTrialObservations(const vpProjectiveArmModel &model, ArmCalibration
     const ArmTrial &trial = data.trials[k];
     const Eigen::Matrix4d H = model.jointExp(trial.joint, trial.amount);
     for (unsigned int j = 0; j < model.markers().size(); ++j) {
+      if (!trial.seen[j]) {
+        continue; // no observation
+      }
       Eigen::Vector4d s;
       const double d = model.predictMarker(j, H, s) ? std::sqrt(0.5 * (s - trial.s[j]).squaredNorm())
                                                     : std::numeric_limits<double>::infinity();
@@ -66,7 +69,7 @@ MetricModel metricModelOf(const vpProjectiveArmModel &model)
 } // namespace
 
 vpProjectiveArmAcquisition::vpProjectiveArmAcquisition()
-    : m_types(), m_mounting(vpProjectiveArmModel::EYE_TO_HAND), m_rig(), m_zeroImages(), m_qRef(), m_trials(),
+    : m_types(), m_mounting(vpProjectiveArmModel::EYE_TO_HAND), m_rig(), m_zeroImages(), m_qRef(), m_trials(), m_ids(),
       m_outlierThreshold(0.0), m_inlier(), m_residual(0.0), m_algebraicResidual(0.0)
 {
 }
@@ -97,6 +100,7 @@ void vpProjectiveArmAcquisition::setStereoRig(const vpProjectiveStereoRig &rig)
   }
   m_rig = rig;
   m_zeroImages.clear();
+  m_ids.clear();
   m_trials.clear();
 }
 
@@ -124,8 +128,90 @@ void vpProjectiveArmAcquisition::setZeroReference(const vpColVector &qRef, const
     fail(vpProjectiveException::notEnoughPointsError, where, os.str());
   }
   m_zeroImages = s;
+  m_ids.resize(s.size());
+  for (size_t j = 0; j < s.size(); ++j) {
+    m_ids[j] = static_cast<int>(j);
+  }
   m_qRef = q;
   m_trials.clear();
+}
+
+namespace
+{
+//! The order that sorts \e ids ascending; throws if \e ids has not \e count entries or repeats one.
+std::vector<size_t> ascendingIds(const std::vector<int> &ids, size_t count, const std::string &where)
+{
+  if (ids.size() != count) {
+    std::ostringstream os;
+    os << "got " << ids.size() << " ids for " << count << " marker images; give one id per marker";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  std::vector<size_t> order(ids.size());
+  for (size_t j = 0; j < order.size(); ++j) {
+    order[j] = j;
+  }
+  std::sort(order.begin(), order.end(), [&ids](size_t a, size_t b) { return ids[a] < ids[b]; });
+  for (size_t k = 1; k < order.size(); ++k) {
+    if (ids[order[k]] == ids[order[k - 1]]) {
+      std::ostringstream os;
+      os << "marker id " << ids[order[k]] << " is given twice; each marker needs its own id";
+      fail(vpProjectiveException::invalidValueError, where, os.str());
+    }
+  }
+  return order;
+}
+} // namespace
+
+void vpProjectiveArmAcquisition::setZeroReference(const vpColVector &qRef, const std::vector<int> &ids,
+                                                  const std::vector<vpImagePoint> &left0,
+                                                  const std::vector<vpImagePoint> &right0)
+{
+  const std::string where = at("setZeroReference()");
+  if (left0.size() != right0.size()) {
+    std::ostringstream os;
+    os << "got " << left0.size() << " left and " << right0.size() << " right marker images; pass matched pairs";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  const std::vector<size_t> order = ascendingIds(ids, left0.size(), where);
+  std::vector<vpImagePoint> left(order.size()), right(order.size());
+  std::vector<int> sorted(order.size());
+  for (size_t k = 0; k < order.size(); ++k) {
+    left[k] = left0[order[k]];
+    right[k] = right0[order[k]];
+    sorted[k] = ids[order[k]];
+  }
+  setZeroReference(qRef, left, right);
+  m_ids = sorted;
+}
+
+std::vector<Eigen::Vector4d> vpProjectiveArmAcquisition::matchByIds(const std::vector<int> &ids,
+                                                                    const std::vector<vpImagePoint> &left,
+                                                                    const std::vector<vpImagePoint> &right,
+                                                                    const std::string &where,
+                                                                    std::vector<bool> &seen) const
+{
+  const std::vector<Eigen::Vector4d> t = stackStereoImages(left, right, where);
+  ascendingIds(ids, t.size(), where); // the checks
+  std::vector<Eigen::Vector4d> s(m_ids.size(), Eigen::Vector4d::Constant(std::numeric_limits<double>::quiet_NaN()));
+  seen.assign(m_ids.size(), false);
+  unsigned int common = 0;
+  for (size_t k = 0; k < ids.size(); ++k) {
+    const std::vector<int>::const_iterator it = std::lower_bound(m_ids.begin(), m_ids.end(), ids[k]);
+    if (it != m_ids.end() && *it == ids[k]) { // others: not a zero-reference marker, ignored
+      const size_t j = static_cast<size_t>(it - m_ids.begin());
+      s[j] = t[k];
+      seen[j] = true;
+      ++common;
+    }
+  }
+  if (common < 5) {
+    std::ostringstream os;
+    os << "the trial shows " << common << " of the zero reference's " << m_ids.size()
+       << " markers (matched by id); a trial's displacement needs at least 5 of them: leave it out, or move the "
+          "joint less so that more markers stay in view";
+    fail(vpProjectiveException::notEnoughPointsError, where, os.str());
+  }
+  return s;
 }
 
 vpColVector vpProjectiveArmAcquisition::getZeroReferenceJoints() const
@@ -164,7 +250,60 @@ void vpProjectiveArmAcquisition::addTrialMotion(unsigned int i, double amount, c
        << "; pass the same markers in the same order";
     fail(vpProjectiveException::dimensionError, where, os.str());
   }
+  trial.seen.assign(trial.s.size(), true);
   m_trials.push_back(trial);
+}
+
+void vpProjectiveArmAcquisition::addTrialMotion(unsigned int i, double amount, const std::vector<int> &ids,
+                                                const std::vector<vpImagePoint> &left,
+                                                const std::vector<vpImagePoint> &right)
+{
+  const std::string where = at("addTrialMotion()");
+  if (m_zeroImages.empty()) {
+    fail(vpProjectiveException::notInitializedError, where, "call setZeroReference() before adding trial motions");
+  }
+  std::vector<bool> seen;
+  const std::vector<Eigen::Vector4d> s = matchByIds(ids, left, right, where, seen);
+  // The checks of the joint and the amount, on the zero reference's images; then this trial's.
+  std::vector<vpImagePoint> l0(m_zeroImages.size()), r0(m_zeroImages.size());
+  for (size_t j = 0; j < m_zeroImages.size(); ++j) {
+    l0[j].set_uv(m_zeroImages[j](0), m_zeroImages[j](1));
+    r0[j].set_uv(m_zeroImages[j](2), m_zeroImages[j](3));
+  }
+  addTrialMotion(i, amount, l0, r0);
+  m_trials.back().s = s;
+  m_trials.back().seen = seen;
+}
+
+void vpProjectiveArmAcquisition::addTrialMotion(const vpColVector &q, const std::vector<int> &ids,
+                                                const std::vector<vpImagePoint> &left,
+                                                const std::vector<vpImagePoint> &right)
+{
+  const std::string where = at("addTrialMotion()");
+  if (m_zeroImages.empty()) {
+    fail(vpProjectiveException::notInitializedError, where, "call setZeroReference() before adding trial motions");
+  }
+  std::vector<bool> seen;
+  const std::vector<Eigen::Vector4d> s = matchByIds(ids, left, right, where, seen);
+  std::vector<vpImagePoint> l0(m_zeroImages.size()), r0(m_zeroImages.size());
+  for (size_t j = 0; j < m_zeroImages.size(); ++j) {
+    l0[j].set_uv(m_zeroImages[j](0), m_zeroImages[j](1));
+    r0[j].set_uv(m_zeroImages[j](2), m_zeroImages[j](3));
+  }
+  addTrialMotion(q, l0, r0);
+  m_trials.back().s = s;
+  m_trials.back().seen = seen;
+}
+
+bool vpProjectiveArmAcquisition::isObserved(unsigned int trial, unsigned int marker) const
+{
+  if (trial >= m_trials.size() || marker >= m_zeroImages.size()) {
+    std::ostringstream os;
+    os << "no marker " << marker << " in trial " << trial << " (the acquisition has " << m_trials.size()
+       << " trials of " << m_zeroImages.size() << " markers)";
+    fail(vpProjectiveException::dimensionError, at("isObserved()"), os.str());
+  }
+  return m_trials[trial].seen[marker];
 }
 
 void vpProjectiveArmAcquisition::addTrialMotion(const vpColVector &q, const std::vector<vpImagePoint> &left,
@@ -216,11 +355,11 @@ vpProjectiveArmModel vpProjectiveArmAcquisition::calibrate()
   data.rig = m_rig;
   data.zeroImages = m_zeroImages;
   for (const vpTrial &t : m_trials) {
-    data.trials.push_back(ArmTrial{t.joint, t.amount, t.s});
+    data.trials.push_back(ArmTrial{t.joint, t.amount, t.s, t.seen});
+    data.inlier.push_back(t.seen); // a missing marker is no observation: never an inlier
   }
   data.outlierThreshold = m_outlierThreshold;
   const size_t K = m_zeroImages.size();
-  data.inlier.assign(m_trials.size(), std::vector<bool>(K, true));
 
   std::vector<Eigen::Vector4d> M0(K);
   for (size_t j = 0; j < K; ++j) {
@@ -273,8 +412,10 @@ vpProjectiveArmModel vpProjectiveArmAcquisition::calibrate()
 unsigned int vpProjectiveArmAcquisition::getNumberOfOutliers() const
 {
   unsigned int outliers = 0;
-  for (const std::vector<bool> &trial : m_inlier) {
-    outliers += static_cast<unsigned int>(std::count(trial.begin(), trial.end(), false));
+  for (size_t k = 0; k < m_inlier.size() && k < m_trials.size(); ++k) {
+    for (size_t j = 0; j < m_inlier[k].size(); ++j) {
+      outliers += m_trials[k].seen[j] && !m_inlier[k][j] ? 1u : 0u;
+    }
   }
   return outliers;
 }
@@ -287,5 +428,5 @@ bool vpProjectiveArmAcquisition::isOutlier(unsigned int trial, unsigned int mark
        << " trials of " << m_zeroImages.size() << " markers)";
     fail(vpProjectiveException::dimensionError, at("isOutlier()"), os.str());
   }
-  return !m_inlier[trial][marker];
+  return !m_inlier[trial][marker] && (trial >= m_trials.size() || m_trials[trial].seen[marker]);
 }

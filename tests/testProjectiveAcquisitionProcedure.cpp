@@ -12,7 +12,7 @@
  */
 
 /*
-  vpProjectiveAcquisitionProcedure on a minimal vpRobot wrapping the plugin's vpSimulatorArm (PUMA, the paper's rig):
+  vpProjectiveAcquisitionProcedure on vpSimulatorRobotArm (PUMA, the paper's rig), instrumented by the test:
   the acquired model predicts the markers at the noise level, tight images and joint limits bound the trial amounts
   and the report says so, a joint that cannot move without losing markers throws and leaves the robot at the zero
   reference and the acquisition unchanged, bad settings throw. Seeded noise.
@@ -34,6 +34,7 @@
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpSimulatorArm.h>
+#include <visp3/projective/vpSimulatorRobotArm.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
 #include "vpProjectiveArmTestTools.h"
@@ -45,24 +46,19 @@ using namespace VISP_NAMESPACE_NAME;
 namespace
 {
 /*!
-  A vpRobot whose joints are those of a vpSimulatorArm. setVelocity(ARTICULAR_FRAME) moves the joints at once by one
-  step of dt seconds (like ViSP's simulators in their constant sampling time mode), setPosition() jumps to its
-  target; every position reached is recorded, and so are the setPosition() calls.
+  The library's vpSimulatorRobotArm (constant sampling time: each setVelocity() moves the joints by one step of 10 ms)
+  with what the tests check: the calls it received, every position reached (commands), a setPosition() that can be
+  made to block, and a joint that velocity commands do not move.
 */
-class vpArmRobot : public vpRobot
+class vpArmRobot : public vpSimulatorRobotArm
 {
 public:
-  explicit vpArmRobot(unsigned int n)
-      : q(n, 0.0), commands(), positionCalls(0), velocityCalls(0), dt(0.01), blockInSetPosition(false), stuckJoint(-1),
-        lastVelocity(n, 0.0)
+  explicit vpArmRobot(const vpSimulatorArm &arm, const vpColVector &q0 = vpColVector())
+      : vpSimulatorRobotArm(arm, q0), commands(), positionCalls(0), velocityCalls(0), blockInSetPosition(false),
+        stuckJoint(-1), lastVelocity(arm.getNumberOfJoints(), 0.0)
   {
   }
-  void get_eJe(vpMatrix &eJe) override { eJe.resize(6, q.size(), true); }
-  void get_fJe(vpMatrix &fJe) override { fJe.resize(6, q.size(), true); }
-  void getDisplacement(const vpRobot::vpControlFrameType, vpColVector &d) override { d.resize(q.size(), true); }
-  void getPosition(const vpRobot::vpControlFrameType, vpColVector &qOut) override { qOut = q; }
-  void init() override {}
-  void setPosition(const vpRobot::vpControlFrameType, const vpColVector &qIn) override
+  void setPosition(const vpRobot::vpControlFrameType frame, const vpColVector &qIn) override
   {
     ++positionCalls;
     if (blockInSetPosition) {
@@ -71,25 +67,25 @@ public:
       std::this_thread::sleep_for(std::chrono::seconds(30));
       return;
     }
-    q = qIn;
-    commands.push_back(qIn);
+    vpSimulatorRobotArm::setPosition(frame, qIn);
+    commands.push_back(getArmJoints());
   }
-  void setVelocity(const vpRobot::vpControlFrameType, const vpColVector &qdot) override
+  void setVelocity(const vpRobot::vpControlFrameType frame, const vpColVector &qdot) override
   {
     ++velocityCalls;
     lastVelocity = qdot;
-    for (unsigned int i = 0; i < q.size(); ++i) {
-      if (static_cast<int>(i) != stuckJoint) {
-        q[i] += dt * qdot[i];
-      }
+    vpColVector v = qdot;
+    if (stuckJoint >= 0 && static_cast<unsigned int>(stuckJoint) < v.size()) {
+      v[static_cast<unsigned int>(stuckJoint)] = 0.0;
     }
-    commands.push_back(q);
+    vpSimulatorRobotArm::setVelocity(frame, v);
+    commands.push_back(getArmJoints());
   }
+  //! The arm's joints now.
+  vpColVector q() { return getArmJoints(); }
 
-  vpColVector q;
   std::vector<vpColVector> commands;
   unsigned int positionCalls, velocityCalls;
-  double dt;
   bool blockInSetPosition; //!< setPosition() blocks (30 s)
   int stuckJoint;          //!< a joint that velocity commands do not move (-1: none)
   vpColVector lastVelocity;
@@ -104,14 +100,14 @@ struct AcquisitionSetup {
 
   AcquisitionSetup()
       : arm(vpSimulatorArm::puma(vpSimulatorArm::paperBasePose())),
-        sim(vpSimulatorStereoRig::paperRig(vpColVector(3, 0.0), 1.0)), robot(6), noise(1.0, 0.0, 12), sigma(0.5)
+        sim(vpSimulatorStereoRig::paperRig(vpColVector(3, 0.0), 1.0)), robot(arm), noise(1.0, 0.0, 12), sigma(0.5)
   {
   }
 
   vpProjectiveAcquisitionProcedure::vpImageSource source()
   {
     return [this](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
-      return sim.project(arm.getMarkers(robot.q), left, right, sigma, noise);
+      return sim.project(arm.getMarkers(robot.q()), left, right, sigma, noise);
     };
   }
 
@@ -198,8 +194,8 @@ TEST(ProjectiveAcquisitionProcedure, AcquiredModelPredictsMarkersAtNoiseLevel)
   }
   EXPECT_NE(log.str().find("joint 5"), std::string::npos);
   EXPECT_GT(steps, 12u);
-  EXPECT_LT((s.robot.q - vpColVector(6, 0.0)).frobeniusNorm(), 3e-5); // back at the zero reference (1e-5 per joint)
-  EXPECT_LT(predictionRms(s, procedure, model), s.sigma);             // 0.22 px at seed 12
+  EXPECT_LT((s.robot.q() - vpColVector(6, 0.0)).frobeniusNorm(), 3e-5); // back at the zero reference (1e-5 per joint)
+  EXPECT_LT(predictionRms(s, procedure, model), s.sigma);               // 0.22 px at seed 12
   // Moved by joint velocities only, and the mounting told by a check motion of two joints.
   EXPECT_EQ(s.robot.positionCalls, 0u);
   EXPECT_GT(s.robot.velocityCalls, 100u);
@@ -261,7 +257,7 @@ TEST(ProjectiveAcquisitionProcedure, CalibratesTheFacadeFromAbsoluteReadings)
 {
   AcquisitionSetup s;
   const vpColVector qRef({0.1, -0.05, 0.08, 0.2, -0.1, 0.3});
-  s.robot.q = qRef;
+  s.robot.setPosition(vpRobot::ARTICULAR_FRAME, qRef);
   vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
   procedure.setSteps(vpColVector(6, vpMath::rad(2.0)));
   vpProjectiveRobot robot(std::vector<vpProjectiveRobot::vpJointType>(6, vpProjectiveRobot::REVOLUTE));
@@ -294,7 +290,7 @@ TEST(ProjectiveAcquisitionProcedure, CalibratesTheFacadeFromAbsoluteReadings)
   EXPECT_EQ(robot.getModelGeneration(), generation);
   EXPECT_EQ((robot.getProjectiveToMetric() - G).frobeniusNorm(), 0.0);
   EXPECT_EQ(robot.getAcquisition().getNumberOfTrials(), 12u);
-  EXPECT_LT((s.robot.q - qRef).frobeniusNorm(), 3e-5); // back at the zero reference (1e-5 per joint)
+  EXPECT_LT((s.robot.q() - qRef).frobeniusNorm(), 3e-5); // back at the zero reference (1e-5 per joint)
 }
 
 TEST(ProjectiveAcquisitionProcedure, TightImageBoundsAmountsAndReportSaysSo)
@@ -363,7 +359,7 @@ TEST(ProjectiveAcquisitionProcedure, JointThatLosesMarkersThrowsAndChangesNothin
   // Joint 2 loses a marker as soon as it leaves the zero reference (an occluding cable, say).
   vpProjectiveAcquisitionProcedure procedure(
       [&s, base](std::vector<vpImagePoint> &l, std::vector<vpImagePoint> &r) {
-        return base(l, r) && std::fabs(s.robot.q[2]) < vpMath::rad(0.5);
+        return base(l, r) && std::fabs(s.robot.q()[2]) < vpMath::rad(0.5);
       },
       s.sim.getWidth(), s.sim.getHeight());
   vpProjectiveArmAcquisition acq = s.acquisition();
@@ -377,7 +373,7 @@ TEST(ProjectiveAcquisitionProcedure, JointThatLosesMarkersThrowsAndChangesNothin
   }
   EXPECT_EQ(acq.getNumberOfTrials(), 0u);
   EXPECT_TRUE(procedure.getReports().empty());
-  EXPECT_LT((s.robot.q - vpColVector(6, 0.0)).frobeniusNorm(), 3e-5);
+  EXPECT_LT((s.robot.q() - vpColVector(6, 0.0)).frobeniusNorm(), 3e-5);
 }
 
 TEST(ProjectiveAcquisitionProcedure, BadSettingsThrow)
@@ -451,7 +447,7 @@ TEST(ProjectiveAcquisitionProcedure, PositionControlIsAnOption)
   EXPECT_GT(s.robot.positionCalls, 12u);
   EXPECT_LT(procedure.getCalibrationResidual(), 2.0 * s.sigma);
   EXPECT_LT(predictionRms(s, procedure, model), s.sigma);
-  EXPECT_EQ((s.robot.q - vpColVector(6, 0.0)).frobeniusNorm(), 0.0);
+  EXPECT_EQ((s.robot.q() - vpColVector(6, 0.0)).frobeniusNorm(), 0.0);
 }
 
 /*
@@ -484,7 +480,7 @@ vpProjectiveAcquisitionProcedure::vpImageSource toolMarkersSource(AcquisitionSet
                                                                   const std::vector<vpColVector> &tMarkers)
 {
   return [&s, tMarkers](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
-    return s.sim.project(vpSimulatorStereoRig::transform(s.arm.get_wMt(s.robot.q), tMarkers), left, right, s.sigma,
+    return s.sim.project(vpSimulatorStereoRig::transform(s.arm.get_wMt(s.robot.q()), tMarkers), left, right, s.sigma,
                          s.noise);
   };
 }
@@ -611,7 +607,7 @@ TEST(ProjectiveAcquisitionProcedure, MarkerOrderChangeIsNamed)
   vpProjectiveAcquisitionProcedure procedure(
       [&s, base](std::vector<vpImagePoint> &l, std::vector<vpImagePoint> &r) {
         const bool ok = base(l, r);
-        if (s.robot.q[1] > vpMath::rad(2.5)) {
+        if (s.robot.q()[1] > vpMath::rad(2.5)) {
           std::swap(l[0], l[3]);
           std::swap(r[0], r[3]);
         }
@@ -638,13 +634,12 @@ TEST(ProjectiveAcquisitionProcedure, ForgottenMountingIsDetected)
   for (bool eyeInHand : {true, false}) {
     const vpProjectiveTest::ArmSetup setup =
         eyeInHand ? vpProjectiveTest::pumaEyeInHand() : vpProjectiveTest::pumaEyeToHand();
-    vpArmRobot arm(6);
-    arm.q = setup.qRef;
+    vpSimulatorRobotArm arm(setup.arm, setup.qRef);
     vpGaussRand noise(1.0, 0.0, 5);
     const double sigma = 0.3;
     vpProjectiveAcquisitionProcedure procedure(
         [&](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
-          return setup.images(arm.q, left, right, sigma, noise, 0.0);
+          return setup.images(arm.getArmJoints(), left, right, sigma, noise, 0.0);
         },
         setup.width, setup.height);
     procedure.setSteps(vpColVector(6, vpMath::rad(eyeInHand ? 1.0 : 3.0)));
@@ -667,7 +662,7 @@ TEST(ProjectiveAcquisitionProcedure, ForgottenMountingIsDetected)
     EXPECT_GT(report.otherResidual, 10.0 * report.residual);
     EXPECT_TRUE(contains(log.str(), std::string("the model uses ") + (eyeInHand ? "EYE_IN_HAND" : "EYE_TO_HAND")))
         << log.str();
-    EXPECT_LT((arm.q - setup.qRef).frobeniusNorm(), 3e-5);
+    EXPECT_LT((arm.getArmJoints() - setup.qRef).frobeniusNorm(), 3e-5);
 
     // The kept model predicts a motion of three joints together, within the noise.
     vpColVector q = setup.qRef;

@@ -14,7 +14,7 @@
 /*!
   \file main.cpp
   \brief projective-study: which servo should I use? The projective servo of Ruf & Horaud against two baselines, on
-  many random tasks of one world: by default the main tutorial's (the paper's rig watching the PUMA-like arm, its 7
+  many random tasks of one world: by default the main job's (the paper's rig watching the PUMA-like arm, its 7
   gripper markers tracked); --world viper850 (ViSP's Viper850 kinematics and joint limits) or prismatic (an
   R-R-P-R-R-R arm), --rig random (a verged rig drawn per task: baseline, vergence, focal length, image size); see
   makeWorld() and randomRig() in study-world.h. Each run reports one world; the CSV files name it.
@@ -39,7 +39,7 @@
   shoulder, elbow and wrist configuration; PUMA only: the other arms have no closed-form branch test and take their
   targets in any branch, as --any-branch). They are the same for the three noise
   levels 0.1, 0.5 and 1 px. Robustness cases at 0.5 px: 5 % gross outliers, one feature occluded for 5 iterations,
-  a start near the wrist singularity. With --markers 3 the servo tracks only the main tutorial's markers 0-2: the
+  a start near the wrist singularity. With --markers 3 the servo tracks only the main job's markers 0-2: the
   image error of three points has local minima where every method stalls (a third of the tasks); with --box 90 the
   tasks turn the tool by 96 deg in the median and half of them defeat every method.
 
@@ -77,7 +77,7 @@
 #include "study-statistics.h"
 #include "study-task.h"
 #include "study-world.h"
-#include "tutorial-command-line.h"
+#include "command-line.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -104,7 +104,7 @@ int main(int argc, char **argv)
   double boxDeg = 30.0, sigma = 0.0, checkPlanned = 0.0;
   bool anyBranch = false, robustness = true;
   std::string output = ".", worldName = "puma", rigName = "paper";
-  tutorial::CommandLine cmd;
+  app::CommandLine cmd;
   cmd.add("--world", worldName, "puma|viper850|prismatic",
           "the arm: the PUMA-like arm, ViSP's Viper850, or an R-R-P-R-R-R arm with a prismatic joint")
       .add("--rig", rigName, "paper|random", "the paper's rig, or a random verged rig drawn per task")
@@ -113,7 +113,7 @@ int main(int argc, char **argv)
       .add("--box", boxDeg, "DEG",
            "start and target uniformly within +-DEG of the zero reference on every joint (a prismatic joint: 2 mm "
            "per degree), clipped to the joint limits")
-      .choice("--markers", markers, {3, 7}, "the servo tracks the 7 gripper markers, or the main tutorial's 0-2")
+      .choice("--markers", markers, {3, 7}, "the servo tracks the 7 gripper markers, or the main job's 0-2")
       .add("--sigma", sigma, "PX", "one noise level only (default: 0.1, 0.5 and 1 px)")
       .flag("--any-branch", anyBranch, true, "targets in any inverse-kinematic branch, not only the start's")
       .flag("--nominal-only", robustness, false, "skip the robustness cases (outliers, occlusion, singular start)")

@@ -39,7 +39,7 @@ namespace study
 {
 //! [Control settings]
 /*!
-  The control settings every method shares, those of the main tutorial's projective task: gain 0.5, joint steps
+  The control settings every method shares, those of the main job's projective task: gain 0.5, joint steps
   limited to 15 deg per iteration (the whole velocity scaled down, keeping its direction), and damped least squares
   \f$ \dot q = -\lambda (J^T J + \mu^2 I)^{-1} J^T e \f$ with \f$ \mu^2 = \mu_{max}^2 (1 - (\sigma_{min} /
   \sigma_0)^2) \f$ when the smallest singular value \f$ \sigma_{min} \f$ of J (pixels per radian) is below

@@ -152,7 +152,7 @@ double checkIbvsJacobian(const World &world, const Task &task)
   trueImages(world, task.qStart, left, right);
   ibvs.velocity(task.qStart, left, right, std::vector<bool>(world.nbPoints(), true));
   const vpMatrix &J = ibvs.getTaskJacobian();
-  const vpMatrix truth = tutorial::imageJacobian(trueImagesAt(world), task.qStart);
+  const vpMatrix truth = app::imageJacobian(trueImagesAt(world), task.qStart);
   double largest = 0.0, difference = 0.0;
   for (unsigned int i = 0; i < truth.getCols(); ++i) {
     for (unsigned int r = 0; r < truth.getRows(); ++r) {

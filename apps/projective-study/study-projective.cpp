@@ -31,7 +31,7 @@ namespace study
 {
 vpProjectiveRobot acquire(const World &world, double sigma, vpGaussRand &noise)
 {
-  // tutorial::acquireByTrials() for any joint kinds: the same images in the same order (hence the same noise draws),
+  // app::acquireByTrials() for any joint kinds: the same images in the same order (hence the same noise draws),
   // the trial amounts in the joints' units.
   const unsigned int n = world.arm.getNumberOfJoints();
   const auto imagesAt = [&](const vpColVector &q, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
@@ -39,10 +39,10 @@ vpProjectiveRobot acquire(const World &world, double sigma, vpGaussRand &noise)
   };
   std::vector<vpImagePoint> left0, right0;
   imagesAt(vpColVector(n, 0.0), left0, right0);
-  std::vector<tutorial::TrialMotion> trials;
+  std::vector<app::TrialMotion> trials;
   for (unsigned int i = 0; i < n; ++i) {
     for (double sign : {1.0, -1.0}) {
-      tutorial::TrialMotion t{i, sign * world.trials[i], {}, {}};
+      app::TrialMotion t{i, sign * world.trials[i], {}, {}};
       vpColVector q(n, 0.0);
       q[i] = t.amount;
       while (!imagesAt(q, t.left, t.right)) {
@@ -53,7 +53,7 @@ vpProjectiveRobot acquire(const World &world, double sigma, vpGaussRand &noise)
     }
   }
   std::vector<vpImagePoint> allLeft = left0, allRight = right0;
-  for (const tutorial::TrialMotion &t : trials) {
+  for (const app::TrialMotion &t : trials) {
     allLeft.insert(allLeft.end(), t.left.begin(), t.left.end());
     allRight.insert(allRight.end(), t.right.begin(), t.right.end());
   }
@@ -68,7 +68,7 @@ vpProjectiveRobot acquire(const World &world, double sigma, vpGaussRand &noise)
   robot.setRigMounting(vpProjectiveRobot::EYE_TO_HAND);
   robot.setStereoRig(rig);
   robot.setZeroReference(left0, right0);
-  for (const tutorial::TrialMotion &t : trials) {
+  for (const app::TrialMotion &t : trials) {
     robot.addTrialMotion(t.joint, t.amount, t.left, t.right);
   }
   robot.calibrate();

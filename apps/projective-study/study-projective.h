@@ -41,7 +41,7 @@ using namespace VISP_NAMESPACE_NAME;
 namespace study
 {
 //! [Acquisition]
-//! The main tutorial's acquisition (tutorial::acquireByTrials(), any joint kinds): q = 0, then each joint alone both
+//! The main job's acquisition (app::acquireByTrials(), any joint kinds): q = 0, then each joint alone both
 //! ways by the world's trials (halved until in view); F from the same images with the inlier threshold
 //! max(1, 4 sigma); calibrate(). Throws a vpException on failure.
 vpProjectiveRobot acquire(const World &world, double sigma, vpGaussRand &noise);
@@ -52,13 +52,13 @@ double modelPredictionError(const World &world, const vpProjectiveRobot &robot, 
 
 //! [Projective servo]
 /*!
-  The projective servo as in the main tutorial (vpServoProjective, gain 0.5, 15 deg, damping (30, 30)).
+  The projective servo as in the main job (vpServoProjective, gain 0.5, 15 deg, damping (30, 30)).
   - Plain: when the tracker loses a point the task is rebuilt on the tracked ones (their rows only), as the
     baselines do, and nothing else.
   - Robust: the robustness API of vpServoProjective: the tracker's verdict through setFeatureTracked(), the image
     window (setImageSize()), outlier rejection against the epipolar geometry and the model's prediction
     (setOutlierThreshold()), and joint-limit avoidance (setJointLimits()).
-  - Planned (setPlanned()): global servoing as in the main tutorial: setPathPlanning(true) with the world's joint
+  - Planned (setPlanned()): global servoing as in the main job: setPathPlanning(true) with the world's joint
     limits (setJointLimits()) and image window (setImageSize() with a border); the first computeControlLaw() plans
     the task from the model (inverse kinematics of s*, a path in the limits and in view), the task follows it and law
     (47) finishes. getNoPlan() and getPlannedTarget() tell what the planner did.

@@ -19,7 +19,7 @@
 #include "study-report.h"
 
 #include "study-methods.h"
-#include "tutorial-projective-figures.h"
+#include "figures.h"
 
 #include <algorithm>
 #include <array>
@@ -238,8 +238,8 @@ void writeFigures(const World &world, const Results &results, const std::string 
          << world.sigmas[j] << " px'" << (j + 1 < world.sigmas.size() ? ", " : "\n");
     }
   }
-  tutorial::runGnuplot(gp.str(), dir + "/study-figures.gp",
-                       dir + "/study-success.png, " + dir + "/study-iterations.png", csv, log);
+  app::runGnuplot(gp.str(), dir + "/study-figures.gp", dir + "/study-success.png, " + dir + "/study-iterations.png",
+                  csv, log);
 }
 
 std::string summary(const World &world, const Results &results)
@@ -356,7 +356,7 @@ std::string worldDescription(const World &world)
 {
   std::ostringstream os;
   os << "`--world " << world.name << " --rig " << world.rigName << "`: ";
-  os << (world.name == "puma"       ? "the main tutorial's PUMA-like arm"
+  os << (world.name == "puma"       ? "the main job's PUMA-like arm"
          : world.name == "viper850" ? "ViSP's Viper850 (vpSimulatorArm::viper850(), its true joint limits), zero "
                                       "reference (0, -150, 190, 0, -75, 0) deg"
                                     : "an R-R-P-R-R-R arm (Stanford-arm structure, a prismatic joint 2 in metres), "

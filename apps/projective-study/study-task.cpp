@@ -33,7 +33,7 @@ namespace study
 {
 vpColVector unitNoiseFloor(const World &world, const vpColVector &q)
 {
-  const vpMatrix J = tutorial::imageJacobian(trueImagesAt(world), q);
+  const vpMatrix J = app::imageJacobian(trueImagesAt(world), q);
   const vpMatrix covariance = J.AtA().inverseByLU();
   vpColVector floor(q.size());
   for (unsigned int i = 0; i < q.size(); ++i) {

@@ -239,7 +239,7 @@ bool trueImages(const World &world, const vpColVector &q, std::vector<vpImagePoi
   return visible;
 }
 
-tutorial::ImagesAt trueImagesAt(const World &world)
+app::ImagesAt trueImagesAt(const World &world)
 {
   return [&world](const vpColVector &q, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
     return trueImages(world, q, left, right);

@@ -13,7 +13,7 @@
 
 /*!
   \file study-world.h
-  \brief The study's worlds (an arm and a rig: the main tutorial's PUMA-like arm, ViSP's Viper850, an R-R-P-R-R-R arm
+  \brief The study's worlds (an arm and a rig: the main job's PUMA-like arm, ViSP's Viper850, an R-R-P-R-R-R arm
   with a prismatic joint; the paper's rig or a random verged rig drawn per task) and the study's fixed settings, its
   seeded random streams, the arm's inverse-kinematic branches and what the rig sees.
 */
@@ -33,7 +33,7 @@
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
 #include "study-control.h"
-#include "tutorial-projective-common.h"
+#include "paper-world.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -43,7 +43,7 @@ namespace study
 {
 //! [World]
 /*!
-  A world of the study (an arm watched by a rig) and the study's fixed settings. By default the main tutorial's: the
+  A world of the study (an arm watched by a rig) and the study's fixed settings. By default the main job's: the
   paper's rig watching the PUMA-like arm (makeWorld() gives the others). The arm's joint values are relative to its
   zero reference (q = 0 is where the acquisition starts and the centre of the tasks' box), its joint limits are its
   true limits expressed the same way.
@@ -58,15 +58,15 @@ struct World {
                                 vpMath::rad(40), vpMath::rad(60), vpMath::rad(60)};
   bool pumaBranches = true;       // branchOf() applies (the PUMA-like arm); else the targets are in any branch
   double prismaticPerDeg = 0.002; // a prismatic joint's box: this many metres per degree of --box
-  // Markers fed to the servo (every method): all 7 by default; --markers 3 takes the main tutorial's 0-2, on the face
+  // Markers fed to the servo (every method): all 7 by default; --markers 3 takes the main job's 0-2, on the face
   // that looks at the rig at the zero reference. Three points leave the image error of a joint-space servo with local
   // minima that stall a third of the tasks of the +-30 deg box, whatever the method.
   std::vector<unsigned int> tracked = {0, 1, 2, 3, 4, 5, 6};
   double boxDeg = 30.0;        // tasks: |q_i| <= boxDeg around the zero reference, clipped to the joint limits
   double marginPx = 20.0;      // tracked markers this far inside both images at both ends of a task
   bool anyBranch = false;      // --any-branch: targets need not be in the start's inverse-kinematic branch
-  double planBorderPx = 10.0;  // planned servo: the image window's border (setImageSize()), as the main tutorial
-  double planStepDeg = 10.0;   // planned servo: the path's largest joint step per sample, as the main tutorial
+  double planBorderPx = 10.0;  // planned servo: the image window's border (setImageSize()), as the main job
+  double planStepDeg = 10.0;   // planned servo: the path's largest joint step per sample, as the main job
   int rehearsal = -1;          // planned servo: the law rehearsal's budget (--rehearsal; -1: the planner's default)
   double wristSingularDeg = 0; // q_4 where the axes of joints 3 and 5 align (set from the DH table)
   double nearSingularDeg = 2.0;
@@ -80,7 +80,7 @@ struct World {
   double outlierMinPx = 20.0, outlierMaxPx = 50.0;
   double outlierThresholdPx = 10.0; // robustness API: half the smallest gross error, 14 times the epipolar noise
   unsigned int occludedFeature = 0, occludedFirst = 3, occludedLast = 7;
-  study::ControlSettings control; // gain 0.5, 15 deg, damping (30, 30): the main tutorial's projective task
+  study::ControlSettings control; // gain 0.5, 15 deg, damping (30, 30): the main job's projective task
 
   World()
   {
@@ -98,7 +98,7 @@ struct World {
 
 /*!
   The world \e armName ("puma", "viper850" or "prismatic") with the paper's rig:
-  - puma: the main tutorial's (World()).
+  - puma: the main job's (World()).
   - viper850: ViSP's Viper850 kinematics and true joint limits (vpSimulatorArm::viper850(), as vpSimulatorViper850
     uses), zero reference (0, -150, 190, 0, -75, 0) deg with the gripper at the PUMA's zero-reference tool pose, so
     the markers face the paper's rig (the tests' viperEyeToHand()); trials 30, 8, 12, 30, 30, 60 deg.
@@ -182,8 +182,8 @@ bool otherBranch(const World &world, const vpColVector &qPlanned, const vpColVec
 bool trueImages(const World &world, const vpColVector &q, std::vector<vpImagePoint> &left,
                 std::vector<vpImagePoint> &right);
 
-//! trueImages() as a tutorial::ImagesAt (\e world must outlive it).
-tutorial::ImagesAt trueImagesAt(const World &world);
+//! trueImages() as a app::ImagesAt (\e world must outlive it).
+app::ImagesAt trueImagesAt(const World &world);
 
 //! True if q is within the joint limits and the tracked markers are marginPx inside both images.
 bool acceptable(const World &world, const vpColVector &q);

@@ -25,6 +25,7 @@
 #include <functional>
 #include <ostream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <visp3/core/vpColVector.h>
@@ -101,6 +102,17 @@ BEGIN_VISP_NAMESPACE
   (commuting joints, one joint) the mounting does not matter and is kept; when they differ but no check motion
   keeps the markers in view, run() throws: set the mounting and call setMountingDetection(false).
 
+  <b>Identified markers.</b> With a vpIdentifiedImageSource (markers named by ids, such as AprilTag corners), the
+  markers are matched by id instead of by their order, and a marker may be missing from a frame (occluded, turned
+  away): the zero reference's markers are those the source gives there (the checks above use them; a marker not
+  seen there is ignored in every later frame), a step counts as long as it shows at least 5 of them (fewer: the
+  joint's motion stops, MARKER_LOST), every marker it shows inside the margins. The calibration uses the
+  observations there are (vpProjectiveArmAcquisition's identified markers); a marker seen in fewer than
+  setMinMarkerVisibility() of the trial motions is left out of the model (the output says so,
+  getDroppedMarkers()), and the markers kept are checked again for general position. The model's marker j is then
+  the acquisition's vpProjectiveArmAcquisition::getMarkerIds()[j]. The step callback receives the markers the step
+  shows, in ascending id order.
+
   <b>Progress.</b> With setOutput(), one line per step of the procedure (the zero reference's checks, each joint
   and direction, the rig, the calibration, the mounting), each flushed as it is written.
 
@@ -118,6 +130,13 @@ public:
     not tracked.
   */
   typedef std::function<bool(std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right)> vpImageSource;
+  /*!
+    Gives identified markers: \e ids[j] names the marker whose images are left[j] and right[j] (distinct ids, in
+    any order; vpStereoAprilTagDetector::getIds(), getLeftPoints(), getRightPoints()). Markers may be missing from
+    some frames; returns false if the images could not be read at all.
+  */
+  typedef std::function<bool(std::vector<int> &ids, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right)>
+      vpIdentifiedImageSource;
   //! Called with the joint moved, the joints (rad or m) and the images after each step (live display).
   typedef std::function<void(unsigned int joint, const vpColVector &q, const std::vector<vpImagePoint> &left,
                              const std::vector<vpImagePoint> &right)>
@@ -167,6 +186,19 @@ public:
     \exception vpProjectiveException (invalidValueError) if \e source is empty or a size is 0.
   */
   vpProjectiveAcquisitionProcedure(const vpImageSource &source, unsigned int width, unsigned int height);
+  /*!
+    A procedure reading identified markers from \e source, a vpIdentifiedImageSource or any function callable as one
+    (see the class documentation: <b>Identified markers</b>), in images of \e width x \e height pixels.
+    \exception vpProjectiveException (invalidValueError) if \e source is empty or a size is 0.
+  */
+  template <typename Source, typename = typename std::enable_if<
+                                 std::is_convertible<Source, vpIdentifiedImageSource>::value &&
+                                 !std::is_convertible<Source, vpImageSource>::value &&
+                                 !std::is_same<typename std::decay<Source>::type, std::nullptr_t>::value>::type>
+  vpProjectiveAcquisitionProcedure(const Source &source, unsigned int width, unsigned int height)
+      : vpProjectiveAcquisitionProcedure(vpIdentifiedImageSource(source), width, height, true)
+  {
+  }
 
   /*!
     Largest amount per joint and direction (n x 1, rad or m, > 0). Default: 30 deg for a revolute joint, 10 cm
@@ -190,7 +222,8 @@ public:
   /*!
     Joint limits (n x 1 each, rad or m, \e qmin < \e qmax) and the margin kept from them (>= 0, rad or m). Default:
     the robot's own limits less 2 deg (revolute) or 1 cm (prismatic) when it knows them (vpViper: vpRobotViper650,
-    vpRobotViper850, vpSimulatorViper850; vpAfma6: vpRobotAfma6, vpSimulatorAfma6; vpAfma4), otherwise none.
+    vpRobotViper850, vpSimulatorViper850; vpAfma6: vpRobotAfma6, vpSimulatorAfma6; vpAfma4; vpSimulatorRobotArm),
+    otherwise none.
     \exception vpProjectiveException (dimensionError, invalidValueError, nonFiniteValueError) on mismatched sizes,
     qmin >= qmax, a negative margin or non-finite values.
   */
@@ -260,6 +293,15 @@ public:
     \exception vpProjectiveException (invalidValueError) if not positive or not finite.
   */
   void setEpipolarThreshold(double pixels);
+  /*!
+    With identified markers, the smallest fraction (0 to 1) of the trial motions a zero-reference marker must be seen
+    in; a marker seen in fewer is left out of the model, and the progress output says so (getDroppedMarkers()).
+    Default 0.5. No effect with a vpImageSource, whose markers are all in every frame.
+    \exception vpProjectiveException (invalidValueError) outside [0, 1].
+  */
+  void setMinMarkerVisibility(double fraction);
+  //! The ids of the markers the last run() left out for being seen in too few trials (identified markers).
+  const std::vector<int> &getDroppedMarkers() const { return m_dropped; }
   //! Where to write the progress, a line per step of the procedure, flushed (null: nothing). Default null.
   void setOutput(std::ostream *os) { m_os = os; }
   //! Called after each step with the new images (live display); empty: nothing.
@@ -305,6 +347,8 @@ public:
   static std::string toString(vpStopReason reason);
 
 private:
+  vpProjectiveAcquisitionProcedure(const vpIdentifiedImageSource &source, unsigned int width, unsigned int height,
+                                   bool identified);
   bool inside(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right) const;
   double amountOf(const vpColVector &v, unsigned int i, double fallback) const;
   double stepOf(unsigned int i) const;
@@ -317,14 +361,23 @@ private:
   void checkGeneralPosition(const vpProjectiveStereoRig &rig, const std::vector<vpImagePoint> &left,
                             const std::vector<vpImagePoint> &right, const char *when);
   void moveJoint(vpRobot &robot, const vpColVector &qRef, unsigned int i, int sign, double &amount,
-                 vpStopReason &reason, vpColVector &qReached, std::vector<vpImagePoint> &left,
+                 vpStopReason &reason, vpColVector &qReached, std::vector<int> &ids, std::vector<vpImagePoint> &left,
                  std::vector<vpImagePoint> &right, std::vector<vpImagePoint> &allLeft,
                  std::vector<vpImagePoint> &allRight);
+  bool acquire(std::vector<int> &ids, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) const;
+  static unsigned int keepMarkers(const std::vector<int> &keep, std::vector<int> &ids, std::vector<vpImagePoint> &left,
+                                  std::vector<vpImagePoint> &right);
   vpProjectiveArmModel tellMounting(vpRobot &robot, const vpColVector &qRef, const vpProjectiveArmModel &model,
                                     const std::vector<vpJointReport> &reports);
   void progress(const std::string &line) const;
 
   vpImageSource m_source;
+  vpIdentifiedImageSource m_idSource;
+  bool m_identified; // m_idSource is the source
+  double m_minVisibility;
+  std::vector<int> m_refIds;   // of the zero reference's markers in the last run(), ascending
+  std::vector<int> m_modelIds; // of the model's markers
+  std::vector<int> m_dropped;
   unsigned int m_width, m_height;
   vpColVector m_maxAmounts, m_steps, m_minAmounts, m_qmin, m_qmax;
   double m_limitMargin, m_imageMargin, m_rotationSpeed, m_translationSpeed, m_epipolarThreshold;

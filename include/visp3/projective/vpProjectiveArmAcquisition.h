@@ -55,6 +55,11 @@ BEGIN_VISP_NAMESPACE
      both cameras with \f$ P, P' \f$ fixed. All generators thereby share one \f$ G \f$, which is \f$ H_{PE} \f$ up to a
      similarity, and the final RMS residual (getCalibrationResidual()) sits at the image noise level: the self-check.
 
+  <b>Identified markers.</b> With ids (the setZeroReference() and addTrialMotion() overloads taking ids, such as
+  AprilTag corners), the trials are matched to the zero reference by id and may miss some of its markers (occluded,
+  turned away): every step above uses the observations there are, a trial's displacement those of its markers
+  (at least 5).
+
   Joint amounts are radians (revolute) or the encoder's length unit (prismatic).
 */
 class VISP_EXPORT vpProjectiveArmAcquisition
@@ -108,8 +113,23 @@ public:
   */
   void setZeroReference(const vpColVector &qRef, const std::vector<vpImagePoint> &left0,
                         const std::vector<vpImagePoint> &right0);
+  /*!
+    The same with identified markers (AprilTag corners: vpStereoAprilTagDetector::getIds()): \e ids[j] names the
+    marker of left0[j] and right0[j]. The ids must be distinct, in any order; the markers are kept in ascending id
+    order, so that the model's marker j is getMarkerIds()[j]. Trials then name their markers by id
+    (addTrialMotion(const vpColVector &, const std::vector<int> &, ...)) and may miss some.
+    \exception vpProjectiveException as the other overloads, and (dimensionError, invalidValueError) if \e ids has not
+    one id per marker or repeats one.
+  */
+  void setZeroReference(const vpColVector &qRef, const std::vector<int> &ids, const std::vector<vpImagePoint> &left0,
+                        const std::vector<vpImagePoint> &right0);
   //! The joint values at the zero reference (n x 1; zeros unless given to setZeroReference()).
   vpColVector getZeroReferenceJoints() const;
+  /*!
+    The ids of the zero reference's markers, ascending: the model's marker j is getMarkerIds()[j] (0, 1, ..., K-1
+    when the zero reference was given without ids).
+  */
+  const std::vector<int> &getMarkerIds() const { return m_ids; }
 
   /*!
     Images of the same markers, in the same order, after joint \e i alone moved from the zero reference by \e amount
@@ -129,6 +149,29 @@ public:
   */
   void addTrialMotion(const vpColVector &q, const std::vector<vpImagePoint> &left,
                       const std::vector<vpImagePoint> &right);
+  /*!
+    Identified markers after joint \e i alone moved by \e amount: \e ids[j] names the marker of left[j] and
+    right[j], in any order. Markers are matched by id to the zero reference's: an id the zero reference does not have
+    is ignored, a zero-reference marker the trial does not show is missing from it (calibrate() uses the
+    observations there are; isObserved()).
+    \exception vpProjectiveException as the other overloads, (dimensionError, invalidValueError) if \e ids has not one
+    id per marker or repeats one, and (notEnoughPointsError) if the trial shows fewer than 5 of the zero
+    reference's markers (a trial's displacement needs 5).
+  */
+  void addTrialMotion(unsigned int i, double amount, const std::vector<int> &ids, const std::vector<vpImagePoint> &left,
+                      const std::vector<vpImagePoint> &right);
+  /*!
+    The same from the encoder readings \e q after the trial, as addTrialMotion(const vpColVector &, ...).
+    \exception vpProjectiveException as both.
+  */
+  void addTrialMotion(const vpColVector &q, const std::vector<int> &ids, const std::vector<vpImagePoint> &left,
+                      const std::vector<vpImagePoint> &right);
+  /*!
+    True if trial \e trial (in the order of addTrialMotion(), from 0) shows marker \e marker (the model's index: the
+    zero reference's, see getMarkerIds()).
+    \exception vpProjectiveException (dimensionError) if there is no such trial or marker.
+  */
+  bool isObserved(unsigned int trial, unsigned int marker) const;
   //! Number of trial motions added since the zero reference.
   unsigned int getNumberOfTrials() const { return static_cast<unsigned int>(m_trials.size()); }
   //! Number of markers of the zero reference.
@@ -161,11 +204,12 @@ public:
   double getCalibrationResidual() const { return m_residual; }
   //! RMS pixel residual of the algebraic generators alone (before the upgrade and the adjustment), for comparison.
   double getAlgebraicResidual() const { return m_algebraicResidual; }
-  //! Number of trial observations (marker in a trial's pair of images) the last calibrate() left out.
+  //! Number of trial observations (marker in a trial's pair of images) the last calibrate() left out as outliers
+  //! (missing markers are not observations).
   unsigned int getNumberOfOutliers() const;
   /*!
     True if the last calibrate() left out marker \e marker of trial \e trial (trials numbered in the order of
-    addTrialMotion(), from 0).
+    addTrialMotion(), from 0) as an outlier; false for a marker the trial does not show.
     \exception vpProjectiveException (dimensionError) if there is no such observation.
   */
   bool isOutlier(unsigned int trial, unsigned int marker) const;
@@ -179,11 +223,16 @@ private:
   struct vpTrial {
     unsigned int joint;
     double amount;
-    std::vector<Eigen::Vector4d> s; // (u, v, u', v') of each marker
+    std::vector<Eigen::Vector4d> s; // (u, v, u', v') of each marker (NaN where not seen)
+    std::vector<bool> seen;         // [marker]: the trial shows it
   };
+  std::vector<Eigen::Vector4d> matchByIds(const std::vector<int> &ids, const std::vector<vpImagePoint> &left,
+                                          const std::vector<vpImagePoint> &right, const std::string &where,
+                                          std::vector<bool> &seen) const;
   std::vector<vpTrial> m_trials;
+  std::vector<int> m_ids; // of the zero reference's markers, ascending
   double m_outlierThreshold;
-  std::vector<std::vector<bool>> m_inlier; // [trial][marker]: used by the last calibrate()
+  std::vector<std::vector<bool>> m_inlier; // [trial][marker]: used by the last calibrate() (false where not seen)
   double m_residual;
   double m_algebraicResidual;
 };

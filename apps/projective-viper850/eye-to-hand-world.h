@@ -11,71 +11,40 @@
  * more details.
  */
 
-//! \example tutorial-projective-servo-viper850.cpp
 /*!
-  Non-metric visual servoing of ViSP's own arm: the simulated Viper850 of vpSimulatorViper850 watched by a fixed,
-  uncalibrated stereo rig (eye-to-hand).
-
-  The arm is ViSP's vpSimulatorViper850, driven as in ViSP's tutorial-ibvs-4pts-wireframe-robot-viper.cpp: joint
-  positions are read with getPosition(vpRobot::ARTICULAR_FRAME, q) and joint velocities sent with
-  setVelocity(vpRobot::ARTICULAR_FRAME, qdot). A tree of 7 markers is bolted to its flange; a stereo rig (the paper's
-  cameras, 20 cm apart, 1.2 m in front of the robot) sees them. The marker positions come from ViSP's kinematic model
-  of the Viper850 (vpViper::get_fMe()); the plugin gets only joint encoder values and noisy pixels, and
-  1. acquires the arm with vpProjectiveAcquisitionProcedure: the marker images at a zero reference, then each joint
-     moved alone both ways in 2 deg steps until 45 deg, a marker near an image border or a joint near its limit (no
-     hand-picked amounts); the fundamental matrix comes from the images of these very steps;
-  2. calibrates the projective model of the 6 revolute joints, which then takes the encoder readings as they are;
-  3. servoes the marker tree with 3 tracked markers from a start to a target configuration (37 cm and 49 deg of tool
-     motion) with the control law qdot = -lambda J^+ (s - s*) of vpServoProjective;
-  4. repeats 1-3 over many noise seeds at 0.5 px and 0.1 px and prints the final joint errors next to the accuracy
-     floor sqrt(diag(sigma^2 (J^T J)^-1)) of the true image Jacobian at the target.
-
-  ViSP's simulator moves the arm in a thread of its own, in real time by default. Here it runs in its constant
-  sampling time mode and the program waits for each of its steps, so that two runs print the same numbers.
-
-  Usage: tutorial-projective-servo-viper850 [--seeds N] [--model FILE] [--no-display] [--help]
-  With --model FILE, the first run acquires the arm and saves its model; later runs load it instead of acquiring
-  (the multi-seed study always acquires anew, since it measures the acquisition's noise too). With a display (the
-  DISPLAY environment variable set and no --no-display), ViSP's external view shows the arm and two windows show the
-  camera images while seed 1 is servoed. The exit code is 0 only if every run converged.
-
-  The machinery this tutorial shares with tutorial-projective-servo-eye-in-hand.cpp (driving the simulator,
-  acquisition, servo loop, study, table and live display) is in tutorial-projective-servo-viper850-common.h; this
-  file holds the scene and the program.
+  \file eye-to-hand-world.h
+  \brief The eye-to-hand scene of projective-viper850: a tree of 7 markers on the Viper850's flange, seen by a fixed
+  rig.
 */
 
-#include <cmath>
-#include <cstdlib>
-#include <iostream>
+#ifndef _app_eye_to_hand_world_h_
+#define _app_eye_to_hand_world_h_
+
 #include <string>
 #include <vector>
 
 #include <visp3/core/vpColVector.h>
-#include <visp3/core/vpGaussRand.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpMath.h>
-#include <visp3/robot/vpSimulatorViper850.h>
 
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
-#include "tutorial-projective-servo-viper850-common.h"
+#include "viper850-robot.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-using namespace viper850; // the machinery and program shared with tutorial-projective-servo-eye-in-hand.cpp
-
 #if defined(VISP_HAVE_MODULE_GUI) && defined(VISP_HAVE_PTHREAD)
-namespace
+namespace viper850
 {
 //! [World]
 /*!
   What only the simulation knows: the marker tree on the flange, the rig, and the task in joint values. Every frame
   is expressed in the Viper's base frame f (z up, x forward).
 */
-struct World {
+struct EyeToHandWorld {
   std::string title = "Non-metric visual servoing of ViSP's simulated Viper850 from a fixed, uncalibrated stereo rig";
   std::string servoed = "the marker tree"; // what the task moves
   std::string tool = "tool";               // whose pose error the detailed run prints
@@ -109,7 +78,7 @@ struct World {
   double damping = 30.0;
   vpSimulatorStereoRig rig;
 
-  explicit World(const vpViper850 &viper) : rig(placeRig(get_fMe(viper, degToRad(qRefDeg)) * eMt)) {}
+  explicit EyeToHandWorld(const vpViper850 &viper) : rig(placeRig(get_fMe(viper, app::degToRad(qRefDeg)) * eMt)) {}
 
   //! The pose of the servoed frame, the marker tree, when the joints are at q.
   vpHomogeneousMatrix servoedPose(const vpViper850 &viper, const vpColVector &q) const
@@ -152,11 +121,6 @@ struct World {
   }
 };
 //! [World]
-} // namespace
+} // namespace viper850
 #endif
-
-int main(int argc, char **argv)
-{
-  return runTutorial<World>(
-      argc, argv); // the program of the common header on this scene: the marker tree on the flange, seen by a fixed rig
-}
+#endif

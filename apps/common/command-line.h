@@ -12,23 +12,23 @@
  */
 
 /*!
-  \file tutorial-command-line.h
-  \brief The command line of the tutorials and of the apps, written once: each program declares its options with
+  \file command-line.h
+  \brief The command line of the apps, written once: each program declares its options with
   their variables and help, and parse() fills them, prints the usage on --help or on a bad option, and says with
   which exit code to stop.
 
   \code
   unsigned int seeds = 20;
-  bool display = tutorial::hasDisplay();
-  tutorial::CommandLine cmd;
+  bool display = app::hasDisplay();
+  app::CommandLine cmd;
   cmd.add("--seeds", seeds, "N", "number of noise seeds", 1).flag("--no-display", display, false, "no window");
   int exitCode;
   if (!cmd.parse(argc, argv, exitCode)) return exitCode;
   \endcode
 */
 
-#ifndef _tutorial_command_line_h_
-#define _tutorial_command_line_h_
+#ifndef _app_command_line_h_
+#define _app_command_line_h_
 
 #include <algorithm>
 #include <cmath>
@@ -45,7 +45,7 @@
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-namespace tutorial
+namespace app
 {
 //! True if windows can be opened: ViSP has X11 and the DISPLAY environment variable is set.
 inline bool hasDisplay()
@@ -219,7 +219,7 @@ private:
   std::vector<Option> m_options;
   std::vector<std::string> m_notes;
 };
-//! The options of the servo tutorials.
+//! The options of the servo apps.
 struct ServoOptions {
   unsigned int seeds = 20;     //!< noise seeds of the study
   std::string modelFile;       //!< model file (.json): acquired and saved once, loaded by later runs
@@ -229,7 +229,7 @@ struct ServoOptions {
 };
 
 /*!
-  Reads the options of a servo tutorial: --seeds N, --model FILE, --output DIR (only if \e withOutput; the default is
+  Reads the options of a servo app: --seeds N, --model FILE, --output DIR (only if \e withOutput; the default is
   \e options.output as given), --max-excursion DEG (only if \e withPlanning), --no-display. Returns false if the
   program must stop with \e exitCode (see CommandLine::parse()).
 */
@@ -250,6 +250,6 @@ inline bool parseServoOptions(int argc, char **argv, ServoOptions &options, int 
   cmd.flag("--no-display", options.display, false, "no window even if a display is available");
   return cmd.parse(argc, argv, exitCode);
 }
-} // namespace tutorial
+} // namespace app
 
 #endif

@@ -12,12 +12,12 @@
  */
 
 /*!
-  \file tutorial-projective-servo-viper850-common.h
-  \brief What tutorial-projective-servo-viper850.cpp (a fixed rig watches markers on the arm: eye-to-hand) and
-  tutorial-projective-servo-eye-in-hand.cpp (the rig on the arm's hand watches a static object) share: driving ViSP's
+  \file viper850-experiment.h
+  \brief The experiment of projective-viper850 on its two scenes (eye-to-hand-world.h: a fixed rig watches markers on
+  the arm; eye-in-hand-world.h: the rig on the arm's hand watches a static object): driving ViSP's
   vpSimulatorViper850, the servo loop, and the experiment itself (acquisition, detailed run, multi-seed study, table).
 
-  Each tutorial describes its scene in a struct World, the template parameter of the functions below, with:
+  Each scene is a struct World, the template parameter of the functions below, with:
   - qRefDeg, startDeg, targetDeg (std::vector<double>, deg): the zero reference of the projective model, and the
     start and target of the servo task;
   - tracked (std::vector<unsigned int>): the markers the servo tracks;
@@ -33,8 +33,8 @@
   - servoedPose(viper, q): the pose of the servoed frame (the marker tree, or the hand relative to the object).
 */
 
-#ifndef _tutorial_projective_servo_viper850_common_h_
-#define _tutorial_projective_servo_viper850_common_h_
+#ifndef _app_projective_servo_viper850_common_h_
+#define _app_projective_servo_viper850_common_h_
 
 #include <algorithm>
 #include <cmath>
@@ -59,11 +59,11 @@
 #include <visp3/projective/vpServoProjective.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
-#include "tutorial-command-line.h"
-#include "tutorial-projective-common.h"
-#include "tutorial-projective-figures.h"
-#include "tutorial-projective-report.h"
-#include "tutorial-projective-servo-viper850-robot.h"
+#include "command-line.h"
+#include "paper-world.h"
+#include "figures.h"
+#include "servo-report.h"
+#include "viper850-robot.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -71,10 +71,10 @@ using namespace VISP_NAMESPACE_NAME;
 
 #if defined(VISP_HAVE_MODULE_GUI) && defined(VISP_HAVE_PTHREAD)
 
-//! The machinery shared by the two tutorials on ViSP's simulated Viper850.
+//! The machinery shared by the two scenes on ViSP's simulated Viper850.
 namespace viper850
 {
-using tutorial::degToRad;
+using app::degToRad;
 
 //! [Acquisition]
 /*!
@@ -86,9 +86,9 @@ using tutorial::degToRad;
 */
 template <class World>
 vpProjectiveRobot acquire(const World &world, vpSimulatorViper850 &robot, double sigma, vpGaussRand &noise,
-                          bool verbose, tutorial::LiveView *view = nullptr)
+                          bool verbose, app::LiveView *view = nullptr)
 {
-  const tutorial::ImagesAt images = imagesAt(world, robot, allMarkers(world), sigma, &noise, vpColVector());
+  const app::ImagesAt images = imagesAt(world, robot, allMarkers(world), sigma, &noise, vpColVector());
   const vpSimulatorStereoRig &rig = world.rigAt(robot, degToRad(world.qRefDeg));
   vpProjectiveAcquisitionProcedure procedure(
       [&](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
@@ -128,14 +128,14 @@ vpProjectiveRobot acquire(const World &world, vpSimulatorViper850 &robot, double
   iteration (live display).
 */
 template <class World>
-tutorial::ServoRun servo(const World &world, vpSimulatorViper850 &robot, const vpProjectiveRobot &model, double sigma,
-                         vpGaussRand &noise, unsigned int iterations,
-                         const std::function<void(const tutorial::ServoRun &)> &show = nullptr)
+app::ServoRun servo(const World &world, vpSimulatorViper850 &robot, const vpProjectiveRobot &model, double sigma,
+                    vpGaussRand &noise, unsigned int iterations,
+                    const std::function<void(const app::ServoRun &)> &show = nullptr)
 {
-  tutorial::ServoRun run;
+  app::ServoRun run;
   const vpColVector qTarget = degToRad(world.targetDeg);
   const unsigned int nbPoints = static_cast<unsigned int>(world.tracked.size());
-  const tutorial::ImagesAt trackedImages = imagesAt(world, robot, world.tracked, sigma, &noise, vpColVector());
+  const app::ImagesAt trackedImages = imagesAt(world, robot, world.tracked, sigma, &noise, vpColVector());
 
   trackedImages(moveTo(robot, qTarget), run.leftTarget, run.rightTarget);
   std::vector<vpFeatureStereoPoint> s(nbPoints), s_star(nbPoints);
@@ -179,18 +179,18 @@ tutorial::ServoRun servo(const World &world, vpSimulatorViper850 &robot, const v
 //! [Monte Carlo]
 //! Seeds 1 to \e seeds at noise \e sigma: a fresh acquisition and a servo run each, against the noise floor.
 template <class World>
-tutorial::Study study(const World &world, vpSimulatorViper850 &robot, double sigma, unsigned int seeds,
-                      unsigned int iterations)
+app::Study study(const World &world, vpSimulatorViper850 &robot, double sigma, unsigned int seeds,
+                 unsigned int iterations)
 {
-  tutorial::Study st;
+  app::Study st;
   st.sigma = sigma;
-  const tutorial::ImagesAt trueTracked = imagesAt(world, robot, world.tracked, 0.0, nullptr, vpColVector());
-  st.floor = tutorial::noiseFloor(tutorial::imageJacobian(trueTracked, degToRad(world.targetDeg)), sigma);
-  const tutorial::ImagesAt trueAll = imagesAt(world, robot, allMarkers(world), 0.0, nullptr, degToRad(world.qRefDeg));
+  const app::ImagesAt trueTracked = imagesAt(world, robot, world.tracked, 0.0, nullptr, vpColVector());
+  st.floor = app::noiseFloor(app::imageJacobian(trueTracked, degToRad(world.targetDeg)), sigma);
+  const app::ImagesAt trueAll = imagesAt(world, robot, allMarkers(world), 0.0, nullptr, degToRad(world.qRefDeg));
   for (unsigned int seed = 1; seed <= seeds; ++seed) {
     vpGaussRand noise(1.0, 0.0, static_cast<long>(seed));
     const vpProjectiveRobot model = acquire(world, robot, sigma, noise, false);
-    const double prediction = tutorial::predictionError(model, trueAll, seed, world.predictionRangeDeg);
+    const double prediction = app::predictionError(model, trueAll, seed, world.predictionRangeDeg);
     st.add(seed, servo(world, robot, model, sigma, noise, iterations), model, prediction);
   }
   st.finish();
@@ -200,34 +200,34 @@ tutorial::Study study(const World &world, vpSimulatorViper850 &robot, double sig
 
 //! [Experiment]
 /*!
-  The experiment of both tutorials on the simulated arm \e robot in \e world: the task, seed 1's acquisition (or the
+  The experiment of both scenes on the simulated arm \e robot in \e world: the task, seed 1's acquisition (or the
   model of \e modelFile) and servo run in detail (live in \e view if open), then \e seeds seeds at 0.5 and 0.1 px and
   their table. Returns the exit code: EXIT_SUCCESS only if every run converged.
 */
 template <class World>
 int runExperiment(const World &world, vpSimulatorViper850 &robot, unsigned int seeds, const std::string &modelFile,
-                  tutorial::LiveView &view)
+                  app::LiveView &view)
 {
   std::cout << world.title << "\n";
   const vpColVector qStart = degToRad(world.startDeg), qTarget = degToRad(world.targetDeg);
-  tutorial::printTask(world.servoed, world.servoedPose(robot, qStart).inverse() * world.servoedPose(robot, qTarget),
-                      qStart, qTarget);
+  app::printTask(world.servoed, world.servoedPose(robot, qStart).inverse() * world.servoedPose(robot, qTarget), qStart,
+                 qTarget);
 
   std::cout << "\nSeed 1 at 0.5 px: acquisition and calibration\n";
   vpGaussRand noise(1.0, 0.0, 1);
-  const vpProjectiveRobot model = tutorial::loadOrAcquire(
+  const vpProjectiveRobot model = app::loadOrAcquire(
       modelFile, [&] { return acquire(world, robot, 0.5, noise, true, &view); },
       imagesAt(world, robot, allMarkers(world), 0.0, nullptr, degToRad(world.qRefDeg)), world.predictionRangeDeg);
 
   const unsigned int iterations = 30;
-  const tutorial::ServoRun run = servo(world, robot, model, 0.5, noise, iterations, view.callback());
-  tutorial::printDetailedRun(run, world.tool,
-                             world.servoedPose(robot, run.q.back()).inverse() * world.servoedPose(robot, qTarget),
-                             run.error.size());
+  const app::ServoRun run = servo(world, robot, model, 0.5, noise, iterations, view.callback());
+  app::printDetailedRun(run, world.tool,
+                        world.servoedPose(robot, run.q.back()).inverse() * world.servoedPose(robot, qTarget),
+                        run.error.size());
 
-  const std::vector<tutorial::Study> studies = {study(world, robot, 0.5, seeds, iterations),
-                                                study(world, robot, 0.1, seeds, iterations)};
-  tutorial::printTable(studies, world.predictionRangeDeg);
+  const std::vector<app::Study> studies = {study(world, robot, 0.5, seeds, iterations),
+                                           study(world, robot, 0.1, seeds, iterations)};
+  app::printTable(studies, world.predictionRangeDeg);
   robot.setRobotState(vpRobot::STATE_STOP);
   view.waitForClick();
   const bool converged = run.converged() && studies[0].allConverged() && studies[1].allConverged();
@@ -236,17 +236,12 @@ int runExperiment(const World &world, vpSimulatorViper850 &robot, unsigned int s
 //! [Experiment]
 
 /*!
-  The program of both tutorials: reads the options (--seeds N, --model FILE, --no-display), sets ViSP's simulated
-  Viper850 up (its external view, a window of its own, only with a display), builds the scene World around it, opens
-  the camera windows if there is a display, and runs the experiment. Returns the exit code.
+  Sets ViSP's simulated Viper850 up (its external view, a window of its own, only with a display), builds the scene
+  World around it, opens the camera windows if there is a display, and runs the experiment with \e options (--seeds,
+  --model, --no-display). Returns the exit code.
 */
-template <class World> int runTutorial(int argc, char **argv)
+template <class World> int run(const app::ServoOptions &options)
 {
-  tutorial::ServoOptions options;
-  int exitCode = EXIT_SUCCESS;
-  if (!tutorial::parseServoOptions(argc, argv, options, exitCode, false)) {
-    return exitCode;
-  }
   try {
     //! [Robot setup]
     vpSimulatorViper850 robot(options.display);
@@ -254,7 +249,7 @@ template <class World> int runTutorial(int argc, char **argv)
     setupRobot(robot, options.display);
     //! [Robot setup]
     const vpSimulatorStereoRig rig = world.rigAt(robot, degToRad(world.qRefDeg));
-    tutorial::LiveView view(rig.getWidth(), rig.getHeight(), options.display, 660, 0);
+    app::LiveView view(rig.getWidth(), rig.getHeight(), options.display, 660, 0);
     return runExperiment(world, robot, options.seeds, options.modelFile, view);
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getStringMessage() << std::endl;
@@ -266,13 +261,10 @@ template <class World> int runTutorial(int argc, char **argv)
 #else
 namespace viper850
 {
-//! Where ViSP has no threaded robot simulator: no scene.
-struct World {
-};
 //! Where ViSP has no threaded robot simulator: says so and succeeds.
-template <class Scene> int runTutorial(int, char **)
+template <class World> int run(const app::ServoOptions &)
 {
-  std::cout << "This tutorial needs ViSP's threaded robot simulator (ViSP's gui module and pthread)" << std::endl;
+  std::cout << "This program needs ViSP's threaded robot simulator (ViSP's gui module and pthread)" << std::endl;
   return EXIT_SUCCESS;
 }
 } // namespace viper850

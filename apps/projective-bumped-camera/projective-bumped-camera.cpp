@@ -11,11 +11,10 @@
  * more details.
  */
 
-//! \example tutorial-projective-bumped-camera.cpp
 /*!
   A camera gets bumped in the middle of a servo task, and the projective model survives it without a new
   acquisition. Everything is measured on images rendered by vpSimulatorMarkerRenderer and tracked by
-  vpStereoDotTracker (vpDot2), as in tutorial-projective-servo-images.cpp: the acquisition, the taught target, the
+  vpStereoDotTracker (vpDot2), as in projective-images.cpp: the acquisition, the taught target, the
   servo. During one control period one camera of the simulated rig is knocked (2 deg about a random axis and 1 cm
   along a random direction, seeded); the tracker loses the blobs that jumped and the simulated user clicks them again;
   the task (vpServoProjective) then sees every feature far from the model's prediction and reports
@@ -23,7 +22,7 @@
   vpProjectiveRobot::addRigObservation() and updateRig() re-registers both cameras in the model's projective frame,
   keeping the arm model and the taught target; the task goes back to where it stopped and ends at its original target.
 
-  Usage: tutorial-projective-bumped-camera [--seed N] [--camera 0|1] [--bump-deg DEG] [--bump-mm MM]
+  Usage: projective-bumped-camera [--seed N] [--camera 0|1] [--bump-deg DEG] [--bump-mm MM]
   [--bump-after N] [--iterations N] [--output DIR] [--help]
   --output DIR (default .) receives the prediction-error figure and three PNGs of the stereo pair with the tracked
   markers and the model's predictions: at the start, just after the bump, at the end. The exit code is 0 only if the
@@ -51,18 +50,18 @@
 #include <visp3/projective/vpServoProjective.h>
 #include <visp3/projective/vpStereoDotTracker.h>
 
-#include "tutorial-command-line.h"
-#include "tutorial-projective-common.h"
-#include "tutorial-projective-figures.h"
-#include "tutorial-projective-images-acquisition.h"
-#include "tutorial-projective-images.h"
-#include "tutorial-projective-stereo-picture.h"
+#include "command-line.h"
+#include "paper-world.h"
+#include "figures.h"
+#include "images-acquisition.h"
+#include "images.h"
+#include "stereo-picture.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-using namespace tutorial; // the paper's world, the session of rendered images, the figures
+using namespace app; // the paper's world, the session of rendered images, the figures
 
 namespace
 {
@@ -179,7 +178,7 @@ int main(int argc, char **argv)
       throw vpException(vpException::fatalError, "teaching: " + failure);
     }
     const size_t K = world.tracked.size();
-    vpServoProjective task; // the settings of tutorial-projective-servo.cpp
+    vpServoProjective task; // the settings of projective-paper.cpp
     task.setRobot(robot);
     task.setLambda(0.5);
     task.setMaxJointVelocity(vpMath::rad(15.0));

@@ -12,14 +12,14 @@
  */
 
 /*!
-  \file tutorial-projective-stereo-picture.h
+  \file stereo-picture.h
   \brief What the tracker sees, without a display: the left and right images side by side in one PNG, with the
-  tracked markers and the model's predicted images of them drawn on it (vpImageDraw), for the image tutorials'
+  tracked markers and the model's predicted images of them drawn on it (vpImageDraw), for the image apps'
   --output.
 */
 
-#ifndef _tutorial_projective_stereo_picture_h_
-#define _tutorial_projective_stereo_picture_h_
+#ifndef _app_projective_stereo_picture_h_
+#define _app_projective_stereo_picture_h_
 
 #include <cmath>
 #include <iostream>
@@ -42,7 +42,7 @@
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-namespace tutorial
+namespace app
 {
 //! [Stereo picture]
 /*!
@@ -97,6 +97,6 @@ inline void writeStereoPicture(const std::string &file, const vpImage<unsigned c
   std::cout << "    image written: " << file << " (" << caption << ")\n";
 }
 //! [Stereo picture]
-} // namespace tutorial
+} // namespace app
 
 #endif

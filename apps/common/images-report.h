@@ -12,13 +12,13 @@
  */
 
 /*!
-  \file tutorial-projective-images-report.h
-  \brief The report of tutorial-projective-servo-images.cpp: markers facing the rig, statistics of the seeds (tracking
+  \file images-report.h
+  \brief The report of projective-images.cpp: markers facing the rig, statistics of the seeds (tracking
   accuracy, jitter), the table against the noise floor and the main job, seed 1's details and final images.
 */
 
-#ifndef _tutorial_projective_images_report_h_
-#define _tutorial_projective_images_report_h_
+#ifndef _app_projective_images_report_h_
+#define _app_projective_images_report_h_
 
 #include <algorithm>
 #include <cmath>
@@ -39,16 +39,16 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/io/vpImageIo.h>
 
-#include "tutorial-projective-common.h"
-#include "tutorial-projective-images.h"
-#include "tutorial-projective-report.h"
-#include "tutorial-projective-stereo-picture.h"
+#include "paper-world.h"
+#include "images.h"
+#include "servo-report.h"
+#include "stereo-picture.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-namespace tutorial
+namespace app
 {
 //! [Visibility]
 /*!
@@ -187,7 +187,7 @@ struct ImagesStudy {
 };
 
 //! [Table]
-//! The main tutorial's table for the loop closed on images, against the noise floor and the main job at 0.5 px.
+//! The main job's table for the loop closed on images, against the noise floor and the main job at 0.5 px.
 //! Returns true if the final joint errors are within 2 times the main job's.
 inline bool printTable(const PaperWorld &world, const ImageModel &model, const ImagesStudy &st)
 {
@@ -295,6 +295,6 @@ inline void printSeedOne(const Session &session, const vpProjectiveRobot &robot,
   }
 }
 //! [Seed one]
-} // namespace tutorial
+} // namespace app
 
 #endif

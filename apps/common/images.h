@@ -12,15 +12,15 @@
  */
 
 /*!
-  \file tutorial-projective-images.h
-  \brief The camera side of the image tutorials: one seed's session (the arm at q, the rendered stereo frames of its
+  \file images.h
+  \brief The camera side of the image apps: one seed's session (the arm at q, the rendered stereo frames of its
   lit markers, the vpStereoDotTracker that follows them, the simulated user's clicks), the motion of the arm imaged
   frame by frame, and the knocks of a bumped camera. The steps on a session are in
-  tutorial-projective-images-acquisition.h, the accuracy and the live view in tutorial-projective-images-view.h.
+  images-acquisition.h, the accuracy and the live view in images-view.h.
 */
 
-#ifndef _tutorial_projective_images_h_
-#define _tutorial_projective_images_h_
+#ifndef _app_projective_images_h_
+#define _app_projective_images_h_
 
 #include <algorithm>
 #include <cmath>
@@ -47,14 +47,14 @@
 #include <visp3/projective/vpSimulatorMarkerRenderer.h>
 #include <visp3/projective/vpStereoDotTracker.h>
 
-#include "tutorial-projective-common.h"
-#include "tutorial-projective-images-view.h"
+#include "paper-world.h"
+#include "images-view.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-namespace tutorial
+namespace app
 {
 //! [Image model]
 //! How the cameras grab frames while the arm moves, and how the servo is judged on the images. What they see is
@@ -250,5 +250,5 @@ struct Session {
   unsigned int frames = 0;
 };
 //! [Session]
-} // namespace tutorial
+} // namespace app
 #endif

@@ -11,14 +11,13 @@
  * more details.
  */
 
-//! \example tutorial-projective-self-calibration.cpp
 /*!
   Metric self-calibration for free: the projective model of an arm, acquired from images alone, holds the metric
   stereo rig (vpProjectiveRobot::getMetricStereoRig(): both cameras' intrinsics, skew included, and the right
   camera's pose in the left one), here compared with the simulator's truth and with ViSP's own calibration
   (vpCalibration) of the same rig from a planar target seen with the same pixel noise.
 
-  1. Self-calibration: the paper's world (tutorial-projective-servo.cpp), the arm acquired by its trial motions at
+  1. Self-calibration: the paper's world (apps/projective-paper), the arm acquired by its trial motions at
      --noise px; the baseline's length comes from the distance between two markers (measured once with a ruler), the
      arm having no prismatic joint. The same with the markers spread twice as wide (a 20 cm pattern).
   2. ViSP's calibration: a planar grid of 6 x 5 points (10 cm wide, then 30 cm wide) seen by both cameras in 13 poses
@@ -31,7 +30,7 @@
   whole rig is determined by the perspective of the pattern as it moves, which a 10 cm pattern 1 m away shows little
   of. A wider pattern (more markers spread further on the tool) or larger trial motions improve it.
 
-  Usage: tutorial-projective-self-calibration [--seeds N] [--noise SIGMA] [--help]
+  Usage: projective-self-calibration [--seeds N] [--noise SIGMA] [--help]
   Exits with 1 if the self-calibration's median focal length error exceeds 2 % or its rig rotation 2 deg.
 */
 
@@ -47,8 +46,8 @@
 
 #include <visp3/projective/vpProjectiveRobot.h>
 
-#include "tutorial-command-line.h"
-#include "tutorial-projective-common.h"
+#include "command-line.h"
+#include "paper-world.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -91,12 +90,12 @@ RigErrors compare(const vpCameraParameters &camL, const vpCameraParameters &camR
 RigErrors selfCalibrate(const vpSimulatorArm &arm, const vpSimulatorStereoRig &rig, double sigma, unsigned int seed)
 {
   vpGaussRand noise(sigma, 0.0, seed);
-  const tutorial::ImagesAt imagesAt = [&](const vpColVector &q, std::vector<vpImagePoint> &left,
-                                          std::vector<vpImagePoint> &right) {
+  const app::ImagesAt imagesAt = [&](const vpColVector &q, std::vector<vpImagePoint> &left,
+                                     std::vector<vpImagePoint> &right) {
     return rig.project(arm.getMarkers(q), left, right, sigma, noise);
   };
   const vpProjectiveRobot robot =
-      tutorial::acquireByTrials({30, 20, 30, 40, 60, 60}, imagesAt, std::max(1.0, 4.0 * sigma), false);
+      app::acquireByTrials({30, 20, 30, 40, 60, 60}, imagesAt, std::max(1.0, 4.0 * sigma), false);
   // The scale: two markers whose distance was measured with a ruler.
   const std::vector<vpColVector> &tMarkers = arm.getToolMarkers();
   const double distance = (tMarkers[0] - tMarkers[1]).frobeniusNorm();
@@ -168,7 +167,7 @@ double medianOf(const std::vector<RigErrors> &runs, double RigErrors::*field)
   for (const RigErrors &r : runs) {
     x.push_back(r.*field);
   }
-  return tutorial::median(x);
+  return app::median(x);
 }
 } // namespace
 
@@ -176,7 +175,7 @@ int main(int argc, char **argv)
 {
   unsigned int seeds = 10;
   double sigma = 0.5;
-  tutorial::CommandLine cmd;
+  app::CommandLine cmd;
   cmd.add("--seeds", seeds, "N", "number of noise seeds", 1)
       .add("--noise", sigma, "SIGMA", "pixel noise (px, Gaussian, every image coordinate)", 0.0);
   int exitCode = 0;
@@ -184,7 +183,7 @@ int main(int argc, char **argv)
     return exitCode;
   }
   try {
-    const tutorial::PaperWorld world;
+    const app::PaperWorld world;
     std::vector<vpColVector> wide = vpSimulatorArm::gripperMarkers(); // the same markers, spread twice as wide
     for (vpColVector &X : wide) {
       X *= 2.0;

@@ -11,9 +11,8 @@
  * more details.
  */
 
-//! \example tutorial-projective-servo-images.cpp
 /*!
-  The paper's experiment of tutorial-projective-servo.cpp with the loop closed on images: the same arm, rig, trial
+  The paper's experiment of apps/projective-paper with the loop closed on images: the same arm, rig, trial
   motions and servo task, but every pixel the plugin gets is the centre of a blob that vpStereoDotTracker (vpDot2 in
   both images) followed in 8-bit images rendered by vpSimulatorMarkerRenderer (6 mm lit balls, exact silhouettes,
   supersampled, blurred, noisy). No ground-truth projection enters the loop: a simulated user clicks each marker once
@@ -21,10 +20,10 @@
   during the acquisition and by the acquired model afterwards, its correspondences checked by the model's epipolar
   geometry. The acquisition (F, zero reference, trial motions), the teaching of the target and the servo all use the
   tracked centres; a marker lost during a motion ends a trial at its last good frame, or the servo run. It prints the
-  main tutorial's table, the tracking accuracy (against the truth, for the report only) and the final joint errors
-  against the main job's at 0.5 px. See the tutorial's page for the markers (active, seen from all around).
+  main job's table, the tracking accuracy (against the truth, for the report only) and the final joint errors
+  against the main job's at 0.5 px. See its documentation page for the markers (active, seen from all around).
 
-  Usage: tutorial-projective-servo-images [--seeds N] [--model FILE] [--output DIR] [--no-display] [--help]
+  Usage: projective-images [--seeds N] [--model FILE] [--output DIR] [--no-display] [--help]
   With --model arm.json, the model is loaded if the file exists, otherwise acquired by seed 1 and saved; the other
   seeds servo with it. --output DIR writes seed 1's final images with the feature trajectories, and the stereo pair
   at the start and at the end with the tracked markers and the model's predictions. The exit code is 0
@@ -51,26 +50,26 @@
 #include <visp3/projective/vpServoProjective.h>
 #include <visp3/projective/vpStereoDotTracker.h>
 
-#include "tutorial-command-line.h"
-#include "tutorial-projective-common.h"
-#include "tutorial-projective-images-report.h"
-#include "tutorial-projective-images-acquisition.h"
-#include "tutorial-projective-images.h"
-#include "tutorial-projective-report.h"
-#include "tutorial-projective-stereo-picture.h"
+#include "command-line.h"
+#include "paper-world.h"
+#include "images-report.h"
+#include "images-acquisition.h"
+#include "images.h"
+#include "servo-report.h"
+#include "stereo-picture.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-using namespace tutorial; // the paper's world, the session of rendered images and the report
+using namespace app; // the paper's world, the session of rendered images and the report
 
 namespace
 {
 
 //! [Servo]
 /*!
-  Teaching by showing, then the main tutorial's servo loop on tracked centres. The arm, at the zero reference with
+  Teaching by showing, then the main job's servo loop on tracked centres. The arm, at the zero reference with
   its servo markers tracked, is driven by the start to the target, where s* is the tracked centres, then back to the
   start. With \e output, the stereo pair at the start goes there (writeStereoPicture()). The tracker predicts the blobs
   with the model from then on. At every iteration the features are the centres tracked in the last frame; the arm
@@ -95,7 +94,7 @@ ServoRun servo(Session &session, const vpProjectiveRobot &robot, TrackingAccurac
   vpServoProjective task;
   task.setRobot(robot);
   task.setLambda(0.5);
-  task.setMaxJointVelocity(vpMath::rad(15.0)); // as in the main tutorial
+  task.setMaxJointVelocity(vpMath::rad(15.0)); // as in the main job
   task.setDamping(30.0, 30.0);
   for (unsigned int k = 0; k < nbPoints; ++k) {
     s_star[k].buildFrom(run.leftTarget[k], run.rightTarget[k]);

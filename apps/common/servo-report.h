@@ -12,14 +12,14 @@
  */
 
 /*!
-  \file tutorial-projective-report.h
-  \brief How the servo tutorials account and print their runs: one servo run's trajectory and outcome, the
+  \file servo-report.h
+  \brief How the servo apps account and print their runs: one servo run's trajectory and outcome, the
   statistics of many seeds at one noise level, and the tables (final joint errors against the noise floor and, for
   the paper's experiment, against the paper's values).
 */
 
-#ifndef _tutorial_projective_report_h_
-#define _tutorial_projective_report_h_
+#ifndef _app_projective_report_h_
+#define _app_projective_report_h_
 
 #include <cmath>
 #include <iomanip>
@@ -37,13 +37,13 @@
 
 #include <visp3/projective/vpProjectiveRobot.h>
 
-#include "tutorial-projective-common.h"
+#include "paper-world.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-namespace tutorial
+namespace app
 {
 //! One servo run: the trajectory and its outcome.
 struct ServoRun {
@@ -51,8 +51,8 @@ struct ServoRun {
   std::vector<std::vector<vpImagePoint>> left, right; // measured markers per iteration
   std::vector<vpColVector> error;                     // s - s* per iteration (px)
   std::vector<vpImagePoint> leftTarget, rightTarget;  // s*
-  std::vector<vpColVector> trackingError;             // measured minus true images per iteration (images tutorial)
-  std::vector<unsigned int> frames;                   // frames grabbed during each control period (images tutorial)
+  std::vector<vpColVector> trackingError;             // measured minus true images per iteration (images app)
+  std::vector<unsigned int> frames;                   // frames grabbed during each control period (images app)
   int convergedAt = -1;                               // first iteration with RMS(s - s*) under the threshold
   bool inView = true;                                 // the tracked markers stayed in both images
   std::string failure;                                // a tracking failure, if any
@@ -128,7 +128,7 @@ struct Study {
 
 //! [Table]
 /*!
-  The tutorials' table: per noise level, convergence, the acquired models' accuracy, and the final joint errors
+  The apps' table: per noise level, convergence, the acquired models' accuracy, and the final joint errors
   beside the noise floor (and the paper's values, with a verdict, when the studies have them). \e rangeDeg is the
   range of the random configurations where the models' predictions were checked.
 */
@@ -260,6 +260,6 @@ inline void printDetailedRun(const ServoRun &run, const std::string &what, const
               << "\n";
   }
 }
-} // namespace tutorial
+} // namespace app
 
 #endif

@@ -12,18 +12,18 @@
  */
 
 /*!
-  \file tutorial-projective-common.h
-  \brief What the servo tutorials (and apps/projective-study) share: the paper's world, the acquisition of the
-  projective model by trial motions of one joint at a time, the check of the model's prediction at random
-  configurations, the true image Jacobian and its noise floor, and small statistics helpers.
+  \file paper-world.h
+  \brief What the servo apps (projective-paper, projective-study and the others) share: the paper's world, the
+  acquisition of the projective model by trial motions of one joint at a time, the check of the model's prediction at
+  random configurations, the true image Jacobian and its noise floor, and small statistics helpers.
 
-  The functions know nothing of the simulator: what differs between the tutorials, how the marker images at a joint
+  The functions know nothing of the simulator: what differs between the apps, how the marker images at a joint
   configuration q are obtained (noisy projections, noise-free projections, tracked centres, ViSP's simulated
   Viper850), is given as an ImagesAt.
 */
 
-#ifndef _tutorial_projective_common_h_
-#define _tutorial_projective_common_h_
+#ifndef _app_projective_common_h_
+#define _app_projective_common_h_
 
 #include <algorithm>
 #include <cmath>
@@ -46,7 +46,7 @@
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-namespace tutorial
+namespace app
 {
 //! [World]
 /*!
@@ -285,6 +285,6 @@ inline vpColVector noiseFloor(const vpMatrix &J, double sigma)
   }
   return floor;
 }
-} // namespace tutorial
+} // namespace app
 
 #endif

@@ -12,13 +12,13 @@
  */
 
 /*!
-  \file tutorial-projective-images-view.h
-  \brief What the image tutorials show and measure besides the servo: the tracking accuracy against the ground truth
+  \file images-view.h
+  \brief What the image apps show and measure besides the servo: the tracking accuracy against the ground truth
   (only reported, never used) and the live view of both cameras.
 */
 
-#ifndef _tutorial_projective_images_view_h_
-#define _tutorial_projective_images_view_h_
+#ifndef _app_projective_images_view_h_
+#define _app_projective_images_view_h_
 
 #include <algorithm>
 #include <cmath>
@@ -34,13 +34,13 @@
 
 #include <visp3/projective/vpStereoDotTracker.h>
 
-#include "tutorial-projective-common.h"
+#include "paper-world.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-namespace tutorial
+namespace app
 {
 //! RMS of the tracked centres minus the true projections (px per coordinate): only reported, never used.
 struct TrackingAccuracy {
@@ -119,6 +119,6 @@ private:
 #endif
 };
 //! [Viewer]
-} // namespace tutorial
+} // namespace app
 
 #endif

@@ -11,72 +11,40 @@
  * more details.
  */
 
-//! \example tutorial-projective-servo-eye-in-hand.cpp
 /*!
-  Non-metric eye-in-hand visual servoing of ViSP's own arm: an uncalibrated stereo rig mounted on the hand of the
-  simulated Viper850 of vpSimulatorViper850 servoes the hand to a pose relative to a static object.
-
-  The arm is ViSP's vpSimulatorViper850, driven as in ViSP's tutorial-ibvs-4pts-wireframe-robot-viper.cpp: joint
-  positions are read with getPosition(vpRobot::ARTICULAR_FRAME, q) and joint velocities sent with
-  setVelocity(vpRobot::ARTICULAR_FRAME, qdot). Two wide-angle cameras, 15 cm apart, ride on its flange and look at an
-  object carrying 7 markers 70 cm in front of them. The rig's pose comes from ViSP's kinematic model of the Viper850
-  (vpViper::get_fMe()); the plugin gets only joint encoder values and noisy pixels. With the rig on the hand, the hand
-  is the base of the kinematic chain (vpProjectiveRobot::EYE_IN_HAND): the markers move in the rig's projective frame
-  as the inverse of the hand's motion, and the same acquisition and control law apply. The program
-  1. acquires the arm with vpProjectiveAcquisitionProcedure: the marker images at a zero reference, then each joint
-     moved alone both ways in 2 deg steps until 45 deg, a marker near an image border or a joint near its limit (no
-     hand-picked amounts); the fundamental matrix comes from the images of these very steps;
-  2. calibrates the projective model of the 6 revolute joints, which then takes the encoder readings as they are;
-  3. servoes the hand with 3 tracked markers from a start to a target configuration (34 cm and 44 deg of hand motion
-     relative to the object) with the control law qdot = -lambda J^+ (s - s*) of vpServoProjective;
-  4. repeats 1-3 over many noise seeds at 0.5 px and 0.1 px and prints the final joint errors next to the accuracy
-     floor sqrt(diag(sigma^2 (J^T J)^-1)) of the true image Jacobian at the target.
-
-  ViSP's simulator moves the arm in a thread of its own, in real time by default. Here it runs in its constant
-  sampling time mode and the program waits for each of its steps, so that two runs print the same numbers.
-
-  Usage: tutorial-projective-servo-eye-in-hand [--seeds N] [--model FILE] [--no-display] [--help]
-  With --model FILE, the first run acquires the arm and saves its model; later runs load it instead of acquiring
-  (the multi-seed study always acquires anew, since it measures the acquisition's noise too). With a display (the
-  DISPLAY environment variable set and no --no-display), ViSP's external view shows the arm and two windows show the
-  camera images while seed 1 is servoed. The exit code is 0 only if every run converged.
-
-  The machinery this tutorial shares with tutorial-projective-servo-viper850.cpp (driving the simulator, acquisition,
-  servo loop, study, table and live display) is in tutorial-projective-servo-viper850-common.h; this file holds the
-  scene and the program.
+  \file eye-in-hand-world.h
+  \brief The eye-in-hand scene of projective-viper850 (--eye-in-hand): the rig on the Viper850's hand, looking at a
+  static object of 7 markers.
 */
 
-#include <cstdlib>
-#include <iostream>
+#ifndef _app_eye_in_hand_world_h_
+#define _app_eye_in_hand_world_h_
+
 #include <string>
 #include <vector>
 
-#include <visp3/core/vpCameraParameters.h>
 #include <visp3/core/vpColVector.h>
-#include <visp3/core/vpGaussRand.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
-#include <visp3/robot/vpSimulatorViper850.h>
+#include <visp3/core/vpMath.h>
 
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
-#include "tutorial-projective-servo-viper850-common.h"
+#include "viper850-robot.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-using namespace viper850; // the machinery and program shared with tutorial-projective-servo-viper850.cpp
-
 #if defined(VISP_HAVE_MODULE_GUI) && defined(VISP_HAVE_PTHREAD)
-namespace
+namespace viper850
 {
 //! [World]
 /*!
   What only the simulation knows: the rig on the flange, the static object, and the task in joint values. Every
   frame is expressed in the Viper's base frame f (z up, x forward).
 */
-struct World {
+struct EyeInHandWorld {
   std::string title =
       "Non-metric visual servoing of ViSP's simulated Viper850 by an uncalibrated stereo rig on its hand";
   std::string servoed = "the hand"; // what the task moves
@@ -123,8 +91,8 @@ struct World {
   double damping = 10.0;
   std::vector<vpColVector> fMarkers; // the object's markers in the base frame: static
 
-  explicit World(const vpViper850 &viper)
-      : fMarkers(vpSimulatorStereoRig::transform(get_fMe(viper, degToRad(qRefDeg)) * eMr * rMo, oMarkers))
+  explicit EyeInHandWorld(const vpViper850 &viper)
+      : fMarkers(vpSimulatorStereoRig::transform(get_fMe(viper, app::degToRad(qRefDeg)) * eMr * rMo, oMarkers))
   {
   }
 
@@ -145,11 +113,6 @@ struct World {
   const std::vector<vpColVector> &markersAt(const vpViper850 &, const vpColVector &) const { return fMarkers; }
 };
 //! [World]
-} // namespace
+} // namespace viper850
 #endif
-
-int main(int argc, char **argv)
-{
-  return runTutorial<World>(
-      argc, argv); // the program of the common header on this scene: the rig on the hand, looking at a static object
-}
+#endif

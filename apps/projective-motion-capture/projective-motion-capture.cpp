@@ -11,13 +11,12 @@
  * more details.
  */
 
-//! \example tutorial-projective-motion-capture.cpp
 /*!
   Motion capture with projective kinematics (Ruf & Horaud's "motion capture" use): an arm moves on its own, along a
   joint trajectory the plugin does not know, and an uncalibrated stereo rig recovers its joint values and velocities
   from the marker images of every frame.
 
-  1. The paper's world (tutorial-projective-servo.cpp): the projective model of the PUMA-like arm is acquired once by
+  1. The paper's world (projective-paper.cpp): the projective model of the PUMA-like arm is acquired once by
      its trial motions, with the same pixel noise as the frames, averaged over the 16 frames the arm stands still at
      each pose (--still-frames): a model 4 times more accurate than single frames leaves the capture at the floor
      of its frames.
@@ -31,7 +30,7 @@
      (motion-capture-joints.png, motion-capture-errors.png, with gnuplot) plot the captured joints over the true ones
      and the errors against +-floor.
 
-  Usage: tutorial-projective-motion-capture [--frames N] [--noise SIGMA] [--seed S] [--still-frames N] [--output DIR]
+  Usage: projective-motion-capture [--frames N] [--noise SIGMA] [--seed S] [--still-frames N] [--output DIR]
   [--help]
   Exits with 1 if a frame could not be captured or a joint's median error exceeds 1.25 times the floor's (the median
   |error| / floor exceeds 1.25 x 0.674).
@@ -53,9 +52,9 @@
 #include <visp3/projective/vpProjectiveMotionCapture.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 
-#include "tutorial-command-line.h"
-#include "tutorial-projective-common.h"
-#include "tutorial-projective-figures.h"
+#include "command-line.h"
+#include "paper-world.h"
+#include "figures.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -113,8 +112,8 @@ void writeFigures(const std::vector<Frame> &frames, const std::string &dir)
        << "'+-floor', '' using 1:(-$" << 4 + 3 * i << ") with lines lc rgb 'black' notitle\n";
   }
   gp << "unset multiplot\n";
-  tutorial::runGnuplot(gp.str(), dir + "/motion-capture.gp",
-                       dir + "/motion-capture-joints.png, " + dir + "/motion-capture-errors.png", csv);
+  app::runGnuplot(gp.str(), dir + "/motion-capture.gp",
+                  dir + "/motion-capture-joints.png, " + dir + "/motion-capture-errors.png", csv);
 }
 } // namespace
 
@@ -123,7 +122,7 @@ int main(int argc, char **argv)
   unsigned int frames = 250, seed = 1, stillFrames = 16;
   double sigma = 0.5;
   std::string output = ".";
-  tutorial::CommandLine cmd;
+  app::CommandLine cmd;
   cmd.add("--frames", frames, "N", "number of frames (25 Hz)", 20)
       .add("--noise", sigma, "SIGMA", "pixel noise (px, Gaussian, every image coordinate)", 0.0)
       .add("--seed", seed, "S", "seed of the noise", 1)
@@ -137,14 +136,14 @@ int main(int argc, char **argv)
     vpIoTools::makeDirectory(output);
     // 1. The model, acquired from images by the paper's trial motions. The arm stands still at each pose: the marker
     //    images are averaged over a few frames, so that the model is more accurate than one frame.
-    const tutorial::PaperWorld world;
+    const app::PaperWorld world;
     vpGaussRand noise(sigma, 0.0, seed);
-    const tutorial::ImagesAt imagesAt = [&](const vpColVector &q, std::vector<vpImagePoint> &left,
-                                            std::vector<vpImagePoint> &right) {
+    const app::ImagesAt imagesAt = [&](const vpColVector &q, std::vector<vpImagePoint> &left,
+                                       std::vector<vpImagePoint> &right) {
       return world.rig.project(world.arm.getMarkers(q), left, right, sigma, noise);
     };
-    const tutorial::ImagesAt stillImagesAt = [&](const vpColVector &q, std::vector<vpImagePoint> &left,
-                                                 std::vector<vpImagePoint> &right) {
+    const app::ImagesAt stillImagesAt = [&](const vpColVector &q, std::vector<vpImagePoint> &left,
+                                            std::vector<vpImagePoint> &right) {
       bool visible = imagesAt(q, left, right);
       for (unsigned int k = 1; k < stillFrames; ++k) {
         std::vector<vpImagePoint> l, r;
@@ -160,15 +159,15 @@ int main(int argc, char **argv)
       }
       return visible;
     };
-    const vpProjectiveRobot robot = tutorial::acquireByTrials(
-        world.trialDeg, stillImagesAt, std::max(1.0, 4.0 * sigma / std::sqrt(stillFrames)), true);
+    const vpProjectiveRobot robot =
+        app::acquireByTrials(world.trialDeg, stillImagesAt, std::max(1.0, 4.0 * sigma / std::sqrt(stillFrames)), true);
     std::cout << "Model acquired: bundle adjustment RMS " << robot.getCalibrationResidual() << " px\n";
 
     // 2. The arm moves on its own; each frame's images give its joints.
     vpProjectiveMotionCapture capture(robot.getModel());
     capture.setVelocityWindow(12);
     capture.setInitialJoints(trajectory(0.0) + vpColVector(6, vpMath::rad(1.0))); // roughly where it starts
-    const tutorial::ImagesAt trueImages = tutorial::trueMarkerImages(world.rig, world.arm);
+    const app::ImagesAt trueImages = app::trueMarkerImages(world.rig, world.arm);
     std::vector<Frame> captured;
     double seconds = 0.0;
     for (unsigned int k = 0; k < frames; ++k) {
@@ -190,13 +189,13 @@ int main(int argc, char **argv)
       f.qCaptured = capture.getJoints();
       f.qdotCaptured = k > 0 ? capture.getJointVelocities() : vpColVector(6, 0.0);
       // 3. The floor of this frame: the true Jacobian of the visible markers' images.
-      vpMatrix J = tutorial::imageJacobian(trueImages, f.q);
+      vpMatrix J = app::imageJacobian(trueImages, f.q);
       for (unsigned int row = 0; row < J.getRows(); ++row) {
         for (unsigned int c = 0; !visible[row / 4] && c < J.getCols(); ++c) {
           J[row][c] = 0.0; // a hidden marker constrains nothing
         }
       }
-      f.floor = tutorial::noiseFloor(J, sigma);
+      f.floor = app::noiseFloor(J, sigma);
       captured.push_back(f);
     }
 
@@ -223,9 +222,9 @@ int main(int argc, char **argv)
         const double qdot = (trajectory(f.t + h)[i] - trajectory(f.t - h)[i]) / (2.0 * h);
         v2 += k >= 12 ? std::pow(f.qdotCaptured[i] - qdot, 2) / (captured.size() - 12) : 0.0;
       }
-      ok = ok && tutorial::median(z) <= 1.25 * 0.674;
+      ok = ok && app::median(z) <= 1.25 * 0.674;
       std::cout << "| " << i << " | " << vpMath::deg(std::sqrt(e2)) << " | " << vpMath::deg(std::sqrt(f2)) << " | "
-                << std::sqrt(z2) << " | " << tutorial::median(z) << " | " << vpMath::deg(std::sqrt(v2)) << " |\n";
+                << std::sqrt(z2) << " | " << app::median(z) << " | " << vpMath::deg(std::sqrt(v2)) << " |\n";
     }
     writeFigures(captured, output);
     return ok ? 0 : 1;

@@ -12,13 +12,13 @@
  */
 
 /*!
-  \file tutorial-projective-displacement-truth.h
-  \brief The ground truth of tutorial-projective-displacement.cpp: the scene, the metric twist of the rotation, the
+  \file displacement-truth.h
+  \brief The ground truth of projective-displacement.cpp: the scene, the metric twist of the rotation, the
   projective-to-Euclidean link of a rig's frame, the errors of an estimate against them, and their tables.
 */
 
-#ifndef _tutorial_projective_displacement_truth_h_
-#define _tutorial_projective_displacement_truth_h_
+#ifndef _app_projective_displacement_truth_h_
+#define _app_projective_displacement_truth_h_
 
 #include <algorithm>
 #include <cmath>
@@ -40,7 +40,7 @@
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-namespace tutorial
+namespace app
 {
 //! [Scene]
 //! The metric world, known only to the simulator: markers, motion and the scene used for the weak calibration.
@@ -291,6 +291,6 @@ struct Summary {
     std::cout << std::setprecision(6);
   }
 };
-} // namespace tutorial
+} // namespace app
 
 #endif

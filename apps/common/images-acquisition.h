@@ -12,14 +12,14 @@
  */
 
 /*!
-  \file tutorial-projective-images-acquisition.h
-  \brief The image tutorials' steps on a Session (tutorial-projective-images.h): the acquisition from tracked images
+  \file images-acquisition.h
+  \brief The image apps' steps on a Session (images.h): the acquisition from tracked images
   (the main job's trials, or vpProjectiveAcquisitionProcedure on the session's arm as a vpRobot), the prediction
   error of the tracked markers, and the target taught by showing.
 */
 
-#ifndef _tutorial_projective_images_acquisition_h_
-#define _tutorial_projective_images_acquisition_h_
+#ifndef _app_projective_images_acquisition_h_
+#define _app_projective_images_acquisition_h_
 
 #include <iostream>
 #include <numeric>
@@ -38,15 +38,15 @@
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpStereoDotTracker.h>
 
-#include "tutorial-projective-common.h"
-#include "tutorial-projective-images-view.h"
-#include "tutorial-projective-images.h"
+#include "paper-world.h"
+#include "images-view.h"
+#include "images.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-namespace tutorial
+namespace app
 {
 /*!
   The start of an acquisition from images: the arm at the zero reference with every marker lit, the user's clicks on
@@ -71,7 +71,7 @@ inline void clickAtZeroReference(Session &session, TrackingAccuracy &accuracy, v
 
 //! [Acquisition]
 /*!
-  Acquisition from images (tutorial-projective-servo-images.cpp, with the main job's trials): the user clicks the 7
+  Acquisition from images (projective-images.cpp, with the main job's trials): the user clicks the 7
   markers at the zero reference; each trial motion is then tracked from there, and ends at its last good frame if the
   tracker loses a marker. Between trials the arm drives back to the zero reference, where the tracker restarts from
   its zero-reference state (\e zeroState).
@@ -113,7 +113,7 @@ inline vpProjectiveRobot acquireFromImages(Session &session, TrackingAccuracy &a
     }
   }
   session.accuracy = nullptr;
-  // As in the main tutorial, with tracked centres for noisy projections: F with inliers within 1 px, calibrate().
+  // As in the main job, with tracked centres for noisy projections: F with inliers within 1 px, calibrate().
   return calibrateFromTrials(n, zeroState.getLeftPoints(), zeroState.getRightPoints(), trials, 1.0);
 }
 //! [Acquisition]
@@ -143,7 +143,7 @@ private:
 
 //! [Acquisition procedure]
 /*!
-  Acquisition from images by vpProjectiveAcquisitionProcedure (tutorial-projective-bumped-camera.cpp): the user
+  Acquisition from images by vpProjectiveAcquisitionProcedure (projective-bumped-camera.cpp): the user
   clicks the 7 markers at the zero reference; the procedure then moves each joint alone in 2 deg steps both ways,
   up to 45 deg, a tracked marker 10 px from an image border or a marker lost, the arm tracked frame by frame
   (SessionRobot); F from the tracked centres of every step (inliers within 1 px); the model calibrated. No trial
@@ -216,6 +216,6 @@ inline std::string teachTarget(Session &session, std::vector<vpImagePoint> &left
   return r.complete ? std::string() : "while moving to the start: " + r.failure;
 }
 //! [Teaching]
-} // namespace tutorial
+} // namespace app
 
 #endif

@@ -12,13 +12,13 @@
  */
 
 /*!
-  \file tutorial-projective-servo-viper850-robot.h
+  \file viper850-robot.h
   \brief Driving ViSP's vpSimulatorViper850 deterministically: constant sampling time, one simulator step per command,
-  positioning by velocity steps; and the scene helpers of the Viper850 tutorials.
+  positioning by velocity steps; and the scene helpers of projective-viper850.
 */
 
-#ifndef _tutorial_projective_servo_viper850_robot_h_
-#define _tutorial_projective_servo_viper850_robot_h_
+#ifndef _app_projective_servo_viper850_robot_h_
+#define _app_projective_servo_viper850_robot_h_
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +38,7 @@
 
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
-#include "tutorial-projective-common.h"
+#include "paper-world.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -143,8 +143,8 @@ inline vpColVector moveTo(vpSimulatorViper850 &robot, const vpColVector &qGoal)
   \e noise must outlive it.
 */
 template <class World>
-tutorial::ImagesAt imagesAt(const World &world, const vpViper850 &viper, const std::vector<unsigned int> &which,
-                            double sigma, vpGaussRand *noise, const vpColVector &qRef)
+app::ImagesAt imagesAt(const World &world, const vpViper850 &viper, const std::vector<unsigned int> &which,
+                       double sigma, vpGaussRand *noise, const vpColVector &qRef)
 {
   return [&world, &viper, which, sigma, noise, qRef](const vpColVector &q, std::vector<vpImagePoint> &left,
                                                      std::vector<vpImagePoint> &right) {

@@ -12,13 +12,13 @@
  */
 
 /*!
-  \file tutorial-projective-figures.h
-  \brief What the servo tutorials show of a run: CSV data and PNG figures like the paper's Fig. 2, 4 and 5 (gnuplot,
+  \file figures.h
+  \brief What the servo apps show of a run: CSV data and PNG figures like the paper's Fig. 2, 4 and 5 (gnuplot,
   headless), and a live view of both camera images with the features' trajectories and targets.
 */
 
-#ifndef _tutorial_projective_figures_h_
-#define _tutorial_projective_figures_h_
+#ifndef _app_projective_figures_h_
+#define _app_projective_figures_h_
 
 #include <algorithm>
 #include <cmath>
@@ -37,13 +37,13 @@
 #include <visp3/gui/vpDisplayX.h>
 #include <visp3/gui/vpPlot.h>
 
-#include "tutorial-projective-report.h"
+#include "servo-report.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-namespace tutorial
+namespace app
 {
 /*!
   Writes the gnuplot \e commands to \e script and runs gnuplot on it (headless PNG terminals): says on \e log which
@@ -145,7 +145,7 @@ inline void writeFigures(const ServoRun &run, const std::string &dir)
 
 //! [Prediction figure]
 /*!
-  The model's prediction error over a servo run whose rig was bumped (tutorial-projective-bumped-camera.cpp): CSV
+  The model's prediction error over a servo run whose rig was bumped (projective-bumped-camera.cpp): CSV
   \e dir/projective-bumped-prediction.csv (iteration, error in px, phase) and the PNG
   \e dir/projective-bumped-prediction.png through gnuplot (log scale), one colour per phase: \e phase[it] is 0 before
   the bump, 1 with the bumped camera and the old rig, 2 after the rig was re-registered.
@@ -287,6 +287,6 @@ private:
   std::unique_ptr<vpPlot> m_plot;
 };
 //! [Live display]
-} // namespace tutorial
+} // namespace app
 
 #endif

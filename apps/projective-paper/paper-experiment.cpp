@@ -1,0 +1,126 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+#include "paper-experiment.h"
+
+#include <algorithm>
+
+#include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpMath.h>
+
+#include <visp3/projective/vpFeatureStereoPoint.h>
+#include <visp3/projective/vpServoProjective.h>
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+namespace app
+{
+//! [Acquisition]
+vpProjectiveRobot acquire(const PaperWorld &world, double sigma, vpGaussRand &noise, bool verbose)
+{
+  // The images at q: noisy projections of all the markers, in view of both cameras or not.
+  const ImagesAt imagesAt = [&](const vpColVector &q, std::vector<vpImagePoint> &left,
+                                std::vector<vpImagePoint> &right) {
+    return world.rig.project(world.arm.getMarkers(q), left, right, sigma, noise);
+  };
+  return acquireByTrials(world.trialDeg, imagesAt, std::max(1.0, 4.0 * sigma), verbose);
+}
+//! [Acquisition]
+
+//! [Servo]
+ServoRun servo(const PaperWorld &world, const vpProjectiveRobot &robot, double sigma, vpGaussRand &noise,
+               unsigned int iterations, double maxExcursionDeg)
+{
+  ServoRun run;
+  const vpColVector qTarget = degToRad(world.targetDeg);
+  const unsigned int nbPoints = static_cast<unsigned int>(world.tracked.size());
+
+  std::vector<vpFeatureStereoPoint> s(nbPoints), s_star(nbPoints);
+  vpServoProjective task;
+  task.setRobot(robot);
+  task.setLambda(0.5);
+  // The task starts 240 px away from its target: joint steps are limited to 15 deg and damped when the smallest
+  // singular value of J falls below 30 px/rad, so that no step leaves the domain where J is a good linearisation.
+  task.setMaxJointVelocity(vpMath::rad(15.0));
+  task.setDamping(30.0, 30.0);
+  // Global servoing: the model plans the task once (inverse kinematics of s*, a path inside the joint limits that
+  // keeps the markers 10 px inside the images), the task follows it, and law (47) finishes.
+  task.setJointLimits(world.arm.getJointMin(), world.arm.getJointMax());
+  task.setImageSize(world.rig.getWidth(), world.rig.getHeight(), 10.0);
+  task.setPathPlanning(true);
+  // Path samples 10 deg apart; a path of straight image lines is kept if no joint goes farther than maxExcursionDeg
+  // beyond its start and target values (this task's need 31 deg: by default its path is the joint-space line).
+  task.getPathPlanner().setMaxJointStep(vpMath::rad(10.0));
+  task.getPathPlanner().setMaxExcursion(vpMath::rad(maxExcursionDeg));
+  const std::vector<vpColVector> targetMarkers = world.arm.getMarkers(qTarget);
+  for (unsigned int k = 0; k < nbPoints; ++k) {
+    vpImagePoint l, r;
+    world.rig.project(targetMarkers[world.tracked[k]], l, r, sigma, noise);
+    s_star[k].buildFrom(l, r);
+    run.leftTarget.push_back(l);
+    run.rightTarget.push_back(r);
+    task.addFeature(s[k], s_star[k]);
+  }
+
+  vpColVector q = degToRad(world.startDeg);
+  for (unsigned int it = 0; it <= iterations; ++it) {
+    // Image processing stand-in: noisy images of the tracked markers at the current configuration.
+    const std::vector<vpColVector> markers = world.arm.getMarkers(q);
+    std::vector<vpImagePoint> left(nbPoints), right(nbPoints);
+    for (unsigned int k = 0; k < nbPoints; ++k) {
+      run.inView = world.rig.project(markers[world.tracked[k]], left[k], right[k], sigma, noise) && run.inView;
+      s[k].buildFrom(left[k], right[k]);
+    }
+    if (!run.inView) {
+      break;
+    }
+    const vpColVector qdot = task.computeControlLaw(q); // eq. (47), J from the model at q
+    if (it == 0) {
+      run.plan = task.getPathPlanner().getDescription();
+    }
+    vpColVector e; // s - s*, whatever intermediate features a planned path aims at
+    for (unsigned int k = 0; k < nbPoints; ++k) {
+      e.stack(s[k].error(s_star[k]));
+    }
+    run.record(it, q, left, right, e, std::max(2.0 * sigma, 1e-6));
+    if (it < iterations) {
+      q = world.arm.integrate(q, qdot, 1.0); // one control period
+    }
+  }
+  run.finalJointError = q - qTarget;
+  return run;
+}
+//! [Servo]
+
+//! [Monte Carlo]
+Study study(const PaperWorld &world, double sigma, const std::vector<double> &paperDeg, unsigned int seeds,
+            double maxExcursionDeg)
+{
+  Study st;
+  st.sigma = sigma;
+  st.paperDeg = paperDeg;
+  const ImagesAt trueTracked = trueMarkerImages(world.rig, world.arm, world.tracked);
+  st.floor = noiseFloor(imageJacobian(trueTracked, degToRad(world.targetDeg)), sigma);
+  for (unsigned int seed = 1; seed <= seeds; ++seed) {
+    vpGaussRand noise(1.0, 0.0, static_cast<long>(seed));
+    const vpProjectiveRobot robot = acquire(world, sigma, noise, false);
+    const double prediction = predictionError(robot, trueMarkerImages(world.rig, world.arm), seed);
+    st.add(seed, servo(world, robot, sigma, noise, 40, maxExcursionDeg), robot, prediction);
+  }
+  st.finish();
+  return st;
+}
+//! [Monte Carlo]
+} // namespace app

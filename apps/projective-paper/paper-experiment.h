@@ -1,0 +1,58 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*!
+  \file paper-experiment.h
+  \brief The paper's experiment (Ruf & Horaud, ICCV'99, section 6) in three steps: the acquisition of the arm, the
+  servo run, and the Monte Carlo study over noise seeds (paper-experiment.cpp).
+*/
+
+#ifndef _app_paper_experiment_h_
+#define _app_paper_experiment_h_
+
+#include <vector>
+
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpGaussRand.h>
+
+#include <visp3/projective/vpProjectiveRobot.h>
+
+#include "paper-world.h"
+#include "servo-report.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+namespace app
+{
+/*!
+  Acquisition (paper section 6, Fig. 3): marker images at the zero reference q = 0, then joint i alone moved by
+  +-trial_i (halved until every marker stays in view). The fundamental matrix is estimated from the same images, so
+  nothing but pixels and encoder values enters the model.
+*/
+vpProjectiveRobot acquire(const PaperWorld &world, double sigma, vpGaussRand &noise, bool verbose);
+
+/*!
+  The servo loop, written as in ViSP's tutorial-ibvs-4pts.cpp: build the features, compute the control law, send
+  the joint velocities to the (simulated) robot. s* is the noisy image of the target: taught by showing.
+*/
+ServoRun servo(const PaperWorld &world, const vpProjectiveRobot &robot, double sigma, vpGaussRand &noise,
+               unsigned int iterations, double maxExcursionDeg);
+
+//! Seeds 1 to \e seeds at noise \e sigma: a fresh acquisition and a servo run each, against the noise floor
+//! sqrt(diag(sigma^2 (J^T J)^-1)) of the true stacked image Jacobian of the tracked markers at the target.
+Study study(const PaperWorld &world, double sigma, const std::vector<double> &paperDeg, unsigned int seeds,
+            double maxExcursionDeg);
+} // namespace app
+#endif
