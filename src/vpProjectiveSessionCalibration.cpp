@@ -333,33 +333,29 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
     progress(os.str());
   }
 
-  // The markers of the model: seen in the zero frame and in every trial.
-  std::vector<int> ids;
-  unsigned int worst = zero;
-  size_t worstCount = markers[zero].ids.size();
-  for (int id : markers[zero].ids) {
-    bool everywhere = true;
-    for (unsigned int k : used) {
-      if (session.getFrame(k).role == vpProjectiveSession::TRIAL && markers[k].find(id) < 0) {
-        everywhere = false;
-      }
-    }
-    if (everywhere) {
-      ids.push_back(id);
-    }
-  }
-  for (unsigned int k : used) {
-    if (session.getFrame(k).role == vpProjectiveSession::TRIAL && markers[k].ids.size() < worstCount) {
-      worst = k;
-      worstCount = markers[k].ids.size();
-    }
-  }
+  // The markers of the model: those of the zero frame. A trial may miss some (identified markers: matched by id),
+  // as long as it shows 5 of them.
+  const std::vector<int> ids = markers[zero].ids;
   if (ids.size() < 5) {
     fail(vpProjectiveException::notEnoughPointsError, where,
-         "only " + std::to_string(ids.size()) + " markers are seen in the zero frame and in every trial (" +
-             frameLabel(session, worst) + " has " + std::to_string(worstCount) +
-             "); the arm's motion needs at least 5, 5 of them with no 4 coplanar: keep more tags in view of both "
-             "cameras in every frame, or record the frames with fewer markers again");
+         "only " + std::to_string(ids.size()) + " markers are seen in " + frameLabel(session, zero) +
+             "; the arm's motion needs at least 5, 5 of them with no 4 coplanar: keep more tags in view of both "
+             "cameras at the zero reference, or record it again");
+  }
+  for (unsigned int k : used) {
+    if (session.getFrame(k).role != vpProjectiveSession::TRIAL) {
+      continue;
+    }
+    size_t common = 0;
+    for (int id : ids) {
+      common += markers[k].find(id) >= 0 ? 1 : 0;
+    }
+    if (common < 5) {
+      fail(vpProjectiveException::notEnoughPointsError, where,
+           frameLabel(session, k) + " shows only " + std::to_string(common) + " of the " + std::to_string(ids.size()) +
+               " markers of the zero frame; a trial needs 5 of them, with no 4 "
+               "coplanar: record the trial again with a smaller motion, or remove it");
+    }
   }
   std::vector<vpImagePoint> l0, r0;
   for (int id : ids) {
@@ -423,18 +419,23 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
   try {
     acquisition.setStereoRig(rig);
     acquisition.setOutlierThreshold(m_outlier);
-    acquisition.setZeroReference(session.getFrame(zero).q, l0, r0);
+    acquisition.setZeroReference(session.getFrame(zero).q, ids, l0, r0);
     for (unsigned int k : used) {
       if (session.getFrame(k).role != vpProjectiveSession::TRIAL) {
         continue;
       }
+      std::vector<int> seen;
       std::vector<vpImagePoint> l, r;
       for (int id : ids) {
-        const Eigen::Vector4d &s = markers[k].s[static_cast<size_t>(markers[k].find(id))];
-        l.push_back(vpImagePoint(s(1), s(0)));
-        r.push_back(vpImagePoint(s(3), s(2)));
+        const int f = markers[k].find(id);
+        if (f >= 0) {
+          const Eigen::Vector4d &s = markers[k].s[static_cast<size_t>(f)];
+          seen.push_back(id);
+          l.push_back(vpImagePoint(s(1), s(0)));
+          r.push_back(vpImagePoint(s(3), s(2)));
+        }
       }
-      acquisition.addTrialMotion(session.getFrame(k).q, l, r);
+      acquisition.addTrialMotion(session.getFrame(k).q, seen, l, r);
       trialFrames.push_back(k);
     }
     model = acquisition.calibrate();

@@ -225,7 +225,7 @@ TEST(ProjectiveSessionCalibration, BadSessionsAreRefusedWithOneLineNamingTheFram
   expectRefused("no tag", "frame 4 ('left/000004.png', trial): no marker found");
   // Too few markers.
   rec->keep.assign(rec->keep.size(), 4);
-  expectRefused("too few markers", "only 4 markers are seen");
+  expectRefused("too few markers", "only 4 markers are seen in frame 0");
   rec->keep.assign(rec->keep.size(), static_cast<unsigned int>(-1));
   // The default extraction: no detector in this build yet.
   {
@@ -246,6 +246,33 @@ TEST(ProjectiveSessionCalibration, BadSessionsAreRefusedWithOneLineNamingTheFram
   EXPECT_FALSE(std::filesystem::exists(tmp / "missing-folder"));
   for (const auto &entry : std::filesystem::directory_iterator(tmp.path())) {
     EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << "left behind: " << entry.path();
+  }
+}
+
+TEST(ProjectiveSessionCalibration, TrialsMissingSomeMarkersStillCalibrate)
+{
+  // Markers occluded in some trials (a tag turned away): matched by identifier, the others still used.
+  const ArmSetup s = viperEyeToHand();
+  TemporaryFolder tmp;
+  auto rec = std::make_shared<Recording>();
+  ASSERT_TRUE(recordCalibrationSession(s, tmp / "session", *rec, kSigma, 1, 0));
+  rec->keep[3] = 6;
+  rec->keep[8] = 5;
+  rec->keep[11] = 6;
+  vpProjectiveSessionCalibration calibration(recordedMarkers(rec));
+  const vpProjectiveArmModel model = calibration.calibrate(vpProjectiveSession::read(tmp / "session"));
+  EXPECT_EQ(model.markers().size(), 7u);
+  EXPECT_EQ(calibration.getMarkerIds(), rec->ids);
+  EXPECT_LE(predictionError(s, model, 30, 7), 0.3);
+  // A trial with 4 of them is refused, naming it.
+  rec->keep[8] = 4;
+  try {
+    calibration.calibrate(vpProjectiveSession::read(tmp / "session"));
+    ADD_FAILURE() << "a trial with 4 markers accepted";
+  } catch (const vpProjectiveException &e) {
+    EXPECT_NE(e.getStringMessage().find("frame 8 ('left/000008.png', trial) shows only 4 of the 7 markers"),
+              std::string::npos)
+        << e.getStringMessage();
   }
 }
 

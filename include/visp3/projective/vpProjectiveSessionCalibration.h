@@ -51,7 +51,9 @@ BEGIN_VISP_NAMESPACE
 
   <b>calibrate()</b> reads the zero, trial and observation frames (target and servo frames are not needed), then
   - extracts the markers of each, one progress line per frame; a frame without any marker is an error;
-  - keeps the markers seen in the zero frame and in every trial frame (at least 5), in identifier order;
+  - keeps the markers of the zero frame (at least 5), in identifier order; a trial frame may miss some of them
+    (occluded, turned away), matched by identifier (vpProjectiveArmAcquisition's identified markers), as long as it
+    shows 5;
   - refuses markers that are all on one plane (a homography maps their left images onto the right ones within the
     coplanarity threshold, RMS), since a rigid motion needs 5 markers of which no 4 are coplanar;
   - estimates the rig's fundamental matrix from every marker match of those frames
@@ -183,7 +185,7 @@ public:
   /*!
     Calibrates the arm of \e session (see the class documentation) and returns the model.
     \exception vpProjectiveException with a one-line message naming the frame: no marker in a frame, fewer than 5
-    markers common to the zero frame and the trials, coplanar markers, a joint without a trial, a rig or a
+    markers in the zero frame or of them in a trial, coplanar markers, a joint without a trial, a rig or a
     calibration that cannot be estimated; and the extraction function's errors.
   */
   vpProjectiveArmModel calibrate(const vpProjectiveSession &session);
