@@ -101,6 +101,10 @@ double coplanarity(const Projection &P, const Projection &Pp, const Eigen::Vecto
   return std::sqrt(sum / 4.0);
 }
 
+} // namespace
+
+namespace vpProjectiveAcquisitionInternal
+{
 /*!
   The general-position margin of the points \e X (pixels): over the sets of 5 points, the largest of the smallest
   coplanarity() of 4 points of the set; \e best receives that set. At most the first 24
@@ -189,7 +193,7 @@ double homographyTransferError(const std::vector<vpImagePoint> &left, const std:
   }
   return std::sqrt(sum / static_cast<double>(K));
 }
-} // namespace
+} // namespace vpProjectiveAcquisitionInternal
 
 void vpProjectiveAcquisitionProcedure::checkGeneralPosition(const vpProjectiveStereoRig &rig,
                                                             const std::vector<vpImagePoint> &left,

@@ -23,9 +23,14 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include <visp3/core/vpConfig.h>
+#include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMath.h>
+#include <visp3/projective/vpProjectiveStereoRig.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -49,6 +54,21 @@ inline std::string jointValue(double v, bool revolute)
   os << std::setprecision(6) << (revolute ? vpMath::deg(v) : v) << (revolute ? " deg" : " m");
   return os.str();
 }
+
+/*!
+  The general-position margin of the points \e X (unit 4-vectors in \e rig's frame; pixels): over the sets of 5
+  points, the largest of the smallest RMS plane parallax of 4 points of the set to the plane that fits them best;
+  \e best receives that set. At most the first 24 points are examined (a lower bound for more). Also used by
+  vpProjectiveSessionCalibration.
+*/
+double generalPositionParallax(const vpProjectiveStereoRig &rig, const std::vector<Eigen::Vector4d> &X,
+                               std::vector<unsigned int> &best);
+
+/*!
+  RMS distance (pixels) between the right images and the left ones mapped by the least-squares homography of all
+  the pairs: at the noise level when the markers are all on one plane. Also used by vpProjectiveSessionCalibration.
+*/
+double homographyTransferError(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right);
 } // namespace vpProjectiveAcquisitionInternal
 
 #endif

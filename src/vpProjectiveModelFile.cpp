@@ -13,6 +13,8 @@
 
 #include <visp3/projective/vpProjectiveModelFile.h>
 
+#include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -145,7 +147,7 @@ private:
 } // namespace
 
 std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, double calibrationResidual,
-                                            double algebraicResidual)
+                                            double algebraicResidual, const std::vector<int> &markerIds)
 {
   if (model.getNumberOfJoints() == 0) {
     fail(vpProjectiveException::notInitializedError, "vpProjectiveModelFile::save()",
@@ -177,6 +179,20 @@ std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, d
   m["markers"] = markers;
   m["calibration_residual"] = calibrationResidual;
   m["algebraic_residual"] = algebraicResidual;
+  if (!markerIds.empty()) {
+    if (markerIds.size() != model.markers().size()) {
+      fail(vpProjectiveException::dimensionError, "vpProjectiveModelFile::save()",
+           "got " + std::to_string(markerIds.size()) + " marker identifiers for " +
+               std::to_string(model.markers().size()) + " markers; give one per marker, or none");
+    }
+    std::vector<int> sorted(markerIds);
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+      fail(vpProjectiveException::invalidValueError, "vpProjectiveModelFile::save()",
+           "two markers have the same identifier; give each marker its own");
+    }
+    m["marker_ids"] = markerIds;
+  }
   json file;
   file["format"] = kFormat;
   file["version"] = version;
@@ -188,8 +204,15 @@ std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, d
 void vpProjectiveModelFile::save(const std::string &filename, const vpProjectiveArmModel &model,
                                  double calibrationResidual, double algebraicResidual)
 {
+  save(filename, model, calibrationResidual, algebraicResidual, std::vector<int>());
+}
+
+void vpProjectiveModelFile::save(const std::string &filename, const vpProjectiveArmModel &model,
+                                 double calibrationResidual, double algebraicResidual,
+                                 const std::vector<int> &markerIds)
+{
   const std::string where = "vpProjectiveModelFile::save()";
-  const std::string text = toString(model, calibrationResidual, algebraicResidual);
+  const std::string text = toString(model, calibrationResidual, algebraicResidual, markerIds);
   std::ofstream file(filename.c_str(), std::ios::binary);
   if (!file) {
     fail(vpProjectiveException::fileError, where, "cannot open '" + filename + "' for writing");
@@ -201,7 +224,7 @@ void vpProjectiveModelFile::save(const std::string &filename, const vpProjective
 }
 
 vpProjectiveArmModel vpProjectiveModelFile::load(const std::string &filename, double *calibrationResidual,
-                                                 double *algebraicResidual)
+                                                 double *algebraicResidual, std::vector<int> *markerIds)
 {
   std::ifstream file(filename.c_str(), std::ios::binary);
   if (!file) {
@@ -210,11 +233,12 @@ vpProjectiveArmModel vpProjectiveModelFile::load(const std::string &filename, do
   }
   std::ostringstream text;
   text << file.rdbuf();
-  return fromString(text.str(), filename, calibrationResidual, algebraicResidual);
+  return fromString(text.str(), filename, calibrationResidual, algebraicResidual, markerIds);
 }
 
 vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, const std::string &name,
-                                                       double *calibrationResidual, double *algebraicResidual)
+                                                       double *calibrationResidual, double *algebraicResidual,
+                                                       std::vector<int> *markerIds)
 {
   const Reader reader(name);
   json file;
@@ -289,6 +313,21 @@ vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, 
   }
   const double residual = reader.number(reader.member(m, "calibration_residual"), "calibration_residual");
   const double algebraic = reader.number(reader.member(m, "algebraic_residual"), "algebraic_residual");
+  std::vector<int> ids;
+  if (m.contains("marker_ids")) {
+    const json &idsJson = reader.array(m["marker_ids"], "marker_ids", markers.size(), markers.size());
+    for (const json &id : idsJson) {
+      if (!id.is_number_integer() || id.get<long long>() < INT_MIN || id.get<long long>() > INT_MAX) {
+        reader.bad("marker_ids must hold one integer per marker");
+      }
+      ids.push_back(id.get<int>());
+    }
+    std::vector<int> sorted(ids);
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+      reader.bad("two markers have the same identifier in marker_ids");
+    }
+  }
 
   vpProjectiveArmModel model;
   try {
@@ -309,6 +348,9 @@ vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, 
   }
   if (algebraicResidual != nullptr) {
     *algebraicResidual = algebraic;
+  }
+  if (markerIds != nullptr) {
+    *markerIds = ids;
   }
   return model;
 }

@@ -14,9 +14,13 @@
 /*
  * Writes the seed corpus of fuzzModelLoader (tests/fuzz/run-fuzz.sh): model files saved by saveModel() from small
  * calibrated models (noise-free acquisitions of the test setups), each as a raw file ('r' + file) and as a file to be
- * re-signed by the harness ('c' + file), plus truncated, corrupted and edited variants.
- *   makeSeedCorpus <corpus directory>
+ * re-signed by the harness ('c' + file), plus truncated, corrupted and edited variants; and, given a second directory,
+ * that of fuzzSessionReader: session.json texts (the format's example, a 13-frame acquisition session, a servo
+ * session) and malformed variants.
+ *   makeSeedCorpus <model corpus directory> [<session corpus directory>]
  */
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -52,13 +56,94 @@ void writeSeed(const std::string &dir, const std::string &name, char mode, const
     std::exit(1);
   }
 }
+void writeText(const std::string &dir, const std::string &name, const std::string &content)
+{
+  std::ofstream out((dir + "/" + name).c_str(), std::ios::binary);
+  out << content;
+  if (!out) {
+    std::cerr << "cannot write " << dir << "/" << name << std::endl;
+    std::exit(1);
+  }
+}
+
+//! A session.json of \e frames (role, q) for joints \e types.
+nlohmann::json sessionJson(const std::vector<std::string> &types,
+                           const std::vector<std::pair<std::string, std::vector<double>>> &frames)
+{
+  nlohmann::json file;
+  file["format"] = "visp-projective-session";
+  file["version"] = 1;
+  file["joint_types"] = types;
+  file["frames"] = nlohmann::json::array();
+  for (size_t k = 0; k < frames.size(); ++k) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "%06u.png", static_cast<unsigned int>(k));
+    file["frames"].push_back({{"role", frames[k].first},
+                              {"q", frames[k].second},
+                              {"t", 0.5 * k},
+                              {"left", std::string("left/") + name},
+                              {"right", std::string("right/") + name}});
+  }
+  return file;
+}
+
+void writeSessionSeeds(const std::string &dir)
+{
+  const std::vector<std::string> rrprrr = {"revolute", "revolute", "prismatic", "revolute", "revolute", "revolute"};
+  // The format's example (DESIGN.md).
+  const nlohmann::json example =
+      sessionJson(rrprrr, {{"zero", {0.1, -0.2, 0.05, 0, 0, 0}}, {"trial", {0.6, -0.2, 0.05, 0, 0, 0}}});
+  writeText(dir, "example.json", example.dump(1));
+  // An acquisition: zero, each joint both ways, two observations, a target, servo frames.
+  std::vector<std::pair<std::string, std::vector<double>>> frames = {{"zero", {0.0, 1.05, 0.45, 0.0, -0.87, 0.0}}};
+  for (size_t i = 0; i < 6; ++i) {
+    for (int sign = -1; sign <= 1; sign += 2) {
+      std::vector<double> q = frames[0].second;
+      q[i] += sign * (i == 2 ? 0.04 : 0.3);
+      frames.push_back({"trial", q});
+    }
+  }
+  frames.push_back({"observation", {0.1, 1.0, 0.47, 0.2, -0.8, 0.1}});
+  frames.push_back({"target", {0.2, 1.1, 0.44, 0.1, -0.9, 0.3}});
+  frames.push_back({"servo", {0.15, 1.05, 0.45, 0.15, -0.85, 0.2}});
+  const nlohmann::json acquisition = sessionJson(rrprrr, frames);
+  const std::string text = acquisition.dump(1);
+  writeText(dir, "acquisition.json", text);
+  writeText(dir, "acquisition-compact.json", acquisition.dump());
+  writeText(dir, "acquisition-truncated.json", text.substr(0, text.size() / 2));
+  nlohmann::json edited = acquisition;
+  edited["frames"][3]["q"][0] = 0.2;
+  writeText(dir, "two-joints.json", edited.dump(1));
+  edited = acquisition;
+  edited["frames"][5]["role"] = "zero";
+  writeText(dir, "two-zeros.json", edited.dump(1));
+  edited = acquisition;
+  edited["frames"][0]["role"] = "servo";
+  writeText(dir, "no-zero.json", edited.dump(1));
+  edited = acquisition;
+  edited["frames"][2]["q"].erase(1);
+  writeText(dir, "short-q.json", edited.dump(1));
+  edited = acquisition;
+  edited["frames"][2]["left"] = "../left/000002.png";
+  writeText(dir, "outside.json", edited.dump(1));
+  edited = acquisition;
+  edited["version"] = 2;
+  writeText(dir, "version2.json", edited.dump(1));
+  edited = acquisition;
+  edited["comment"] = {{"nested", {1, 2, 3}}};
+  edited["frames"][1]["exposure"] = 8;
+  writeText(dir, "unknown-keys.json", edited.dump(1));
+}
 } // namespace
 
 int main(int argc, char **argv)
 {
-  if (argc != 2) {
-    std::cerr << "usage: " << argv[0] << " <corpus directory>" << std::endl;
+  if (argc != 2 && argc != 3) {
+    std::cerr << "usage: " << argv[0] << " <model corpus directory> [<session corpus directory>]" << std::endl;
     return 2;
+  }
+  if (argc == 3) {
+    writeSessionSeeds(argv[2]);
   }
   const std::string dir = argv[1];
   const std::vector<std::pair<std::string, ArmSetup>> setups = {{"puma", pumaEyeToHand()},
@@ -94,6 +179,14 @@ int main(int argc, char **argv)
     nlohmann::json joints = json;
     joints["model"]["joints"].push_back("revolute");
     writeSeed(dir, p + "-resigned-extra-joint", 'c', joints.dump(2));
+    nlohmann::json ids = json;
+    ids["model"]["marker_ids"] = nlohmann::json::array();
+    for (size_t j = 0; j < json["model"]["markers"].size(); ++j) {
+      ids["model"]["marker_ids"].push_back(4 * j + 1);
+    }
+    writeSeed(dir, p + "-resigned-marker-ids", 'c', ids.dump(2));
+    ids["model"]["marker_ids"][1] = 1;
+    writeSeed(dir, p + "-resigned-marker-ids-repeated", 'c', ids.dump(2));
   }
   std::cout << "seed corpus written to " << dir << std::endl;
   return 0;

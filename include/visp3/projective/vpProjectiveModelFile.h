@@ -22,6 +22,7 @@
 #include <visp3/projective/vpProjectiveConfig.h>
 
 #include <string>
+#include <vector>
 
 #include <visp3/projective/vpProjectiveArmModel.h>
 
@@ -66,6 +67,11 @@ BEGIN_VISP_NAMESPACE
   Every failure to read is a vpProjectiveException (fileError) whose message names the file and what is wrong: missing
   or unreadable, not JSON or truncated, another format or version, a checksum that does not match, a missing, mistyped
   or non-finite entry, inconsistent sizes, or a model that vpProjectiveArmModel rejects.
+
+  A model calibrated from a recorded session (vpProjectiveSessionCalibration) also carries, inside "model" (hence
+  under the checksum), <tt>"marker_ids": [ ... ]</tt>: the identifier of each marker (e.g. 4 * AprilTag id + corner),
+  so that the markers are found again in new images by their identifiers. The entry is optional: a file without it
+  reads as before, and a reader of this version that does not ask for it ignores it.
 */
 class VISP_EXPORT vpProjectiveModelFile
 {
@@ -80,21 +86,31 @@ public:
   static void save(const std::string &filename, const vpProjectiveArmModel &model, double calibrationResidual,
                    double algebraicResidual);
   /*!
+    The same with the markers' identifiers \e markerIds (one per marker of \e model, distinct; empty: none written).
+    \exception vpProjectiveException (dimensionError, invalidValueError) if the identifiers do not match the markers;
+    (fileError) if the file cannot be written.
+  */
+  static void save(const std::string &filename, const vpProjectiveArmModel &model, double calibrationResidual,
+                   double algebraicResidual, const std::vector<int> &markerIds);
+  /*!
     Reads a model written by save(); \e calibrationResidual and \e algebraicResidual, if not null, receive the
-    residuals it was saved with.
+    residuals it was saved with, \e markerIds the markers' identifiers (empty if the file has none).
     \exception vpProjectiveException (fileError) as described in the class documentation.
   */
   static vpProjectiveArmModel load(const std::string &filename, double *calibrationResidual = nullptr,
-                                   double *algebraicResidual = nullptr);
+                                   double *algebraicResidual = nullptr, std::vector<int> *markerIds = nullptr);
 
   //! The JSON text that save() writes.
-  static std::string toString(const vpProjectiveArmModel &model, double calibrationResidual, double algebraicResidual);
+  static std::string toString(const vpProjectiveArmModel &model, double calibrationResidual, double algebraicResidual,
+                              const std::vector<int> &markerIds = std::vector<int>());
   /*!
-    The model of a JSON text as written by save(); \e name (a file name) is quoted in the error messages.
+    The model of a JSON text as written by save(); \e name (a file name) is quoted in the error messages. \e markerIds,
+    if not null, receives the markers' identifiers (empty if the file has none).
     \exception vpProjectiveException (fileError) as load().
   */
   static vpProjectiveArmModel fromString(const std::string &text, const std::string &name,
-                                         double *calibrationResidual = nullptr, double *algebraicResidual = nullptr);
+                                         double *calibrationResidual = nullptr, double *algebraicResidual = nullptr,
+                                         std::vector<int> *markerIds = nullptr);
 };
 
 END_VISP_NAMESPACE

@@ -1,0 +1,336 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*
+  visp-projective: the command-line tool of the plugin, on recorded sessions (vpProjectiveSession) and model files.
+
+    visp-projective calibrate SESSION --output MODEL.json [--family 36h11] [options]
+    visp-projective check MODEL.json SESSION [--family 36h11] [--threshold PX]
+    visp-projective report MODEL.json
+
+  Exit status: 0 on success (check: the model fits every frame), 1 on bad input or any error (one line on stderr
+  that says what was wrong and what to do; calibrate then leaves no model file), 2 on a usage mistake, 3 when check
+  finds that the model does not fit the session (a camera moved).
+*/
+
+#include <chrono>
+#include <cstdlib>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include <visp3/core/vpException.h>
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpThetaUVector.h>
+#include <visp3/projective/vpProjectiveModelFile.h>
+#include <visp3/projective/vpProjectiveSelfCalibration.h>
+#include <visp3/projective/vpProjectiveSession.h>
+#include <visp3/projective/vpProjectiveSessionCalibration.h>
+
+#include "visp-projective-markers.h"
+#include "visp-projective-options.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+namespace
+{
+const int kUsageError = 2;
+const int kMismatch = 3;
+
+const char *const kMainUsage =
+    "Usage: visp-projective COMMAND [ARGUMENTS] [OPTIONS]\n"
+    "Non-metric stereo visual servoing (ViSP plugin visp_projective): calibrate an arm from a recorded session,\n"
+    "check a model against another session, report what a model says about the cell.\n"
+    "\n"
+    "Commands:\n"
+    "  calibrate SESSION --output MODEL.json   markers of every frame, rig, arm acquisition -> model file\n"
+    "  check MODEL.json SESSION                prediction error of the model on each frame: did a camera move?\n"
+    "  report MODEL.json                       joints, residuals, the metric self-calibration K, R, t\n"
+    "\n"
+    "'visp-projective COMMAND --help' describes each command. A SESSION is a folder holding session.json\n"
+    "(format visp-projective-session, version 1) and its PNG images.\n"
+    "Exit status: 0 success, 1 bad input or error (one line on stderr), 2 usage, 3 check: the model does not fit.\n";
+
+const char *const kCalibrateUsage =
+    "Usage: visp-projective calibrate SESSION --output MODEL.json [--family 36h11] [OPTIONS]\n"
+    "Extracts the markers (AprilTag corners) of the zero, trial and observation frames of SESSION, estimates the\n"
+    "rig, acquires and bundle-adjusts the arm, and writes the model (read by vpProjectiveRobot::loadModel(); it takes\n"
+    "the session's absolute encoder readings). A progress line per frame, a summary per joint. On any error no\n"
+    "model file is written (the file is written to a temporary name and renamed).\n"
+    "\n"
+    "Options:\n"
+    "  --output FILE                  the model file to write (required)\n"
+    "  --family NAME                  AprilTag family (default 36h11)\n"
+    "  --mounting MODE                auto, eye-to-hand or eye-in-hand (default auto: told by the observation\n"
+    "                                 frames if any, else eye-to-hand)\n"
+    "  --epipolar-threshold PX        inlier threshold of the rig's estimation (default 2)\n"
+    "  --outlier-threshold PX         leave out trial observations farther than PX from the model (default 0: none)\n"
+    "  --coplanarity-threshold PX     plane parallax below which markers count as coplanar (default 2)\n"
+    "  --quiet                        no progress lines\n"
+    "  -h, --help                     this help\n";
+
+const char *const kCheckUsage =
+    "Usage: visp-projective check MODEL.json SESSION [--family 36h11] [--threshold PX]\n"
+    "Predicts, at each frame's encoder readings, the markers of the model seen in the frame and prints the RMS error\n"
+    "of the left and right images; says whether the rig moved since the model was made, and which camera.\n"
+    "Exit status 0 if every frame fits, 3 if not, 1 on bad input.\n"
+    "\n"
+    "Options:\n"
+    "  --family NAME                  AprilTag family (default 36h11)\n"
+    "  --threshold PX                 RMS per coordinate above which a frame does not fit (default 2)\n"
+    "  --quiet                        no line per frame\n"
+    "  -h, --help                     this help\n";
+
+const char *const kReportUsage =
+    "Usage: visp-projective report MODEL.json\n"
+    "Prints what the model says about the cell: the joints (kind, axis in the left camera's frame), the residuals\n"
+    "of its calibration, its markers, and the metric self-calibration of the rig (intrinsics K of both cameras, the\n"
+    "right camera's pose R, t in the left one; t in the prismatic joints' unit, or a unit baseline without one).\n"
+    "\n"
+    "Options:\n"
+    "  -h, --help                     this help\n";
+
+//! One line: a message with its line breaks replaced.
+std::string oneLine(std::string text)
+{
+  for (char &c : text) {
+    if (c == '\n' || c == '\r') {
+      c = ' ';
+    }
+  }
+  return text;
+}
+
+int usageError(const std::string &command, const std::string &error)
+{
+  std::cerr << "visp-projective " << command << ": " << oneLine(error) << std::endl;
+  return kUsageError;
+}
+
+//! Parses a subcommand's arguments; returns -1 to go on, else the exit status.
+int parseArguments(vispProjective::Arguments &args, int argc, char **argv, const std::string &command,
+                   const char *usage)
+{
+  bool help = false;
+  std::string error;
+  if (!args.parse(argc, argv, 2, help, error)) {
+    if (help) {
+      std::cout << usage;
+      return EXIT_SUCCESS;
+    }
+    return usageError(command, error);
+  }
+  return -1;
+}
+
+int calibrate(int argc, char **argv)
+{
+  vispProjective::Arguments args("visp-projective calibrate", {"SESSION"},
+                                 {"--output", "-o", "--family", "--mounting", "--epipolar-threshold",
+                                  "--outlier-threshold", "--coplanarity-threshold"},
+                                 {"--quiet"});
+  const int parsed = parseArguments(args, argc, argv, "calibrate", kCalibrateUsage);
+  if (parsed >= 0) {
+    return parsed;
+  }
+  const std::string output = args.value("--output", args.value("-o"));
+  if (output.empty()) {
+    return usageError("calibrate", "--output MODEL.json is required; see 'visp-projective calibrate --help'");
+  }
+  double epipolar = 2.0, outlier = 0.0, coplanarity = 2.0;
+  std::string error;
+  if (!args.number("--epipolar-threshold", 2.0, 1e-9, epipolar, error) ||
+      !args.number("--outlier-threshold", 0.0, 0.0, outlier, error) ||
+      !args.number("--coplanarity-threshold", 2.0, 1e-9, coplanarity, error)) {
+    return usageError("calibrate", error);
+  }
+  const std::string mounting = args.value("--mounting", "auto");
+  if (mounting != "auto" && mounting != "eye-to-hand" && mounting != "eye-in-hand") {
+    return usageError("calibrate", "--mounting takes auto, eye-to-hand or eye-in-hand, not '" + mounting + "'");
+  }
+  const auto start = std::chrono::steady_clock::now();
+  vpProjectiveSessionCalibration calibration(vispProjective::markerExtractor(args.value("--family", "36h11")));
+  vpProjectiveSessionCalibration::checkWritable(output);
+  const vpProjectiveSession session = vpProjectiveSession::read(args.positional(0));
+  calibration.setOutput(args.has("--quiet") ? nullptr : &std::cout);
+  calibration.setEpipolarThreshold(epipolar);
+  calibration.setOutlierThreshold(outlier);
+  calibration.setCoplanarityThreshold(coplanarity);
+  calibration.setMounting(mounting == "eye-to-hand"   ? vpProjectiveSessionCalibration::MOUNTING_EYE_TO_HAND
+                          : mounting == "eye-in-hand" ? vpProjectiveSessionCalibration::MOUNTING_EYE_IN_HAND
+                                                      : vpProjectiveSessionCalibration::MOUNTING_AUTO);
+  calibration.calibrate(session);
+  calibration.saveModel(output);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!args.has("--quiet")) {
+    std::cout << "model written to '" << output << "' (" << std::fixed << std::setprecision(2) << seconds << " s)"
+              << std::endl;
+  }
+  return EXIT_SUCCESS;
+}
+
+//! The model of \e file with its marker identifiers; throws if it has none.
+vpProjectiveArmModel loadModel(const std::string &file, std::vector<int> &ids, double &residual, double &algebraic)
+{
+  return vpProjectiveModelFile::load(file, &residual, &algebraic, &ids);
+}
+
+int check(int argc, char **argv)
+{
+  vispProjective::Arguments args("visp-projective check", {"MODEL.json", "SESSION"}, {"--family", "--threshold"},
+                                 {"--quiet"});
+  const int parsed = parseArguments(args, argc, argv, "check", kCheckUsage);
+  if (parsed >= 0) {
+    return parsed;
+  }
+  double threshold = 2.0;
+  std::string error;
+  if (!args.number("--threshold", 2.0, 1e-9, threshold, error)) {
+    return usageError("check", error);
+  }
+  vpProjectiveSessionCalibration calibration(vispProjective::markerExtractor(args.value("--family", "36h11")));
+  std::vector<int> ids;
+  double residual = 0.0, algebraic = 0.0;
+  const vpProjectiveArmModel model = loadModel(args.positional(0), ids, residual, algebraic);
+  if (ids.empty()) {
+    throw vpException(vpException::fatalError,
+                      "the model '" + args.positional(0) +
+                          "' has no marker identifiers (it was not calibrated from a session): calibrate it with "
+                          "'visp-projective calibrate' to check it against sessions");
+  }
+  const vpProjectiveSession session = vpProjectiveSession::read(args.positional(1));
+  calibration.setOutput(args.has("--quiet") ? nullptr : &std::cout);
+  calibration.setMismatchThreshold(threshold);
+  const std::vector<vpProjectiveSessionCalibration::vpFrameCheck> checks = calibration.check(model, ids, session);
+  unsigned int off = 0;
+  for (const auto &c : checks) {
+    off += c.fits ? 0 : 1;
+  }
+  std::cout << std::setprecision(3) << "left images " << calibration.getLeftResidual() << " px RMS, right images "
+            << calibration.getRightResidual() << " px RMS over " << checks.size() << " frames, " << off << " above "
+            << threshold << " px (the model's calibration residual: " << residual << " px)" << std::endl;
+  std::cout << vpProjectiveSessionCalibration::toString(calibration.getRigState()) << std::endl;
+  return calibration.getRigState() == vpProjectiveSessionCalibration::RIG_UNCHANGED ? EXIT_SUCCESS : kMismatch;
+}
+
+std::string vectorText(const Eigen::Vector3d &v, int precision)
+{
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(precision) << "(" << v(0) << ", " << v(1) << ", " << v(2) << ")";
+  return os.str();
+}
+
+int report(int argc, char **argv)
+{
+  vispProjective::Arguments args("visp-projective report", {"MODEL.json"}, {}, {});
+  const int parsed = parseArguments(args, argc, argv, "report", kReportUsage);
+  if (parsed >= 0) {
+    return parsed;
+  }
+  std::vector<int> ids;
+  double residual = 0.0, algebraic = 0.0;
+  const vpProjectiveArmModel model = loadModel(args.positional(0), ids, residual, algebraic);
+  std::cout << "model '" << args.positional(0) << "': " << model.getNumberOfJoints() << " joints, "
+            << (model.getRigMounting() == vpProjectiveArmModel::EYE_TO_HAND ? "eye-to-hand" : "eye-in-hand") << ", "
+            << model.markers().size() << " markers" << (ids.empty() ? " (no identifiers)" : "") << ", "
+            << (model.getStereoRig().isCanonical() ? "canonical camera pair" : "re-registered camera pair")
+            << std::endl;
+  std::cout << std::setprecision(3) << "residuals: bundle adjustment " << residual << " px RMS, algebraic generators "
+            << algebraic << " px RMS" << std::endl;
+  bool metric = true;
+  std::vector<Eigen::Vector3d> direction, point;
+  Eigen::Matrix3d Kl, Kr;
+  Eigen::Matrix4d lMr;
+  std::string why;
+  try {
+    vpProjectiveSelfCalibration::metricStereoRig(model, Kl, Kr, lMr);
+    vpProjectiveSelfCalibration::jointAxes(model, direction, point);
+  } catch (const vpException &e) {
+    metric = false;
+    why = oneLine(e.getStringMessage());
+  }
+  bool prismatic = false;
+  for (unsigned int i = 0; i < model.getNumberOfJoints(); ++i) {
+    const bool revolute = model.jointType(i) == vpProjectiveJoint::REVOLUTE;
+    prismatic = prismatic || !revolute;
+    std::cout << "joint " << i << " (" << vpProjectiveJoint::name(model.jointType(i)) << "), zero reference at "
+              << std::setprecision(6)
+              << (revolute ? vpMath::deg(model.zeroReferenceJoints()(i)) : model.zeroReferenceJoints()(i))
+              << (revolute ? " deg" : " m");
+    if (metric) {
+      std::cout << ": direction " << vectorText(direction[i], 4);
+      if (revolute) {
+        std::cout << " through " << vectorText(point[i], 4);
+      }
+    }
+    std::cout << std::endl;
+  }
+  if (!metric) {
+    std::cout << "metric self-calibration: not available (" << why << ")" << std::endl;
+    return EXIT_SUCCESS;
+  }
+  const char *unit = prismatic ? "prismatic joints' unit" : "unit baseline: no prismatic joint fixes the scale";
+  std::cout << "metric self-calibration (axes and t in the left camera's frame, lengths in the " << unit
+            << "):" << std::endl;
+  for (int c = 0; c < 2; ++c) {
+    const Eigen::Matrix3d &K = c == 0 ? Kl : Kr;
+    std::cout << std::fixed << std::setprecision(2) << (c == 0 ? "  left K:  " : "  right K: ") << "fx " << K(0, 0)
+              << ", fy " << K(1, 1) << ", skew " << K(0, 1) << ", u0 " << K(0, 2) << ", v0 " << K(1, 2) << std::endl;
+  }
+  vpRotationMatrix R;
+  for (unsigned int i = 0; i < 3; ++i) {
+    for (unsigned int j = 0; j < 3; ++j) {
+      R[i][j] = lMr(i, j);
+    }
+  }
+  const vpThetaUVector tu(R);
+  std::cout << std::fixed << std::setprecision(3) << "  right camera in the left one: R (theta-u, deg) ("
+            << vpMath::deg(tu[0]) << ", " << vpMath::deg(tu[1]) << ", " << vpMath::deg(tu[2]) << "), t "
+            << vectorText(lMr.block<3, 1>(0, 3), 4) << ", baseline " << std::setprecision(4)
+            << lMr.block<3, 1>(0, 3).norm() << std::endl;
+  std::cout.unsetf(std::ios::floatfield);
+  return EXIT_SUCCESS;
+}
+} // namespace
+
+int main(int argc, char **argv)
+{
+  const std::string command = argc > 1 ? argv[1] : "";
+  if (command.empty() || command == "--help" || command == "-h") {
+    std::cout << kMainUsage;
+    return command.empty() ? kUsageError : EXIT_SUCCESS;
+  }
+  try {
+    if (command == "calibrate") {
+      return calibrate(argc, argv);
+    }
+    if (command == "check") {
+      return check(argc, argv);
+    }
+    if (command == "report") {
+      return report(argc, argv);
+    }
+  } catch (const vpException &e) {
+    std::cerr << "visp-projective " << command << ": " << oneLine(e.getStringMessage()) << std::endl;
+    return EXIT_FAILURE;
+  } catch (const std::exception &e) {
+    std::cerr << "visp-projective " << command << ": " << oneLine(e.what()) << std::endl;
+    return EXIT_FAILURE;
+  }
+  std::cerr << "visp-projective: unknown command '" << command << "'; use calibrate, check or report (see "
+            << "'visp-projective --help')" << std::endl;
+  return kUsageError;
+}

@@ -1,0 +1,249 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*!
+  \file vpProjectiveSessionCalibration.h
+  \brief Calibrating an arm from a recorded session, and checking a model against another session.
+*/
+
+#ifndef _vpProjectiveSessionCalibration_h_
+#define _vpProjectiveSessionCalibration_h_
+
+#include <visp3/projective/vpProjectiveConfig.h>
+
+#include <functional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpImagePoint.h>
+#include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
+#include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpProjectiveSession.h>
+#include <visp3/projective/vpProjectiveSessionWriter.h>
+#include <visp3/projective/vpStereoImageSource.h>
+#include <visp3/robot/vpRobot.h>
+
+BEGIN_VISP_NAMESPACE
+
+/*!
+  \class vpProjectiveSessionCalibration
+  \ingroup group_projective
+  \brief What the command-line tool's \c calibrate and \c check do (visp-projective): the markers extracted from every
+  frame of a session, the rig estimated, the arm acquired and bundle-adjusted into a model; and a model's prediction
+  error on every frame of another session, which tells whether a camera moved since the model was made.
+
+  The markers come from a marker extraction function (vpMarkerExtractor): given a stereo pair, it gives the markers
+  found in both images, each with an identifier (e.g. 4 * AprilTag id + corner index), in ascending identifier order,
+  and their pixels (ViSP's convention: the centre of pixel (i, j) is (u, v) = (j, i)). The AprilTag detector of the
+  plugin is such a function; tests give one of their own.
+
+  <b>calibrate()</b> reads the zero, trial and observation frames (target and servo frames are not needed), then
+  - extracts the markers of each, one progress line per frame; a frame without any marker is an error;
+  - keeps the markers of the zero frame (at least 5), in identifier order; a trial frame may miss some of them
+    (occluded, turned away), matched by identifier (vpProjectiveArmAcquisition's identified markers), as long as it
+    shows 5;
+  - refuses markers that are all on one plane (a homography maps their left images onto the right ones within the
+    coplanarity threshold, RMS), since a rigid motion needs 5 markers of which no 4 are coplanar;
+  - estimates the rig's fundamental matrix from every marker match of those frames
+    (vpProjectiveStereoRig::estimate(), setEpipolarThreshold()), then checks that 5 markers have no 4 within the
+    coplanarity threshold of a plane (plane parallax, as vpProjectiveAcquisitionProcedure does);
+  - acquires the arm (vpProjectiveArmAcquisition: the zero frame's readings as the zero reference, each trial with
+    its readings: the model takes absolute encoder readings), algebraic generators, metric upgrade and bundle
+    adjustment;
+  - tells the rig's mounting from the observation frames when there are some (the model of each mounting predicts
+    them; the better one is kept), else keeps setMounting()'s (eye-to-hand by default);
+  - summarises each joint: its trials, their range and the model's RMS prediction error on them.
+  saveModel() then writes the model with the markers' identifiers (vpProjectiveModelFile), to a temporary file that
+  is renamed: the model file is complete or absent.
+
+  <b>check()</b> predicts, for each frame of a session, the markers of the model seen in it at the frame's encoder
+  readings, and compares with the extracted ones: RMS per coordinate in the left image, in the right image, and both.
+  A frame fits when both are within setMismatchThreshold(). A camera moved since the model was made shows as a large
+  error in its own image only (its projection changed, the other camera's did not); both images off means both
+  cameras moved, or the markers moved on the tool, or the readings are not the model's encoders.
+
+  Every error is a vpProjectiveException with a one-line message naming the frame and what to do.
+*/
+class VISP_EXPORT vpProjectiveSessionCalibration
+{
+public:
+  /*!
+    Extracts the markers of a stereo pair: fills \e ids (ascending, distinct), \e left and \e right (the same size,
+    pixels) with the markers found in both images and returns their number.
+  */
+  typedef std::function<unsigned int(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
+                                     std::vector<int> &ids, std::vector<vpImagePoint> &left,
+                                     std::vector<vpImagePoint> &right)>
+      vpMarkerExtractor;
+
+  //! The rig's mounting for calibrate().
+  enum vpMountingChoice {
+    MOUNTING_AUTO,        //!< From the observation frames if any, else eye-to-hand (default).
+    MOUNTING_EYE_TO_HAND, //!< The rig is fixed, the markers on the tool.
+    MOUNTING_EYE_IN_HAND  //!< The rig rides on the hand, the markers are static.
+  };
+
+  //! What calibrate() found about one joint.
+  struct vpJointSummary {
+    vpProjectiveJoint::vpJointType type; //!< Revolute or prismatic.
+    unsigned int trials;                 //!< Trial frames of the joint.
+    double smallest;                     //!< Smallest signed trial amount (rad or m).
+    double largest;                      //!< Largest signed trial amount (rad or m).
+    double residual;                     //!< RMS prediction error (px per coordinate) of the model on its trials.
+  };
+
+  //! What check() found about one frame.
+  struct vpFrameCheck {
+    unsigned int frame;                    //!< Index in the session.
+    vpProjectiveSession::vpFrameRole role; //!< The frame's role.
+    unsigned int markers;                  //!< Markers of the model seen in the frame.
+    double left;                           //!< RMS per coordinate of the left image (px).
+    double right;                          //!< RMS per coordinate of the right image (px).
+    double rms;                            //!< RMS per coordinate of both (px).
+    bool fits;                             //!< True if left and right are within the mismatch threshold.
+  };
+
+  //! What check() concludes about the rig.
+  enum vpRigState {
+    RIG_UNCHANGED,      //!< Every frame fits.
+    LEFT_CAMERA_MOVED,  //!< The left images are off, the right ones fit.
+    RIGHT_CAMERA_MOVED, //!< The right images are off, the left ones fit.
+    BOTH_CAMERAS_MOVED  //!< Both are off (both cameras moved, the markers moved, or other encoders).
+  };
+
+  /*!
+    A calibration whose markers come from \e extractor; empty: noDetector("36h11") (which fails clearly).
+  */
+  explicit vpProjectiveSessionCalibration(const vpMarkerExtractor &extractor = vpMarkerExtractor());
+
+  /*!
+    A marker extraction function for the AprilTag family \e family (e.g. "36h11") that, until the plugin's AprilTag
+    detector is wired in, throws a vpProjectiveException (notInitializedError) saying that this build has no marker
+    detector.
+  */
+  static vpMarkerExtractor noDetector(const std::string &family);
+
+  /*!
+    The image source of vpProjectiveAcquisitionProcedure on a cell: each call takes a stereo pair from \e images,
+    reads the joints of \e robot (vpRobot::getPosition(ARTICULAR_FRAME)), extracts the markers with \e extractor and
+    gives those of the first call's identifiers (the zero reference), in that order; false if \e images has no more
+    pairs or one of those markers is missing. A pair whose markers are all found is recorded with the readings if
+    \e writer is not null (vpProjectiveSessionWriter::addAcquisitionFrame(): the zero frame, trials and the mounting
+    check's observations; time in seconds from the first call): the session holds the frames the procedure used, and
+    calibrates offline as the run did (visp-projective calibrate). \e images, \e robot and \e writer must outlive the
+    function. \code vpStereoGrabberSource cameras("/dev/video0", "/dev/video2"); vpProjectiveSessionWriter
+    writer("cell-2026-11-27", types); vpProjectiveAcquisitionProcedure procedure(
+        vpProjectiveSessionCalibration::markerSource(cameras, extractor, robot, &writer), width, height);
+    procedure.run(robot, projectiveRobot);
+    \endcode
+  */
+  static vpProjectiveAcquisitionProcedure::vpImageSource markerSource(vpStereoImageSource &images,
+                                                                      const vpMarkerExtractor &extractor,
+                                                                      vpRobot &robot,
+                                                                      vpProjectiveSessionWriter *writer = nullptr);
+
+  //! The marker extraction function.
+  void setMarkerExtractor(const vpMarkerExtractor &extractor);
+  //! Where to write the progress, a line per frame and a summary (null: nothing). Default null.
+  void setOutput(std::ostream *os) { m_os = os; }
+  //! The mounting (default MOUNTING_AUTO).
+  void setMounting(vpMountingChoice mounting) { m_mounting = mounting; }
+  /*!
+    Epipolar inlier threshold of the rig's estimation (pixels, > 0; default 2).
+    \exception vpProjectiveException (invalidValueError) if not positive or not finite.
+  */
+  void setEpipolarThreshold(double pixels);
+  /*!
+    Outlier threshold of the acquisition (pixels, >= 0; 0, the default, keeps every observation; see
+    vpProjectiveArmAcquisition::setOutlierThreshold()).
+    \exception vpProjectiveException (invalidValueError) if negative or not finite.
+  */
+  void setOutlierThreshold(double pixels);
+  /*!
+    Coplanarity threshold (pixels RMS, > 0; default 2; see vpProjectiveAcquisitionProcedure::setCoplanarityThreshold()).
+    \exception vpProjectiveException (invalidValueError) if not positive or not finite.
+  */
+  void setCoplanarityThreshold(double pixels);
+  /*!
+    RMS per coordinate (pixels, > 0; default 2) above which check() says that a frame does not fit the model.
+    \exception vpProjectiveException (invalidValueError) if not positive or not finite.
+  */
+  void setMismatchThreshold(double pixels);
+
+  /*!
+    Calibrates the arm of \e session (see the class documentation) and returns the model.
+    \exception vpProjectiveException with a one-line message naming the frame: no marker in a frame, fewer than 5
+    markers in the zero frame or of them in a trial, coplanar markers, a joint without a trial, a rig or a
+    calibration that cannot be estimated; and the extraction function's errors.
+  */
+  vpProjectiveArmModel calibrate(const vpProjectiveSession &session);
+  //! The identifiers of the model's markers, in the model's order (after calibrate()).
+  const std::vector<int> &getMarkerIds() const { return m_ids; }
+  //! RMS pixel residual of the last calibrate()'s bundle adjustment.
+  double getCalibrationResidual() const { return m_residual; }
+  //! RMS pixel residual of the last calibrate()'s algebraic generators.
+  double getAlgebraicResidual() const { return m_algebraicResidual; }
+  //! What the last calibrate() found about each joint.
+  const std::vector<vpJointSummary> &getJointSummaries() const { return m_joints; }
+  /*!
+    Writes the last calibrate()'s model with its residuals and marker identifiers to \e filename, atomically.
+    \exception vpProjectiveException (notInitializedError) before calibrate(); (fileError) if the file cannot be
+    written (no file is left then).
+  */
+  void saveModel(const std::string &filename) const;
+  /*!
+    Checks that \e filename can be written (a temporary file is created beside it and removed), so that a tool fails
+    before a long calibration rather than after.
+    \exception vpProjectiveException (fileError) naming the path.
+  */
+  static void checkWritable(const std::string &filename);
+
+  /*!
+    The prediction error of \e model (whose markers have the identifiers \e ids) on every frame of \e session, one
+    progress line per frame.
+    \exception vpProjectiveException (dimensionError) if the session's joints are not the model's or \e ids does not
+    have one identifier per marker; (fileError) if a frame shows no marker of the model (naming it); and the
+    extraction function's errors.
+  */
+  std::vector<vpFrameCheck> check(const vpProjectiveArmModel &model, const std::vector<int> &ids,
+                                  const vpProjectiveSession &session);
+  //! What the last check() concludes.
+  vpRigState getRigState() const { return m_state; }
+  //! RMS per coordinate of the left images over the frames of the last check() (px).
+  double getLeftResidual() const { return m_leftResidual; }
+  //! RMS per coordinate of the right images over the frames of the last check() (px).
+  double getRightResidual() const { return m_rightResidual; }
+  //! A sentence for a rig state.
+  static std::string toString(vpRigState state);
+
+private:
+  void progress(const std::string &line) const;
+
+  vpMarkerExtractor m_extractor;
+  std::ostream *m_os;
+  vpMountingChoice m_mounting;
+  double m_epipolar, m_outlier, m_coplanarity, m_mismatch;
+  bool m_calibrated;
+  vpProjectiveArmModel m_model;
+  std::vector<int> m_ids;
+  double m_residual, m_algebraicResidual;
+  std::vector<vpJointSummary> m_joints;
+  vpRigState m_state;
+  double m_leftResidual, m_rightResidual;
+};
+
+END_VISP_NAMESPACE
+
+#endif
