@@ -38,6 +38,7 @@ using vpProjectiveInternal::fail;
 namespace
 {
 const vpProjectiveInternal::vpErrorSite at("vpStereoAprilTagDetector");
+const double kSpacing = 2.0; // pixels between the points relocated along an edge
 
 //! Bilinear grey level at (u, v) (ViSP's convention); false outside the image.
 inline bool bilinear(const vpImage<unsigned char> &I, double u, double v, double &g)
@@ -200,7 +201,7 @@ void vpStereoAprilTagDetector::detectIn(const vpImage<unsigned char> &I, const B
   const std::vector<std::vector<vpImagePoint>> corners = m_detector.getTagsCorners();
   const std::vector<int> ids = m_detector.getTagsId();
   for (size_t d = 0; d < ids.size() && d < corners.size(); ++d) {
-    if (corners[d].size() != 4) {
+    if (corners[d].size() != 4 || (box.id >= 0 && ids[d] != box.id)) {
       continue;
     }
     Tag tag;
@@ -217,40 +218,20 @@ void vpStereoAprilTagDetector::detectImage(const vpImage<unsigned char> &I, int 
   tags.clear();
   const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
   if (m_predicted.empty()) {
-    detectIn(I, Box{0, 0, H - 1, W - 1}, tags);
+    detectIn(I, Box{0, 0, H - 1, W - 1, -1}, tags);
   } else {
-    // Boxes of the predicted tags, grown by the margin and a third of their size (the quiet zone and the motion),
-    // overlapping ones merged.
-    std::vector<Box> boxes;
+    // One box per predicted tag, grown by the margin, by its quiet zone (an eighth of its size) and 2 px; in each box,
+    // only that tag is kept (a neighbour partly inside is found in its own box).
     for (size_t t = 0; t < m_predicted.size(); ++t) {
       const vpImagePoint &lo = m_predictedBox[side][2 * t], &hi = m_predictedBox[side][2 * t + 1];
-      const double grow = m_margin + (std::max(hi.get_u() - lo.get_u(), hi.get_v() - lo.get_v())) / 3.0;
-      Box b{static_cast<int>(std::floor(lo.get_v() - grow)), static_cast<int>(std::floor(lo.get_u() - grow)),
-            static_cast<int>(std::ceil(hi.get_v() + grow)), static_cast<int>(std::ceil(hi.get_u() + grow))};
-      b.i0 = std::max(0, b.i0);
-      b.j0 = std::max(0, b.j0);
-      b.i1 = std::min(H - 1, b.i1);
-      b.j1 = std::min(W - 1, b.j1);
+      const double grow = m_margin + 2.0 + std::max(hi.get_u() - lo.get_u(), hi.get_v() - lo.get_v()) / 8.0;
+      Box b{std::max(0, static_cast<int>(std::floor(lo.get_v() - grow))),
+            std::max(0, static_cast<int>(std::floor(lo.get_u() - grow))),
+            std::min(H - 1, static_cast<int>(std::ceil(hi.get_v() + grow))),
+            std::min(W - 1, static_cast<int>(std::ceil(hi.get_u() + grow))), m_predicted[t]};
       if (b.i1 - b.i0 >= 8 && b.j1 - b.j0 >= 8) {
-        boxes.push_back(b);
+        detectIn(I, b, tags);
       }
-    }
-    for (bool merged = true; merged;) {
-      merged = false;
-      for (size_t a = 0; a < boxes.size() && !merged; ++a) {
-        for (size_t b = a + 1; b < boxes.size() && !merged; ++b) {
-          if (boxes[a].i0 <= boxes[b].i1 && boxes[b].i0 <= boxes[a].i1 && boxes[a].j0 <= boxes[b].j1 &&
-              boxes[b].j0 <= boxes[a].j1) {
-            boxes[a] = Box{std::min(boxes[a].i0, boxes[b].i0), std::min(boxes[a].j0, boxes[b].j0),
-                           std::max(boxes[a].i1, boxes[b].i1), std::max(boxes[a].j1, boxes[b].j1)};
-            boxes.erase(boxes.begin() + static_cast<long>(b));
-            merged = true;
-          }
-        }
-      }
-    }
-    for (const Box &b : boxes) {
-      detectIn(I, b, tags);
     }
   }
   if (m_refine) {
@@ -283,10 +264,10 @@ void vpStereoAprilTagDetector::refine(const vpImage<unsigned char> &I, Tag &tag)
         normal = -normal; // outwards: from the black border to the white quiet zone
       }
       // Half-width of the search across the edge: less than half a cell (the border is one cell of side / 8).
-      const double reach = std::min(4.0, std::max(1.0, 0.45 * length / 8.0));
+      const double reach = std::min(3.0, std::max(1.0, 0.45 * length / 8.0));
       const int steps = static_cast<int>(std::floor(reach / 0.5));
       points.clear();
-      for (double s = reach + 2.0; s <= length - reach - 2.0; s += 1.0) {
+      for (double s = reach + 2.0; s <= length - reach - 2.0; s += kSpacing) {
         const Eigen::Vector2d p = a + s * t;
         double previous = 0.0, sum = 0.0, moment = 0.0;
         bool inside = true;

@@ -56,8 +56,8 @@ class vpProjectiveStereoRig;
 
   Tracking: setPredictedRegions() gives where the tags are expected (e.g. the model's predictions, or the last
   detection's corners); detect() then runs vpDetectorAprilTag only in the box around each predicted tag (grown by
-  setRegionMargin() and by a third of the tag's size), boxes that overlap merged, and shifts the corners back. A tag
-  not found in its box is missing from the result: clearPredictedRegions() returns to full-image detection.
+  setRegionMargin(), by the quiet zone and 2 px), keeps that tag there and shifts its corners back. A tag not found in
+  its box is missing from the result: clearPredictedRegions() returns to full-image detection.
 
   A tag id seen twice in one image (two printed copies) is ambiguous and dropped.
 
@@ -144,7 +144,8 @@ private:
     vpImagePoint corners[4];
   };
   struct Box {
-    int i0, j0, i1, j1;
+    int i0, j0, i1, j1; // first and last rows and columns
+    int id;             // the tag kept in the box; -1: all
   };
 
   void detectImage(const vpImage<unsigned char> &I, int side, std::vector<Tag> &tags);
