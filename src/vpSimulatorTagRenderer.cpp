@@ -40,10 +40,37 @@ const vpProjectiveInternal::vpErrorSite at("vpSimulatorTagRenderer");
 const unsigned int kNoiseTableSize = 65536;
 
 /*
-  Data of the tag36h11 family of AprilTag 3 (https://github.com/AprilRobotics/apriltag, tag36h11.c), Copyright (C)
-  2013-2016 The Regents of The University of Michigan, BSD 2-clause licence: the first 32 of its 587 codes and the
-  position of each of its 36 bits in the 8 x 8 grid inside the white quiet zone (the black border is rows and columns
-  0 and 7). Bit i of a code (the most significant first, 1 = white) is the cell (kBitX[i], kBitY[i]), x the column.
+  Data of the tag36h11 family of AprilTag 3 (https://github.com/AprilRobotics/apriltag, tag36h11.c; ViSP 3.5 ships
+  it in 3rdparty/apriltag), under the BSD 2-clause licence below: the first 32 of its 587 codes and the position of
+  each of its 36 bits in the 8 x 8 grid inside the white quiet zone (the black border is rows and columns 0 and 7).
+  Bit i of a code (the most significant first, 1 = white) is the cell (kBitX[i], kBitY[i]), x the column.
+
+  The licence of that data:
+  Copyright (C) 2013-2016, The Regents of The University of Michigan.
+  All rights reserved.
+  This software was developed in the APRIL Robotics Lab under the
+  direction of Edwin Olson, ebolson@umich.edu. This software may be
+  available under alternative licensing terms; contact the address above.
+  Redistribution and use in source and binary forms, with or without
+  modification, are permitted provided that the following conditions are met:
+  1. Redistributions of source code must retain the above copyright notice, this
+     list of conditions and the following disclaimer.
+  2. Redistributions in binary form must reproduce the above copyright notice,
+     this list of conditions and the following disclaimer in the documentation
+     and/or other materials provided with the distribution.
+  THIS SOFTWARE IS PROVIDED BY THE COPYRIGHT HOLDERS AND CONTRIBUTORS "AS IS" AND
+  ANY EXPRESS OR IMPLIED WARRANTIES, INCLUDING, BUT NOT LIMITED TO, THE IMPLIED
+  WARRANTIES OF MERCHANTABILITY AND FITNESS FOR A PARTICULAR PURPOSE ARE
+  DISCLAIMED. IN NO EVENT SHALL THE COPYRIGHT OWNER OR CONTRIBUTORS BE LIABLE FOR
+  ANY DIRECT, INDIRECT, INCIDENTAL, SPECIAL, EXEMPLARY, OR CONSEQUENTIAL DAMAGES
+  (INCLUDING, BUT NOT LIMITED TO, PROCUREMENT OF SUBSTITUTE GOODS OR SERVICES;
+  LOSS OF USE, DATA, OR PROFITS; OR BUSINESS INTERRUPTION) HOWEVER CAUSED AND
+  ON ANY THEORY OF LIABILITY, WHETHER IN CONTRACT, STRICT LIABILITY, OR TORT
+  (INCLUDING NEGLIGENCE OR OTHERWISE) ARISING IN ANY WAY OUT OF THE USE OF THIS
+  SOFTWARE, EVEN IF ADVISED OF THE POSSIBILITY OF SUCH DAMAGE.
+  The views and conclusions contained in the software and documentation are those
+  of the authors and should not be interpreted as representing official policies,
+  either expressed or implied, of the Regents of The University of Michigan.
 */
 const uint64_t kCodes36h11[32] = {
     0xd7e00984bULL, 0xdda664ca7ULL, 0xdc4a1c821ULL, 0xe17b470e9ULL, 0xef91d01b1ULL, 0xf429cdd73ULL, 0x05da29225ULL,
