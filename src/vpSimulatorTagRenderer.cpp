@@ -509,19 +509,39 @@ void vpSimulatorTagRenderer::renderCamera(Camera &camera, vpImage<unsigned char>
         m_near.push_back(&other);
       }
     }
+    // The same as level(), shorter when a single tag may be seen in the box (the usual case).
+    const View *only = m_near.size() == 1 && m_near[0]->tag != nullptr ? m_near[0] : nullptr;
+    const int base = only == nullptr ? 0 : static_cast<int>(only->tag - m_tags.data()) << 8;
+    const auto sample = [&](double u, double v, int &label) {
+      if (only == nullptr) {
+        return level(camera, m_near, u, v, label);
+      }
+      const double *H = only->H;
+      const double iz = H[6] * u + H[7] * v + H[8];
+      label = -1;
+      if (iz > 0.0) {
+        const double z = 1.0 / iz, gx = (H[0] * u + H[1] * v + H[2]) * z, gy = (H[3] * u + H[4] * v + H[5]) * z;
+        if (gx >= 0.0 && gy >= 0.0 && gx < 10.0 && gy < 10.0) {
+          const int cell = 10 * static_cast<int>(gy) + static_cast<int>(gx);
+          label = base | cell;
+          return only->tag->cells[cell] ? m_white : m_black;
+        }
+      }
+      return m_background;
+    };
     const int cols = j1 - j0 + 2;
     m_labels.resize(static_cast<size_t>((i1 - i0 + 2) * cols));
     for (int i = i0; i <= i1 + 1; ++i) {
       for (int j = j0; j <= j1 + 1; ++j) {
-        level(camera, m_near, j - 0.5, i - 0.5, m_labels[(i - i0) * cols + (j - j0)]);
+        sample(j - 0.5, i - 0.5, m_labels[(i - i0) * cols + (j - j0)]);
       }
     }
     for (int i = i0; i <= i1; ++i) {
       for (int j = j0; j <= j1; ++j) {
-        if (camera.stamp[i][j] == camera.frame) {
+        if (camera.stamp[i][j] >= camera.frame) {
           continue; // done for an overlapping box
         }
-        camera.stamp[i][j] = camera.frame;
+        camera.stamp[i][j] = h == 0 ? camera.frame + 1 : camera.frame; // without blur, the ideal is the image
         const int *l = &m_labels[(i - i0) * cols + (j - j0)];
         int label;
         if (uniform(l[0], l[1], l[cols], l[cols + 1])) {
@@ -531,7 +551,7 @@ void vpSimulatorTagRenderer::renderCamera(Camera &camera, vpImage<unsigned char>
         double sum = 0.0;
         for (unsigned int a = 0; a < S; ++a) {
           for (unsigned int c = 0; c < S; ++c) {
-            sum += level(camera, m_near, j - 0.5 + (c + 0.5) / S, i - 0.5 + (a + 0.5) / S, label);
+            sum += sample(j - 0.5 + (c + 0.5) / S, i - 0.5 + (a + 0.5) / S, label);
           }
         }
         camera.ideal[i][j] = sum / (S * S);
@@ -541,6 +561,9 @@ void vpSimulatorTagRenderer::renderCamera(Camera &camera, vpImage<unsigned char>
 
   // Separable Gaussian blur (vpImageFilter's kernel) on each box grown by the kernel's half-width, edges replicated.
   for (const View &box : m_views) {
+    if (h == 0) {
+      break; // no blur: the final pass reads the ideal image
+    }
     const int j0 = std::max(0, box.jmin - h), j1 = std::min(width - 1, box.jmax + h);
     const int jl = std::max(0, box.jmin - 2 * h), jr = std::min(width - 1, box.jmax + 2 * h); // the ideal's box
     for (int i = std::max(0, box.imin - 2 * h); i <= std::min(height - 1, box.imax + 2 * h); ++i) {
@@ -554,6 +577,9 @@ void vpSimulatorTagRenderer::renderCamera(Camera &camera, vpImage<unsigned char>
     }
   }
   for (const View &box : m_views) {
+    if (h == 0) {
+      break;
+    }
     const int j0 = std::max(0, box.jmin - h), j1 = std::min(width - 1, box.jmax + h);
     const int i0 = std::max(0, box.imin - h), i1 = std::min(height - 1, box.imax + h);
     const int il = std::max(0, box.imin - 2 * h), ir = std::min(height - 1, box.imax + 2 * h);
@@ -585,7 +611,7 @@ void vpSimulatorTagRenderer::renderCamera(Camera &camera, vpImage<unsigned char>
   for (int i = 0; i < height; ++i) {
     const double rowGain = m_gain + sv * (i - 0.5 * height) - su * 0.5 * width;
     const unsigned int *stamp = camera.stamp[i];
-    const double *blurred = camera.blurred[i];
+    const double *blurred = h == 0 ? camera.ideal[i] : camera.blurred[i];
     unsigned char *out = I[i];
     for (int j = 0; j < width; ++j) {
       if (flat && stamp[j] != valid) {

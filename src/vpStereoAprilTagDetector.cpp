@@ -39,6 +39,7 @@ namespace
 {
 const vpProjectiveInternal::vpErrorSite at("vpStereoAprilTagDetector");
 const double kSpacing = 2.0; // pixels between the points relocated along an edge
+const int kIterations = 2;   // relocations of the edges at most; the second if a corner moved by 0.1 px or more
 
 //! Bilinear grey level at (u, v) (ViSP's convention); false outside the image.
 inline bool bilinear(const vpImage<unsigned char> &I, double u, double v, double &g)
@@ -249,7 +250,7 @@ void vpStereoAprilTagDetector::refine(const vpImage<unsigned char> &I, Tag &tag)
   }
   const Eigen::Vector2d centre = 0.25 * (c[0] + c[1] + c[2] + c[3]);
   std::vector<Eigen::Vector2d> points;
-  for (int iteration = 0; iteration < 2; ++iteration) {
+  for (int iteration = 0; iteration < kIterations; ++iteration) {
     Eigen::Vector2d n[4];
     double d[4];
     for (int e = 0; e < 4; ++e) { // edge e: corner e to corner e + 1
@@ -302,8 +303,13 @@ void vpStereoAprilTagDetector::refine(const vpImage<unsigned char> &I, Tag &tag)
         return;
       }
     }
+    double moved = 0.0;
     for (int k = 0; k < 4; ++k) {
+      moved = std::max(moved, (refined[k] - c[k]).norm());
       c[k] = refined[k];
+    }
+    if (moved < 0.1) {
+      break;
     }
   }
   for (int k = 0; k < 4; ++k) {

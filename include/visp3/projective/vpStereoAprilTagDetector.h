@@ -49,13 +49,14 @@ class vpProjectiveStereoRig;
   vpSimulatorTagRenderer's images, whose truth is exact): detect() removes that offset.
 
   Refinement (setRefinement(), on by default): each of the 4 outer edges of the black border is relocated at points
-  1 px apart, away from the corners, as the centroid of the positive intensity derivative across it (bilinear
-  samples every 0.5 px, black inside, white outside), a line is fitted to those points (total least squares), and
-  each corner becomes the intersection of its two edges' lines; twice. A corner that would move by more than 2 px
-  keeps vpDetectorAprilTag's position. AprilTag's own edge refinement is then redundant and off. Measured on
-  vpSimulatorTagRenderer's images (tags of about 67 px tilted by up to 0.6 rad, noise 1 grey level), RMS corner error
-  without blur / with 1 px blur: this refit 0.036 / 0.029 px; AprilTag's edge refinement (offset removed)
-  0.089 / 0.056 px; cv::cornerSubPix from there 0.22 / 0.21 px (its model does not fit an L-shaped corner).
+  2 px apart, away from the corners, as the centroid of the positive intensity derivative across it (bilinear
+  samples every 0.5 px within 3 px, black inside, white outside), a line is fitted to those points (total least
+  squares), and each corner becomes the intersection of its two edges' lines; again if a corner moved by 0.1 px or more.
+  A corner that would move by more than 2 px keeps vpDetectorAprilTag's position. AprilTag's own edge refinement is then
+  redundant and off. Measured on vpSimulatorTagRenderer's images (tags of about 67 px tilted by up to 0.6 rad, noise 1
+  grey level), RMS corner error without blur / with 1 px blur: this refit 0.036 / 0.029 px; AprilTag's edge refinement
+  (offset removed) 0.089 / 0.056 px; cv::cornerSubPix from there 0.22 / 0.21 px (its model does not fit an L-shaped
+  corner).
 
   Tracking: setPredictedRegions() gives where the tags are expected (e.g. the model's predictions, or the last
   detection's corners); detect() then runs vpDetectorAprilTag only in the box around each predicted tag (grown by
