@@ -113,13 +113,13 @@ std::vector<double> halfKernel(double sigma)
 void checkPose(const vpHomogeneousMatrix &M, const char *method)
 {
   if (!vpProjectiveInternal::allFinite(M)) {
-    fail(vpProjectiveException::nonFiniteValueError, at(method), "the tag's pose is not finite; check wMt");
+    fail(vpProjectiveException::nonFiniteValueError, at(method), "the pose is not finite; check it");
   }
 }
 } // namespace
 
 vpSimulatorTagRenderer::vpSimulatorTagRenderer(const vpSimulatorStereoRig &rig, long seed)
-    : m_rig(rig), m_tags(), m_background(128.0), m_black(30.0), m_white(220.0), m_blur(0.0), m_noise(1.0),
+    : m_rig(rig), m_tags(), m_wMb(), m_background(128.0), m_black(30.0), m_white(220.0), m_blur(0.0), m_noise(1.0),
       m_supersampling(4), m_gain(1.0), m_offset(0.0), m_gradientU(0.0), m_gradientV(0.0), m_occluder(3, 0.0),
       m_occluderRadius(0.0), m_occluderLevel(15.0), m_seed(seed), m_kernel(halfKernel(0.0)), m_cameras(),
       m_noiseTable(), m_backgroundTable(), m_backgroundKey(0.0), m_labels(), m_views(), m_near(), m_state(1), m_bits(0),
@@ -138,15 +138,15 @@ vpSimulatorTagRenderer::vpSimulatorTagRenderer(const vpSimulatorStereoRig &rig, 
   resetNoise();
 }
 
-unsigned int vpSimulatorTagRenderer::addTag(int id, double size, const vpHomogeneousMatrix &wMt)
+unsigned int vpSimulatorTagRenderer::addTag(int id, double size, const vpHomogeneousMatrix &bMt)
 {
   checkRange(id, 0, maxTagId, "addTag()", "the tag id", "the renderer holds the 36h11 codes 0 to 31.");
   checkRange(size, 1e-4, 10.0, "addTag()", "the tag size (m)", "give the side of the black square in metres.");
-  checkPose(wMt, "addTag()");
+  checkPose(bMt, "addTag()");
   Tag tag;
   tag.id = id;
   tag.size = size;
-  tag.wMt = wMt;
+  tag.bMt = bMt;
   for (int y = 0; y < 10; ++y) {
     for (int x = 0; x < 10; ++x) {
       tag.cells[10 * y + x] = (x == 0 || y == 0 || x == 9 || y == 9) ? 1 : 0; // quiet zone white, the rest black
@@ -170,11 +170,17 @@ void vpSimulatorTagRenderer::checkIndex(unsigned int index, const char *method) 
   }
 }
 
-void vpSimulatorTagRenderer::setTagPose(unsigned int index, const vpHomogeneousMatrix &wMt)
+void vpSimulatorTagRenderer::setTagPose(unsigned int index, const vpHomogeneousMatrix &bMt)
 {
   checkIndex(index, "setTagPose()");
-  checkPose(wMt, "setTagPose()");
-  m_tags[index].wMt = wMt;
+  checkPose(bMt, "setTagPose()");
+  m_tags[index].bMt = bMt;
+}
+
+void vpSimulatorTagRenderer::setBodyPose(const vpHomogeneousMatrix &wMb)
+{
+  checkPose(wMb, "setBodyPose()");
+  m_wMb = wMb;
 }
 
 int vpSimulatorTagRenderer::getTagId(unsigned int index) const
@@ -192,20 +198,21 @@ double vpSimulatorTagRenderer::getTagSize(unsigned int index) const
 vpHomogeneousMatrix vpSimulatorTagRenderer::getTagPose(unsigned int index) const
 {
   checkIndex(index, "getTagPose()");
-  return m_tags[index].wMt;
+  return m_wMb * m_tags[index].bMt;
 }
 
 std::vector<vpColVector> vpSimulatorTagRenderer::getCorners(unsigned int index) const
 {
   checkIndex(index, "getCorners()");
   const Tag &tag = m_tags[index];
+  const vpHomogeneousMatrix wMt = m_wMb * tag.bMt;
   const double h = tag.size / 2.0;
   const double xs[4] = {-h, h, h, -h}, ys[4] = {h, h, -h, -h};
   std::vector<vpColVector> corners;
   for (int k = 0; k < 4; ++k) {
     vpColVector X(3);
     for (unsigned int r = 0; r < 3; ++r) {
-      X[r] = tag.wMt[r][0] * xs[k] + tag.wMt[r][1] * ys[k] + tag.wMt[r][3];
+      X[r] = wMt[r][0] * xs[k] + wMt[r][1] * ys[k] + wMt[r][3];
     }
     corners.push_back(X);
   }
@@ -334,7 +341,7 @@ inline unsigned int vpSimulatorTagRenderer::noiseIndex()
 
 bool vpSimulatorTagRenderer::view(const Camera &camera, const Tag &tag, View &v) const
 {
-  const vpHomogeneousMatrix cMt = camera.cMw * tag.wMt;
+  const vpHomogeneousMatrix cMt = camera.cMw * m_wMb * tag.bMt;
   const double px = camera.cam.get_px(), py = camera.cam.get_py(), u0 = camera.cam.get_u0(), v0 = camera.cam.get_v0();
   // Printed side (-z) towards the camera: the tag's origin lies ahead along its z axis.
   const double facing = cMt[0][2] * cMt[0][3] + cMt[1][2] * cMt[1][3] + cMt[2][2] * cMt[2][3];

@@ -26,6 +26,8 @@
 
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
+#include <visp3/core/vpRotationMatrix.h>
+#include <visp3/core/vpRxyzVector.h>
 #include <visp3/core/vpUniRand.h>
 #include <visp3/detection/vpDetectorAprilTag.h>
 #include <visp3/projective/vpProjectiveException.h>
@@ -311,6 +313,31 @@ TEST(StereoAprilTagDetector, OccludedTagIsMissing)
   EXPECT_EQ(detector.detect(Il, Ir), 24u);
 }
 
+// Tags on three faces of a 6 cm cube carried by a body (a tool), turned so that the three faces face the rig: their 12
+// corners (not coplanar) are found in both images, accurately, and follow the body when it moves.
+TEST(StereoAprilTagDetector, TagsOnAToolCube)
+{
+  vpSimulatorTagRenderer renderer(kRig, 9);
+  const double half = 0.03;
+  renderer.addTag(4, 0.035, vpHomogeneousMatrix(0.0, 0.0, -half, 0.0, 0.0, 0.0));       // face -z of the body
+  renderer.addTag(5, 0.035, vpHomogeneousMatrix(-half, 0.0, 0.0, 0.0, M_PI / 2, 0.0));  // face -x
+  renderer.addTag(6, 0.035, vpHomogeneousMatrix(0.0, -half, 0.0, -M_PI / 2, 0.0, 0.0)); // face -y
+  for (int pose = 0; pose < 2; ++pose) {
+    const vpHomogeneousMatrix wMb(vpTranslationVector(0.02 * pose, -0.01 * pose, 0.0),
+                                  vpRotationMatrix(vpRxyzVector(0.6, -0.6, 0.1 * pose)));
+    renderer.setBodyPose(wMb);
+    vpImage<unsigned char> Il, Ir;
+    renderer.render(Il, Ir);
+    vpStereoAprilTagDetector detector;
+    ASSERT_EQ(detector.detect(Il, Ir), 12u) << "pose " << pose;
+    double sum2 = 0.0, worst = 0.0;
+    unsigned int count = 0;
+    accumulateErrors(renderer, detector, sum2, count, worst);
+    EXPECT_LT(std::sqrt(sum2 / count), 0.1) << "pose " << pose;
+    EXPECT_LT(worst, 0.3) << "pose " << pose;
+  }
+}
+
 // Same seed and settings, same images; another seed, other noise.
 TEST(SimulatorTagRenderer, SeededAndReproducible)
 {
@@ -354,6 +381,9 @@ TEST(StereoAprilTagDetector, BadInputThrowsAndKeepsTheResults)
   EXPECT_THROW(renderer.addTag(-1, 0.04, vpHomogeneousMatrix()), vpProjectiveException);
   EXPECT_THROW(renderer.addTag(0, 0.0, vpHomogeneousMatrix()), vpProjectiveException);
   EXPECT_THROW(renderer.setTagPose(6, vpHomogeneousMatrix()), vpProjectiveException);
+  vpHomogeneousMatrix infinite;
+  infinite[0][3] = std::nan("");
+  EXPECT_THROW(renderer.setBodyPose(infinite), vpProjectiveException);
   EXPECT_THROW(renderer.setBlur(-1.0), vpProjectiveException);
   EXPECT_THROW(renderer.setNoise(std::nan("")), vpProjectiveException);
   EXPECT_THROW(renderer.setLighting(-1.0, 0.0), vpProjectiveException);

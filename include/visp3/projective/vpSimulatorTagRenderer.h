@@ -39,13 +39,14 @@ BEGIN_VISP_NAMESPACE
   \brief Renders what the two cameras of a vpSimulatorStereoRig see of printed AprilTags of the 36h11 family
   (ids 0 to 31) on a mid-grey scene.
 
-  Tag frame \c t (ViSP's object frame of vpDetectorAprilTag): origin at the tag's centre, \f$ x \f$ along the
-  columns of the printed pattern (to the right when the tag is read upright), \f$ y \f$ along its rows (downwards),
-  \f$ z = x \times y \f$ into the tag, away from a reader facing the print. The \e size \f$ s \f$ of a tag is the side
-  of its black square (ViSP's \c tagSize); the pattern is the family's 10 x 10 cells of side \f$ s/8 \f$: a white
-  quiet zone of one cell, the black border, the 6 x 6 data cells. Its corners, in vpDetectorAprilTag's order
-  (getCorners(), getImageCorners()), are at \f$ (x, y) = \f$ 0: \f$ (-s/2, s/2) \f$, 1: \f$ (s/2, s/2) \f$,
-  2: \f$ (s/2, -s/2) \f$, 3: \f$ (-s/2, -s/2) \f$.
+  Frames: \c w the world (the rig's, vpSimulatorStereoRig), \c b the body that carries the tags (e.g. the arm's
+  tool: setBodyPose() moves them all), \c t a tag. Tag frame (ViSP's object frame of vpDetectorAprilTag): origin at the
+  tag's centre, \f$ x \f$ along the columns of the printed pattern (to the right when the tag is read upright), \f$ y
+  \f$ along its rows (downwards), \f$ z = x \times y \f$ into the tag, away from a reader facing the print. The \e size
+  \f$ s \f$ of a tag is the side of its black square (ViSP's \c tagSize); the pattern is the family's 10 x 10 cells of
+  side \f$ s/8 \f$: a white quiet zone of one cell, the black border, the 6 x 6 data cells. Its corners, in
+  vpDetectorAprilTag's order (getCorners(), getImageCorners()), are at \f$ (x, y) = \f$ 0: \f$ (-s/2, s/2) \f$, 1: \f$
+  (s/2, s/2) \f$, 2: \f$ (s/2, -s/2) \f$, 3: \f$ (-s/2, -s/2) \f$.
 
   Each pixel is the area \f$ [j - 1/2, j + 1/2] \times [i - 1/2, i + 1/2] \f$ around its centre
   \f$ (u, v) = (j, i) \f$ (ViSP's convention). Its value is exact perspective: the ray through an image point meets
@@ -85,13 +86,22 @@ public:
   /*! \name The tags */
   //@{
   /*!
-    Adds the tag \e id (0 to maxTagId) of black-square side \e size metres at pose \e wMt in the world.
+    Adds the tag \e id (0 to maxTagId) of black-square side \e size metres at pose \e bMt in the body frame \c b
+    (setBodyPose(); the world frame until then). Ids may repeat (two printed copies).
     \return its index for setTagPose().
     \exception vpProjectiveException (invalidValueError, nonFiniteValueError) on a bad id, size or pose.
   */
-  unsigned int addTag(int id, double size, const vpHomogeneousMatrix &wMt);
-  //! Moves tag \e index to \e wMt. \exception vpProjectiveException on a bad index or a non-finite pose.
-  void setTagPose(unsigned int index, const vpHomogeneousMatrix &wMt);
+  unsigned int addTag(int id, double size, const vpHomogeneousMatrix &bMt);
+  //! Moves tag \e index to \e bMt (body frame). \exception vpProjectiveException on a bad index or a non-finite pose.
+  void setTagPose(unsigned int index, const vpHomogeneousMatrix &bMt);
+  /*!
+    Pose \e wMb in the world of the body that carries the tags (e.g. the arm's tool, wMb = wMe(q) with the tags
+    placed on its faces by addTag()): the tags move with it. Identity by default.
+    \exception vpProjectiveException (nonFiniteValueError) on a non-finite pose.
+  */
+  void setBodyPose(const vpHomogeneousMatrix &wMb);
+  //! Pose of the body in the world.
+  const vpHomogeneousMatrix &getBodyPose() const { return m_wMb; }
   //! Removes every tag.
   void clearTags() { m_tags.clear(); }
   //! Number of tags.
@@ -100,7 +110,7 @@ public:
   int getTagId(unsigned int index) const;
   //! Black-square side (m) of tag \e index.
   double getTagSize(unsigned int index) const;
-  //! Pose of tag \e index in the world.
+  //! Pose of tag \e index in the world: getBodyPose() times its pose in the body.
   vpHomogeneousMatrix getTagPose(unsigned int index) const;
   //! World coordinates (3x1) of the 4 corners of tag \e index, in vpDetectorAprilTag's order (class description).
   std::vector<vpColVector> getCorners(unsigned int index) const;
@@ -153,7 +163,7 @@ private:
   struct Tag {
     int id;
     double size;
-    vpHomogeneousMatrix wMt;
+    vpHomogeneousMatrix bMt;
     uint8_t cells[100]; // 10 x 10, row-major (row = tag y), 1 = white
   };
   //! A tag as one camera sees it: pixel -> cell homography, pixel box.
@@ -179,6 +189,7 @@ private:
 
   vpSimulatorStereoRig m_rig;
   std::vector<Tag> m_tags;
+  vpHomogeneousMatrix m_wMb;
   double m_background, m_black, m_white;
   double m_blur;
   double m_noise;
