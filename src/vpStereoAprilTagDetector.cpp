@@ -18,6 +18,8 @@
 
 #include <visp3/projective/vpStereoAprilTagDetector.h>
 
+#if defined(VISP_HAVE_APRILTAG)
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -382,3 +384,5 @@ unsigned int vpStereoAprilTagDetector::detect(const vpImage<unsigned char> &Ilef
   m_rejected = rejected;
   return static_cast<unsigned int>(m_ids.size());
 }
+
+#endif // VISP_HAVE_APRILTAG

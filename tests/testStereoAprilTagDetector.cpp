@@ -24,21 +24,26 @@
 
 #include <gtest/gtest.h>
 
+#include <visp3/core/vpConfig.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpRotationMatrix.h>
 #include <visp3/core/vpRxyzVector.h>
 #include <visp3/core/vpUniRand.h>
-#include <visp3/detection/vpDetectorAprilTag.h>
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 #include <visp3/projective/vpSimulatorTagRenderer.h>
 #include <visp3/projective/vpStereoAprilTagDetector.h>
+#if defined(VISP_HAVE_APRILTAG)
+#include <visp3/detection/vpDetectorAprilTag.h>
+#endif
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
+
+#if defined(VISP_HAVE_APRILTAG)
 
 namespace
 {
@@ -390,3 +395,12 @@ TEST(StereoAprilTagDetector, BadInputThrowsAndKeepsTheResults)
   EXPECT_THROW(renderer.setOccluder(vpColVector(2, 0.0), 0.01), vpProjectiveException);
   EXPECT_EQ(renderer.getNbTags(), 6u);
 }
+
+#else
+
+TEST(StereoAprilTagDetector, NeedsViSPAprilTag)
+{
+  GTEST_SKIP() << "ViSP was built without AprilTag (VISP_HAVE_APRILTAG)";
+}
+
+#endif // VISP_HAVE_APRILTAG

@@ -33,6 +33,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <visp3/core/vpConfig.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpUniRand.h>
 #include <visp3/detection/vpDetectorAprilTag.h>
@@ -44,6 +45,7 @@
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
+#if defined(VISP_HAVE_APRILTAG)
 namespace
 {
 struct Scene {
@@ -128,3 +130,10 @@ BENCHMARK(BM_StereoDetectorTracking)->Unit(benchmark::kMillisecond)->Repetitions
 BENCHMARK(BM_RenderPair)->Unit(benchmark::kMillisecond)->Repetitions(5)->ReportAggregatesOnly(true);
 
 BENCHMARK_MAIN();
+
+#else
+int main()
+{
+  return 0;
+} // ViSP without AprilTag: nothing to time
+#endif

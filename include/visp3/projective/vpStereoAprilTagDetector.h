@@ -24,6 +24,8 @@
 
 #include <vector>
 
+#if defined(VISP_HAVE_APRILTAG) // ViSP built with its AprilTag 3 (3rdparty/apriltag, on by default)
+
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMatrix.h>
@@ -171,5 +173,7 @@ private:
 };
 
 END_VISP_NAMESPACE
+
+#endif // VISP_HAVE_APRILTAG
 
 #endif
