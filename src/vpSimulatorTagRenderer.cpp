@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <sstream>
 #include <string>
 
@@ -505,7 +506,14 @@ void vpSimulatorTagRenderer::renderCamera(Camera &camera, vpImage<unsigned char>
                               : (m_tags[static_cast<size_t>(label >> 8)].cells[label & 255] ? m_white : m_black));
   };
   ++camera.frame;
-  const unsigned int S = m_supersampling;
+  // The S x S rays of an edge pixel: a rank-1 lattice, ray k at ((k + 1/2) / N, ((g k mod N) + 1/2) / N), N = S^2,
+  // g coprime with N near N / 1.618 (Fibonacci-like): every ray on its own row and column, so that a near-horizontal
+  // or near-vertical edge is resolved to 1 / N px (a square grid resolves it to 1 / S px).
+  const unsigned int N = m_supersampling * m_supersampling;
+  unsigned int generator = std::max(1u, static_cast<unsigned int>(std::lround(N / 1.618)));
+  while (std::gcd(generator, N) != 1) {
+    ++generator;
+  }
   for (const View &box : m_views) {
     const int i0 = std::max(0, box.imin - 2 * h), i1 = std::min(height - 1, box.imax + 2 * h);
     const int j0 = std::max(0, box.jmin - 2 * h), j1 = std::min(width - 1, box.jmax + 2 * h);
@@ -556,12 +564,10 @@ void vpSimulatorTagRenderer::renderCamera(Camera &camera, vpImage<unsigned char>
           continue;
         }
         double sum = 0.0;
-        for (unsigned int a = 0; a < S; ++a) {
-          for (unsigned int c = 0; c < S; ++c) {
-            sum += sample(j - 0.5 + (c + 0.5) / S, i - 0.5 + (a + 0.5) / S, label);
-          }
+        for (unsigned int k = 0; k < N; ++k) {
+          sum += sample(j - 0.5 + (k + 0.5) / N, i - 0.5 + ((k * generator) % N + 0.5) / N, label);
         }
-        camera.ideal[i][j] = sum / (S * S);
+        camera.ideal[i][j] = sum / N;
       }
     }
   }

@@ -266,8 +266,10 @@ void vpStereoAprilTagDetector::refine(const vpImage<unsigned char> &I, Tag &tag)
       if (normal.dot(0.5 * (a + b) - centre) < 0.0) {
         normal = -normal; // outwards: from the black border to the white quiet zone
       }
-      // Half-width of the search across the edge: less than half a cell (the border is one cell of side / 8).
-      const double reach = std::min(3.0, std::max(1.0, 0.45 * length / 8.0));
+      // Half-width of the search across the edge: less than half a cell across it (the border is one cell, an eighth
+      // of the two neighbouring edges: the shorter one, for a foreshortened tag).
+      const double across = std::min((c[(e + 3) % 4] - a).norm(), (c[(e + 2) % 4] - b).norm());
+      const double reach = std::min(3.0, std::max(1.0, 0.45 * across / 8.0));
       const int steps = static_cast<int>(std::floor(reach / 0.5));
       points.clear();
       for (double s = reach + 2.0; s <= length - reach - 2.0; s += kSpacing) {

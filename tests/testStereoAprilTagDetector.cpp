@@ -14,7 +14,8 @@
 /*
   Tests of vpSimulatorTagRenderer and vpStereoAprilTagDetector: every rendered 36h11 code is decoded by
   vpDetectorAprilTag as its id (the renderer's table), vpDetectorAprilTag's corner order and half-pixel offset, the
-  stereo detector's corners against the exact projections (noise, blur, lighting, decimation), pairing and ordering,
+  stereo detector's corners against the exact projections (noise, blur, lighting, decimation, tags on a tool cube),
+  pairing and ordering,
   the epipolar check, tracking in predicted regions, occlusion, and the rejection of bad input.
 */
 
@@ -149,7 +150,7 @@ TEST(StereoAprilTagDetector, ViSPCornerOrderAndHalfPixelOffset)
 }
 
 // At the default settings (noise 1 grey level, no blur), over 6 seeds of 6 random poses: the bound is 0.15 px
-// RMS; measured 0.027 px RMS, worst corner 0.17 px.
+// RMS; measured 0.035 px RMS, worst corner 0.15 px.
 TEST(StereoAprilTagDetector, CornersWithinATenthOfAPixel)
 {
   double sum2 = 0.0, worst = 0.0;
@@ -165,11 +166,11 @@ TEST(StereoAprilTagDetector, CornersWithinATenthOfAPixel)
   }
   ASSERT_GT(count, 0u);
   EXPECT_LT(std::sqrt(sum2 / count), 0.06);
-  EXPECT_LT(worst, 0.3);
+  EXPECT_LT(worst, 0.25);
 }
 
 // The refinement is what makes them accurate: without it (and without AprilTag's own edge refinement), the same
-// images give corners several times worse.
+// images give corners several times worse (measured 0.19 px RMS against 0.034 px).
 TEST(StereoAprilTagDetector, RefinementImprovesTheCorners)
 {
   double rms[2];
@@ -192,7 +193,7 @@ TEST(StereoAprilTagDetector, RefinementImprovesTheCorners)
 }
 
 // With 1 px of optical blur and a lighting change (gain 0.6, offset 20, gradients 30 % and -20 % across the image),
-// and with the quads searched at half resolution: measured 0.03 px RMS.
+// and with the quads searched at half resolution: measured 0.020 px RMS, worst corner 0.10 px.
 TEST(StereoAprilTagDetector, CornersUnderBlurLightingAndDecimation)
 {
   for (double decimation : {1.0, 2.0}) {
@@ -210,8 +211,8 @@ TEST(StereoAprilTagDetector, CornersUnderBlurLightingAndDecimation)
       EXPECT_EQ(detector.detect(Il, Ir), 24u) << "seed " << seed << ", decimation " << decimation;
       accumulateErrors(renderer, detector, sum2, count, worst);
     }
-    EXPECT_LT(std::sqrt(sum2 / count), 0.1) << "decimation " << decimation;
-    EXPECT_LT(worst, 0.4) << "decimation " << decimation;
+    EXPECT_LT(std::sqrt(sum2 / count), 0.05) << "decimation " << decimation;
+    EXPECT_LT(worst, 0.2) << "decimation " << decimation;
   }
 }
 
@@ -319,7 +320,8 @@ TEST(StereoAprilTagDetector, OccludedTagIsMissing)
 }
 
 // Tags on three faces of a 6 cm cube carried by a body (a tool), turned so that the three faces face the rig: their 12
-// corners (not coplanar) are found in both images, accurately, and follow the body when it moves.
+// corners (not coplanar) are found in both images, accurately (measured 0.023 and 0.027 px RMS), and follow the body
+// when it moves.
 TEST(StereoAprilTagDetector, TagsOnAToolCube)
 {
   vpSimulatorTagRenderer renderer(kRig, 9);
@@ -338,8 +340,8 @@ TEST(StereoAprilTagDetector, TagsOnAToolCube)
     double sum2 = 0.0, worst = 0.0;
     unsigned int count = 0;
     accumulateErrors(renderer, detector, sum2, count, worst);
-    EXPECT_LT(std::sqrt(sum2 / count), 0.1) << "pose " << pose;
-    EXPECT_LT(worst, 0.3) << "pose " << pose;
+    EXPECT_LT(std::sqrt(sum2 / count), 0.06) << "pose " << pose;
+    EXPECT_LT(worst, 0.15) << "pose " << pose;
   }
 }
 

@@ -52,11 +52,11 @@ BEGIN_VISP_NAMESPACE
   \f$ (u, v) = (j, i) \f$ (ViSP's convention). Its value is exact perspective: the ray through an image point meets
   the tag's plane at a point read in the tag's cells (\f$ {}^t x \simeq (K [r_1\ r_2\ t])^{-1} (u, v, 1) \f$, the
   nearest tag wins). A pixel whose four corners fall in one cell, or in a block of 2 x 2 cells of one colour (both
-  convex), takes that colour; the others (on an edge) average \f$ S \times S \f$ rays (setSupersampling()). Then, in
-  order: Gaussian optical blur (setBlur()), lighting \f$ g = o + a (1 + b_u (u - W/2)/W + b_v (v - H/2)/H)\, g \f$
-  (setLighting()), Gaussian sensor noise (setNoise(): a seeded table of 65536 Gaussian draws, one picked per pixel by a
-  seeded generator) and 8-bit quantisation. Only the tags' boxes are rendered and blurred: a 640 x 480 pair of 8 tags
-  of 67 px takes about 5 ms (benchmarkAprilTag).
+  convex), takes that colour; the others (on an edge) average \f$ N = S^2 \f$ rays (setSupersampling()) of a rank-1
+  lattice, each on its own row and column of \f$ 1/N \f$ px. Then, in order: Gaussian optical blur (setBlur()), lighting
+  \f$ g = o + a (1 + b_u (u - W/2)/W + b_v (v - H/2)/H)\, g \f$ (setLighting()), Gaussian sensor noise (setNoise(): a
+  seeded table of 65536 Gaussian draws, one picked per pixel by a seeded generator) and 8-bit quantisation. Only the
+  tags' boxes are rendered and blurred: a 640 x 480 pair of 8 tags of 67 px takes about 5 ms (benchmarkAprilTag).
 
   A tag is drawn when its printed side faces the camera and its whole quiet zone is in front of it (depth > 1 mm);
   the occluder (setOccluder()), a dark ball, is drawn over the tags.

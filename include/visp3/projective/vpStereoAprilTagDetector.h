@@ -56,9 +56,9 @@ class vpProjectiveStereoRig;
   squares), and each corner becomes the intersection of its two edges' lines; again if a corner moved by 0.1 px or more.
   A corner that would move by more than 2 px keeps vpDetectorAprilTag's position. AprilTag's own edge refinement is then
   redundant and off. Measured on vpSimulatorTagRenderer's images (tags of about 67 px tilted by up to 0.6 rad, noise 1
-  grey level), RMS corner error without blur / with 1 px blur: this refit 0.036 / 0.029 px; AprilTag's edge refinement
-  (offset removed) 0.089 / 0.056 px; cv::cornerSubPix from there 0.22 / 0.21 px (its model does not fit an L-shaped
-  corner).
+  grey level), RMS corner error without blur / with 1 px blur: this refit 0.029 / 0.015 px (worst corners 0.09 /
+  0.07 px); AprilTag's edge refinement (offset removed) 0.092 / 0.053 px; cv::cornerSubPix from there 0.22 / 0.21 px
+  (its model does not fit an L-shaped corner).
 
   Tracking: setPredictedRegions() gives where the tags are expected (e.g. the model's predictions, or the last
   detection's corners); detect() then runs vpDetectorAprilTag only in the box around each predicted tag (grown by
