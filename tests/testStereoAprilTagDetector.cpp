@@ -358,6 +358,26 @@ TEST(SimulatorTagRenderer, SeededAndReproducible)
   EXPECT_FALSE(I[0][0] == I[2][0]);
 }
 
+// A tag seen from behind, or behind the rig, is not drawn; one across the image border is clipped (and not reported
+// visible by getImageCorners()).
+TEST(SimulatorTagRenderer, HiddenAndClippedTags)
+{
+  vpSimulatorTagRenderer empty(kRig, 3), hidden(kRig, 3), clipped(kRig, 3);
+  hidden.addTag(1, 0.04, vpHomogeneousMatrix(0.0, 0.0, 0.0, 0.0, M_PI, 0.0));  // print facing away from the rig
+  hidden.addTag(2, 0.04, vpHomogeneousMatrix(0.0, 0.0, -1.5, 0.0, 0.0, 0.0));  // behind the cameras
+  clipped.addTag(3, 0.04, vpHomogeneousMatrix(0.19, 0.0, 0.0, 0.0, 0.0, 0.0)); // across the right border
+  vpImage<unsigned char> I[3][2];
+  empty.render(I[0][0], I[0][1]);
+  hidden.render(I[1][0], I[1][1]);
+  clipped.render(I[2][0], I[2][1]);
+  EXPECT_TRUE(I[0][0] == I[1][0] && I[0][1] == I[1][1]);
+  EXPECT_FALSE(I[0][0] == I[2][0] && I[0][1] == I[2][1]);
+  std::vector<vpImagePoint> left, right;
+  EXPECT_FALSE(hidden.getImageCorners(0, left, right));
+  EXPECT_FALSE(hidden.getImageCorners(1, left, right));
+  EXPECT_FALSE(clipped.getImageCorners(0, left, right));
+}
+
 TEST(StereoAprilTagDetector, BadInputThrowsAndKeepsTheResults)
 {
   vpSimulatorTagRenderer renderer(kRig, 6);
