@@ -79,7 +79,8 @@ class vpProjectiveStereoRig;
 class VISP_EXPORT vpStereoAprilTagDetector
 {
 public:
-  //! A detector of the tags of \e family (vpDetectorAprilTag's names), one thread, no epipolar check.
+  //! A detector of the tags of \e family (vpDetectorAprilTag's names): one thread, decimation 1.5, refinement on, no
+  //! epipolar check, full-image detection.
   explicit vpStereoAprilTagDetector(vpDetectorAprilTag::vpAprilTagFamily family = vpDetectorAprilTag::TAG_36h11);
 
   /*! \name Settings (each throws vpProjectiveException on a bad value and then changes nothing) */
@@ -95,8 +96,11 @@ public:
   //! Largest epipolar distance (px) of a kept pair (> 0; default 2 px).
   void setEpipolarThreshold(double pixels);
   /*!
-    vpDetectorAprilTag's quad decimation (1 to 8; default 1): the quads are searched in an image decimated by this
-    factor (faster), the refinement then works at full resolution.
+    vpDetectorAprilTag's quad decimation (1 to 8; default 1.5): the quads are searched in an image decimated by this
+    factor, the refinement then works at full resolution (same accuracy). Measured on 640 x 480 pairs of 8 tags
+    tilted by up to 0.5 rad: at 1.5 (AprilTag's fast path) every tag of 25 px or more is found, 98 % at 20 px, 75 %
+    at 17 px, in about a tenth of the time of 1 (which finds them all down to 13 px); 2 needs 25 px and is slower than
+    1.5. Give 1 for smaller tags.
   */
   void setDecimation(double decimation);
   //! Sub-pixel refinement of the corners (class description), on by default.
