@@ -37,7 +37,7 @@ class vpProjectiveStereoRig;
 
 /*!
   \class vpStereoAprilTagDetector
-  \ingroup group_projective_simulator
+  \ingroup group_projective
   \brief Detects AprilTags in a stereo pair and returns their corners seen in both images, identified by
   \f$ 4 \times \mathrm{tag\ id} + \mathrm{corner\ index} \f$.
 
