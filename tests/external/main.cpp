@@ -26,6 +26,7 @@
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
+#include <visp3/projective/vpStereoAprilTagDetector.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -76,6 +77,16 @@ int main()
       std::cerr << "unexpected robot state" << std::endl;
       return 1;
     }
+
+#if defined(VISP_HAVE_APRILTAG)
+    // The tag detector (ViSP's detection module through the package): a blank pair has no corner.
+    vpStereoAprilTagDetector tags(vpDetectorAprilTag::TAG_36h11);
+    const vpImage<unsigned char> blank(48, 64, 128);
+    if (tags.detect(blank, blank) != 0) {
+      std::cerr << "corners found in blank images" << std::endl;
+      return 1;
+    }
+#endif
   } catch (const vpException &e) {
     std::cerr << "error: " << e.getMessage() << std::endl;
     return 1;
