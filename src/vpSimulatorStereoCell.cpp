@@ -1,0 +1,146 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*!
+  \file vpSimulatorStereoCell.cpp
+  \brief The rendered cell: tags moved with the tool (or the scene with the rig), rendered by vpSimulatorTagRenderer.
+*/
+
+#include <visp3/projective/vpSimulatorStereoCell.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpRotationMatrix.h>
+#include <visp3/core/vpTranslationVector.h>
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+vpSimulatorStereoCell::vpSimulatorStereoCell(const vpSimulatorArm &arm, const vpSimulatorStereoRig &rig,
+                                             const vpColVector &q0, long seed)
+    : m_robot(arm, q0), m_rig0(rig), m_renderer(rig, seed), m_rig(rig), m_toolTags(), m_sceneTags(), m_eyeInHand(false),
+      m_eMw0()
+{
+}
+
+unsigned int vpSimulatorStereoCell::addToolTag(int id, double size, const vpHomogeneousMatrix &tMg)
+{
+  const vpColVector q = m_robot.getArmJoints();
+  const unsigned int index = m_renderer.addTag(id, size, m_robot.getArm().get_wMt(q) * tMg);
+  m_toolTags.push_back({index, tMg});
+  m_sceneTags.push_back(vpHomogeneousMatrix());
+  update();
+  return index;
+}
+
+void vpSimulatorStereoCell::addToolTags(double size, int firstId)
+{
+  // The holder's tags face -y_t (the gripper's face towards the rig): a tag's z (into the print) is +y_t, its x
+  // along x_t, its y = z x x = -z_t. The outer two are turned by 35 deg about z_t and moved aside so that their quiet
+  // zones (10/8 of the side) do not overlap the middle one's.
+  const vpRotationMatrix tRg(-M_PI / 2.0, 0.0, 0.0); // theta-u: -90 deg about x_t
+  const double front = -0.03 - 0.5 * size;           // in front of the gripper's face (y_t = -2 cm)
+  const double turn = vpMath::rad(35.0);
+  const double halfWidth = 0.65 * size; // half the quiet zone's side (10/16 of the side), and a small gap
+  for (int k = -1; k <= 1; k++) {
+    // A convex tent seen from -y_t: the outer facets hinge on the middle one's edges and recede by 35 deg.
+    const vpRotationMatrix tRturn(0.0, 0.0, k * turn);
+    const vpTranslationVector t(k * halfWidth * (1.0 + std::cos(turn)),
+                                front + std::abs(k) * halfWidth * std::sin(turn), 0.0);
+    addToolTag(firstId + k + 1, size, vpHomogeneousMatrix(t, tRturn * tRg));
+  }
+}
+
+unsigned int vpSimulatorStereoCell::addSceneTag(int id, double size, const vpHomogeneousMatrix &wMg)
+{
+  const unsigned int index = m_renderer.addTag(id, size, wMg);
+  m_sceneTags.push_back(wMg);
+  update();
+  return index;
+}
+
+void vpSimulatorStereoCell::setEyeInHand()
+{
+  m_eMw0 = m_robot.getArm().get_wMe(m_robot.getArmJoints()).inverse();
+  m_eyeInHand = true;
+  update();
+}
+
+void vpSimulatorStereoCell::update()
+{
+  // The renderer's rig stays where it was given (m_rig0). Eye-in-hand, the world moves instead by the inverse of the
+  // last link's motion A(q) = wMe(q) eMw0 since setEyeInHand(): what the moved cameras see of a tag at wMg is what the
+  // fixed ones see of a tag at A^-1 wMg.
+  const vpColVector q = m_robot.getArmJoints();
+  vpHomogeneousMatrix A;
+  if (m_eyeInHand) {
+    A = m_robot.getArm().get_wMe(q) * m_eMw0;
+  }
+  const vpHomogeneousMatrix Ainv = A.inverse();
+  const vpHomogeneousMatrix wMt = m_robot.getArm().get_wMt(q);
+  std::vector<bool> isTool(m_renderer.getNbTags(), false);
+  for (const ToolTag &tag : m_toolTags) {
+    isTool[tag.index] = true;
+    m_renderer.setTagPose(tag.index, Ainv * wMt * tag.tMg);
+  }
+  for (unsigned int i = 0; i < m_renderer.getNbTags(); i++) {
+    if (!isTool[i]) {
+      m_renderer.setTagPose(i, Ainv * m_sceneTags[i]);
+    }
+  }
+  m_rig = m_eyeInHand
+              ? vpSimulatorStereoRig(m_rig0.getLeftCameraParameters(), m_rig0.getRightCameraParameters(),
+                                     m_rig0.get_rMl(), A * m_rig0.get_wMl(), m_rig0.getWidth(), m_rig0.getHeight())
+              : m_rig0;
+}
+
+bool vpSimulatorStereoCell::acquire(vpImage<unsigned char> &Ileft, vpImage<unsigned char> &Iright)
+{
+  update();
+  m_renderer.render(Ileft, Iright);
+  return true;
+}
+
+unsigned int vpSimulatorStereoCell::getTrueCorners(std::vector<int> &ids, std::vector<vpImagePoint> &left,
+                                                   std::vector<vpImagePoint> &right)
+{
+  update();
+  std::vector<int> allIds;
+  std::vector<vpImagePoint> allLeft, allRight;
+  for (unsigned int i = 0; i < m_renderer.getNbTags(); i++) {
+    std::vector<vpImagePoint> l, r;
+    if (m_renderer.getImageCorners(i, l, r)) {
+      for (unsigned int c = 0; c < 4; c++) {
+        allIds.push_back(4 * m_renderer.getTagId(i) + static_cast<int>(c));
+        allLeft.push_back(l[c]);
+        allRight.push_back(r[c]);
+      }
+    }
+  }
+  std::vector<size_t> order(allIds.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&allIds](size_t a, size_t b) { return allIds[a] < allIds[b]; });
+  ids.clear();
+  left.clear();
+  right.clear();
+  for (size_t k : order) {
+    ids.push_back(allIds[k]);
+    left.push_back(allLeft[k]);
+    right.push_back(allRight[k]);
+  }
+  return static_cast<unsigned int>(ids.size());
+}
