@@ -79,7 +79,7 @@ public:
   /*!
     Three tags (ids \e firstId to \e firstId + 2) of side \e size on a holder in front of the gripper of
     vpSimulatorArm::gripperMarkers(), whose face \f$ y_t < 0 \f$ looks at the rig at the zero reference: the middle
-    one faces \f$ -y_t \f$, the outer two are turned by 35 deg about \f$ z_t \f$ to either side, so that their 12
+    one faces \f$ -y_t \f$, the outer two are turned by 55 deg about \f$ z_t \f$ to either side, so that their 12
     corners are on three planes (an acquisition needs markers off one plane) and all face the rig.
   */
   void addToolTags(double size, int firstId = 0);
