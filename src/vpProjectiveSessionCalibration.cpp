@@ -12,6 +12,7 @@
  */
 
 #include <visp3/projective/vpProjectiveSessionCalibration.h>
+#include <visp3/projective/vpStereoAprilTagDetector.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +21,8 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include <unistd.h>
 
@@ -157,21 +160,56 @@ std::string pixels(double px)
 } // namespace
 
 vpProjectiveSessionCalibration::vpProjectiveSessionCalibration(const vpMarkerExtractor &extractor)
-    : m_extractor(extractor ? extractor : noDetector("36h11")), m_os(nullptr), m_mounting(MOUNTING_AUTO),
+    : m_extractor(extractor ? extractor : aprilTagMarkers("36h11")), m_os(nullptr), m_mounting(MOUNTING_AUTO),
       m_epipolar(2.0), m_outlier(0.0), m_coplanarity(2.0), m_mismatch(2.0), m_calibrated(false), m_model(), m_ids(),
       m_residual(0.0), m_algebraicResidual(0.0), m_joints(), m_state(RIG_UNCHANGED), m_leftResidual(0.0),
       m_rightResidual(0.0)
 {
 }
 
-vpProjectiveSessionCalibration::vpMarkerExtractor vpProjectiveSessionCalibration::noDetector(const std::string &family)
+vpProjectiveSessionCalibration::vpMarkerExtractor
+vpProjectiveSessionCalibration::aprilTagMarkers(const std::string &family)
 {
+#if defined(VISP_HAVE_APRILTAG)
+  // The families every ViSP from 3.5 on detects (the deprecated 36h10, 25h7 and ARToolKit ones are left out).
+  const std::vector<std::pair<std::string, vpDetectorAprilTag::vpAprilTagFamily>> families = {
+    {"36h11", vpDetectorAprilTag::TAG_36h11},
+    {"25h9", vpDetectorAprilTag::TAG_25h9},
+    {"16h5", vpDetectorAprilTag::TAG_16h5},
+    {"Circle21h7", vpDetectorAprilTag::TAG_CIRCLE21h7},
+#if defined(VISP_HAVE_APRILTAG_BIG_FAMILY)
+    {"Circle49h12", vpDetectorAprilTag::TAG_CIRCLE49h12},
+    {"Custom48h12", vpDetectorAprilTag::TAG_CUSTOM48h12},
+    {"Standard41h12", vpDetectorAprilTag::TAG_STANDARD41h12},
+    {"Standard52h13", vpDetectorAprilTag::TAG_STANDARD52h13},
+#endif
+  };
+  std::string names;
+  for (const auto &f : families) {
+    if (f.first == family) {
+      // Shared: the extraction function is copied with the calibration, the detector's settings go with it.
+      auto tags = std::make_shared<vpStereoAprilTagDetector>(f.second);
+      return [tags](const vpImage<unsigned char> &Il, const vpImage<unsigned char> &Ir, std::vector<int> &ids,
+                    std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
+        const unsigned int n = tags->detect(Il, Ir);
+        ids = tags->getIds();
+        left = tags->getLeftPoints();
+        right = tags->getRightPoints();
+        return n;
+      };
+    }
+    names += (names.empty() ? "" : ", ") + f.first;
+  }
+  fail(vpProjectiveException::invalidValueError, at("aprilTagMarkers()"),
+       "unknown AprilTag family '" + family + "'; use " + names);
+#else
   return [family](const vpImage<unsigned char> &, const vpImage<unsigned char> &, std::vector<int> &,
                   std::vector<vpImagePoint> &, std::vector<vpImagePoint> &) -> unsigned int {
-    fail(vpProjectiveException::notInitializedError, "vpProjectiveSessionCalibration",
-         "no marker detector for the AprilTag family " + family +
-             " in this build (vpStereoAprilTagDetector is not wired in yet); give a marker extraction function");
+    fail(vpProjectiveException::notImplementedError, "vpProjectiveSessionCalibration",
+         "no detector for the AprilTag family " + family +
+             ": this ViSP was built without AprilTag (WITH_APRILTAG); give a marker extraction function");
   };
+#endif
 }
 
 vpProjectiveAcquisitionProcedure::vpImageSource

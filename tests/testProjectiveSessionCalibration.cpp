@@ -227,16 +227,20 @@ TEST(ProjectiveSessionCalibration, BadSessionsAreRefusedWithOneLineNamingTheFram
   rec->keep.assign(rec->keep.size(), 4);
   expectRefused("too few markers", "only 4 markers are seen in frame 0");
   rec->keep.assign(rec->keep.size(), static_cast<unsigned int>(-1));
-  // The default extraction: no detector in this build yet.
+  // The default extraction (AprilTag 36h11) on images without tags: the frame named, what to check.
   {
     vpProjectiveSessionCalibration calibration;
     try {
       calibration.calibrate(session);
-      ADD_FAILURE() << "the default extraction worked";
+      ADD_FAILURE() << "the default extraction found tags in images without any";
     } catch (const vpProjectiveException &e) {
-      EXPECT_NE(e.getStringMessage().find("no marker detector"), std::string::npos) << e.getStringMessage();
+      EXPECT_NE(e.getStringMessage().find("frame 0 ('left/000000.png', zero): no marker found in both images"),
+                std::string::npos)
+          << e.getStringMessage();
     }
   }
+  // An AprilTag family that ViSP does not have.
+  EXPECT_THROW(vpProjectiveSessionCalibration::aprilTagMarkers("37h12"), vpProjectiveException);
   // An output path that cannot be written.
   EXPECT_THROW(vpProjectiveSessionCalibration::checkWritable(tmp / "missing-folder/model.json"), vpProjectiveException);
   EXPECT_NO_THROW(vpProjectiveSessionCalibration::checkWritable(tmp / "model.json"));

@@ -76,11 +76,11 @@ TEST_F(ProjectiveTool, ReportAndCheckOfAModelCalibratedFromASession)
         "metric self-calibration", "left K:", "right K:", "baseline", "prismatic joints' unit"}) {
     EXPECT_NE(report.out.find(needle), std::string::npos) << needle << " not in:\n" << report.out;
   }
-  // check needs the markers of the session's images: refused clearly without a detector.
+  // check needs the markers of the session's images: these have no tags, refused clearly (the frame named).
   const ToolRun check = runTool(tmp, "check '" + (tmp / "model.json") + "' '" + (tmp / "session") + "'");
   EXPECT_EQ(check.status, 1);
   EXPECT_EQ(lines(check.err), 1u) << check.err;
-  EXPECT_NE(check.err.find("no marker detector"), std::string::npos) << check.err;
+  EXPECT_NE(check.err.find("no marker found in both images"), std::string::npos) << check.err;
   // A model file that is not one.
   writeText(tmp / "broken.json", "{\"format\": \"visp_projective_robot_model\"");
   const ToolRun broken = runTool(tmp, "report '" + (tmp / "broken.json") + "'");

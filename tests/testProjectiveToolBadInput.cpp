@@ -58,9 +58,9 @@ TEST_F(ProjectiveTool, MalformedSessionsExitWithStatus1OneLineAndNoModelFile)
     writeText(folder + "/left/000007.png", "garbage garbage garbage garbage garbage garbage");
     expectBadInput(tmp, folder, "not a PNG", "an unreadable image");
   }
-  // A valid session, but no tag detector in this build yet: refused clearly, nothing written.
+  // A valid session whose images have no tag: refused clearly (the frame named), nothing written.
   recordViperSession(tmp / "valid");
-  expectBadInput(tmp, tmp / "valid", "no marker detector", "no detector");
+  expectBadInput(tmp, tmp / "valid", "no marker found in both images", "a frame with no tag");
   // An output path that cannot be written: refused before any work.
   const ToolRun run =
       runTool(tmp, "calibrate '" + (tmp / "valid") + "' --output '" + (tmp / "no/such/folder.json") + "'");

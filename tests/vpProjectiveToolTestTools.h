@@ -13,7 +13,7 @@
 
 /*
   Helpers of the suites of the command-line tool (header only): run visp-projective (its path given by CMake as
-  VISP_PROJECTIVE_TOOL) with its output captured, and the fixture that skips when the apps are not built.
+  VISP_PROJECTIVE_TOOL) with its output captured, and the suites' fixture (these suites are built with the tool only).
 */
 
 #ifndef _vpProjectiveToolTestTools_h_
@@ -42,18 +42,12 @@ struct ToolRun {
 inline ToolRun runTool(const TemporaryFolder &tmp, const std::string &arguments)
 {
   ToolRun run;
-#ifdef VISP_PROJECTIVE_TOOL
   const std::string command = std::string("'") + VISP_PROJECTIVE_TOOL + "' " + arguments + " > '" + (tmp / "out.txt") +
                               "' 2> '" + (tmp / "err.txt") + "'";
   const int raw = std::system(command.c_str());
   run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   run.out = readText(tmp / "out.txt");
   run.err = readText(tmp / "err.txt");
-#else
-  (void)tmp;
-  (void)arguments;
-  run.status = -1;
-#endif
   return run;
 }
 
@@ -99,15 +93,9 @@ inline std::string edited(const TemporaryFolder &tmp, const std::string &name,
   return folder;
 }
 
+//! The suites of the command-line tool (built only with it: tests/CMakeLists.txt gives its path).
 class ProjectiveTool : public ::testing::Test
 {
-protected:
-  void SetUp() override
-  {
-#ifndef VISP_PROJECTIVE_TOOL
-    GTEST_SKIP() << "visp-projective is not built (VISP_PROJECTIVE_BUILD_APPS=OFF)";
-#endif
-  }
 };
 
 } // namespace vpProjectiveTest

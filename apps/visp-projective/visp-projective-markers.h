@@ -31,8 +31,8 @@ namespace vispProjective
 {
 /*!
   The marker extraction of the AprilTag family \e family (as the --family option spells it, e.g. "36h11"): each tag's
-  4 corners found in both images, identifier 4 * tag id + corner index. Until vpStereoAprilTagDetector is wired in
-  here, it fails clearly on use (vpProjectiveSessionCalibration::noDetector()).
+  4 corners found in both images by vpStereoAprilTagDetector, identifier 4 * tag id + corner index:
+  vpProjectiveSessionCalibration::aprilTagMarkers().
 */
 vpProjectiveSessionCalibration::vpMarkerExtractor markerExtractor(const std::string &family);
 } // namespace vispProjective

@@ -44,14 +44,14 @@ fi
 # 2. Minimal ViSP with the contrib module.
 build="$work/visp-build"
 off=()
-for m in ar detection imgproc klt mbt tt tt_mi sensor; do off+=("-DBUILD_MODULE_visp_$m=OFF"); done
+for m in ar imgproc klt mbt tt tt_mi sensor; do off+=("-DBUILD_MODULE_visp_$m=OFF"); done
 for u in AFMA4 AFMA6 VIPER650 VIPER850 VIRTUOSE ARSDK FFMPEG FRANKA JACOSDK DC1394 V4L2 FLYCAPTURE PYLON UEYE COMEDI \
          FTIITSDK BICLOPS PTU46 FLIRPTUSDK CMU1394 GDI DIRECTSHOW OPENMP COIN3D YARP OGRE OIS LIBFREENECT LIBUSB_1 \
          REALSENSE REALSENSE2 OCCIPITAL_STRUCTURE SOWIN SOQT QT SOXT XML2 OPENCV ZLIB GTK2 JPEG PNG ARIA ZBAR DMTX PCL \
          TENSORRT; do
   off+=("-DUSE_$u=OFF")
 done
-for w in APRILTAG ATIDAQ CLIPPER QBDEVICE TAKKTILE2 CATCH2; do off+=("-DWITH_$w=OFF"); done
+for w in ATIDAQ CLIPPER QBDEVICE TAKKTILE2 CATCH2; do off+=("-DWITH_$w=OFF"); done
 step "configuring ViSP in $build"
 # -O0: this checks that the module configures, builds, installs its headers and links as part of ViSP; the optimised
 # library is what the main build tests (at -O3 ViSP and the module took 9 of CI's minutes here).

@@ -124,16 +124,19 @@ public:
   };
 
   /*!
-    A calibration whose markers come from \e extractor; empty: noDetector("36h11") (which fails clearly).
+    A calibration whose markers come from \e extractor; empty: aprilTagMarkers("36h11").
   */
   explicit vpProjectiveSessionCalibration(const vpMarkerExtractor &extractor = vpMarkerExtractor());
 
   /*!
-    A marker extraction function for the AprilTag family \e family (e.g. "36h11") that, until the plugin's AprilTag
-    detector is wired in, throws a vpProjectiveException (notInitializedError) saying that this build has no marker
-    detector.
+    The marker extraction of the AprilTag family \e family, as the tool's --family spells it: "36h11", "25h9",
+    "16h5", "Circle21h7" (and "Circle49h12", "Custom48h12", "Standard41h12", "Standard52h13" when ViSP has its big
+    families): vpStereoAprilTagDetector at its defaults on each stereo pair, a tag's 4 corners identified by
+    4 * tag id + corner index.
+    \exception vpProjectiveException (invalidValueError) on another family; with a ViSP built without AprilTag,
+    (notImplementedError) when the function is called.
   */
-  static vpMarkerExtractor noDetector(const std::string &family);
+  static vpMarkerExtractor aprilTagMarkers(const std::string &family);
 
   /*!
     The image source of vpProjectiveAcquisitionProcedure on a cell: each call takes a stereo pair from \e images,

@@ -1,0 +1,206 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*!
+  \file testProjectiveToolTags.cpp
+  \brief visp-projective on sessions of a rendered tag cell, end to end: the images are PNGs of printed AprilTags
+  (vpSimulatorStereoCell, addToolTags(): 12 corners, 1 grey level of noise), the readings absolute encoder values with a
+  non-zero reference (vpSimulatorRobotArm::setEncoderOffset()), the tool's own detector finds the markers.
+  - `calibrate` turns the 13-frame session of the Viper850 and of the R-R-P-R-R-R arm into a model whose prediction
+    of the tag corners at 20 random configurations in view is within 0.3 px RMS of the truth;
+  - `check` passes a later session of the same cell and names the camera bumped by 2 deg and 1 cm.
+*/
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpUniRand.h>
+#include <visp3/projective/vpProjectiveModelFile.h>
+#include <visp3/projective/vpProjectiveSessionWriter.h>
+#include <visp3/projective/vpSimulatorStereoCell.h>
+
+#include "vpProjectiveSessionTestTools.h"
+#include "vpProjectiveToolTestTools.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveTest;
+
+namespace
+{
+//! The cell of \e s with its rig moved by \e lBump (left camera) or \e rBump (right camera).
+vpSimulatorStereoCell makeCell(const ArmSetup &s, const vpHomogeneousMatrix &lBump = vpHomogeneousMatrix(),
+                               const vpHomogeneousMatrix &rBump = vpHomogeneousMatrix())
+{
+  // The left camera moving alone: wMl' = wMl lBump and rMl' = rMl lBump (wMr unchanged); the right one: rMl' = rBump^-1
+  // rMl.
+  const vpSimulatorStereoRig rig(s.camLeft, s.camRight, rBump.inverse() * s.rMl * lBump, s.wMl * lBump, s.width,
+                                 s.height);
+  vpSimulatorStereoCell cell(s.arm, rig, s.qRef, 17);
+  cell.addToolTags(0.03);
+  vpColVector offset(s.n());
+  for (unsigned int i = 0; i < s.n(); ++i) {
+    offset[i] = 0.1 * (i + 1); // an absolute encoder's reference
+  }
+  cell.getRobot().setEncoderOffset(offset);
+  cell.getRobot().setConstantSamplingTimeMode(true);
+  return cell;
+}
+
+//! Moves the cell's arm to arm joints \e qArm; true if the 12 tag corners are inside both images.
+bool moveTo(vpSimulatorStereoCell &cell, const vpColVector &qArm)
+{
+  cell.getRobot().setPosition(vpRobot::ARTICULAR_FRAME, qArm + cell.getRobot().getEncoderOffset());
+  std::vector<int> ids;
+  std::vector<vpImagePoint> l, r;
+  return cell.getTrueCorners(ids, l, r) == 12;
+}
+
+//! Adds the frame of the cell's current pose to \e writer (its readings, the rendered images).
+void record(vpSimulatorStereoCell &cell, vpProjectiveSessionWriter &writer, vpProjectiveSession::vpFrameRole role)
+{
+  vpImage<unsigned char> Il, Ir;
+  cell.acquire(Il, Ir);
+  vpColVector q;
+  cell.getRobot().getPosition(vpRobot::ARTICULAR_FRAME, q);
+  writer.addFrame(role, q, cell.getRobot().getTime(), Il, Ir);
+}
+
+//! The calibration session: the zero frame, each joint alone both ways (halved until the tags stay in view).
+void recordCalibration(const ArmSetup &s, const std::string &folder)
+{
+  vpSimulatorStereoCell cell = makeCell(s);
+  vpProjectiveSessionWriter writer(folder, s.jointTypes());
+  ASSERT_TRUE(moveTo(cell, s.qRef));
+  record(cell, writer, vpProjectiveSession::ZERO);
+  for (unsigned int i = 0; i < s.n(); ++i) {
+    for (int sign = -1; sign <= 1; sign += 2) {
+      vpColVector q = s.qRef;
+      double amount = s.trialAmounts[i];
+      q[i] = s.qRef[i] + sign * amount;
+      while (!moveTo(cell, q)) {
+        amount /= 2.0;
+        q[i] = s.qRef[i] + sign * amount;
+      }
+      record(cell, writer, vpProjectiveSession::TRIAL);
+    }
+  }
+}
+
+//! Random arm joints within the trial amounts of the zero reference with the tags in view.
+vpColVector randomPose(const ArmSetup &s, vpSimulatorStereoCell &cell, vpUniRand &rng)
+{
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    vpColVector q = s.qRef;
+    for (unsigned int i = 0; i < s.n(); ++i) {
+      q[i] += rng.uniform(-s.trialAmounts[i], s.trialAmounts[i]);
+    }
+    if (moveTo(cell, q)) {
+      return q;
+    }
+  }
+  return vpColVector();
+}
+
+//! RMS per coordinate of the model's prediction of the 12 corners at 20 random configurations, against the truth.
+double predictionError(const ArmSetup &s, const std::string &modelFile)
+{
+  std::vector<int> ids;
+  const vpProjectiveArmModel model = vpProjectiveModelFile::load(modelFile, nullptr, nullptr, &ids);
+  EXPECT_EQ(ids.size(), 12u);
+  vpSimulatorStereoCell cell = makeCell(s);
+  vpUniRand rng(5);
+  double sum = 0.0;
+  unsigned int coordinates = 0;
+  for (int c = 0; c < 20; ++c) {
+    const vpColVector q = randomPose(s, cell, rng);
+    EXPECT_EQ(q.getRows(), s.n());
+    vpColVector readings;
+    cell.getRobot().getPosition(vpRobot::ARTICULAR_FRAME, readings);
+    vpProjectiveArmModel::JointVector v(s.n());
+    for (unsigned int i = 0; i < s.n(); ++i) {
+      v(i) = readings[i];
+    }
+    const Eigen::Matrix4d H = model.displacement(v);
+    std::vector<int> trueIds;
+    std::vector<vpImagePoint> l, r;
+    cell.getTrueCorners(trueIds, l, r);
+    for (size_t j = 0; j < ids.size() && trueIds == ids; ++j) {
+      Eigen::Vector4d predicted;
+      EXPECT_TRUE(model.predictMarker(static_cast<unsigned int>(j), H, predicted));
+      sum += (predicted - Eigen::Vector4d(l[j].get_u(), l[j].get_v(), r[j].get_u(), r[j].get_v())).squaredNorm();
+      coordinates += 4;
+    }
+  }
+  return coordinates > 0 ? std::sqrt(sum / coordinates) : 1e9;
+}
+
+void expectCalibrated(const ArmSetup &s)
+{
+  TemporaryFolder tmp;
+  recordCalibration(s, tmp / "session");
+  const ToolRun run = runTool(tmp, "calibrate '" + (tmp / "session") + "' --output '" + (tmp / "model.json") + "'");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const double error = predictionError(s, tmp / "model.json");
+  EXPECT_LE(error, 0.3) << s.name;
+  ::testing::Test::RecordProperty("prediction_error_px", std::to_string(error));
+}
+} // namespace
+
+TEST_F(ProjectiveTool, TagSessionOfTheViper850CalibratesWithinAThirdOfAPixel)
+{
+  expectCalibrated(viperEyeToHand());
+}
+
+TEST_F(ProjectiveTool, TagSessionOfThePrismaticArmCalibratesWithinAThirdOfAPixel)
+{
+  expectCalibrated(rrprrrEyeToHand());
+}
+
+TEST_F(ProjectiveTool, CheckPassesTheSameCellAndNamesTheBumpedCamera)
+{
+  const ArmSetup s = viperEyeToHand();
+  TemporaryFolder tmp;
+  recordCalibration(s, tmp / "session");
+  ASSERT_EQ(runTool(tmp, "calibrate '" + (tmp / "session") + "' --output '" + (tmp / "model.json") + "'").status, 0);
+  const vpHomogeneousMatrix bump(0.01, 0.0, 0.0, 0.0, vpMath::rad(2.0), 0.0); // 1 cm and 2 deg
+  const char *names[3] = {"unmoved", "left", "right"};
+  for (int c = 0; c < 3; ++c) {
+    vpSimulatorStereoCell cell =
+        makeCell(s, c == 1 ? bump : vpHomogeneousMatrix(), c == 2 ? bump : vpHomogeneousMatrix());
+    const std::string folder = tmp / names[c];
+    {
+      vpProjectiveSessionWriter writer(folder, s.jointTypes());
+      ASSERT_TRUE(moveTo(cell, s.qRef));
+      record(cell, writer, vpProjectiveSession::ZERO);
+      vpUniRand rng(31 + c);
+      for (int k = 0; k < 4; ++k) {
+        ASSERT_EQ(randomPose(s, cell, rng).getRows(), s.n());
+        record(cell, writer, vpProjectiveSession::OBSERVATION);
+      }
+    }
+    const ToolRun check = runTool(tmp, "check '" + (tmp / "model.json") + "' '" + folder + "'");
+    if (c == 0) {
+      EXPECT_EQ(check.status, 0) << check.out << check.err;
+    } else {
+      EXPECT_EQ(check.status, 3) << names[c] << ": " << check.out << check.err;
+      EXPECT_NE(check.out.find(std::string(names[c]) + " camera"), std::string::npos) << check.out;
+    }
+  }
+}
