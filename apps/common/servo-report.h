@@ -26,6 +26,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <memory>
 #include <vector>
 
 #include <visp3/core/vpColVector.h>
@@ -88,6 +89,7 @@ struct Study {
   vpColVector meanAbsJointError; // rad, mean over the converged runs once finish() is called
   vpColVector floor;             // rad
   std::vector<std::string> failures;
+  std::shared_ptr<Study> settled; // the same seeds with s* taught from 16 frames and settling on (if run)
 
   //! Accounts the run of seed \e seed with the model \e robot (its prediction error \e predictionPx).
   void add(unsigned int seed, const ServoRun &run, const vpProjectiveRobot &robot, double predictionPx)
@@ -157,8 +159,15 @@ inline void printTable(const std::vector<Study> &studies, double rangeDeg)
               << " px RMS, marker prediction error at random q within +-" << std::setprecision(0) << rangeDeg
               << std::setprecision(3) << " deg: mean " << mean(st.prediction) << " px, max " << maxOf(st.prediction)
               << " px RMS\n";
-    std::cout << (paper ? "    joint      paper       ours      floor  ours/floor   verdict\n"
-                        : "    joint       ours      floor  ours/floor\n");
+    const Study *settled = st.settled ? st.settled.get() : nullptr;
+    if (settled != nullptr) {
+      std::cout << "  16-frame s* and settling (setSettling(true)): converged " << settled->iterations.size() << "/"
+                << settled->seeds << ", iterations to converge: median " << median(settled->iterations) << ", max "
+                << maxOf(settled->iterations) << "\n";
+    }
+    std::cout << (paper ? "    joint      paper       ours      floor  ours/floor   "
+                        : "    joint       ours      floor  ours/floor   ")
+              << (settled != nullptr ? "settled  sett./floor   " : "") << (paper ? "verdict\n" : "\n");
     for (unsigned int i = 0; i < st.floor.size(); ++i) {
       const double ours = vpMath::deg(st.meanAbsJointError[i]), floor = vpMath::deg(st.floor[i]);
       std::cout << std::setw(9) << i;
@@ -166,6 +175,10 @@ inline void printTable(const std::vector<Study> &studies, double rangeDeg)
         std::cout << std::setw(11) << st.paperDeg[i];
       }
       std::cout << std::setw(11) << ours << std::setw(11) << floor << std::setw(12) << ours / floor;
+      if (settled != nullptr) {
+        const double averaged = vpMath::deg(settled->meanAbsJointError[i]);
+        std::cout << std::setw(10) << averaged << std::setw(12) << averaged / floor;
+      }
       if (paper) {
         std::cout << "   "
                   << (ours <= st.paperDeg[i]   ? "beats the paper"

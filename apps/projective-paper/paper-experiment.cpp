@@ -14,6 +14,7 @@
 #include "paper-experiment.h"
 
 #include <algorithm>
+#include <memory>
 
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMath.h>
@@ -41,7 +42,7 @@ vpProjectiveRobot acquire(const PaperWorld &world, double sigma, vpGaussRand &no
 
 //! [Servo]
 ServoRun servo(const PaperWorld &world, const vpProjectiveRobot &robot, double sigma, vpGaussRand &noise,
-               unsigned int iterations, double maxExcursionDeg)
+               unsigned int iterations, double maxExcursionDeg, unsigned int targetFrames, bool settling, long seed)
 {
   ServoRun run;
   const vpColVector qTarget = degToRad(world.targetDeg);
@@ -64,13 +65,22 @@ ServoRun servo(const PaperWorld &world, const vpProjectiveRobot &robot, double s
   // beyond its start and target values (this task's need 31 deg: by default its path is the joint-space line).
   task.getPathPlanner().setMaxJointStep(vpMath::rad(10.0));
   task.getPathPlanner().setMaxExcursion(vpMath::rad(maxExcursionDeg));
+  task.setSettling(settling); // once converged, average the frames instead of chasing each one's noise
   const std::vector<vpColVector> targetMarkers = world.arm.getMarkers(qTarget);
+  vpGaussRand teachingNoise(1.0, 0.0, 1000 + seed);
+  std::vector<std::vector<vpImagePoint>> leftFrames(nbPoints), rightFrames(nbPoints);
+  for (unsigned int f = 0; f < targetFrames; ++f) {
+    for (unsigned int k = 0; k < nbPoints; ++k) {
+      vpImagePoint l, r;
+      world.rig.project(targetMarkers[world.tracked[k]], l, r, sigma, f == 0 ? noise : teachingNoise);
+      leftFrames[k].push_back(l);
+      rightFrames[k].push_back(r);
+    }
+  }
   for (unsigned int k = 0; k < nbPoints; ++k) {
-    vpImagePoint l, r;
-    world.rig.project(targetMarkers[world.tracked[k]], l, r, sigma, noise);
-    s_star[k].buildFrom(l, r);
-    run.leftTarget.push_back(l);
-    run.rightTarget.push_back(r);
+    s_star[k].buildFrom(leftFrames[k], rightFrames[k]); // the mean of the frames
+    run.leftTarget.push_back(s_star[k].getLeft());
+    run.rightTarget.push_back(s_star[k].getRight());
     task.addFeature(s[k], s_star[k]);
   }
 
@@ -113,13 +123,20 @@ Study study(const PaperWorld &world, double sigma, const std::vector<double> &pa
   st.paperDeg = paperDeg;
   const ImagesAt trueTracked = trueMarkerImages(world.rig, world.arm, world.tracked);
   st.floor = noiseFloor(imageJacobian(trueTracked, degToRad(world.targetDeg)), sigma);
+  st.settled = std::make_shared<Study>();
+  st.settled->sigma = sigma;
+  st.settled->floor = st.floor;
   for (unsigned int seed = 1; seed <= seeds; ++seed) {
     vpGaussRand noise(1.0, 0.0, static_cast<long>(seed));
     const vpProjectiveRobot robot = acquire(world, sigma, noise, false);
     const double prediction = predictionError(robot, trueMarkerImages(world.rig, world.arm), seed);
+    vpGaussRand settledNoise = noise; // the same frames for the 16-frame s* and settling
     st.add(seed, servo(world, robot, sigma, noise, 40, maxExcursionDeg), robot, prediction);
+    st.settled->add(seed, servo(world, robot, sigma, settledNoise, 40, maxExcursionDeg, 16, true, seed), robot,
+                    prediction);
   }
   st.finish();
+  st.settled->finish();
   return st;
 }
 //! [Monte Carlo]

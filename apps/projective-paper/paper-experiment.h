@@ -45,13 +45,17 @@ vpProjectiveRobot acquire(const PaperWorld &world, double sigma, vpGaussRand &no
 
 /*!
   The servo loop, written as in ViSP's tutorial-ibvs-4pts.cpp: build the features, compute the control law, send
-  the joint velocities to the (simulated) robot. s* is the noisy image of the target: taught by showing.
+  the joint velocities to the (simulated) robot. s* is the noisy image of the target: taught by showing, the mean of
+  \e targetFrames frames (the first from \e noise, the others from a generator of their own seeded by \e seed, so
+  that the servo sees the same frames whatever \e targetFrames); \e settling: vpServoProjective::setSettling().
 */
 ServoRun servo(const PaperWorld &world, const vpProjectiveRobot &robot, double sigma, vpGaussRand &noise,
-               unsigned int iterations, double maxExcursionDeg);
+               unsigned int iterations, double maxExcursionDeg, unsigned int targetFrames = 1, bool settling = false,
+               long seed = 1);
 
 //! Seeds 1 to \e seeds at noise \e sigma: a fresh acquisition and a servo run each, against the noise floor
-//! sqrt(diag(sigma^2 (J^T J)^-1)) of the true stacked image Jacobian of the tracked markers at the target.
+//! sqrt(diag(sigma^2 (J^T J)^-1)) of the true stacked image Jacobian of the tracked markers at the target; each
+//! seed's task is also run with s* taught from 16 frames and settling on (Study::settled).
 Study study(const PaperWorld &world, double sigma, const std::vector<double> &paperDeg, unsigned int seeds,
             double maxExcursionDeg);
 } // namespace app
