@@ -75,6 +75,7 @@
 #include "study-methods.h"
 #include "study-report.h"
 #include "study-statistics.h"
+#include "study-tags.h"
 #include "study-task.h"
 #include "study-world.h"
 #include "command-line.h"
@@ -102,7 +103,8 @@ int main(int argc, char **argv)
   unsigned int nbTasks = 500, seed = 1, markers = 7;
   double rehearsal = -1.0;
   double boxDeg = 30.0, sigma = 0.0, checkPlanned = 0.0;
-  bool anyBranch = false, robustness = true;
+  bool anyBranch = false, robustness = true, tagStudy = false;
+  TagStudySettings tagSettings;
   std::string output = ".", worldName = "puma", rigName = "paper";
   app::CommandLine cmd;
   cmd.add("--world", worldName, "puma|viper850|prismatic",
@@ -123,6 +125,10 @@ int main(int argc, char **argv)
       .add("--check-planned", checkPlanned, "PCT",
            "exit with failure if the planned servo succeeds on less than PCT % of the nominal tasks at a noise level",
            0.0)
+      .flag("--tags", tagStudy, true,
+            "the study on rendered AprilTags instead (tutorial-projective-servo-apriltag.cpp's servo on random tasks)")
+      .add("--blur", tagSettings.blur, "PX", "--tags: the cameras' optical blur (default 0)")
+      .flag("--lighting", tagSettings.lighting, true, "--tags: a lighting change at call 50 of each task")
       .add("--output", output, "DIR", "directory of the tables, data and figures")
       .note("Single threaded and deterministic. Task k (0-based) uses the seed S + k for all its random draws:\n"
             "--seed S+k --tasks 1 reproduces it alone.");
@@ -150,6 +156,13 @@ int main(int argc, char **argv)
       world.robustnessSigma = sigma;
     }
     vpIoTools::makeDirectory(output);
+    if (tagStudy) {
+      tagSettings.tasks = nbTasks;
+      tagSettings.seed = seed;
+      tagSettings.output = output;
+      const double rate = runTagStudy(world, tagSettings, std::cout);
+      return rate >= checkPlanned ? EXIT_SUCCESS : EXIT_FAILURE;
+    }
     Results results;
     std::ofstream csv((output + "/study-runs.csv").c_str());
     csv << "seed,case,method,sigma_px,calibration_error,outcome,converged_at,last_iteration,final_image_rms_px,"
