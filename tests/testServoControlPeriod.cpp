@@ -46,17 +46,6 @@ using namespace vpProjectiveTest;
 
 namespace
 {
-const double kStartDeg[6] = {15.4461, 54.9087, -48.3752, 62.3954, 29.0729, 1.7330};
-const double kTargetDeg[6] = {8.1330, 7.0830, -56.4826, 90.4984, 76.3260, 57.1987};
-
-vpColVector degToRad(const double deg[6])
-{
-  vpColVector q(6);
-  for (unsigned int i = 0; i < 6; ++i) {
-    q[i] = vpMath::rad(deg[i]);
-  }
-  return q;
-}
 
 //! The paper's task on markers 0-2, its features updated from the exact images at q.
 struct Task {
@@ -68,7 +57,7 @@ struct Task {
 
   Task()
   {
-    update(degToRad(kTargetDeg), s_star);
+    update(paperTaskTarget(), s_star);
     task.setRobot(robot);
     for (unsigned int k = 0; k < 3; ++k) {
       task.addFeature(s[k], s_star[k]);
@@ -96,7 +85,7 @@ struct Task {
   //! A velocity loop of \e calls calls, qdot held \e dt seconds each; returns the final RMS image error.
   double run(double dt, unsigned int calls, bool &insideLimits, double &pathLength, unsigned int &converged)
   {
-    vpColVector q = degToRad(kStartDeg);
+    vpColVector q = paperTaskStart();
     insideLimits = true;
     pathLength = 0.0;
     converged = calls;
@@ -131,7 +120,7 @@ TEST(ServoControlPeriod, lawIsTheSameForEveryPeriod)
     a.task.setMaxJointVelocity(saturation);
     b.task.setControlPeriod(0.01);
     b.task.setMaxJointVelocity(saturation);
-    const vpColVector q = degToRad(kStartDeg);
+    const vpColVector q = paperTaskStart();
     a.update(q, a.s);
     b.update(q, b.s);
     const vpColVector qa = a.task.computeControlLaw(q), qb = b.task.computeControlLaw(q);
@@ -165,7 +154,7 @@ TEST(ServoControlPeriod, plannedServoInAVelocityLoop)
   EXPECT_LE(converged, 100u);
   // 30 deg/s on the joint that moves most (joint 5, 55.5 deg): 1.85 s, 46 calls at least.
   EXPECT_GE(converged, 46u);
-  EXPECT_LT(length, 1.05 * (degToRad(kTargetDeg) - degToRad(kStartDeg)).frobeniusNorm());
+  EXPECT_LT(length, 1.05 * (paperTaskTarget() - paperTaskStart()).frobeniusNorm());
 }
 
 // A period that is not positive and finite throws and leaves the task as it was.

@@ -62,25 +62,14 @@ using namespace vpProjectiveTest;
 
 namespace
 {
-// The tutorial's task (tutorial-projective-common.h, PaperWorld): joint values in degrees.
-const double kStartDeg[6] = {15.4461, 54.9087, -48.3752, 62.3954, 29.0729, 1.7330};
-const double kTargetDeg[6] = {8.1330, 7.0830, -56.4826, 90.4984, 76.3260, 57.1987};
+// The main job's tracked markers (apps/projective-paper): those on the gripper face that looks at the rig.
 const unsigned int kTracked[3] = {0, 1, 2};
-
-vpColVector degToRad(const double deg[6])
-{
-  vpColVector q(6);
-  for (unsigned int i = 0; i < 6; ++i) {
-    q[i] = vpMath::rad(deg[i]);
-  }
-  return q;
-}
 
 //! The paper's world and its task.
 struct PaperTask {
   ArmSetup setup = pumaEyeToHand();
   vpSimulatorStereoRig rig = paperRigAtOrigin();
-  vpColVector qStart = degToRad(kStartDeg), qTarget = degToRad(kTargetDeg);
+  vpColVector qStart = paperTaskStart(), qTarget = paperTaskTarget();
 
   //! Images of the tracked markers at q with noise sigma; false if one left an image.
   bool images(const vpColVector &q, double sigma, vpGaussRand &noise, std::vector<vpImagePoint> &left,

@@ -286,6 +286,28 @@ inline vpHomogeneousMatrix basePoseFor(const std::vector<vpSimulatorArm::vpDHRow
   return wMt * unplaced.get_wMt(qArm).inverse();
 }
 
+//! The main job's task (apps/projective-paper, 82 cm and 88 deg): its start joint values (rad) on the paper's arm.
+inline vpColVector paperTaskStart()
+{
+  const double deg[6] = {15.4461, 54.9087, -48.3752, 62.3954, 29.0729, 1.7330};
+  vpColVector q(6);
+  for (unsigned int i = 0; i < 6; ++i) {
+    q[i] = vpMath::rad(deg[i]);
+  }
+  return q;
+}
+
+//! The main job's task: its target joint values (rad).
+inline vpColVector paperTaskTarget()
+{
+  const double deg[6] = {8.1330, 7.0830, -56.4826, 90.4984, 76.3260, 57.1987};
+  vpColVector q(6);
+  for (unsigned int i = 0; i < 6; ++i) {
+    q[i] = vpMath::rad(deg[i]);
+  }
+  return q;
+}
+
 inline vpSimulatorStereoRig paperRigAtOrigin()
 {
   return vpSimulatorStereoRig::paperRig(vpColVector(3, 0.0), 1.0);
