@@ -237,6 +237,23 @@ void vpStereoAprilTagDetector::detectImage(const vpImage<unsigned char> &I, int 
         detectIn(I, b, tags);
       }
     }
+    // A predicted tag not found in its box (a box too tight for a fast motion, a crop where the quad fit failed): the
+    // whole image is searched once for the missing ones, so that tracking never loses a tag that detection finds.
+    std::vector<int> missing;
+    for (int id : m_predicted) {
+      if (std::none_of(tags.begin(), tags.end(), [id](const Tag &t) { return t.id == id; })) {
+        missing.push_back(id);
+      }
+    }
+    if (!missing.empty()) {
+      std::vector<Tag> all;
+      detectIn(I, Box{0, 0, H - 1, W - 1, -1}, all);
+      for (const Tag &t : all) {
+        if (std::find(missing.begin(), missing.end(), t.id) != missing.end()) {
+          tags.push_back(t);
+        }
+      }
+    }
   }
   if (m_refine) {
     for (Tag &tag : tags) {

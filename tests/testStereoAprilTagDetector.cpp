@@ -263,8 +263,9 @@ TEST(StereoAprilTagDetector, EpipolarCheckDropsAMismatchedPair)
   EXPECT_EQ(detector.detect(Il, Ir), 8u);
 }
 
-// Tracking: the regions predicted from a full detection give the same corners; a tag predicted elsewhere is not
-// found; clearing the regions finds it again.
+// Tracking: the regions predicted from a full detection give the same corners; a tag predicted elsewhere (it escaped
+// its box) is found by the whole-image search, with the same corners; a tag not predicted is not looked for; clearing
+// the regions finds it again.
 TEST(StereoAprilTagDetector, PredictedRegions)
 {
   vpSimulatorTagRenderer renderer(kRig, 8);
@@ -285,13 +286,22 @@ TEST(StereoAprilTagDetector, PredictedRegions)
     EXPECT_LT(vpImagePoint::distance(detector.getRightPoints()[k], right[k]), 0.02);
   }
 
-  // Tag 10 (the first 4 ids) predicted 150 px away, in both images: not found there.
+  // Tag 10 (the first 4 ids) predicted 150 px away, in both images: found by the whole-image search.
   std::vector<vpImagePoint> movedLeft = left, movedRight = right;
   for (size_t k = 0; k < 4; ++k) {
     movedLeft[k] += vpImagePoint(0.0, 150.0);
     movedRight[k] += vpImagePoint(0.0, 150.0);
   }
   detector.setPredictedRegions(ids, movedLeft, movedRight);
+  ASSERT_EQ(detector.detect(Il, Ir), 24u);
+  EXPECT_EQ(detector.getIds(), ids);
+  for (size_t k = 0; k < 4; ++k) {
+    EXPECT_LT(vpImagePoint::distance(detector.getLeftPoints()[k], left[k]), 0.02);
+  }
+  // Tag 10 not predicted at all: not looked for.
+  detector.setPredictedRegions(std::vector<int>(ids.begin() + 4, ids.end()),
+                               std::vector<vpImagePoint>(left.begin() + 4, left.end()),
+                               std::vector<vpImagePoint>(right.begin() + 4, right.end()));
   ASSERT_EQ(detector.detect(Il, Ir), 20u);
   EXPECT_EQ(detector.getIds().front(), 4 * 11);
   detector.clearPredictedRegions();

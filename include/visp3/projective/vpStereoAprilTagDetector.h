@@ -62,8 +62,10 @@ class vpProjectiveStereoRig;
 
   Tracking: setPredictedRegions() gives where the tags are expected (e.g. the model's predictions, or the last
   detection's corners); detect() then runs vpDetectorAprilTag only in the box around each predicted tag (grown by
-  setRegionMargin(), by the quiet zone and 2 px), keeps that tag there and shifts its corners back. A tag not found in
-  its box is missing from the result: clearPredictedRegions() returns to full-image detection.
+  setRegionMargin(), by the quiet zone and 2 px), keeps that tag there and shifts its corners back. A predicted tag not
+  found in its box is searched for in the whole image (once per image, for all such tags): tracking costs a full
+  detection on the frames where a tag escaped its box, and loses no tag that detection finds. Tags that were not
+  predicted are not looked for: clearPredictedRegions() returns to full-image detection.
 
   A tag id seen twice in one image (two printed copies) is ambiguous and dropped.
 
