@@ -18,7 +18,8 @@
   non-zero reference (vpSimulatorRobotArm::setEncoderOffset()), the tool's own detector finds the markers.
   - `calibrate` turns the 13-frame session of the Viper850 and of the R-R-P-R-R-R arm into a model whose prediction
     of the tag corners at 20 random configurations in view is within 0.3 px RMS of the truth;
-  - `check` passes a later session of the same cell and names the camera bumped by 2 deg and 1 cm.
+  - `check` passes a later session of the same cell and names the camera bumped by 2 deg and 1 cm;
+  - `record` writes the rendered cell's acquisition session, which `calibrate`, `check` and `report --plots` take.
 */
 
 #include <cmath>
@@ -29,6 +30,7 @@
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpUniRand.h>
+#include <visp3/io/vpImageIo.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
 #include <visp3/projective/vpProjectiveSessionWriter.h>
 #include <visp3/projective/vpSimulatorStereoCell.h>
@@ -203,4 +205,36 @@ TEST_F(ProjectiveTool, CheckPassesTheSameCellAndNamesTheBumpedCamera)
       EXPECT_NE(check.out.find(std::string(names[c]) + " camera"), std::string::npos) << check.out;
     }
   }
+}
+
+// record writes the rendered cell's acquisition session; calibrate turns it into a model that check finds in agreement
+// with the same session; report --plots draws the model's marker paths.
+TEST_F(ProjectiveTool, RecordCalibrateCheckAndReportTheRenderedCell)
+{
+  TemporaryFolder tmp;
+  const ToolRun record = runTool(tmp, "record '" + (tmp / "cell") + "' --observations 2");
+  ASSERT_EQ(record.status, 0) << record.err;
+  EXPECT_NE(record.out.find("recorded "), std::string::npos) << record.out;
+  const vpProjectiveSession session = vpProjectiveSession::read(tmp / "cell");
+  EXPECT_EQ(session.getNumberOfFrames(vpProjectiveSession::ZERO), 1u);
+  EXPECT_GE(session.getNumberOfFrames(vpProjectiveSession::TRIAL), 12u);
+  EXPECT_GE(session.getNumberOfFrames(vpProjectiveSession::OBSERVATION), 2u);
+  const ToolRun calibrate = runTool(tmp, "calibrate '" + (tmp / "cell") + "' --output '" + (tmp / "model.json") + "'");
+  ASSERT_EQ(calibrate.status, 0) << calibrate.err;
+  const ToolRun check = runTool(tmp, "check '" + (tmp / "model.json") + "' '" + (tmp / "cell") + "'");
+  EXPECT_EQ(check.status, 0) << check.out << check.err;
+  const ToolRun report = runTool(tmp, "report '" + (tmp / "model.json") + "' --plots '" + (tmp / "plots") + "'");
+  EXPECT_EQ(report.status, 0) << report.err;
+  for (const char *side : {"left", "right"}) {
+    vpImage<vpRGBa> I;
+    vpImageIo::read(I, tmp / "plots" + "/joint-paths-" + side + ".png");
+    EXPECT_EQ(I.getWidth(), 640u);
+    unsigned int drawn = 0; // pixels that are not the white background: the paths and the crosses
+    for (unsigned int k = 0; k < I.getSize(); ++k) {
+      drawn += I.bitmap[k] == vpRGBa(255, 255, 255) ? 0 : 1;
+    }
+    EXPECT_GT(drawn, 1000u) << side;
+  }
+  // A folder that already holds a session is never overwritten.
+  EXPECT_EQ(runTool(tmp, "record '" + (tmp / "cell") + "'").status, 1);
 }

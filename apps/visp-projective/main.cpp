@@ -40,6 +40,8 @@
 
 #include "visp-projective-markers.h"
 #include "visp-projective-options.h"
+#include "visp-projective-plots.h"
+#include "visp-projective-record.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -59,10 +61,25 @@ const char *const kMainUsage =
     "  calibrate SESSION --output MODEL.json   markers of every frame, rig, arm acquisition -> model file\n"
     "  check MODEL.json SESSION                prediction error of the model on each frame: did a camera move?\n"
     "  report MODEL.json                       joints, residuals, the metric self-calibration K, R, t\n"
+    "  record SESSION                          the acquisition session of the rendered tag cell (no camera needed)\n"
     "\n"
     "'visp-projective COMMAND --help' describes each command. A SESSION is a folder holding session.json\n"
     "(format visp-projective-session, version 1) and its PNG images.\n"
     "Exit status: 0 success, 1 bad input or error (one line on stderr), 2 usage, 3 check: the model does not fit.\n";
+
+const char *const kRecordUsage =
+    "Usage: visp-projective record SESSION [--noise GREY] [--blur PX] [--observations N] [--seed S]\n"
+    "Records in the new folder SESSION the acquisition of the rendered cell (vpSimulatorStereoCell: the paper's\n"
+    "PUMA-like arm and rig, three 36h11 tags on the tool): the frames vpProjectiveAcquisitionProcedure takes while it\n"
+    "moves the arm, then N observation frames at random configurations. A live cell records the same way from its\n"
+    "own program (vpProjectiveSessionCalibration::markerSource() with a vpProjectiveSessionWriter).\n"
+    "\n"
+    "Options:\n"
+    "  --noise GREY                   image noise in grey levels (default 1)\n"
+    "  --blur PX                      optical blur in pixels (default 0.5)\n"
+    "  --observations N               observation frames (default 4)\n"
+    "  --seed S                       seed of the noise and of the observation poses (default 1)\n"
+    "  -h, --help                     this help\n";
 
 const char *const kCalibrateUsage =
     "Usage: visp-projective calibrate SESSION --output MODEL.json [--family 36h11] [OPTIONS]\n"
@@ -95,12 +112,16 @@ const char *const kCheckUsage =
     "  -h, --help                     this help\n";
 
 const char *const kReportUsage =
-    "Usage: visp-projective report MODEL.json\n"
+    "Usage: visp-projective report MODEL.json [--plots DIR] [--range DEG] [--travel M]\n"
     "Prints what the model says about the cell: the joints (kind, axis in the left camera's frame), the residuals\n"
     "of its calibration, its markers, and the metric self-calibration of the rig (intrinsics K of both cameras, the\n"
     "right camera's pose R, t in the left one; t in the prismatic joints' unit, or a unit baseline without one).\n"
     "\n"
     "Options:\n"
+    "  --plots DIR                    write DIR/joint-paths-left.png and -right.png: the marker paths the model\n"
+    "                                 predicts when each joint moves alone (one colour per joint)\n"
+    "  --range DEG                    a revolute joint's motion either way for the plots (default 30)\n"
+    "  --travel M                     a prismatic joint's motion either way for the plots (default 0.05)\n"
     "  -h, --help                     this help\n";
 
 //! One line: a message with its line breaks replaced.
@@ -233,16 +254,45 @@ std::string vectorText(const Eigen::Vector3d &v, int precision)
   return os.str();
 }
 
+int record(int argc, char **argv)
+{
+  vispProjective::Arguments args("visp-projective record", {"SESSION"},
+                                 {"--noise", "--blur", "--observations", "--seed"}, {});
+  const int parsed = parseArguments(args, argc, argv, "record", kRecordUsage);
+  if (parsed >= 0) {
+    return parsed;
+  }
+  double noise = 1.0, blur = 0.5, observations = 4.0, seed = 1.0;
+  std::string error;
+  if (!args.number("--noise", 1.0, 0.0, noise, error) || !args.number("--blur", 0.5, 0.0, blur, error) ||
+      !args.number("--observations", 4.0, 0.0, observations, error) || !args.number("--seed", 1.0, 0.0, seed, error)) {
+    return usageError("record", error);
+  }
+  vispProjective::recordRenderedCell(args.positional(0), noise, blur, static_cast<unsigned int>(observations),
+                                     static_cast<long>(seed), std::cout);
+  return EXIT_SUCCESS;
+}
+
 int report(int argc, char **argv)
 {
-  vispProjective::Arguments args("visp-projective report", {"MODEL.json"}, {}, {});
+  vispProjective::Arguments args("visp-projective report", {"MODEL.json"}, {"--plots", "--range", "--travel"}, {});
   const int parsed = parseArguments(args, argc, argv, "report", kReportUsage);
   if (parsed >= 0) {
     return parsed;
   }
+  double range = 30.0, travel = 0.05;
+  std::string error;
+  if (!args.number("--range", 30.0, 1e-9, range, error) || !args.number("--travel", 0.05, 1e-9, travel, error)) {
+    return usageError("report", error);
+  }
   std::vector<int> ids;
   double residual = 0.0, algebraic = 0.0;
   const vpProjectiveArmModel model = loadModel(args.positional(0), ids, residual, algebraic);
+  if (args.has("--plots")) {
+    for (const std::string &file : vispProjective::writeJointPathPlots(model, range, travel, args.value("--plots"))) {
+      std::cout << "plot: " << file << std::endl;
+    }
+  }
   std::cout << "model '" << args.positional(0) << "': " << model.getNumberOfJoints() << " joints, "
             << (model.getRigMounting() == vpProjectiveArmModel::EYE_TO_HAND ? "eye-to-hand" : "eye-in-hand") << ", "
             << model.markers().size() << " markers" << (ids.empty() ? " (no identifiers)" : "") << ", "
@@ -322,6 +372,9 @@ int main(int argc, char **argv)
     }
     if (command == "report") {
       return report(argc, argv);
+    }
+    if (command == "record") {
+      return record(argc, argv);
     }
   } catch (const vpException &e) {
     std::cerr << "visp-projective " << command << ": " << oneLine(e.getStringMessage()) << std::endl;
