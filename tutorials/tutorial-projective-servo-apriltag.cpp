@@ -154,7 +154,7 @@ int main(int argc, char **argv)
     std::vector<std::vector<vpImagePoint>> path(4);
     vpImage<unsigned char> Istart;
     double errorRms = 0.0;
-    unsigned int it = 0;
+    unsigned int it = 0, lost = 0; // lost: consecutive frames without the servo tag
     for (; it < 300; ++it) {
       cell.acquire(Ileft, Iright);
       if (it == 100) {
@@ -182,8 +182,8 @@ int main(int argc, char **argv)
       vpColVector q;
       robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
       const vpColVector qdot = task.computeControlLaw(q);
-      if (task.getStatus() == vpServoProjective::SERVO_STOPPED ||
-          task.getStatus() == vpServoProjective::SERVO_MODEL_MISMATCH ||
+      lost = task.getStatus() == vpServoProjective::SERVO_STOPPED ? lost + 1 : 0; // this frame: qdot = 0
+      if (lost > 25 || task.getStatus() == vpServoProjective::SERVO_MODEL_MISMATCH ||
           task.getStatus() == vpServoProjective::SERVO_NO_PLAN) {
         std::cout << "Stopped at iteration " << it << ": " << vpServoProjective::toString(task.getStatus()) << "\n";
         break;

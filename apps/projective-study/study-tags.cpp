@@ -203,7 +203,7 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
       task.addFeature(s[k], s_star[k]);
     }
     double errorRms = -1.0;
-    unsigned int call = 0, quiet = 0;
+    unsigned int call = 0, quiet = 0, stopped = 0;
     vpServoProjective::vpServoStatus status = vpServoProjective::SERVO_RUNNING;
     tags.clearPredictedRegions();
     for (; taught && call < settings.maxCalls; ++call) {
@@ -232,7 +232,9 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
       robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
       const vpColVector qdot = task.computeControlLaw(q);
       status = task.getStatus();
-      if (status == vpServoProjective::SERVO_STOPPED || status == vpServoProjective::SERVO_NO_PLAN ||
+      // The tag missing from a frame stops the task for that frame (qdot = 0); a second without it ends the task.
+      stopped = status == vpServoProjective::SERVO_STOPPED ? stopped + 1 : 0;
+      if (stopped > 25 || status == vpServoProjective::SERVO_NO_PLAN ||
           status == vpServoProjective::SERVO_MODEL_MISMATCH) {
         break;
       }
