@@ -85,11 +85,11 @@ bool fitLine(const std::vector<Eigen::Vector2d> &points, Eigen::Vector2d &n, dou
 
 vpStereoAprilTagDetector::vpStereoAprilTagDetector(vpDetectorAprilTag::vpAprilTagFamily family)
     : m_detector(family), m_F(), m_useRig(false), m_epipolarThreshold(2.0), m_refine(true), m_margin(10.0),
-      m_predicted(), m_predictedBox(), m_crop(), m_ids(), m_left(), m_right(), m_rejected(0)
+      m_decimation(1.5), m_predicted(), m_predictedBox(), m_crop(), m_ids(), m_left(), m_right(), m_rejected(0)
 {
   m_detector.setAprilTagNbThreads(1);
-  m_detector.setAprilTagRefineEdges(false); // the refinement below replaces it
-  m_detector.setAprilTagQuadDecimate(1.5f); // the refinement works at full resolution (see setDecimation())
+  m_detector.setAprilTagRefineEdges(false);                             // the refinement below replaces it
+  m_detector.setAprilTagQuadDecimate(static_cast<float>(m_decimation)); // the refinement works at full resolution
 }
 
 void vpStereoAprilTagDetector::setStereoRig(const vpProjectiveStereoRig &rig)
@@ -119,6 +119,7 @@ void vpStereoAprilTagDetector::setDecimation(double decimation)
          "the decimation must be in [1, 8] (1: full resolution, for tags under 25 px; 1.5 is about 10 times faster)");
   }
   m_detector.setAprilTagQuadDecimate(static_cast<float>(decimation));
+  m_decimation = decimation;
 }
 
 void vpStereoAprilTagDetector::setNbThreads(unsigned int threads)
@@ -191,6 +192,9 @@ void vpStereoAprilTagDetector::clearPredictedRegions()
 
 void vpStereoAprilTagDetector::detectIn(const vpImage<unsigned char> &I, const Box &box, std::vector<Tag> &tags)
 {
+  if (box.i1 - box.i0 < 8 || box.j1 - box.j0 < 8) {
+    return; // a box (nearly) out of the image
+  }
   const bool whole = box.i0 == 0 && box.j0 == 0 && box.i1 == static_cast<int>(I.getHeight()) - 1 &&
                      box.j1 == static_cast<int>(I.getWidth()) - 1;
   const vpImage<unsigned char> *image = &I;
@@ -217,6 +221,18 @@ void vpStereoAprilTagDetector::detectIn(const vpImage<unsigned char> &I, const B
   }
 }
 
+vpStereoAprilTagDetector::Box vpStereoAprilTagDetector::box(const vpImage<unsigned char> &I, int side, size_t t) const
+{
+  // The predicted tag's box, grown by the margin, by its quiet zone (an eighth of its size) and 2 px.
+  const int H = static_cast<int>(I.getHeight()), W = static_cast<int>(I.getWidth());
+  const vpImagePoint &lo = m_predictedBox[side][2 * t], &hi = m_predictedBox[side][2 * t + 1];
+  const double grow = m_margin + 2.0 + std::max(hi.get_u() - lo.get_u(), hi.get_v() - lo.get_v()) / 8.0;
+  return Box{std::max(0, static_cast<int>(std::floor(lo.get_v() - grow))),
+             std::max(0, static_cast<int>(std::floor(lo.get_u() - grow))),
+             std::min(H - 1, static_cast<int>(std::ceil(hi.get_v() + grow))),
+             std::min(W - 1, static_cast<int>(std::ceil(hi.get_u() + grow))), m_predicted[t]};
+}
+
 void vpStereoAprilTagDetector::detectImage(const vpImage<unsigned char> &I, int side, std::vector<Tag> &tags)
 {
   tags.clear();
@@ -227,23 +243,30 @@ void vpStereoAprilTagDetector::detectImage(const vpImage<unsigned char> &I, int 
     // One box per predicted tag, grown by the margin, by its quiet zone (an eighth of its size) and 2 px; in each box,
     // only that tag is kept (a neighbour partly inside is found in its own box).
     for (size_t t = 0; t < m_predicted.size(); ++t) {
-      const vpImagePoint &lo = m_predictedBox[side][2 * t], &hi = m_predictedBox[side][2 * t + 1];
-      const double grow = m_margin + 2.0 + std::max(hi.get_u() - lo.get_u(), hi.get_v() - lo.get_v()) / 8.0;
-      Box b{std::max(0, static_cast<int>(std::floor(lo.get_v() - grow))),
-            std::max(0, static_cast<int>(std::floor(lo.get_u() - grow))),
-            std::min(H - 1, static_cast<int>(std::ceil(hi.get_v() + grow))),
-            std::min(W - 1, static_cast<int>(std::ceil(hi.get_u() + grow))), m_predicted[t]};
-      if (b.i1 - b.i0 >= 8 && b.j1 - b.j0 >= 8) {
-        detectIn(I, b, tags);
-      }
+      detectIn(I, box(I, side, t), tags);
     }
-    // A predicted tag not found in its box (a box too tight for a fast motion, a crop where the quad fit failed): the
-    // whole image is searched once for the missing ones, so that tracking never loses a tag that detection finds.
+    // A predicted tag not found in its box (a tag seen obliquely, too small for the decimation; a box too tight for a
+    // fast motion): its box again at full resolution, then the whole image once for the tags still missing, so that
+    // tracking loses no tag that detection finds.
     std::vector<int> missing;
-    for (int id : m_predicted) {
-      if (std::none_of(tags.begin(), tags.end(), [id](const Tag &t) { return t.id == id; })) {
+    for (size_t t = 0; t < m_predicted.size(); ++t) {
+      const int id = m_predicted[t];
+      if (std::none_of(tags.begin(), tags.end(), [id](const Tag &tag) { return tag.id == id; })) {
         missing.push_back(id);
       }
+    }
+    if (!missing.empty() && m_decimation > 1.0) {
+      m_detector.setAprilTagQuadDecimate(1.0f);
+      for (size_t t = 0; t < m_predicted.size(); ++t) {
+        if (std::find(missing.begin(), missing.end(), m_predicted[t]) != missing.end()) {
+          const size_t before = tags.size();
+          detectIn(I, box(I, side, t), tags);
+          if (tags.size() > before) {
+            missing.erase(std::find(missing.begin(), missing.end(), m_predicted[t]));
+          }
+        }
+      }
+      m_detector.setAprilTagQuadDecimate(static_cast<float>(m_decimation));
     }
     if (!missing.empty()) {
       std::vector<Tag> all;

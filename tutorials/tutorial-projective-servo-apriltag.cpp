@@ -160,8 +160,8 @@ int main(int argc, char **argv)
       if (it == 100) {
         cell.getRenderer().setLighting(0.7, 20.0, 0.3, 0.0); // a cloud: darker, less contrast, a gradient
       }
-      tags.detect(Ileft, Iright);
-      tags.setPredictedRegions(tags.getIds(), tags.getLeftPoints(), tags.getRightPoints()); // next: search there
+      tags.detect(Ileft, Iright); // near the last corners; a tag not found there is searched for in the whole images
+      unsigned int seenCorners = 0;
       for (unsigned int k = 0; k < 4; ++k) {
         bool seen = false;
         for (size_t j = 0; j < tags.getIds().size(); ++j) {
@@ -172,9 +172,10 @@ int main(int argc, char **argv)
           }
         }
         task.setFeatureTracked(k, seen); // a corner out of view is set aside for this iteration
+        seenCorners += seen ? 1 : 0;
       }
-      if (tags.getIds().empty()) {
-        tags.clearPredictedRegions(); // lost: search the whole images again
+      if (seenCorners == 4) {
+        tags.setPredictedRegions(tags.getIds(), tags.getLeftPoints(), tags.getRightPoints()); // next: search there
       }
       if (it == 0) {
         Istart = Ileft;

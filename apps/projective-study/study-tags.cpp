@@ -165,6 +165,9 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
       continue;
     }
     ++drawn;
+    // Where the loop's first detection looks: the corners found at the start.
+    const std::vector<int> startIds = tags.getIds();
+    const std::vector<vpImagePoint> startLeft = tags.getLeftPoints(), startRight = tags.getRightPoints();
 
     // s* taught by showing: 16 frames at the target, averaged.
     cell.getRenderer().setLighting(1.0, 0.0);
@@ -205,7 +208,7 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
     double errorRms = -1.0;
     unsigned int call = 0, quiet = 0, stopped = 0;
     vpServoProjective::vpServoStatus status = vpServoProjective::SERVO_RUNNING;
-    tags.clearPredictedRegions();
+    tags.setPredictedRegions(startIds, startLeft, startRight);
     for (; taught && call < settings.maxCalls; ++call) {
       if (settings.lighting && call == 50) {
         cell.getRenderer().setLighting(0.7, 20.0, 0.3, 0.0);
@@ -214,10 +217,8 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
       tags.detect(Il, Ir);
       std::vector<vpImagePoint> l, r;
       const bool seen = servoCorners(tags, l, r);
-      if (seen) {
+      if (seen) { // else the last regions again: a tag not found there is searched for in the whole images
         tags.setPredictedRegions(tags.getIds(), tags.getLeftPoints(), tags.getRightPoints());
-      } else {
-        tags.clearPredictedRegions();
       }
       double sum = 0.0;
       for (unsigned int k = 0; k < 4; ++k) {

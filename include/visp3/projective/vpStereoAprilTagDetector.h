@@ -160,6 +160,7 @@ private:
     int id;             // the tag kept in the box; -1: all
   };
 
+  Box box(const vpImage<unsigned char> &I, int side, size_t t) const;
   void detectImage(const vpImage<unsigned char> &I, int side, std::vector<Tag> &tags);
   void detectIn(const vpImage<unsigned char> &I, const Box &box, std::vector<Tag> &tags);
   void refine(const vpImage<unsigned char> &I, Tag &tag) const;
@@ -170,6 +171,7 @@ private:
   double m_epipolarThreshold;
   bool m_refine;
   double m_margin;
+  double m_decimation;                         // setDecimation()
   std::vector<int> m_predicted;                // tag ids searched in regions
   std::vector<vpImagePoint> m_predictedBox[2]; // per predicted tag: (min, max) corners, per image
   vpImage<unsigned char> m_crop;
