@@ -30,6 +30,10 @@
 #include <visp3/io/vpImageIo.h>
 #include <visp3/projective/vpProjectiveJoint.h>
 
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
 namespace vispProjective
 {
 std::vector<std::string> writeJointPathPlots(const vpProjectiveArmModel &model, double range, double travel,
