@@ -286,10 +286,9 @@ inline vpHomogeneousMatrix basePoseFor(const std::vector<vpSimulatorArm::vpDHRow
   return wMt * unplaced.get_wMt(qArm).inverse();
 }
 
-//! The main job's task (apps/projective-paper, 82 cm and 88 deg): its start joint values (rad) on the paper's arm.
-inline vpColVector paperTaskStart()
+//! Joint values in radians from the 6 values \e deg in degrees.
+inline vpColVector radiansOf(const double (&deg)[6])
 {
-  const double deg[6] = {15.4461, 54.9087, -48.3752, 62.3954, 29.0729, 1.7330};
   vpColVector q(6);
   for (unsigned int i = 0; i < 6; ++i) {
     q[i] = vpMath::rad(deg[i]);
@@ -297,15 +296,18 @@ inline vpColVector paperTaskStart()
   return q;
 }
 
+//! The main job's task (apps/projective-paper, 82 cm and 88 deg): its start joint values (rad) on the paper's arm.
+inline vpColVector paperTaskStart()
+{
+  const double deg[6] = {15.4461, 54.9087, -48.3752, 62.3954, 29.0729, 1.7330};
+  return radiansOf(deg);
+}
+
 //! The main job's task: its target joint values (rad).
 inline vpColVector paperTaskTarget()
 {
   const double deg[6] = {8.1330, 7.0830, -56.4826, 90.4984, 76.3260, 57.1987};
-  vpColVector q(6);
-  for (unsigned int i = 0; i < 6; ++i) {
-    q[i] = vpMath::rad(deg[i]);
-  }
-  return q;
+  return radiansOf(deg);
 }
 
 inline vpSimulatorStereoRig paperRigAtOrigin()
