@@ -27,7 +27,7 @@
 
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpImage.h>
-#include <visp3/core/vpUniRand.h>
+#include <visp3/projective/vpSimulatorImageNoise.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
 BEGIN_VISP_NAMESPACE
@@ -49,10 +49,9 @@ BEGIN_VISP_NAMESPACE
   Only the neighbourhood of the balls is rendered and blurred: elsewhere the image is the uniform background, which
   blurring leaves unchanged, so that a 640 x 480 stereo pair of 7 markers takes about a millisecond.
 
-  Noise: independent Gaussian grey-level noise on every pixel. 65536 draws of a seeded vpGaussRand are tabulated once
-  and each pixel takes one of them through a seeded vpUniRand: independent draws from a very fine sample of the
-  Gaussian. The left image is rendered before the right one from the same stream, so that a renderer built with the
-  same seed and settings renders the same sequence of images.
+  Noise: independent Gaussian grey-level noise on every pixel (vpSimulatorImageNoise: a seeded table of 65536 draws,
+  each pixel taking one at a pseudo-random index). The left image is rendered before the right one from the same stream,
+  so that a renderer built with the same seed and settings renders the same sequence of images.
 
   \code
   vpSimulatorStereoRig rig = vpSimulatorStereoRig::paperRig(vpColVector(3, 0.0), 1.0);
@@ -134,9 +133,6 @@ private:
   void renderCamera(Camera &camera, const std::vector<vpColVector> &wX, vpImage<unsigned char> &I);
   void resetNoise();
   void resetBuffers();
-  unsigned char noisy(double level);
-  unsigned char noisyBackground();
-  unsigned int noiseIndex();
 
   vpSimulatorStereoRig m_rig;
   double m_radius;
@@ -148,11 +144,7 @@ private:
   long m_seed;
   std::vector<double> m_kernel; // half of a normalised Gaussian kernel; m_kernel[0] is its centre
   Camera m_cameras[2];
-  std::vector<double> m_noiseTable;
-  std::vector<unsigned char> m_backgroundTable;
-  vpUniRand m_uniform;
-  uint32_t m_bits;
-  bool m_high;
+  vpSimulatorImageNoise m_imageNoise;
 };
 
 END_VISP_NAMESPACE

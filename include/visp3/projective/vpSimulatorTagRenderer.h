@@ -29,6 +29,7 @@
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
+#include <visp3/projective/vpSimulatorImageNoise.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
 BEGIN_VISP_NAMESPACE
@@ -54,8 +55,8 @@ BEGIN_VISP_NAMESPACE
   nearest tag wins). A pixel whose four corners fall in one cell, or in a block of 2 x 2 cells of one colour (both
   convex), takes that colour; the others (on an edge) average \f$ N = S^2 \f$ rays (setSupersampling()) of a rank-1
   lattice, each on its own row and column of \f$ 1/N \f$ px. Then, in order: Gaussian optical blur (setBlur()), lighting
-  \f$ g = o + a (1 + b_u (u - W/2)/W + b_v (v - H/2)/H)\, g \f$ (setLighting()), Gaussian sensor noise (setNoise(): a
-  seeded table of 65536 Gaussian draws, one picked per pixel by a seeded generator) and 8-bit quantisation. Only the
+  \f$ g = o + a (1 + b_u (u - W/2)/W + b_v (v - H/2)/H)\, g \f$ (setLighting()), Gaussian sensor noise (setNoise(),
+  vpSimulatorImageNoise) and 8-bit quantisation. Only the
   tags' boxes are rendered and blurred: a 640 x 480 pair of 8 tags of 67 px takes 5 to 9 ms (benchmarkAprilTag).
 
   A tag is drawn when its printed side faces the camera and its whole quiet zone is in front of it (depth > 1 mm);
@@ -185,7 +186,6 @@ private:
   double level(const Camera &camera, const std::vector<const View *> &views, double u, double v, int &label) const;
   void renderCamera(Camera &camera, vpImage<unsigned char> &I);
   void resetNoise();
-  unsigned int noiseIndex();
 
   vpSimulatorStereoRig m_rig;
   std::vector<Tag> m_tags;
@@ -200,14 +200,10 @@ private:
   long m_seed;
   std::vector<double> m_kernel;
   Camera m_cameras[2];
-  std::vector<double> m_noiseTable;
-  std::vector<unsigned char> m_backgroundTable;
-  double m_backgroundKey;
+  vpSimulatorImageNoise m_imageNoise;
   std::vector<int> m_labels;
   std::vector<View> m_views;
   std::vector<const View *> m_near;
-  uint64_t m_state, m_bits;
-  unsigned int m_left;
 };
 
 END_VISP_NAMESPACE

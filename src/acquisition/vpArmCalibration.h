@@ -1,0 +1,127 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*
+  Private: the steps of vpProjectiveArmAcquisition::calibrate(), one file each: the algebraic generators and the
+  affine and metric upgrade (vpArmUpgrade.cpp), the bundle adjustment (vpArmBundleAdjustment.cpp, Ceres cost
+  functors in vpMarkerObservationError.h). Not installed.
+*/
+
+#ifndef _vpArmCalibration_h_
+#define _vpArmCalibration_h_
+
+#include <cstddef>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpProjectiveStereoRig.h>
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+namespace vpProjectiveInternal
+{
+/*!
+  One trial motion: joint \e joint alone moved by \e amount; the pixels (u, v, u', v') of every marker after it,
+  NaN where \e seen is false (a marker the trial does not show: identified markers).
+*/
+struct ArmTrial {
+  unsigned int joint;
+  double amount;
+  std::vector<Eigen::Vector4d> s;
+  std::vector<bool> seen;
+};
+
+/*!
+  What the calibration works on: the acquisition's data, and which trial observations it uses (inlier[k][j]: marker
+  j of trial k; always false where the trial does not show the marker).
+*/
+struct ArmCalibrationData {
+  std::vector<vpProjectiveJoint::vpJointType> types;
+  vpProjectiveArmModel::vpRigMounting mounting;
+  vpProjectiveStereoRig rig;
+  std::vector<Eigen::Vector4d> zeroImages; // (u, v, u', v') of each marker at the zero reference
+  std::vector<ArmTrial> trials;
+  double outlierThreshold;               // pixels, 0: every observation is used
+  std::vector<std::vector<bool>> inlier; // [trial][marker]
+};
+
+//! A metric model: G (projective to metric), and per joint its axis and a point of it (see vpProjectiveArmModel).
+struct MetricModel {
+  Eigen::Matrix4d G;
+  std::vector<Eigen::Vector3d> axis, point;
+};
+
+/*!
+  Adds the squared pixel errors of joint \e i's inlier trial observations predicted by the generator \e Hhat from the
+  zero-reference points \e M0, and their number of coordinates. With an outlier threshold t an error counts at most
+  as 3 t (RMS over the two images); a prediction on a camera's focal plane counts as 1e6 px per coordinate.
+*/
+void accumulateTrialError(const ArmCalibrationData &data, unsigned int i, const Eigen::Matrix4d &Hhat,
+                          const std::vector<Eigen::Vector4d> &M0, double &sum, size_t &count);
+
+//! RMS pixel error of all trials predicted by the generators \e Hhat from the zero-reference points \e M0.
+double predictionResidual(const ArmCalibrationData &data, const std::vector<Eigen::Matrix4d> &Hhat,
+                          const std::vector<Eigen::Vector4d> &M0);
+
+/*!
+  The generator of each joint from its trials' displacements (the candidate that best predicts the joint's trials),
+  \e M0 the triangulated zero reference; 0 for a joint none of whose trials gave a logarithm. With an outlier
+  threshold the mismatched markers of each trial are flagged in data.inlier. Throws if a trial did not move the
+  markers or a joint has no trial.
+*/
+void algebraicGenerators(ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,
+                         std::vector<Eigen::Matrix4d> &Hhat);
+
+/*!
+  The affine and metric upgrade G (projective to metric frame, 4x4) of the generators \e Hhat of the joints flagged in
+  \e use, on the frame whitened by the zero-reference points \e M0 (the paper's section 6: the plane at infinity, then
+  the absolute conic that the revolute generators leave fixed), scaled so that the markers spread over a unit sphere.
+  False if the upgrade does not give a finite, invertible G.
+*/
+bool metricUpgrade(const ArmCalibrationData &data, const std::vector<Eigen::Matrix4d> &Hhat,
+                   const std::vector<bool> &use, const std::vector<Eigen::Vector4d> &M0, Eigen::Matrix4d &G);
+
+/*!
+  Each joint's metric twist in the frame of \e G: the axis (unit for a revolute joint, the motion per unit for a
+  prismatic one) and a point of a revolute axis, the better of the one read off \f$ G \hat H_i G^{-1} \f$ and the
+  rigid motion of the trial points \e trialPoints (per trial, the markers seen) from \e M0. False if a joint has none.
+*/
+bool initialTwists(const ArmCalibrationData &data, const Eigen::Matrix4d &G, const std::vector<Eigen::Matrix4d> &Hhat,
+                   const std::vector<Eigen::Vector4d> &M0, const std::vector<std::vector<Eigen::Vector4d>> &trialPoints,
+                   std::vector<Eigen::Vector3d> &axis, std::vector<Eigen::Vector3d> &point);
+
+/*!
+  The start of the bundle adjustment: the affine and metric upgrade of the generators (with every joint, and with
+  one or two left out in turn) and the metric twists, the candidate that best predicts all the trials. Throws
+  (estimationFailedError) if no upgrade gives a finite, invertible G.
+*/
+MetricModel initialMetricModel(const ArmCalibrationData &data, const std::vector<Eigen::Matrix4d> &Hhat,
+                               const std::vector<Eigen::Vector4d> &M0);
+
+/*!
+  Bundle adjustment over \f$ G^{-1} \f$ (unit sphere of R^16), the twists (revolute axes on the unit sphere) and the
+  marker points (unit sphere of R^4), on the pixel error of the zero reference and of the inlier trial observations,
+  or, with \e robustLoss, of every trial observation under a Cauchy loss at the outlier threshold. Returns the model
+  (its markers of unit norm, its zero-reference joints \e qRef) and the RMS residual per pixel coordinate. Throws
+  (estimationFailedError) if Ceres gives no usable solution.
+*/
+vpProjectiveArmModel bundleAdjust(const ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,
+                                  const MetricModel &start, bool robustLoss,
+                                  const vpProjectiveArmModel::JointVector &qRef, double &residual);
+} // namespace vpProjectiveInternal
+
+#endif

@@ -1,0 +1,464 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+#include <visp3/projective/vpProjectiveRobot.h>
+
+#include <limits>
+#include <sstream>
+
+#include <visp3/projective/vpProjectiveInverseKinematics.h>
+#include <visp3/projective/vpProjectiveModelFile.h>
+#include <visp3/projective/vpProjectiveSelfCalibration.h>
+
+#include "core/vpProjectiveConversions.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveInternal;
+
+const vpErrorSite at("vpProjectiveRobot");
+
+vpProjectiveRobot::vpProjectiveRobot()
+    : m_acquisition(), m_model(), m_calibrated(false), m_residual(0.0), m_algebraicResidual(0.0), m_rigJoints(),
+      m_rigImages(), m_rigMode(vpProjectiveRigRegistration::FIXED_INTRINSICS), m_rigResidual(0.0), m_rigGeneration(0),
+      m_modelGeneration(0)
+{
+}
+
+vpProjectiveRobot::vpProjectiveRobot(const std::vector<vpJointType> &joints) : vpProjectiveRobot()
+{
+  m_acquisition = vpProjectiveArmAcquisition(joints);
+}
+
+void vpProjectiveRobot::checkJoint(unsigned int i, const char *method) const
+{
+  if (i >= getNumberOfJoints()) {
+    std::ostringstream os;
+    os << "joint index " << i << " is out of range; the chain has " << getNumberOfJoints() << " joints";
+    fail(vpProjectiveException::dimensionError, at(method), os.str());
+  }
+}
+
+vpProjectiveRobot::vpJointType vpProjectiveRobot::getJointType(unsigned int i) const
+{
+  checkJoint(i, "getJointType()");
+  return m_acquisition.getJointTypes()[i];
+}
+
+void vpProjectiveRobot::setRigMounting(vpRigMounting mounting)
+{
+  if (m_calibrated && mounting != m_model.getRigMounting()) {
+    m_calibrated = false; // the model was acquired with the other mounting: calibrate() again
+  }
+  m_acquisition.setRigMounting(mounting);
+}
+
+void vpProjectiveRobot::setStereoRig(const vpProjectiveStereoRig &rig)
+{
+  m_acquisition.setStereoRig(rig);
+  m_calibrated = false;
+}
+
+const vpProjectiveStereoRig &vpProjectiveRobot::getStereoRig() const
+{
+  return m_calibrated ? m_model.getStereoRig() : m_acquisition.getStereoRig();
+}
+
+void vpProjectiveRobot::setZeroReference(const std::vector<vpImagePoint> &left0,
+                                         const std::vector<vpImagePoint> &right0)
+{
+  m_acquisition.setZeroReference(left0, right0);
+  m_calibrated = false;
+}
+
+void vpProjectiveRobot::setZeroReference(const vpColVector &qRef, const std::vector<vpImagePoint> &left0,
+                                         const std::vector<vpImagePoint> &right0)
+{
+  m_acquisition.setZeroReference(qRef, left0, right0);
+  m_calibrated = false;
+}
+
+void vpProjectiveRobot::addTrialMotion(unsigned int i, double amount, const std::vector<vpImagePoint> &left,
+                                       const std::vector<vpImagePoint> &right)
+{
+  m_acquisition.addTrialMotion(i, amount, left, right);
+  m_calibrated = false;
+}
+
+void vpProjectiveRobot::addTrialMotion(const vpColVector &q, const std::vector<vpImagePoint> &left,
+                                       const std::vector<vpImagePoint> &right)
+{
+  m_acquisition.addTrialMotion(q, left, right);
+  m_calibrated = false;
+}
+
+void vpProjectiveRobot::calibrate()
+{
+  const vpProjectiveArmModel model = m_acquisition.calibrate(); // throws before anything changes
+  adopt(m_acquisition, model, m_acquisition.getCalibrationResidual(), m_acquisition.getAlgebraicResidual());
+}
+
+void vpProjectiveRobot::adopt(const vpProjectiveArmAcquisition &acquisition, const vpProjectiveArmModel &model,
+                              double residual, double algebraicResidual)
+{
+  m_acquisition = acquisition;
+  m_model = model;
+  m_residual = residual;
+  m_algebraicResidual = algebraicResidual;
+  m_calibrated = true;
+  m_rigJoints.clear(); // rig observations belong to the previous model
+  m_rigImages.clear();
+  m_rigGeneration = 0;
+  ++m_modelGeneration;
+}
+
+void vpProjectiveRobot::setOutlierThreshold(double pixels)
+{
+  m_acquisition.setOutlierThreshold(pixels);
+  m_calibrated = false;
+}
+
+const vpProjectiveArmModel &vpProjectiveRobot::getModel() const
+{
+  if (!m_calibrated) {
+    fail(vpProjectiveException::notInitializedError, at("getModel()"),
+         "the robot model is not acquired yet; call calibrate() after the acquisition, or loadModel()");
+  }
+  return m_model;
+}
+
+vpProjectiveRobot::JointVector vpProjectiveRobot::toJointVector(const vpColVector &q, const char *method) const
+{
+  return toEigenVector<JointVector>(q, getNumberOfJoints(), at(method), "q");
+}
+
+vpMatrix vpProjectiveRobot::getGenerator(unsigned int i) const
+{
+  const vpProjectiveArmModel &model = getModel();
+  checkJoint(i, "getGenerator()");
+  return toVisp(model.generator(i));
+}
+
+vpMatrix vpProjectiveRobot::getProjectiveToMetric() const
+{
+  return toVisp(getModel().projectiveToMetric());
+}
+
+vpMatrix vpProjectiveRobot::getTwist(unsigned int i) const
+{
+  const vpProjectiveArmModel &model = getModel();
+  checkJoint(i, "getTwist()");
+  return toVisp(model.twist(i));
+}
+
+std::vector<vpColVector> vpProjectiveRobot::getZeroReferencePoints() const
+{
+  const vpProjectiveArmModel &model = getModel();
+  std::vector<vpColVector> M;
+  for (const Eigen::Vector4d &Mj : model.markers()) {
+    M.push_back(toVispVector(Mj));
+  }
+  return M;
+}
+
+vpColVector vpProjectiveRobot::getZeroReferenceJoints() const
+{
+  return m_calibrated ? toVispVector(m_model.zeroReferenceJoints()) : m_acquisition.getZeroReferenceJoints();
+}
+
+vpMatrix vpProjectiveRobot::getDisplacement(const vpColVector &q) const
+{
+  const vpProjectiveArmModel &model = getModel();
+  return toVisp(model.displacement(toJointVector(q, "getDisplacement()")));
+}
+
+vpMatrix vpProjectiveRobot::getJointMotion(unsigned int k, const vpColVector &q) const
+{
+  const vpProjectiveArmModel &model = getModel();
+  checkJoint(k, "getJointMotion()");
+  Eigen::Matrix4d HhatKq[maxJoints];
+  model.jointMotions(toJointVector(q, "getJointMotion()"), HhatKq);
+  return toVisp(HhatKq[k]);
+}
+
+vpMatrix vpProjectiveRobot::getPointJacobian(const vpColVector &q, const vpColVector &M) const
+{
+  const vpProjectiveArmModel &model = getModel();
+  const JointVector qe = toJointVector(q, "getPointJacobian()");
+  const Eigen::Vector4d Me = toEigen<4>(M, at("getPointJacobian()"), "the point M");
+  Eigen::Matrix4d HhatKq[maxJoints];
+  model.jointMotions(qe, HhatKq);
+  PointJacobian JH;
+  model.pointJacobian(HhatKq, Me, JH);
+  return toVisp(JH);
+}
+
+vpMatrix vpProjectiveRobot::getImageJacobian(const vpColVector &q, const vpColVector &M) const
+{
+  const std::string where = at("getImageJacobian()");
+  const vpProjectiveArmModel &model = getModel();
+  const JointVector qe = toJointVector(q, "getImageJacobian()");
+  const Eigen::Vector4d Me = toEigen<4>(M, where, "the point M");
+  if (Me.norm() == 0.0) {
+    fail(vpProjectiveException::invalidValueError, where, "M is the zero vector, which is no projective point");
+  }
+  Eigen::Matrix4d HhatKq[maxJoints];
+  model.jointMotions(qe, HhatKq);
+  PointJacobian J;
+  if (!model.imageJacobian(HhatKq, Me, J)) {
+    fail(vpProjectiveException::pointAtInfinityError, where,
+         "M lies on the focal plane of a camera: its image and image Jacobian are undefined");
+  }
+  return toVisp(J);
+}
+
+void vpProjectiveRobot::projectMarker(unsigned int j, const vpColVector &q, vpImagePoint &ipLeft,
+                                      vpImagePoint &ipRight) const
+{
+  const std::string where = at("projectMarker()");
+  const vpProjectiveArmModel &model = getModel();
+  if (j >= model.markers().size()) {
+    std::ostringstream os;
+    os << "marker index " << j << " is out of range; the model has " << model.markers().size() << " markers";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  Eigen::Vector4d s;
+  if (!model.predictMarker(j, model.displacement(toJointVector(q, "projectMarker()")), s)) {
+    fail(vpProjectiveException::pointAtInfinityError, where, "the marker lies on a camera's focal plane at this q");
+  }
+  ipLeft.set_uv(s(0), s(1));
+  ipRight.set_uv(s(2), s(3));
+}
+
+vpColVector vpProjectiveRobot::inverseKinematics(const std::vector<vpImagePoint> &left,
+                                                 const std::vector<vpImagePoint> &right, const vpColVector &q0,
+                                                 const std::vector<unsigned int> &indices, double *residual) const
+{
+  const std::string where = at("inverseKinematics()");
+  const vpProjectiveArmModel &model = getModel();
+  const std::vector<Eigen::Vector4d> s = stackStereoImages(left, right, where);
+  const size_t K = model.markers().size();
+  std::vector<unsigned int> which = indices;
+  if (indices.empty()) {
+    if (s.size() != K) {
+      std::ostringstream os;
+      os << "got the images of " << s.size() << " markers but the model has " << K
+         << "; pass all markers in order, or their indices";
+      fail(vpProjectiveException::dimensionError, where, os.str());
+    }
+    for (unsigned int j = 0; j < K; ++j) {
+      which.push_back(j);
+    }
+  } else {
+    if (indices.size() != s.size()) {
+      fail(vpProjectiveException::dimensionError, where, "there must be one marker index per image point pair");
+    }
+    for (unsigned int j : indices) {
+      if (j >= K) {
+        std::ostringstream os;
+        os << "marker index " << j << " is out of range; the model has " << K << " markers";
+        fail(vpProjectiveException::dimensionError, where, os.str());
+      }
+    }
+  }
+  const unsigned int n = model.getNumberOfJoints();
+  if (2 * s.size() < n) {
+    std::ostringstream os;
+    os << s.size() << " markers give " << 4 * s.size() << " equations for " << n
+       << " joints, but each marker constrains at most 2 degrees of freedom of the chain; observe more markers";
+    fail(vpProjectiveException::notEnoughPointsError, where, os.str());
+  }
+  const JointVector start = q0.getRows() == 0 ? model.zeroReferenceJoints() : toJointVector(q0, "inverseKinematics()");
+  return toVispVector(vpProjectiveInverseKinematics::solve(model, s, which, start, residual));
+}
+
+void vpProjectiveRobot::predictMarkers(const std::vector<vpColVector> &trajectory,
+                                       std::vector<std::vector<vpImagePoint>> &left,
+                                       std::vector<std::vector<vpImagePoint>> &right,
+                                       const std::vector<unsigned int> &indices) const
+{
+  const std::string where = at("predictMarkers()");
+  const vpProjectiveArmModel &model = getModel();
+  const unsigned int K = static_cast<unsigned int>(model.markers().size());
+  std::vector<unsigned int> which = indices;
+  if (which.empty()) {
+    for (unsigned int j = 0; j < K; ++j) {
+      which.push_back(j);
+    }
+  }
+  for (unsigned int j : which) {
+    if (j >= K) {
+      std::ostringstream os;
+      os << "marker index " << j << " is out of range; the model has " << K << " markers";
+      fail(vpProjectiveException::dimensionError, where, os.str());
+    }
+  }
+  std::vector<JointVector> q;
+  for (const vpColVector &qk : trajectory) {
+    q.push_back(toJointVector(qk, "predictMarkers()"));
+  }
+  left.assign(q.size(), std::vector<vpImagePoint>(which.size()));
+  right.assign(q.size(), std::vector<vpImagePoint>(which.size()));
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (size_t k = 0; k < q.size(); ++k) {
+    const Eigen::Matrix4d H = model.displacement(q[k]);
+    for (size_t j = 0; j < which.size(); ++j) {
+      Eigen::Vector4d s;
+      if (!model.predictMarker(which[j], H, s)) {
+        s.setConstant(nan);
+      }
+      left[k][j].set_uv(s(0), s(1));
+      right[k][j].set_uv(s(2), s(3));
+    }
+  }
+}
+
+void vpProjectiveRobot::getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogeneousMatrix &lMr) const
+{
+  Eigen::Matrix3d Kle, Kre;
+  Eigen::Matrix4d lMre;
+  vpProjectiveSelfCalibration::metricStereoRig(getModel(), Kle, Kre, lMre);
+  Kl = toVisp(Kle);
+  Kr = toVisp(Kre);
+  lMr = toHomogeneous(lMre);
+}
+
+void vpProjectiveRobot::getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogeneousMatrix &lMr, unsigned int markerA,
+                                           unsigned int markerB, double distance) const
+{
+  Eigen::Matrix3d Kle, Kre;
+  Eigen::Matrix4d lMre;
+  vpProjectiveSelfCalibration::metricStereoRig(
+      getModel(), Kle, Kre, lMre, vpProjectiveSelfCalibration::SCALE_MARKER_DISTANCE, markerA, markerB, distance);
+  Kl = toVisp(Kle);
+  Kr = toVisp(Kre);
+  lMr = toHomogeneous(lMre);
+}
+
+void vpProjectiveRobot::getMetricJointAxes(std::vector<vpColVector> &direction, std::vector<vpColVector> &point) const
+{
+  std::vector<Eigen::Vector3d> d, p;
+  vpProjectiveSelfCalibration::jointAxes(getModel(), d, p);
+  direction.clear();
+  point.clear();
+  for (size_t i = 0; i < d.size(); ++i) {
+    direction.push_back(toVispVector(d[i]));
+    point.push_back(toVispVector(p[i]));
+  }
+}
+
+void vpProjectiveRobot::saveModel(const std::string &filename) const
+{
+  vpProjectiveModelFile::save(filename, getModel(), m_residual, m_algebraicResidual);
+}
+
+void vpProjectiveRobot::loadModel(const std::string &filename)
+{
+  double residual = 0.0, algebraicResidual = 0.0;
+  const vpProjectiveArmModel model = vpProjectiveModelFile::load(filename, &residual, &algebraicResidual);
+  vpProjectiveArmAcquisition acquisition(model.jointTypes());
+  acquisition.setRigMounting(model.getRigMounting());
+  acquisition.setStereoRig(model.getStereoRig());
+  acquisition.setOutlierThreshold(m_acquisition.getOutlierThreshold());
+  adopt(acquisition, model, residual, algebraicResidual);
+}
+
+namespace
+{
+//! The marker images of every model marker, checked.
+std::vector<Eigen::Vector4d> allMarkerImages(const vpProjectiveArmModel &model, const std::vector<vpImagePoint> &left,
+                                             const std::vector<vpImagePoint> &right, const std::string &where)
+{
+  const std::vector<Eigen::Vector4d> s = stackStereoImages(left, right, where);
+  if (s.size() != model.markers().size()) {
+    std::ostringstream os;
+    os << "got the images of " << s.size() << " markers but the model has " << model.markers().size()
+       << "; pass the images of every zero-reference marker, in the zero reference's order";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  return s;
+}
+} // namespace
+
+double vpProjectiveRobot::getPredictionError(const vpColVector &q, const std::vector<vpImagePoint> &left,
+                                             const std::vector<vpImagePoint> &right) const
+{
+  const std::string where = at("getPredictionError()");
+  const vpProjectiveArmModel &model = getModel();
+  const JointVector qe = toJointVector(q, "getPredictionError()");
+  const std::vector<Eigen::Vector4d> s = allMarkerImages(model, left, right, where);
+  const Eigen::Matrix4d H = model.displacement(qe);
+  double sum = 0.0;
+  for (unsigned int j = 0; j < s.size(); ++j) {
+    Eigen::Vector4d sHat;
+    if (!model.predictMarker(j, H, sHat)) {
+      fail(vpProjectiveException::pointAtInfinityError, where,
+           "a marker's prediction lies on a camera's focal plane at this q; check q");
+    }
+    sum += (sHat - s[j]).squaredNorm();
+  }
+  return std::sqrt(sum / (4.0 * static_cast<double>(s.size())));
+}
+
+void vpProjectiveRobot::addRigObservation(const vpColVector &q, const std::vector<vpImagePoint> &left,
+                                          const std::vector<vpImagePoint> &right)
+{
+  const std::string where = at("addRigObservation()");
+  const vpProjectiveArmModel &model = getModel();
+  const JointVector qe = toJointVector(q, "addRigObservation()");
+  std::vector<Eigen::Vector4d> s = allMarkerImages(model, left, right, where);
+  for (const JointVector &qk : m_rigJoints) {
+    if ((qk - qe).cwiseAbs().maxCoeff() <= 1e-6) {
+      fail(vpProjectiveException::degenerateConfigurationError, where,
+           "these joints equal those of an observation already recorded, which adds nothing; move the arm to "
+           "another configuration (spread the markers over the images) before the next observation");
+    }
+  }
+  m_rigJoints.push_back(qe);
+  m_rigImages.push_back(std::move(s));
+}
+
+void vpProjectiveRobot::clearRigObservations()
+{
+  m_rigJoints.clear();
+  m_rigImages.clear();
+}
+
+void vpProjectiveRobot::updateRig()
+{
+  const std::string where = at("updateRig()");
+  const vpProjectiveArmModel &model = getModel();
+  if (m_rigJoints.size() < 3) {
+    std::ostringstream os;
+    os << "needs at least 3 observations (addRigObservation()) since the last update, got " << m_rigJoints.size()
+       << "; observe the markers at more joint configurations";
+    fail(vpProjectiveException::notEnoughPointsError, where, os.str());
+  }
+  double rms = 0.0;
+  const vpProjectiveStereoRig rig = vpProjectiveRigRegistration::registerRig(model, m_rigJoints, m_rigImages, m_rigMode,
+                                                                             &rms); // throws before anything changes
+  std::vector<Eigen::Vector3d> axis, point;
+  for (unsigned int i = 0; i < model.getNumberOfJoints(); ++i) {
+    axis.push_back(model.axis(i));
+    point.push_back(model.point(i));
+  }
+  vpProjectiveArmModel updated(model.jointTypes(), model.getRigMounting(), rig, model.projectiveToMetric(), axis, point,
+                               model.markers(), model.zeroReferenceJoints());
+  m_model = updated;
+  m_rigResidual = rms;
+  m_rigJoints.clear();
+  m_rigImages.clear();
+  ++m_rigGeneration;
+}

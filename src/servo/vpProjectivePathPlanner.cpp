@@ -1,0 +1,677 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+#include <visp3/projective/vpProjectivePathPlanner.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <Eigen/Dense>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpUniRand.h>
+#include <visp3/projective/vpProjectiveDisplacement.h>
+#include <visp3/projective/vpProjectiveInverseKinematics.h>
+
+#include "core/vpProjectiveErrors.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveInternal;
+
+const vpErrorSite at("vpProjectivePathPlanner");
+
+namespace
+{
+//! Number of configurations drawn in the search of a waypoint.
+const unsigned int kWaypointDraws = 200;
+//! Weight of the joint-space line in the tracking of straight image lines (pixels per radian).
+const double kPriorWeight = 30.0;
+} // namespace
+
+vpProjectivePathPlanner::vpProjectivePathPlanner()
+    : m_hasLimits(false), m_qmin(), m_qmax(), m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0),
+      m_maxExcursion(-1.0), m_starts(24), m_maxResidual(5.0), m_limitMargin(0.0), m_front(), m_points(), m_sStar(),
+      m_hasLaw(false), m_gain(), m_errorScale(1.0), m_law(), m_avoidance(), m_rehearsalBudget(50), m_rehearsalOk(false),
+      m_rehearsalIterations(0), m_rehearsalResidual(-1.0), m_status(PLAN_NONE), m_branches(), m_residuals(),
+      m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
+{
+}
+
+void vpProjectivePathPlanner::setJointLimits(const JointVector &qmin, const JointVector &qmax)
+{
+  const std::string where = at("setJointLimits()");
+  if (qmin.size() != qmax.size()) {
+    fail(vpProjectiveException::dimensionError, where, "qmin and qmax must have the same size");
+  }
+  if (!qmin.allFinite() || !qmax.allFinite()) {
+    fail(vpProjectiveException::nonFiniteValueError, where, "a joint limit is not finite");
+  }
+  for (Eigen::Index i = 0; i < qmin.size(); ++i) {
+    if (!(qmin(i) < qmax(i))) {
+      std::ostringstream os;
+      os << "joint " << i << ": qmin (" << qmin(i) << ") must be below qmax (" << qmax(i) << ")";
+      fail(vpProjectiveException::invalidValueError, where, os.str());
+    }
+  }
+  m_hasLimits = qmin.size() > 0;
+  m_qmin = qmin;
+  m_qmax = qmax;
+}
+
+void vpProjectivePathPlanner::setImageSize(unsigned int width, unsigned int height, double border)
+{
+  const std::string where = at("setImageSize()");
+  requireFinite(border, where, "the border");
+  if ((width == 0) != (height == 0) || border < 0.0 ||
+      (width > 0 && (2.0 * border > width - 1.0 || 2.0 * border > height - 1.0))) {
+    std::ostringstream os;
+    os << "the image " << width << " x " << height << " with a border of " << border
+       << " px has no pixel; give both sides (0 x 0 disables the check) and a border that leaves some";
+    fail(vpProjectiveException::invalidValueError, where, os.str());
+  }
+  m_width = width;
+  m_height = height;
+  m_border = border;
+}
+
+void vpProjectivePathPlanner::setMaxJointStep(double step)
+{
+  if (!std::isfinite(step) || !(step > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, at("setMaxJointStep()"),
+         "the largest joint step between samples must be positive and finite");
+  }
+  m_maxStep = step;
+}
+
+void vpProjectivePathPlanner::setMaxExcursion(double excursion)
+{
+  if (!std::isfinite(excursion) || excursion < 0.0) {
+    fail(vpProjectiveException::invalidValueError, at("setMaxExcursion()"),
+         "the largest motion of a joint beyond its start and target values must be non-negative and finite");
+  }
+  m_maxExcursion = excursion;
+}
+
+double vpProjectivePathPlanner::getMaxJointStep() const
+{
+  const double saturation = m_hasLaw ? m_law.getMaxJointVelocity() : 0.0;
+  return saturation > 0.0 ? std::min(m_maxStep, 2.0 / 3.0 * saturation) : m_maxStep;
+}
+
+double vpProjectivePathPlanner::getMaxExcursion() const
+{
+  return m_maxExcursion < 0.0 ? 2.0 * m_maxStep : m_maxExcursion;
+}
+
+void vpProjectivePathPlanner::setMaxResidual(double pixels)
+{
+  if (!std::isfinite(pixels) || !(pixels > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, at("setMaxResidual()"),
+         "the largest RMS pixel residual of a target must be positive and finite");
+  }
+  m_maxResidual = pixels;
+}
+
+void vpProjectivePathPlanner::setJointLimitMargin(double fraction)
+{
+  if (!std::isfinite(fraction) || fraction < 0.0 || fraction > 0.5) {
+    fail(vpProjectiveException::invalidValueError, at("setJointLimitMargin()"),
+         "the margin is a fraction of each joint's range kept from both limits: in [0, 1/2]");
+  }
+  m_limitMargin = fraction;
+}
+
+void vpProjectivePathPlanner::setNumberOfStarts(unsigned int starts)
+{
+  if (starts == 0) {
+    fail(vpProjectiveException::invalidValueError, at("setNumberOfStarts()"),
+         "the inverse kinematics needs at least one random start to look for other branches");
+  }
+  m_starts = starts;
+}
+
+void vpProjectivePathPlanner::setControlLaw(const vpGain &gain, const vpServoDampedLeastSquares &law,
+                                            const vpServoJointLimitAvoidance &avoidance, double errorScale)
+{
+  if (!gain || !std::isfinite(errorScale) || !(errorScale > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, at("setControlLaw()"),
+         "give a gain function and a positive, finite error scale (1 for pixels)");
+  }
+  m_gain = gain;
+  m_errorScale = errorScale;
+  m_law = law;
+  m_avoidance = avoidance;
+  m_hasLaw = true;
+}
+
+bool vpProjectivePathPlanner::inside(const JointVector &q) const
+{
+  return !m_hasLimits || ((q.array() >= m_qmin.array()).all() && (q.array() <= m_qmax.array()).all());
+}
+
+bool vpProjectivePathPlanner::visible(const vpProjectiveArmModel &model, const JointVector &q,
+                                      const std::vector<Eigen::Vector4d> &points, std::vector<Eigen::Vector4d> &s) const
+{
+  const Eigen::Matrix4d H = model.displacement(q);
+  const vpProjectiveStereoRig &rig = model.getStereoRig();
+  s.resize(points.size());
+  const double uMax = m_width - 1.0 - m_border, vMax = m_height - 1.0 - m_border;
+  for (size_t k = 0; k < points.size(); ++k) {
+    const Eigen::Vector4d M = H * points[k];
+    // In front of both cameras: the depths keep the signs they have where the points are seen (a projective camera
+    // also images the points behind it; H(q) is continuous in q, so a sign change means the point went behind).
+    if (!rig.project(M, s[k]) || !(rig.leftProjection().row(2).dot(M) * m_front[k](0) > 0.0) ||
+        !(rig.rightProjection().row(2).dot(M) * m_front[k](1) > 0.0)) {
+      return false;
+    }
+    if (m_width > 0 && (s[k](0) < m_border || s[k](0) > uMax || s[k](1) < m_border || s[k](1) > vMax ||
+                        s[k](2) < m_border || s[k](2) > uMax || s[k](3) < m_border || s[k](3) > vMax)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool vpProjectivePathPlanner::feasible(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
+                                       const std::vector<Eigen::Vector4d> &points,
+                                       std::vector<std::vector<Eigen::Vector4d>> &features) const
+{
+  features.resize(path.size());
+  for (size_t j = 0; j < path.size(); ++j) {
+    if (!inside(path[j]) || !visible(model, path[j], points, features[j])) {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::vector<vpProjectivePathPlanner::JointVector> vpProjectivePathPlanner::jointLine(const JointVector &from,
+                                                                                     const JointVector &to) const
+{
+  const double largest = (to - from).cwiseAbs().maxCoeff();
+  const int samples = std::max(1, static_cast<int>(std::ceil(largest / getMaxJointStep())));
+  std::vector<JointVector> path;
+  for (int j = 0; j <= samples; ++j) {
+    path.push_back(from + (static_cast<double>(j) / samples) * (to - from));
+  }
+  return path;
+}
+
+bool vpProjectivePathPlanner::imagePath(const vpProjectiveArmModel &model, const JointVector &q,
+                                        const JointVector &target, const std::vector<Eigen::Vector4d> &points,
+                                        std::vector<JointVector> &path) const
+{
+  // s_k(t) = (1 - t) s_k(q) + t s_k(q*) for every point, tracked by the inverse kinematics warm-started at the previous
+  // sample, with the joint-space line as a weak prior: it settles what the pixels leave free (a singular wrist, two
+  // points) and costs as much as one pixel for 1/kPriorWeight rad off the line.
+  const Eigen::Matrix4d H0 = model.displacement(q), Hstar = model.displacement(target);
+  std::vector<Eigen::Vector4d> s0(points.size()), s1(points.size()), s(points.size());
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (!model.getStereoRig().project(Eigen::Vector4d(H0 * points[k]), s0[k]) ||
+        !model.getStereoRig().project(Eigen::Vector4d(Hstar * points[k]), s1[k])) {
+      return false;
+    }
+  }
+  // Tracked in steps four times finer than the path's, then thinned to steps of at most setMaxJointStep(). A fine step
+  // in which a joint moves by more than setMaxJointStep() is tracked again in 2, 4 and 8 sub-steps: a joint that turns
+  // fast (a wrist near a singular configuration) is then followed continuously, while a jump to another branch stays a
+  // jump and rejects the path.
+  const size_t samples = 4 * (jointLine(q, target).size() - 1);
+  const double step = getMaxJointStep();
+  const double excursion = getMaxExcursion();
+  const JointVector lowest = q.cwiseMin(target), highest = q.cwiseMax(target);
+  std::vector<JointVector> tracked(1, q);
+  for (size_t j = 1; j <= samples; ++j) {
+    const double t0 = static_cast<double>(j - 1) / samples, t1 = static_cast<double>(j) / samples;
+    std::vector<JointVector> steps;
+    for (int split = 1; split <= 8 && steps.empty(); split *= 2) {
+      for (int m = 1; m <= split; ++m) {
+        const double t = t0 + (t1 - t0) * m / split;
+        for (size_t k = 0; k < points.size(); ++k) {
+          s[k] = (1.0 - t) * s0[k] + t * s1[k];
+        }
+        const JointVector line = q + t * (target - q);
+        const JointVector from = steps.empty() ? tracked.back() : steps.back(); // a copy: push_back() reallocates
+        try {
+          steps.push_back(vpProjectiveInverseKinematics::solve(model, s, points, from, nullptr, &line, kPriorWeight));
+        } catch (const vpProjectiveException &) {
+          return false;
+        }
+        if ((steps.back() - from).cwiseAbs().maxCoeff() > step) {
+          steps.clear();
+          break;
+        }
+      }
+    }
+    if (steps.empty()) {
+      return false; // a jump: the tracked joints left the branch
+    }
+    // No joint beyond its [start, target] interval by more than setMaxExcursion() (a wrist spinning near a singular
+    // configuration reaches the same pose the long way): checked as it goes, to give up early.
+    for (const JointVector &step : steps) {
+      if (((step - lowest).array() < -excursion).any() || ((step - highest).array() > excursion).any()) {
+        return false;
+      }
+      tracked.push_back(step);
+    }
+  }
+  // It must end at the target.
+  if ((tracked.back() - target).cwiseAbs().maxCoeff() > 1e-3) {
+    return false;
+  }
+  tracked.back() = target; // the same configuration up to the inverse kinematics' convergence
+  path.assign(1, q);
+  for (size_t j = 1; j < tracked.size(); ++j) {
+    if (j + 1 == tracked.size() || (tracked[j + 1] - path.back()).cwiseAbs().maxCoeff() > step) {
+      path.push_back(tracked[j]);
+    }
+  }
+  return true;
+}
+
+double vpProjectivePathPlanner::residual(const vpProjectiveArmModel &model, const JointVector &q,
+                                         const std::vector<Eigen::Vector4d> &points,
+                                         const std::vector<Eigen::Vector4d> &sStar)
+{
+  const Eigen::Matrix4d H = model.displacement(q);
+  double sum = 0.0;
+  Eigen::Vector4d s;
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (!model.getStereoRig().project(Eigen::Vector4d(H * points[k]), s)) {
+      return std::numeric_limits<double>::infinity();
+    }
+    sum += (s - sStar[k]).squaredNorm();
+  }
+  return std::sqrt(sum / (4.0 * points.size()));
+}
+
+unsigned int vpProjectivePathPlanner::guardStep(const vpProjectiveArmModel &model, const JointVector &q,
+                                                JointVector &qdot) const
+{
+  if (m_status != PLAN_FOUND || q.size() != qdot.size() ||
+      static_cast<unsigned int>(q.size()) != model.getNumberOfJoints()) {
+    return 0;
+  }
+  return halveWhileRising(model, q, qdot);
+}
+
+unsigned int vpProjectivePathPlanner::halveWhileRising(const vpProjectiveArmModel &model, const JointVector &q,
+                                                       JointVector &qdot) const
+{
+  const double now = residual(model, q, m_points, m_sStar);
+  unsigned int halvings = 0;
+  while (halvings < 5 && residual(model, JointVector(q + qdot), m_points, m_sStar) > now + 0.5) {
+    qdot *= 0.5;
+    ++halvings;
+  }
+  return halvings;
+}
+
+bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, const JointVector &q,
+                                          const std::vector<Eigen::Vector4d> &points,
+                                          const std::vector<Eigen::Vector4d> &sStar, std::vector<JointVector> &path,
+                                          std::vector<std::vector<Eigen::Vector4d>> &features)
+{
+  // Law (47) as the task runs it (vpServoProjective::computeControlLaw(): gain of the largest error component, damped
+  // least squares with saturation, joint-limit avoidance added and saturated again), on the model's predictions, one
+  // step q <- q + qdot per iteration. Planning time, not the loop's: the stacked J and e may allocate.
+  const Eigen::Index n = q.size();
+  const Eigen::Index rows = 4 * static_cast<Eigen::Index>(points.size());
+  vpServoDampedLeastSquares law = m_law; // computeVelocity() writes its report: a copy keeps the setting const
+  Eigen::MatrixXd J(rows, n);
+  Eigen::VectorXd e(rows);
+  vpProjectiveArmModel::JointMatrix JtJ;
+  JointVector Jte, qdot, qdot2;
+  Eigen::Matrix4d HhatKq[vpProjectiveArmModel::maxJoints];
+  vpProjectiveArmModel::PointJacobian Ji;
+  JointVector qk = q;
+  path.assign(1, q);
+  features.clear();
+  m_rehearsalIterations = 0;
+  m_rehearsalResidual = -1.0;
+  // Solved when it reaches the global minimum: the residual of the best branch with the same points (the law
+  // minimises that residual, so in the branch's basin it comes down to it; a local minimum of three points leaves
+  // pixels), within 1.5 times plus 0.05 px.
+  double best = std::numeric_limits<double>::infinity();
+  for (const JointVector &b : m_branches) {
+    best = std::min(best, residual(model, b, points, sStar));
+  }
+  const double solved = std::min(1.5 * best + 0.05, m_maxResidual);
+  std::vector<Eigen::Vector4d> s;
+  for (unsigned int it = 0;; ++it) {
+    if (!inside(qk) || !visible(model, qk, points, s)) {
+      return false; // a joint limit, or a feature out of the window or behind a camera: law (47) would lose it
+    }
+    features.push_back(s);
+    const Eigen::Matrix4d H = model.displacement(qk);
+    model.jointMotions(qk, HhatKq);
+    for (size_t k = 0; k < points.size(); ++k) {
+      if (!model.imageJacobian(HhatKq, Eigen::Vector4d(H * points[k]), Ji)) {
+        return false;
+      }
+      const Eigen::Index r = 4 * static_cast<Eigen::Index>(k);
+      J.middleRows(r, 4) = Ji;
+      e.segment<4>(r) = s[k] - sStar[k];
+    }
+    m_rehearsalIterations = it;
+    m_rehearsalResidual = std::sqrt(e.squaredNorm() / static_cast<double>(rows));
+    if (m_rehearsalResidual <= solved) {
+      return true;
+    }
+    if (it == m_rehearsalBudget || (it > 0 && (path[it] - path[it - 1]).cwiseAbs().maxCoeff() < 1e-7)) {
+      return false; // the budget, or a fixed point of the law that is not the solution
+    }
+    vpServoDampedLeastSquares::computeNormalEquations(J, e, JtJ, Jte);
+    law.computeVelocity(JtJ, Jte, m_gain(JtJ, Jte, e.cwiseAbs().maxCoeff()), qdot);
+    if (m_avoidance.hasJointLimits()) {
+      m_avoidance.computeVelocity(qk, qdot, JtJ, Jte, e.norm() / m_errorScale, law, qdot2);
+      qdot += qdot2;
+      law.saturate(qdot);
+    }
+    if (!qdot.allFinite()) {
+      return false;
+    }
+    halveWhileRising(model, qk, qdot);
+    qk += qdot;
+    path.push_back(qk);
+  }
+}
+
+vpProjectivePathPlanner::JointVector vpProjectivePathPlanner::nearestRepresentative(const vpProjectiveArmModel &model,
+                                                                                    const JointVector &branch,
+                                                                                    const JointVector &q)
+{
+  JointVector t = branch;
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    if (model.jointType(static_cast<unsigned int>(i)) == vpProjectiveJoint::REVOLUTE) {
+      t(i) = q(i) + std::remainder(t(i) - q(i), 2.0 * M_PI);
+    }
+  }
+  return t;
+}
+
+std::vector<std::pair<vpProjectivePathPlanner::JointVector, unsigned int>>
+vpProjectivePathPlanner::targetCandidates(const vpProjectiveArmModel &model, const JointVector &q,
+                                          const std::vector<Eigen::Vector4d> &points, bool &anyInside) const
+{
+  // Each branch's representative nearest to q (revolute joints modulo a turn; another turn if the nearest is outside
+  // the limits and that one inside); of those inside the limits with the features in view, the nearest with every
+  // joint out of the margins (c = 0), then the nearest (c = 1) if it is another.
+  double bestDistance[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  JointVector target[2];
+  unsigned int branch[2] = {0, 0};
+  std::vector<Eigen::Vector4d> s;
+  anyInside = false;
+  for (size_t b = 0; b < m_branches.size(); ++b) {
+    JointVector t = nearestRepresentative(model, m_branches[b], q);
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      if (model.jointType(static_cast<unsigned int>(i)) != vpProjectiveJoint::REVOLUTE) {
+        continue;
+      }
+      for (double turn : {-2.0 * M_PI, 2.0 * M_PI}) {
+        if (m_hasLimits && (t(i) < m_qmin(i) || t(i) > m_qmax(i)) && t(i) + turn >= m_qmin(i) &&
+            t(i) + turn <= m_qmax(i)) {
+          t(i) += turn;
+        }
+      }
+    }
+    if (!inside(t)) {
+      continue;
+    }
+    anyInside = true;
+    const double d = (t - q).norm();
+    if (!(d < bestDistance[1]) && !(d < bestDistance[0])) {
+      continue;
+    }
+    if (!visible(model, t, points, s)) {
+      continue;
+    }
+    int inMargin = 0;
+    for (Eigen::Index i = 0; m_hasLimits && i < q.size(); ++i) {
+      const double margin = m_limitMargin * (m_qmax(i) - m_qmin(i));
+      inMargin = (t(i) < m_qmin(i) + margin || t(i) > m_qmax(i) - margin) ? 1 : inMargin;
+    }
+    for (int c = inMargin; c < 2; ++c) {
+      if (d < bestDistance[c]) {
+        bestDistance[c] = d;
+        target[c] = t;
+        branch[c] = static_cast<unsigned int>(b);
+      }
+    }
+  }
+  std::vector<std::pair<JointVector, unsigned int>> candidates;
+  for (int c = 0; c < 2; ++c) {
+    if (bestDistance[c] < std::numeric_limits<double>::infinity() && (candidates.empty() || branch[c] != branch[0])) {
+      candidates.emplace_back(target[c], branch[c]);
+    }
+  }
+  return candidates;
+}
+
+bool vpProjectivePathPlanner::planPath(const vpProjectiveArmModel &model, const JointVector &q,
+                                       const JointVector &target, const std::vector<Eigen::Vector4d> &points,
+                                       const JointVector &qmin, const JointVector &qmax, std::vector<JointVector> &path,
+                                       std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind) const
+{
+  if (imagePath(model, q, target, points, path) && feasible(model, path, points, features)) {
+    kind = PATH_IMAGE_LINE;
+    return true;
+  }
+  if (feasible(model, path = jointLine(q, target), points, features)) {
+    kind = PATH_JOINT_LINE;
+    return true;
+  }
+  // A waypoint among configurations inside the limits with the features in view: the shortest feasible. Drawn about
+  // the middle of the joint-space line, in a box that grows from nothing to the whole of the limits over the draws:
+  // the short detours are tried densely before the long ones.
+  vpUniRand uniform(0x5eedULL);
+  double shortest = std::numeric_limits<double>::infinity();
+  std::vector<Eigen::Vector4d> s;
+  const JointVector middle = 0.5 * (q + target);
+  for (unsigned int draw = 0; draw < kWaypointDraws; ++draw) {
+    const double spread = (draw + 1.0) / kWaypointDraws;
+    JointVector w(q.size());
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      w(i) = middle(i) + spread * uniform.uniform(qmin(i) - middle(i), qmax(i) - middle(i));
+    }
+    const double length = (w - q).norm() + (target - w).norm();
+    if (!(length < shortest) || !inside(w) || !visible(model, w, points, s)) {
+      continue;
+    }
+    std::vector<JointVector> candidate = jointLine(q, w), second = jointLine(w, target);
+    candidate.insert(candidate.end(), second.begin() + 1, second.end());
+    std::vector<std::vector<Eigen::Vector4d>> candidateFeatures;
+    if (feasible(model, candidate, points, candidateFeatures)) {
+      shortest = length;
+      path = candidate;
+      features = candidateFeatures;
+    }
+  }
+  kind = PATH_WAYPOINT;
+  return shortest < std::numeric_limits<double>::infinity();
+}
+
+vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProjectiveArmModel &model,
+                                                                    const JointVector &q,
+                                                                    const std::vector<Eigen::Vector4d> &points,
+                                                                    const std::vector<Eigen::Vector4d> &sStar)
+{
+  const std::string where = at("plan()");
+  const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
+  if (q.size() != n || (m_hasLimits && m_qmin.size() != n) || points.size() != sStar.size()) {
+    std::ostringstream os;
+    os << "q has " << q.size() << " entries and the limits " << m_qmin.size() << " for " << n << " joints; "
+       << points.size() << " points for " << sStar.size() << " desired features";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  if (points.size() < 2) {
+    fail(vpProjectiveException::notEnoughPointsError, where, "a task needs at least 2 points");
+  }
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (!points[k].allFinite() || !sStar[k].allFinite() || !q.allFinite()) {
+      fail(vpProjectiveException::nonFiniteValueError, where, "a point, a desired feature or q is not finite");
+    }
+  }
+  // 1. Every branch of the inverse kinematics.
+  JointVector qmin = m_qmin, qmax = m_qmax;
+  if (!m_hasLimits) {
+    qmin.resize(n);
+    qmax.resize(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double range = model.jointType(static_cast<unsigned int>(i)) == vpProjectiveJoint::REVOLUTE ? M_PI : 0.5;
+      qmin(i) = q(i) - range;
+      qmax(i) = q(i) + range;
+    }
+  }
+  // The points' images at q (the features they were triangulated from, less their epipolar error) are the second view
+  // of the two-view refinement of every minimum. A point whose images at q are those the model predicts for one of its
+  // acquired markers, and for no other, is that marker: the bundle adjustment placed it from every acquisition image,
+  // far better than one stereo pair, so it replaces the triangulation and stays fixed (its seen pixels not finite).
+  std::vector<Eigen::Vector4d> X = points, seen(points.size());
+  const Eigen::Matrix4d Hq = model.displacement(q);
+  for (size_t k = 0; k < X.size(); ++k) {
+    if (!model.getStereoRig().project(Hq * X[k], seen[k])) {
+      fail(vpProjectiveException::invalidValueError, where, "a point lies on a camera's focal plane at q");
+    }
+  }
+  unsigned int matched = 0;
+  std::vector<bool> taken(model.markers().size(), false);
+  for (size_t k = 0; k < X.size(); ++k) {
+    const int j = model.matchMarker(Hq, seen[k]);
+    if (j >= 0 && !taken[static_cast<size_t>(j)]) {
+      taken[static_cast<size_t>(j)] = true;
+      X[k] = model.markers()[static_cast<size_t>(j)].normalized();
+      seen[k].setConstant(std::numeric_limits<double>::quiet_NaN());
+      ++matched;
+    }
+  }
+  m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, X, q, qmin, qmax, m_starts, &m_residuals, &seen);
+  m_path.clear();
+  m_features.clear();
+  m_rehearsalOk = false;
+  m_rehearsalIterations = 0;
+  m_rehearsalResidual = -1.0;
+  std::ostringstream os;
+  // The depth signs where the points are seen, at q: the reference of "in front of the cameras".
+  m_front.resize(X.size());
+  for (size_t k = 0; k < X.size(); ++k) {
+    const Eigen::Vector4d M = Hq * X[k];
+    m_front[k] << model.getStereoRig().leftProjection().row(2).dot(M),
+        model.getStereoRig().rightProjection().row(2).dot(M);
+  }
+  const bool explained = !m_branches.empty() && m_residuals.front() <= m_maxResidual;
+  if (!explained) {
+    os << "no joint values explain the desired features (";
+    if (m_branches.empty()) {
+      os << "the inverse kinematics failed from every start)";
+    } else {
+      os << "the best leaves " << m_residuals.front() << " px RMS, more than " << m_maxResidual << " px)";
+    }
+    m_branches.clear();
+    m_residuals.clear();
+  }
+  // 2. Law (47) alone, rehearsed on the model: never worse than the law (which may get there where the inverse
+  // kinematics of a model that is off by a few pixels does not).
+  os << (explained ? "" : "; ") << matched << " of " << X.size() << " points are acquired markers; "
+     << m_branches.size() << " inverse-kinematic branch" << (m_branches.size() > 1 ? "es" : "") << " found";
+  std::vector<JointVector> lawPath;
+  std::vector<std::vector<Eigen::Vector4d>> lawFeatures;
+  m_rehearsalOk = m_hasLaw && m_rehearsalBudget > 0 && rehearseLaw(model, q, X, sStar, lawPath, lawFeatures);
+  if (m_hasLaw && m_rehearsalBudget > 0) {
+    os << "; law (47) alone " << (m_rehearsalOk ? "solves the task" : "fails") << " in its rehearsal ("
+       << m_rehearsalIterations << " iterations, " << m_rehearsalResidual << " px RMS)";
+  }
+  // 3. The target, and 4. a path keeping the features in view and the joints within their limits: the preferred
+  // target first, the nearest if no path leads to the preferred one. 5. Of the law and the path, both predicted to
+  // solve the task, the faster: the path's samples and 3 iterations of the law after them, against the law's
+  // rehearsed iterations.
+  if (!explained) {
+    return m_rehearsalOk ? adoptLaw(model, lawPath, lawFeatures, os) : failWith(PLAN_NO_INVERSE_KINEMATICS, os);
+  }
+  bool anyInside = false;
+  const std::vector<std::pair<JointVector, unsigned int>> candidates = targetCandidates(model, q, X, anyInside);
+  if (candidates.empty()) {
+    os << (anyInside ? "; at every one inside the joint limits a feature is out of the image window or behind a camera"
+                     : ", none inside the joint limits");
+    return m_rehearsalOk ? adoptLaw(model, lawPath, lawFeatures, os)
+                         : failWith(anyInside ? PLAN_NO_VISIBLE_PATH : PLAN_OUTSIDE_JOINT_LIMITS, os);
+  }
+  std::vector<JointVector> path;
+  std::vector<std::vector<Eigen::Vector4d>> features;
+  vpPathKind kind = PATH_JOINT_LINE;
+  size_t c = 0;
+  while (c < candidates.size() && !planPath(model, q, candidates[c].first, X, qmin, qmax, path, features, kind)) {
+    ++c;
+  }
+  if (c == candidates.size()) {
+    os << "; no path keeps the features in view within the joint limits";
+    return m_rehearsalOk ? adoptLaw(model, lawPath, lawFeatures, os) : failWith(PLAN_NO_VISIBLE_PATH, os);
+  }
+  const char *const kinds[] = {"straight image lines", "the straight joint-space line", "through a waypoint"};
+  os << "; target: branch " << candidates[c].second << ", "
+     << vpMath::deg((candidates[c].first - q).cwiseAbs().maxCoeff()) << " deg away at most per joint"
+     << (c > 0 ? " (no path to the one out of the joint-limit margins)" : "") << "; path: " << kinds[kind] << " in "
+     << path.size() - 1 << " steps";
+  if (m_rehearsalOk && path.size() - 1 + 3 >= m_rehearsalIterations) {
+    return adoptLaw(model, lawPath, lawFeatures, os);
+  }
+  m_target = candidates[c].first;
+  m_branch = candidates[c].second;
+  m_kind = kind;
+  m_path = path;
+  m_features = features;
+  m_status = PLAN_FOUND;
+  m_description = os.str();
+  return m_status;
+}
+
+vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::failWith(vpPlanStatus status, std::ostringstream &os)
+{
+  m_status = status;
+  m_description = os.str();
+  return m_status;
+}
+
+vpProjectivePathPlanner::vpPlanStatus
+vpProjectivePathPlanner::adoptLaw(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
+                                  const std::vector<std::vector<Eigen::Vector4d>> &features, std::ostringstream &os)
+{
+  // The law ends in the branch whose basin it reached: the target is that branch's representative there (the last
+  // rehearsed configuration without branches).
+  m_target = path.back();
+  m_branch = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (size_t b = 0; b < m_branches.size(); ++b) {
+    const JointVector t = nearestRepresentative(model, m_branches[b], path.back());
+    if ((t - path.back()).cwiseAbs().maxCoeff() < nearest) {
+      nearest = (t - path.back()).cwiseAbs().maxCoeff();
+      m_branch = static_cast<unsigned int>(b);
+      m_target = t;
+    }
+  }
+  m_kind = PATH_LAW;
+  m_path = path;
+  m_features = features;
+  m_status = PLAN_FOUND;
+  os << "; plan: law (47) alone" << (m_branches.empty() ? "" : ", to branch ");
+  if (!m_branches.empty()) {
+    os << m_branch;
+  }
+  m_description = os.str();
+  return m_status;
+}

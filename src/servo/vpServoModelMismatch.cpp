@@ -1,0 +1,137 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+#include <visp3/projective/vpServoModelMismatch.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/vpProjectiveErrors.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveInternal;
+
+vpServoModelMismatch::vpServoModelMismatch()
+    : m_records(), m_threshold(5.0), m_iterations(2), m_disagreeing(0), m_mismatch(false), m_model(nullptr),
+      m_H(Eigen::Matrix4d::Identity()), m_Hlu(Eigen::Matrix4d::Identity())
+{
+}
+
+void vpServoModelMismatch::setThreshold(double pixels)
+{
+  m_threshold = nonNegative(pixels, vpErrorSite("vpServoModelMismatch")("setThreshold()"),
+                            "the model-mismatch threshold", "a distance in pixels, e.g. 5; 0 disables the detection");
+}
+
+void vpServoModelMismatch::setConsecutiveIterations(unsigned int iterations)
+{
+  if (iterations == 0) {
+    fail(vpProjectiveException::invalidValueError, "vpServoModelMismatch::setConsecutiveIterations()",
+         "a mismatch needs at least one disagreeing iteration; pass 1 or more (default 2)");
+  }
+  m_iterations = iterations;
+}
+
+void vpServoModelMismatch::resize(unsigned int features)
+{
+  m_records.resize(features);
+  reset();
+}
+
+void vpServoModelMismatch::reset()
+{
+  for (vpRecord &r : m_records) {
+    r.sum.setZero();
+    r.recent.setZero();
+    r.s.setZero();
+    r.distance = -1.0;
+    r.usable = false;
+    r.hasMemory = false;
+    r.exact = false;
+  }
+  m_disagreeing = 0;
+  m_mismatch = false;
+}
+
+void vpServoModelMismatch::startIteration(const vpProjectiveArmModel &model, const vpProjectiveArmModel::JointVector &q)
+{
+  m_model = &model;
+  m_H = model.displacement(q);
+  m_Hlu.compute(m_H);
+}
+
+void vpServoModelMismatch::observe(unsigned int i, const Eigen::Vector4d &s, bool usable)
+{
+  vpRecord &r = m_records[i];
+  r.s = s;
+  r.usable = usable && s.allFinite();
+  r.distance = -1.0;
+  if (!r.usable || !r.hasMemory || m_model == nullptr) {
+    return;
+  }
+  // The smaller of the distances to the absolute and the recent predictions (each the larger over both images).
+  for (const Eigen::Vector4d &M : {Eigen::Vector4d(r.sum.normalized()), r.recent}) {
+    Eigen::Vector4d sHat;
+    if (m_model->getStereoRig().project(m_H * M, sHat)) {
+      const double d = std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm());
+      r.distance = r.distance < 0.0 ? d : std::min(r.distance, d);
+    }
+  }
+}
+
+bool vpServoModelMismatch::endIteration()
+{
+  unsigned int evaluated = 0, disagreeing = 0;
+  for (const vpRecord &r : m_records) {
+    if (r.distance >= 0.0) {
+      ++evaluated;
+      if (r.distance > m_threshold) {
+        ++disagreeing;
+      }
+    }
+  }
+  const bool disagrees = m_threshold > 0.0 && evaluated >= 2 && disagreeing == evaluated;
+  m_disagreeing = disagrees ? m_disagreeing + 1 : 0;
+  m_mismatch = m_disagreeing >= m_iterations;
+  if (!disagrees && m_model != nullptr) {
+    const vpProjectiveStereoRig &rig = m_model->getStereoRig();
+    for (vpRecord &r : m_records) {
+      if (!r.usable || (r.hasMemory && (r.distance < 0.0 || r.distance > m_threshold))) {
+        continue;
+      }
+      const Eigen::Vector4d M = m_Hlu.solve(rig.triangulateLinear(r.s.head<2>(), r.s.tail<2>())).normalized();
+      if (!M.allFinite()) {
+        continue;
+      }
+      r.recent = r.hasMemory ? Eigen::Vector4d((r.recent + (r.recent.dot(M) < 0.0 ? -M : M)).normalized()) : M;
+      if (r.exact) {
+        continue;
+      }
+      // A feature that is an acquired marker is remembered as that marker's point: one stereo pair's depth error,
+      // turned sideways by a large motion, would otherwise exceed the threshold for every feature of a 3-point task.
+      const int j = m_model->matchMarker(m_H, r.s);
+      if (j >= 0) {
+        r.sum = m_model->markers()[static_cast<size_t>(j)].normalized();
+        r.hasMemory = r.exact = true;
+        continue;
+      }
+      r.sum += r.hasMemory && r.sum.dot(M) < 0.0 ? Eigen::Vector4d(-M) : M;
+      r.hasMemory = true;
+    }
+  }
+  m_model = nullptr;
+  return m_mismatch;
+}

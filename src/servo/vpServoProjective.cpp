@@ -1,0 +1,641 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+#include <visp3/projective/vpServoProjective.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <Eigen/Dense>
+
+#include "core/vpProjectiveConversions.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveInternal;
+
+const vpErrorSite at("vpServoProjective");
+
+namespace
+{
+/*!
+  \f$ \sigma_{min}(J D^{-1}) / \sigma_{max}(J D^{-1}) \f$, \f$ D = \mathrm{diag}(\|J_{:,k}\|) \f$, from \f$ J^T J \f$:
+  the singular values squared are the eigenvalues of \f$ D^{-1} J^T J D^{-1} \f$, the Gram matrix with unit diagonal.
+  0 if a column norm is below \e tolerance times the largest (a joint that moves no active feature, or too little to
+  tell), or without any column.
+*/
+double equilibratedSingularValueRatio(const vpProjectiveArmModel::JointMatrix &JtJ, double tolerance)
+{
+  const Eigen::Index n = JtJ.rows();
+  vpProjectiveArmModel::JointVector d(n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    d(k) = std::sqrt(std::max(0.0, JtJ(k, k)));
+  }
+  const double dMax = n > 0 ? d.maxCoeff() : 0.0;
+  if (!(dMax > 0.0) || !(d.minCoeff() > tolerance * dMax)) {
+    return 0.0;
+  }
+  vpProjectiveArmModel::JointMatrix C(n, n);
+  for (Eigen::Index c = 0; c < n; ++c) {
+    for (Eigen::Index r = 0; r < n; ++r) {
+      C(r, c) = JtJ(r, c) / (d(r) * d(c));
+    }
+  }
+  Eigen::SelfAdjointEigenSolver<vpProjectiveArmModel::JointMatrix> eig(C, Eigen::EigenvaluesOnly);
+  const double lambdaMax = eig.eigenvalues()(n - 1);
+  if (lambdaMax > 0.0) {
+    return std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / lambdaMax);
+  }
+  return 0.0;
+}
+
+//! \f$ \sigma_{max} / \sigma_{min} \f$ from the eigenvalues of \f$ J^T J \f$; infinite if singular, 0 without column.
+double conditionNumber(const vpProjectiveArmModel::JointMatrix &JtJ)
+{
+  const Eigen::Index n = JtJ.rows();
+  if (n == 0) {
+    return 0.0;
+  }
+  Eigen::SelfAdjointEigenSolver<vpProjectiveArmModel::JointMatrix> eig(JtJ, Eigen::EigenvaluesOnly);
+  const double sigmaMin = std::sqrt(std::max(0.0, eig.eigenvalues()(0)));
+  const double sigmaMax = std::sqrt(std::max(0.0, eig.eigenvalues()(n - 1)));
+  return sigmaMin > 0.0 ? sigmaMax / sigmaMin : std::numeric_limits<double>::infinity();
+}
+} // namespace
+
+double vpServoProjective::taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale,
+                                   const JointMatrix &JtJ, const JointVector &Jte, double errorInf)
+{
+  if (input == GAIN_INPUT_ERROR) {
+    return lambda.value_const(errorInf / errorScale);
+  }
+  // vpServo's e1 = J^+ e (full column rank here: J^T J is invertible unless the task is singular, then the gain at
+  // infinity); fixed-size storage, no allocation.
+  const Eigen::LDLT<JointMatrix> ldlt(JtJ);
+  const JointVector e1 = ldlt.solve(Jte);
+  const double x = e1.allFinite() && ldlt.info() == Eigen::Success ? e1.cwiseAbs().maxCoeff()
+                                                                   : std::numeric_limits<double>::infinity();
+  return lambda.value_const(x);
+}
+
+vpServoProjective::vpServoProjective()
+    : m_robot(nullptr), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(),
+      m_jointLimits(), m_mismatch(), m_targets(), m_mismatchRigGeneration(0), m_mismatchModelGeneration(0),
+      m_mismatchRobot(nullptr), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
+      m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
+      m_replanFailed(false), m_followGain(1.0), m_period(1.0), m_qdotMax(0.0), m_gainInput(GAIN_INPUT_ERROR),
+      m_errorUnit(ERROR_PIXELS), m_focalLength(0.0), m_errorScale(1.0), m_q(), m_qFresh(false), m_settling(),
+      m_targetGeneration(0)
+{
+}
+
+namespace
+{
+//! The mean focal length sqrt(px py) (pixels) of the two cameras of the model's metric self-calibration.
+double estimatedFocalLength(const vpProjectiveRobot &robot, const std::string &where)
+{
+  vpMatrix Kl, Kr;
+  vpHomogeneousMatrix lMr;
+  try {
+    robot.getMetricStereoRig(Kl, Kr, lMr);
+  } catch (const vpException &e) {
+    fail(vpProjectiveException::estimationFailedError, where,
+         std::string("the model's metric self-calibration gives no focal length (") + e.getStringMessage() +
+             "); give it: setErrorUnit(ERROR_NORMALIZED, f) with f in pixels");
+  }
+  const double fl = std::sqrt(std::abs(Kl[0][0] * Kl[1][1])), fr = std::sqrt(std::abs(Kr[0][0] * Kr[1][1]));
+  const double f = 0.5 * (fl + fr);
+  if (!std::isfinite(f) || !(f > 0.0)) {
+    fail(vpProjectiveException::estimationFailedError, where,
+         "the model's metric self-calibration gives no finite focal length; give it: setErrorUnit(ERROR_NORMALIZED, "
+         "f) with f in pixels");
+  }
+  return f;
+}
+} // namespace
+
+void vpServoProjective::setAdaptiveGainInput(vpGainInput input)
+{
+  if (input != GAIN_INPUT_ERROR && input != GAIN_INPUT_JOINT_VELOCITY) {
+    fail(vpProjectiveException::invalidValueError, at("setAdaptiveGainInput()"),
+         "unknown input; use GAIN_INPUT_ERROR or GAIN_INPUT_JOINT_VELOCITY");
+  }
+  m_gainInput = input;
+}
+
+void vpServoProjective::setErrorUnit(vpErrorUnit unit, double focalLength)
+{
+  const std::string where = at("setErrorUnit()");
+  requireFinite(focalLength, where, "the focal length");
+  if (focalLength < 0.0) {
+    fail(vpProjectiveException::invalidValueError, where,
+         "the focal length must be positive (pixels), or 0 to estimate it from the model");
+  }
+  if (unit != ERROR_PIXELS && unit != ERROR_NORMALIZED) {
+    fail(vpProjectiveException::invalidValueError, where, "unknown unit; use ERROR_PIXELS or ERROR_NORMALIZED");
+  }
+  double scale = 1.0;
+  if (unit == ERROR_NORMALIZED) {
+    scale = focalLength;
+    if (focalLength == 0.0 && m_robot != nullptr) {
+      scale = estimatedFocalLength(*m_robot, where);
+    }
+  }
+  m_errorUnit = unit;
+  m_focalLength = focalLength;
+  m_errorScale = scale; // 0 until setRobot() estimates it
+}
+
+void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
+{
+  if (!robot.isCalibrated()) {
+    fail(vpProjectiveException::notInitializedError, at("setRobot()"),
+         "the robot model is not acquired; call calibrate() or loadModel() on it first");
+  }
+  if (m_errorUnit == ERROR_NORMALIZED && m_focalLength == 0.0) {
+    m_errorScale = estimatedFocalLength(robot, at("setRobot()")); // before anything changes
+  }
+  m_robot = &robot;
+  for (vpTarget &t : m_targets) {
+    t.valid = false; // another robot's frame: take the user's s* anew
+  }
+}
+
+void vpServoProjective::setLambda(double lambda)
+{
+  const std::string where = at("setLambda()");
+  requireFinite(lambda, where, "the gain");
+  if (!(lambda > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, where, "the gain must be positive");
+  }
+  m_lambda.initFromConstant(lambda);
+}
+
+void vpServoProjective::setLambda(const vpAdaptiveGain &lambda)
+{
+  m_lambda = lambda;
+}
+
+void vpServoProjective::setLambda(double gainAtZero, double gainAtInfinity, double slopeAtZero)
+{
+  const std::string where = at("setLambda()");
+  requireFinite(gainAtZero, where, "the gain at zero");
+  requireFinite(gainAtInfinity, where, "the gain at infinity");
+  requireFinite(slopeAtZero, where, "the slope at zero");
+  if (!(gainAtZero > 0.0) || !(gainAtInfinity > 0.0) || !(gainAtZero >= gainAtInfinity) || slopeAtZero < 0.0) {
+    fail(vpProjectiveException::invalidValueError, where,
+         "an adaptive gain needs gainAtZero >= gainAtInfinity > 0 and a non-negative slope");
+  }
+  m_lambda.initStandard(gainAtZero, gainAtInfinity, slopeAtZero);
+}
+
+void vpServoProjective::setDamping(double sigmaThreshold, double maxDamping)
+{
+  m_law.setDamping(sigmaThreshold, maxDamping);
+}
+
+void vpServoProjective::setMaxJointVelocity(double qdotMax)
+{
+  m_law.setMaxJointVelocity(qdotMax * m_period); // throws on a bad value, before anything changes
+  m_qdotMax = qdotMax;
+}
+
+void vpServoProjective::setControlPeriod(double seconds)
+{
+  if (!std::isfinite(seconds) || !(seconds > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, at("setControlPeriod()"),
+         "the control period is the time between two calls of computeControlLaw(), in seconds: positive and finite");
+  }
+  // Inside, the law works per call (a joint step, as the planner's paths and rehearsals do); the user's gain and
+  // saturation are per second.
+  m_law.setMaxJointVelocity(m_qdotMax * seconds);
+  m_period = seconds;
+}
+
+void vpServoProjective::setPseudoInverseThreshold(double threshold)
+{
+  m_law.setPseudoInverseThreshold(threshold);
+}
+
+void vpServoProjective::setRankTolerance(double tolerance)
+{
+  const std::string where = at("setRankTolerance()");
+  requireFinite(tolerance, where, "the rank tolerance");
+  if (!(tolerance > 0.0) || !(tolerance < 1.0)) {
+    fail(vpProjectiveException::invalidValueError, where,
+         "the rank tolerance is a ratio of singular values and must be in (0, 1), e.g. 1e-6");
+  }
+  m_rankTolerance = tolerance;
+}
+
+void vpServoProjective::setImageSize(unsigned int width, unsigned int height, double border)
+{
+  m_health.setImageSize(width, height, border);
+}
+
+void vpServoProjective::checkFeatureIndex(unsigned int i, const char *method) const
+{
+  if (i >= m_features.size()) {
+    std::ostringstream os;
+    os << "feature index " << i << " is out of range; the task has " << m_features.size()
+       << " features (indices in addFeature() order, from 0)";
+    fail(vpProjectiveException::dimensionError, at(method), os.str());
+  }
+}
+
+void vpServoProjective::setFeatureTracked(unsigned int i, bool tracked)
+{
+  checkFeatureIndex(i, "setFeatureTracked()");
+  m_health.setFeatureTracked(i, tracked);
+}
+
+bool vpServoProjective::isFeatureTracked(unsigned int i) const
+{
+  checkFeatureIndex(i, "isFeatureTracked()");
+  return m_health.isFeatureTracked(i);
+}
+
+void vpServoProjective::setOutlierThreshold(double pixels)
+{
+  m_health.setOutlierThreshold(pixels);
+}
+
+void vpServoProjective::setJointLimits(const vpColVector &qmin, const vpColVector &qmax, double rho, double rho1,
+                                       double lambdaTune)
+{
+  vpServoJointLimitAvoidance limits = m_jointLimits; // validated aside: a failed call changes nothing
+  limits.setJointLimits(qmin, qmax, rho, rho1, lambdaTune);
+  if (m_robot != nullptr && limits.getNumberOfJoints() != m_robot->getNumberOfJoints()) {
+    std::ostringstream os;
+    os << "qmin and qmax have " << limits.getNumberOfJoints() << " entries but the robot has "
+       << m_robot->getNumberOfJoints() << " joints";
+    fail(vpProjectiveException::dimensionError, at("setJointLimits()"), os.str());
+  }
+  m_jointLimits = limits;
+}
+
+void vpServoProjective::setLargeProjectionThresholds(double e0, double e1)
+{
+  m_jointLimits.setLargeProjectionThresholds(e0, e1);
+}
+
+void vpServoProjective::clearJointLimits()
+{
+  m_jointLimits.clearJointLimits();
+}
+
+void vpServoProjective::addFeature(vpFeatureStereoPoint &s, vpFeatureStereoPoint &s_star)
+{
+  m_features.push_back(&s);
+  m_desired.push_back(&s_star);
+  m_health.addFeature();
+  m_mismatch.resize(static_cast<unsigned int>(m_features.size()));
+  m_targets.push_back(vpTarget());
+  m_plannedFor.clear(); // another task: plan anew
+  m_following = false;
+}
+
+void vpServoProjective::clearFeatures()
+{
+  m_features.clear();
+  m_desired.clear();
+  m_health.clearFeatures();
+  m_mismatch.resize(0);
+  m_targets.clear();
+  m_plannedFor.clear();
+  m_following = false;
+  m_iterations[m_lastIteration].status = SERVO_RUNNING;
+  m_iterations[m_lastIteration].nbActive = 0;
+}
+
+vpServoProjective::vpFeatureState vpServoProjective::getFeatureState(unsigned int i) const
+{
+  checkFeatureIndex(i, "getFeatureState()");
+  return m_health.getFeatureState(i);
+}
+
+double vpServoProjective::getEpipolarDistance(unsigned int i) const
+{
+  checkFeatureIndex(i, "getEpipolarDistance()");
+  return m_health.getEpipolarDistance(i);
+}
+
+double vpServoProjective::getPredictionDistance(unsigned int i) const
+{
+  checkFeatureIndex(i, "getPredictionDistance()");
+  return m_health.getPredictionDistance(i);
+}
+
+inline void vpServoProjective::check(const char *method) const
+{
+  if (m_robot == nullptr) {
+    fail(vpProjectiveException::notInitializedError, at(method), "no robot model; call setRobot() first");
+  }
+  if (m_features.empty()) {
+    fail(vpProjectiveException::notInitializedError, at(method), "no feature; call addFeature(s, s_star) first");
+  }
+  if (4 * m_features.size() < m_robot->getNumberOfJoints()) {
+    std::ostringstream os;
+    os << m_features.size() << " stereo points give " << 4 * m_features.size() << " equations for "
+       << m_robot->getNumberOfJoints() << " joints; add features";
+    fail(vpProjectiveException::notEnoughPointsError, at(method), os.str());
+  }
+}
+
+// The steps of computeControlLaw(), used only in this file: inline, so that the shared library runs them without a
+// call through its symbol table (a non-inline member of an exported class may be interposed, hence is never inlined).
+inline void vpServoProjective::checkJoints(const JointVector &q, const char *method) const
+{
+  check(method);
+  const Eigen::Index n = static_cast<Eigen::Index>(m_robot->getNumberOfJoints());
+  if (q.size() != n) {
+    std::ostringstream os;
+    os << "q must have " << n << " entries, got " << q.size();
+    fail(vpProjectiveException::dimensionError, at(method), os.str());
+  }
+  if (!q.allFinite()) {
+    fail(vpProjectiveException::nonFiniteValueError, at(method), "q has a NaN or infinite entry");
+  }
+  if (m_jointLimits.hasJointLimits() && m_jointLimits.getNumberOfJoints() != static_cast<unsigned int>(n)) {
+    std::ostringstream os;
+    os << "the joint limits have " << m_jointLimits.getNumberOfJoints() << " entries but the robot has " << n
+       << " joints; call setJointLimits() again";
+    fail(vpProjectiveException::dimensionError, at(method), os.str());
+  }
+}
+
+inline void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, const char *method)
+{
+  // Task Jacobian, eq. (46) stacked over the active points, at the current q and triangulated points; the rows of
+  // the features set aside are zero.
+  const Eigen::Index n = q.size();
+  const Eigen::Index rows = 4 * static_cast<Eigen::Index>(m_features.size());
+  if (it.J.rows() != rows || it.J.cols() != n) {
+    it.J.resize(rows, n);
+    it.e.resize(rows);
+  }
+  Eigen::Matrix4d HhatKq[vpProjectiveRobot::maxJoints];
+  m_robot->jointMotions(q, HhatKq);
+  m_health.startIteration(*m_robot, q);
+  vpProjectiveRobot::PointJacobian Ji;
+  unsigned int active = 0;
+  for (unsigned int i = 0; i < m_features.size(); ++i) {
+    const Eigen::Vector4d s = m_features[i]->getFeature();
+    const Eigen::Vector4d sStar = desired(i);
+    const Eigen::Index r = 4 * static_cast<Eigen::Index>(i);
+    Eigen::Vector4d M;
+    if (m_health.classify(i, s, sStar, M) != FEATURE_ACTIVE) {
+      it.J.middleRows(r, 4).setZero();
+      it.e.segment<4>(r).setZero();
+      continue;
+    }
+    if (!m_robot->imageJacobian(HhatKq, M, Ji)) {
+      std::ostringstream os;
+      os << "feature " << i << " triangulates onto a camera's focal plane; check that it is matched correctly";
+      fail(vpProjectiveException::pointAtInfinityError, at(method), os.str());
+    }
+    it.J.middleRows(r, 4) = Ji;
+    it.e.segment<4>(r) = s - sStar;
+    ++active;
+  }
+  it.nbActive = active;
+  vpServoDampedLeastSquares::computeNormalEquations(it.J, it.e, it.JtJ, it.Jte);
+  it.errorNorm = it.e.norm() / m_errorScale; // in the unit of setErrorUnit(), for the large projection thresholds
+}
+
+inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vpIteration &it) const
+{
+  // With every feature active the task is the user's: a rank loss is left to the damping. With features set aside,
+  // the remaining ones must constrain every joint: a stereo point gives at most 3 independent equations, then the
+  // scale-aware rank test on J D^-1.
+  if (it.nbActive == m_features.size()) {
+    return SERVO_RUNNING;
+  }
+  const bool stopped = 3 * static_cast<Eigen::Index>(it.nbActive) < it.JtJ.rows() ||
+                       !(equilibratedSingularValueRatio(it.JtJ, m_rankTolerance) >= m_rankTolerance);
+  return stopped ? SERVO_STOPPED : SERVO_REDUCED;
+}
+
+inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot)
+{
+  m_settling.reset(); // stopped: converge anew before settling
+  qdot.setZero(it.JtJ.rows());
+  it.qdot2.setZero(it.JtJ.rows());
+  it.lambda = 0.0;
+  it.damping = 0.0;
+  it.saturated = false;
+}
+
+inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIteration &it, JointVector &qdot)
+{
+  // qdot1 = -lambda (J^T J + mu^2 I)^-1 J^T e, saturated: the motion the arm really makes. Along a planned path it is
+  // the path's step to the next sample (feedforward) plus the law on the error to the current sample (feedback, with
+  // the follower's gain), saturated as a whole.
+  it.lambda = m_following ? m_followGain
+                          : m_period * taskGain(m_lambda, m_gainInput, m_errorScale, it.JtJ, it.Jte,
+                                                it.e.cwiseAbs().maxCoeff());
+  if (m_following) {
+    m_settling.reset(); // a path is not a rest: settle on law (47) after it
+  } else if (m_settling.isEnabled()) {
+    // Settling restarts with another set of active features or another target (their signature).
+    unsigned long context = m_targetGeneration;
+    for (unsigned int i = 0; i < m_features.size(); ++i) {
+      context = 31 * context + (m_health.getFeatureState(i) == FEATURE_ACTIVE ? i + 1 : 0);
+    }
+    it.lambda = m_settling.gain(it.lambda, it.JtJ, it.Jte, it.e.squaredNorm(), 4 * it.nbActive, context);
+  }
+  m_law.computeVelocity(it.JtJ, it.Jte, it.lambda, qdot);
+  if (m_following) {
+    // The feedback corrects the model's error, a few pixels: bounded by half a path step, so that near a singular
+    // configuration (where its least-squares step is large) it cannot throw the arm off its path.
+    const double largest = qdot.cwiseAbs().maxCoeff(), bound = 0.5 * m_planner.getMaxJointStep();
+    if (largest > bound) {
+      qdot *= bound / largest;
+    }
+    qdot += m_planner.getPath()[m_pathSample] - m_planner.getPath()[m_pathSample - 1];
+    m_law.saturate(qdot);
+  } else if (m_planning) {
+    m_planner.guardStep(m_robot->getModel(), q, qdot); // law (47) toward a planned task: no overshoot
+  }
+  it.damping = m_law.getDamping();
+  it.saturated = m_law.isSaturated();
+}
+
+inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const
+{
+  it.qdot2.setZero(q.size());
+  if (!m_jointLimits.hasJointLimits()) {
+    return;
+  }
+  // A planned path stays inside the limits and ends at a target inside them: the avoidance lets the arm go where the
+  // plan sends it, the next sample while following, the target after (law (47) alone, even planned, is left as is);
+  // and the step never crosses a limit (the planned servo's promise, which the avoidance alone cannot keep with a
+  // step of the path's size).
+  const bool planned = m_planning && m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND &&
+                       m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
+  const JointVector *target =
+      m_following ? &m_planner.getPath()[m_pathSample] : (planned ? &m_planner.getTarget() : nullptr);
+  m_jointLimits.computeVelocity(q, qdot, it.JtJ, it.Jte, it.errorNorm, m_law, it.qdot2, target);
+  qdot += it.qdot2;
+  if (m_law.saturate(qdot)) {
+    it.saturated = true;
+  }
+  if (planned) {
+    qdot *= m_jointLimits.stepInside(q, qdot);
+  }
+  if (!qdot.allFinite()) {
+    fail(vpProjectiveException::estimationFailedError, at("computeControlLaw()"),
+         "the control law gave a non-finite velocity (singular task Jacobian); increase the damping");
+  }
+}
+
+inline void vpServoProjective::commit()
+{
+  m_lastIteration = 1 - m_lastIteration;
+  m_health.endIteration();
+  m_settling.commit();
+  const vpServoStatus status = m_iterations[m_lastIteration].status;
+  if (m_planning && m_pathSample < m_planner.getPath().size() && (status == SERVO_RUNNING || status == SERVO_REDUCED)) {
+    ++m_pathSample; // the next call aims at the next sample (of the path, or of law (47)'s rehearsal)
+  }
+}
+
+void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdot)
+{
+  // No allocation once the sizes are known: messages are built only when throwing. Every step works on the iteration
+  // in progress; commit() makes it the one that the getters read, so that a call that throws changes nothing.
+  const char *const method = "computeControlLaw()";
+  checkJoints(q, method);
+  vpIteration &it = m_iterations[1 - m_lastIteration];
+  refreshTargets();
+  const bool planned = !m_planning || planIfNeeded(q);
+  m_following = m_planning && planned && m_pathSample < m_planner.getPath().size() &&
+                m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
+  buildTask(q, it, method);
+  const bool mismatch = detectMismatch(q); // after the last step that may throw
+  it.status = mismatch ? SERVO_MODEL_MISMATCH : (planned ? decideStatus(it) : SERVO_NO_PLAN);
+  if (it.status == SERVO_STOPPED || it.status == SERVO_NO_PLAN || it.status == SERVO_MODEL_MISMATCH) {
+    stop(it, qdot);
+  } else {
+    computePrimaryVelocity(q, it, qdot);
+    addJointLimitAvoidance(q, it, qdot);
+    qdot /= m_period; // the step of this call, as a velocity held for one period
+  }
+  commit();
+}
+
+vpColVector vpServoProjective::computeControlLaw(const vpColVector &q)
+{
+  check("computeControlLaw()");
+  if (q.getRows() != m_robot->getNumberOfJoints()) {
+    std::ostringstream os;
+    os << "q must have " << m_robot->getNumberOfJoints() << " entries, got " << q.getRows();
+    fail(vpProjectiveException::dimensionError, at("computeControlLaw()"), os.str());
+  }
+  JointVector qe(q.getRows()), qdot(q.getRows());
+  for (unsigned int i = 0; i < q.getRows(); ++i) {
+    qe(i) = q[i];
+  }
+  computeControlLaw(qe, qdot);
+  return toVispVector(qdot);
+}
+
+void vpServoProjective::setJointPositions(const vpColVector &q)
+{
+  const std::string where = at("setJointPositions()");
+  if (m_robot != nullptr && q.getRows() != m_robot->getNumberOfJoints()) {
+    std::ostringstream os;
+    os << "q must have " << m_robot->getNumberOfJoints() << " entries, got " << q.getRows();
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  const unsigned int maxJoints = vpProjectiveRobot::maxJoints;
+  if (q.getRows() == 0 || q.getRows() > maxJoints) {
+    std::ostringstream os;
+    os << "q must have 1 to " << maxJoints << " entries, got " << q.getRows();
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  for (unsigned int i = 0; i < q.getRows(); ++i) {
+    requireFinite(q[i], where, "a joint value");
+  }
+  m_q.resize(q.getRows());
+  for (unsigned int i = 0; i < q.getRows(); ++i) {
+    m_q(i) = q[i];
+  }
+  m_qFresh = true;
+}
+
+vpColVector vpServoProjective::computeControlLaw()
+{
+  if (!m_qFresh) {
+    fail(vpProjectiveException::notInitializedError, at("computeControlLaw()"),
+         "no joint values since the last computeControlLaw(); read the encoders (vpRobot::getPosition(vpRobot::"
+         "ARTICULAR_FRAME, q)) and call setJointPositions(q) before each call, or call computeControlLaw(q)");
+  }
+  JointVector qdot(m_q.size());
+  computeControlLaw(m_q, qdot); // throws, changing nothing, if q does not fit the robot
+  m_qFresh = false;
+  return toVispVector(qdot);
+}
+
+vpColVector vpServoProjective::getError() const
+{
+  return toVispVector(last().e / m_errorScale);
+}
+
+vpMatrix vpServoProjective::getTaskJacobian() const
+{
+  return toVisp(last().J / m_errorScale);
+}
+
+vpColVector vpServoProjective::getTaskSingularValues() const
+{
+  if (last().J.size() == 0) {
+    return vpColVector();
+  }
+  return toVispVector(Eigen::JacobiSVD<Eigen::MatrixXd>(last().J / m_errorScale).singularValues());
+}
+
+double vpServoProjective::getSingularValueRatio() const
+{
+  return equilibratedSingularValueRatio(last().JtJ, m_rankTolerance);
+}
+
+double vpServoProjective::getConditionNumber() const
+{
+  return conditionNumber(last().JtJ);
+}
+
+vpMatrix vpServoProjective::getLargeProjectionOperator() const
+{
+  if (last().JtJ.rows() == 0) {
+    fail(vpProjectiveException::notInitializedError, at("getLargeProjectionOperator()"),
+         "no task Jacobian yet; call computeControlLaw() first");
+  }
+  JointMatrix P;
+  m_jointLimits.computeLargeProjectionOperator(last().JtJ, last().Jte, last().errorNorm, m_law, P);
+  return toVisp(P);
+}
+
+void vpServoProjective::setSettling(bool settling)
+{
+  m_settling.setEnabled(settling, m_settling.getHorizon());
+}
+
+vpColVector vpServoProjective::getJointLimitVelocity() const
+{
+  return toVispVector(last().qdot2);
+}

@@ -1,0 +1,212 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*
+  vpServoProjective::print(): the task as vpServo::print(vpServo::ALL) shows it, with what only this task has.
+*/
+
+#include <visp3/projective/vpServoProjective.h>
+
+#include <ostream>
+
+#include <Eigen/Core>
+
+#include "core/vpProjectiveConversions.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveInternal;
+
+namespace
+{
+const char *stateName(vpServoFeatureHealth::vpFeatureState state)
+{
+  switch (state) {
+  case vpServoFeatureHealth::FEATURE_ACTIVE:
+    return "active";
+  case vpServoFeatureHealth::FEATURE_NOT_TRACKED:
+    return "not tracked";
+  case vpServoFeatureHealth::FEATURE_OUT_OF_IMAGE:
+    return "out of image";
+  case vpServoFeatureHealth::FEATURE_NOT_FINITE:
+    return "not finite";
+  case vpServoFeatureHealth::FEATURE_OUTLIER:
+    return "outlier";
+  }
+  return "?";
+}
+
+const char *statusName(vpServoProjective::vpServoStatus status)
+{
+  switch (status) {
+  case vpServoProjective::SERVO_RUNNING:
+    return "SERVO_RUNNING (every feature used)";
+  case vpServoProjective::SERVO_REDUCED:
+    return "SERVO_REDUCED (some features set aside, every joint still constrained)";
+  case vpServoProjective::SERVO_STOPPED:
+    return "SERVO_STOPPED (the active features no longer constrain every joint: qdot = 0)";
+  case vpServoProjective::SERVO_NO_PLAN:
+    return "SERVO_NO_PLAN (path planning found no plan for the target: qdot = 0)";
+  case vpServoProjective::SERVO_MODEL_MISMATCH:
+    return "SERVO_MODEL_MISMATCH (every feature disagrees with the model: re-register a moved rig, or check the rig "
+           "mounting; qdot = 0)";
+  }
+  return "?";
+}
+
+template <typename Vector> void printVector(std::ostream &os, const Vector &v)
+{
+  os << "(";
+  for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(v.size()); ++k) {
+    os << (k > 0 ? ", " : "") << v[k];
+  }
+  os << ")";
+}
+} // namespace
+
+void vpServoProjective::print(std::ostream &os) const
+{
+  // The sections of vpServo::print(vpServo::ALL), in its order and with its titles, then what only this task has.
+  const bool computed = last().J.rows() == static_cast<Eigen::Index>(getDimension()) && last().J.rows() > 0;
+  const char *const unit = m_errorUnit == ERROR_PIXELS ? "pixels" : "normalised: pixels / f";
+  os << "Visual servoing task: non-metric stereo (vpServoProjective)\n";
+  os << "Type of control law\n";
+  if (m_robot == nullptr) {
+    os << "Robot: none (setRobot())\n";
+  } else {
+    os << (m_robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "Eye-in-hand" : "Eye-to-hand")
+       << " configuration\n";
+    os << "Control in the articular frame: qdot = -lambda J^+ (s - s*), " << m_robot->getNumberOfJoints()
+       << " joints, J from the projective model\n";
+  }
+  os << "List of visual features : s (" << m_features.size() << " stereo points s = (u, v, u', v') (pixels), task "
+     << "dimension " << getDimension();
+  if (computed) {
+    os << ", " << m_health.getNumberOfActiveFeatures() << " active at the last computeControlLaw()";
+  }
+  os << ")\n";
+  for (unsigned int i = 0; i < m_features.size(); ++i) {
+    os << "  " << i << ": s = ";
+    printVector(os, m_features[i]->getFeature());
+    os << (m_health.isFeatureTracked(i) ? "" : ", not tracked");
+    if (computed) {
+      os << "; last state " << stateName(m_health.getFeatureState(i));
+      if (m_health.getEpipolarDistance(i) >= 0.0) {
+        os << ", epipolar distance " << m_health.getEpipolarDistance(i) << " px";
+      }
+      if (m_health.getPredictionDistance(i) >= 0.0) {
+        os << ", prediction distance " << m_health.getPredictionDistance(i) << " px";
+      }
+    }
+    os << "\n";
+  }
+  os << "List of desired visual features : s*\n";
+  for (unsigned int i = 0; i < m_desired.size(); ++i) {
+    os << "  " << i << ": s* = ";
+    printVector(os, m_desired[i]->getFeature());
+    os << "\n";
+  }
+  os << "Task Jacobian J (" << unit << " per joint unit; vpServo's interaction matrix Ls)\n";
+  if (computed) {
+    os << toVisp(last().J / m_errorScale) << "\n";
+  } else {
+    os << "not yet computed\n";
+  }
+  os << "Error vector (s-s*) (" << unit << ", rows of the features set aside zero)\n";
+  if (computed) {
+    os << toVispVector(last().e / m_errorScale).t() << "\n";
+    os << "|e| = " << last().errorNorm << "\n";
+  } else {
+    os << "not yet computed (No computeControlLaw() yet)\n";
+  }
+  os << "Gain : " << m_lambda << " (of "
+     << (m_gainInput == GAIN_INPUT_ERROR ? "||e||_inf" : "||J^+ e||_inf, as vpServo");
+  if (m_errorUnit == ERROR_NORMALIZED) {
+    os << "; f = " << m_errorScale << " px" << (m_focalLength > 0.0 ? " given" : " estimated");
+  }
+  os << ")\n";
+  os << "Status and settings\n";
+  if (computed) {
+    os << "  Status: " << statusName(last().status) << "\n";
+    if (last().status == SERVO_MODEL_MISMATCH && m_robot != nullptr && m_robot->getRigGeneration() == 0) {
+      // No re-registration since the acquisition: the model may never have fit, whatever moved.
+      os << "  Model never re-registered since its acquisition: if it never fit, check the rig mounting ("
+         << (m_robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "EYE_IN_HAND" : "EYE_TO_HAND")
+         << " now; EYE_IN_HAND when the cameras ride on the arm, vpProjectiveAcquisitionProcedure tells it) and the "
+            "markers' order; if the rig moved, re-register it\n";
+    }
+    os << "  Last step: gain " << last().lambda << ", damping " << last().damping << ", "
+       << (last().saturated ? "saturated" : "not saturated") << "\n";
+  }
+  os << "  Settling: ";
+  if (!m_settling.isEnabled()) {
+    os << "off (law (47) with the task's gain)\n";
+  } else if (m_settling.isSettled()) {
+    os << "settled for " << m_settling.getSettledIterations() << " calls (gain lambda / (1 + lambda k)), noise "
+       << m_settling.getNoiseEstimate() << " px per row\n";
+  } else {
+    os << "on, not settled (full gain until the error a joint motion explains is within the noise)\n";
+  }
+  os << "  Damped least squares: sigma_0 " << m_law.getSigmaThreshold() << ", mu_max " << m_law.getMaxDamping()
+     << " (pixels per joint unit); saturation ";
+  if (m_qdotMax > 0.0) {
+    os << m_qdotMax << " joint units per second";
+  } else {
+    os << "off";
+  }
+  os << "; pseudo-inverse threshold " << m_law.getPseudoInverseThreshold() << "; rank tolerance " << m_rankTolerance
+     << "\n";
+  os << "  Feature checks: image window ";
+  if (m_health.getImageWidth() > 0) {
+    os << m_health.getImageWidth() << " x " << m_health.getImageHeight() << ", border " << m_health.getImageBorder()
+       << " px";
+  } else {
+    os << "off";
+  }
+  os << "; outlier threshold ";
+  if (m_health.getOutlierThreshold() > 0.0) {
+    os << m_health.getOutlierThreshold() << " px";
+  } else {
+    os << "off";
+  }
+  os << "; model-mismatch threshold ";
+  if (m_mismatch.getThreshold() > 0.0) {
+    os << m_mismatch.getThreshold() << " px over " << m_mismatch.getConsecutiveIterations() << " calls";
+  } else {
+    os << "off";
+  }
+  os << "\n";
+  double e0 = 0.0, e1 = 0.0;
+  m_jointLimits.getLargeProjectionThresholds(e0, e1);
+  os << "  Joint limits: ";
+  if (m_jointLimits.hasJointLimits()) {
+    const vpColVector qmin = m_jointLimits.getLowerLimits(), qmax = m_jointLimits.getUpperLimits();
+    os << "qmin ";
+    printVector(os, qmin);
+    os << ", qmax ";
+    printVector(os, qmax);
+    os << ", rho " << m_jointLimits.getRho() << ", rho1 " << m_jointLimits.getRho1() << ", lambda_t "
+       << m_jointLimits.getLambdaTune() << "; large projection thresholds e0 " << e0 << ", e1 " << e1
+       << (m_errorUnit == ERROR_PIXELS ? " px" : " (normalised)");
+  } else {
+    os << "none";
+  }
+  os << std::endl;
+}
+
+std::string vpServoProjective::toString(vpServoStatus status)
+{
+  return statusName(status);
+}

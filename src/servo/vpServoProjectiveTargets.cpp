@@ -1,0 +1,226 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*
+  Where a vpServoProjective task is going: its desired features (the user's s*, re-expressed through the rig after a
+  re-registration), the model-mismatch check of the measured features against the model, and the planned path that
+  the task follows before law (47) finishes.
+*/
+
+#include <visp3/projective/vpServoProjective.h>
+
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "core/vpProjectiveConversions.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveInternal;
+
+const vpErrorSite at("vpServoProjective"); // const: internal linkage, as in vpServoProjective.cpp
+
+Eigen::Vector4d vpServoProjective::desired(unsigned int i) const
+{
+  // Following, the arm should be at the sample before the one it moves to: its predicted features are the reference
+  // of the image feedback.
+  return m_following ? m_planner.getPredictedFeatures()[m_pathSample - 1][i] : m_targets[i].effective;
+}
+
+void vpServoProjective::refreshTargets()
+{
+  // The task's copy of s*: the user's value, triangulated once through the rig it was given with; after a
+  // re-registration of the rig (a new rig generation of the same model), that point's image in the new rig.
+  const unsigned long rigGeneration = m_robot->getRigGeneration();
+  const unsigned long modelGeneration = m_robot->getModelGeneration();
+  const vpProjectiveStereoRig &rig = m_robot->getModel().getStereoRig();
+  for (size_t i = 0; i < m_targets.size(); ++i) {
+    vpTarget &t = m_targets[i];
+    const Eigen::Vector4d before = t.effective;
+    const bool wasValid = t.valid;
+    const Eigen::Vector4d user = m_desired[i]->getFeature();
+    if (!t.valid || t.modelGeneration != modelGeneration || !(user == t.user)) {
+      t.user = user;
+      t.effective = user;
+      t.hasPoint = user.allFinite();
+      if (t.hasPoint) {
+        t.point = rig.triangulate(user.head<2>(), user.tail<2>());
+      }
+      t.rigGeneration = rigGeneration;
+      t.modelGeneration = modelGeneration;
+      t.valid = true;
+    } else if (t.rigGeneration != rigGeneration) {
+      Eigen::Vector4d s;
+      if (t.hasPoint && rig.project(t.point, s)) {
+        t.effective = s;
+      } else {
+        t.effective = user; // no point: the user's value, which the health then judges
+      }
+      t.rigGeneration = rigGeneration;
+    }
+    if (!wasValid || !(t.effective == before)) {
+      ++m_targetGeneration; // another target: the settling gain converges anew
+    }
+  }
+}
+
+bool vpServoProjective::detectMismatch(const JointVector &q)
+{
+  // Memories of the features' points belong to one rig of one model: start anew when either changed.
+  if (m_mismatchRobot != m_robot || m_mismatchRigGeneration != m_robot->getRigGeneration() ||
+      m_mismatchModelGeneration != m_robot->getModelGeneration()) {
+    m_mismatch.reset();
+    m_mismatchRobot = m_robot;
+    m_mismatchRigGeneration = m_robot->getRigGeneration();
+    m_mismatchModelGeneration = m_robot->getModelGeneration();
+  }
+  if (m_mismatch.getThreshold() == 0.0) {
+    return false; // detection off: no prediction, no memory to keep (H(q), one triangulation per feature)
+  }
+  const double w = m_health.getImageWidth(), h = m_health.getImageHeight(), b = m_health.getImageBorder();
+  m_mismatch.startIteration(m_robot->getModel(), q);
+  for (unsigned int i = 0; i < m_features.size(); ++i) {
+    const Eigen::Vector4d s = m_features[i]->getFeature();
+    bool usable = m_health.isFeatureTracked(i) && s.allFinite();
+    if (usable && w > 0.0) {
+      usable = s(0) >= b && s(0) <= w - 1.0 - b && s(1) >= b && s(1) <= h - 1.0 - b && s(2) >= b &&
+               s(2) <= w - 1.0 - b && s(3) >= b && s(3) <= h - 1.0 - b;
+    }
+    m_mismatch.observe(i, s, usable);
+  }
+  return m_mismatch.endIteration();
+}
+
+void vpServoProjective::setModelMismatchThreshold(double pixels)
+{
+  m_mismatch.setThreshold(pixels);
+}
+
+vpColVector vpServoProjective::getDesiredFeature(unsigned int i) const
+{
+  checkFeatureIndex(i, "getDesiredFeature()");
+  return toVispVector(m_targets[i].valid ? m_targets[i].effective : m_desired[i]->getFeature());
+}
+
+namespace
+{
+//! Plans again from an off-path configuration per target, before the task gives the path up for law (47).
+const unsigned int kMaxReplans = 2;
+} // namespace
+
+bool vpServoProjective::planIfNeeded(const JointVector &q)
+{
+  // Plan once per target: again only when a desired feature changed.
+  bool changed = m_plannedFor.size() != m_desired.size();
+  for (size_t i = 0; i < m_desired.size() && !changed; ++i) {
+    changed = !(m_targets[i].effective == m_plannedFor[i]);
+  }
+  // Off the plan. Following a path, the arm should be near the sample before the one the call aims at (the
+  // feedforward brought it there and the feedback keeps it within the noise): two steps away, it does not move as the
+  // model predicted. Running law (47) as rehearsed, its course may differ (near a singular configuration it depends on
+  // the noise) as long as it converges: only a law still far from its rehearsed residual after twice the rehearsed
+  // iterations and 10 more has stalled. Either way: plan again from here (a path: a law that left its rehearsal is
+  // not rehearsed again), or give the path up for law (47) once the re-plans are spent.
+  bool replan = false;
+  const std::vector<JointVector> &path = m_planner.getPath();
+  const bool lawPlan = m_planner.getPathKind() == vpProjectivePathPlanner::PATH_LAW;
+  ++m_sincePlan;
+  if (changed) {
+    m_replans = 0;
+    m_lawLeftRehearsal = false;
+  } else if (m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND && m_replans <= kMaxReplans) {
+    const vpIteration &it = last();
+    const double rms = it.e.size() > 0 ? it.errorNorm / std::sqrt(static_cast<double>(it.e.size())) : 0.0;
+    const bool off =
+        lawPlan ? m_sincePlan > 2 * (path.size() - 1) + 10 && rms > 2.0 * m_planner.getRehearsalResidual() + 2.0
+                : m_pathSample > 0 && m_pathSample < path.size() &&
+                      (q - path[m_pathSample - 1]).cwiseAbs().maxCoeff() > 2.0 * m_planner.getMaxJointStep();
+    if (off && m_replans < kMaxReplans) {
+      ++m_replans;
+      replan = true;
+      m_lawLeftRehearsal = m_lawLeftRehearsal || lawPlan;
+    } else if (off) {
+      ++m_replans;                // spent: law (47) from here, no more checks
+      m_pathSample = path.size(); // not following
+    }
+  }
+  if (changed || replan) {
+    // The features' points, triangulated at q and carried to the zero reference by H(q)^-1.
+    const vpProjectiveArmModel &model = m_robot->getModel();
+    const Eigen::PartialPivLU<Eigen::Matrix4d> H(model.displacement(q));
+    std::vector<Eigen::Vector4d> points, sStar;
+    for (size_t i = 0; i < m_features.size(); ++i) {
+      const Eigen::Vector4d s = m_features[i]->getFeature();
+      if (!s.allFinite()) {
+        return false; // a feature lost at planning time: plan at the next call
+      }
+      points.push_back(H.solve(model.getStereoRig().triangulate(s.head<2>(), s.tail<2>())).normalized());
+      sStar.push_back(m_targets[i].effective);
+    }
+    vpProjectivePathPlanner::JointVector qmin, qmax;
+    if (m_jointLimits.hasJointLimits()) {
+      qmin = toEigenVector<JointVector>(m_jointLimits.getLowerLimits(), q.size(), at("computeControlLaw()"), "qmin");
+      qmax = toEigenVector<JointVector>(m_jointLimits.getUpperLimits(), q.size(), at("computeControlLaw()"), "qmax");
+    }
+    m_planner.setJointLimits(qmin, qmax);
+    m_planner.setImageSize(m_health.getImageWidth(), m_health.getImageHeight(), m_health.getImageBorder());
+    if (m_lawLeftRehearsal) {
+      m_planner.clearControlLaw();
+    } else {
+      const vpAdaptiveGain lambda = m_lambda;
+      const vpGainInput input = m_gainInput;
+      const double scale = m_errorScale, period = m_period;
+      m_planner.setControlLaw( // rehearsed per call, as the task runs it (setControlPeriod())
+          [lambda, input, scale, period](const JointMatrix &JtJ, const JointVector &Jte, double errorInf) {
+            return period * taskGain(lambda, input, scale, JtJ, Jte, errorInf);
+          },
+          m_law, m_jointLimits, scale);
+    }
+    m_planner.plan(model, q, points, sStar);
+    m_plannedFor = sStar;
+    m_pathSample = 1; // sample 0 is q
+    m_sincePlan = 0;
+    m_replanFailed = replan && m_planner.getStatus() != vpProjectivePathPlanner::PLAN_FOUND;
+  }
+  // A re-plan that finds nothing leaves law (47) running where the first plan had brought the arm.
+  return m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND || m_replanFailed;
+}
+
+void vpServoProjective::setPathPlanning(bool planning)
+{
+  m_planning = planning;
+  m_plannedFor.clear(); // plan anew
+  m_following = false;
+}
+
+void vpServoProjective::setPathFollowingGain(double gain)
+{
+  if (!std::isfinite(gain) || !(gain > 0.0) || gain > 1.0) {
+    fail(vpProjectiveException::invalidValueError, at("setPathFollowingGain()"),
+         "the path-following gain is the fraction of the way to the next sample covered per call: in (0, 1]");
+  }
+  m_followGain = gain;
+}
+
+vpColVector vpServoProjective::getPlannedTarget() const
+{
+  if (!m_planning || m_planner.getStatus() != vpProjectivePathPlanner::PLAN_FOUND) {
+    fail(vpProjectiveException::notInitializedError, at("getPlannedTarget()"),
+         "no plan: call setPathPlanning(true) and computeControlLaw(), and check getStatus() != SERVO_NO_PLAN (" +
+             m_planner.getDescription() + ")");
+  }
+  return toVispVector(m_planner.getTarget());
+}

@@ -1,0 +1,486 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+#include <visp3/projective/vpProjectiveSession.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include <visp3/core/vpConfig.h>
+#include <visp3/core/vpException.h>
+#include <visp3/core/vpMath.h>
+#include <visp3/projective/vpProjectiveArmModel.h>
+#ifdef VISP_HAVE_MODULE_IO
+#include <visp3/io/vpImageIo.h>
+#endif
+
+#include "core/vpProjectiveErrors.h"
+#include "session/vpProjectiveSessionInternal.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveInternal;
+
+const char *const vpProjectiveSession::formatName = "visp-projective-session";
+
+namespace
+{
+using json = nlohmann::json;
+
+const vpErrorSite at("vpProjectiveSession");
+
+const char *const kRoles[] = {"zero", "trial", "observation", "target", "servo"};
+
+//! "frame k (left/000003.png)": how the messages name a frame.
+std::string frameName(unsigned int k, const std::string &left)
+{
+  return "frame " + std::to_string(k) + (left.empty() ? std::string() : " ('" + left + "')");
+}
+
+//! Reads the entries of session.json, each error a fileError naming the file.
+class Reader
+{
+public:
+  explicit Reader(const std::string &name) : m_name(name) {}
+
+  [[noreturn]] void bad(const std::string &what) const
+  {
+    fail(vpProjectiveException::fileError, at("read()"), "cannot read the session '" + m_name + "': " + what);
+  }
+
+  const json &member(const json &object, const char *key, const std::string &owner) const
+  {
+    if (!object.is_object() || !object.contains(key)) {
+      bad(owner + " has no '" + key +
+          "' entry; add it (see the session format in vpProjectiveSession's documentation)");
+    }
+    return object[key];
+  }
+
+  const std::string &name() const { return m_name; }
+
+private:
+  std::string m_name;
+};
+
+//! True if \e path is relative and stays inside the folder (no "..", no absolute path, no empty component).
+bool insideFolder(const std::string &path)
+{
+  if (path.empty() || path[0] == '/' || path.find('\\') != std::string::npos || path.find('\0') != std::string::npos) {
+    return false;
+  }
+  std::istringstream parts(path);
+  std::string part;
+  while (std::getline(parts, part, '/')) {
+    if (part.empty() || part == "..") {
+      return false;
+    }
+  }
+  return path.back() != '/';
+}
+} // namespace
+
+namespace vpProjectiveSessionInternal
+{
+std::string checkPngHeader(const std::string &path, unsigned int &width, unsigned int &height)
+{
+  std::ifstream file(path.c_str(), std::ios::binary);
+  if (!file) {
+    return "is missing or cannot be opened";
+  }
+  unsigned char h[33];
+  file.read(reinterpret_cast<char *>(h), sizeof(h));
+  if (file.gcount() != static_cast<std::streamsize>(sizeof(h))) {
+    return "is too short to be a PNG image (empty or truncated file)";
+  }
+  const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  for (int i = 0; i < 8; ++i) {
+    if (h[i] != signature[i]) {
+      return "is not a PNG image";
+    }
+  }
+  if (h[12] != 'I' || h[13] != 'H' || h[14] != 'D' || h[15] != 'R') {
+    return "is a damaged PNG image (no IHDR header)";
+  }
+  auto be32 = [&h](int i) {
+    return (static_cast<unsigned int>(h[i]) << 24) | (static_cast<unsigned int>(h[i + 1]) << 16) |
+           (static_cast<unsigned int>(h[i + 2]) << 8) | static_cast<unsigned int>(h[i + 3]);
+  };
+  width = be32(16);
+  height = be32(20);
+  const unsigned int depth = h[24], colour = h[25];
+  if (width == 0 || height == 0 || width > 100000 || height > 100000) {
+    return "is a PNG image of an invalid size";
+  }
+  if (depth != 8 || (colour != 0 && colour != 2)) {
+    return "is a PNG image of bit depth " + std::to_string(depth) + " and colour type " + std::to_string(colour) +
+           ", not 8-bit grey or RGB; save it as an 8-bit grey or RGB PNG";
+  }
+  return std::string();
+}
+
+int trialJoint(const vpColVector &q0, const vpColVector &q, std::string &why)
+{
+  unsigned int moved = 0;
+  double largest = 0.0;
+  for (unsigned int i = 0; i < q.getRows(); ++i) {
+    if (std::fabs(q[i] - q0[i]) > largest) {
+      largest = std::fabs(q[i] - q0[i]);
+      moved = i;
+    }
+  }
+  if (!(largest > 0.0)) {
+    why = "it moves no joint (its readings are the zero frame's); give it the role 'observation' or remove it";
+    return -1;
+  }
+  for (unsigned int i = 0; i < q.getRows(); ++i) {
+    if (i != moved && std::fabs(q[i] - q0[i]) > 0.01 * largest) {
+      why = "it moves joints " + std::to_string(moved) + " and " + std::to_string(i) +
+            " (a trial moves one joint alone from the zero frame's readings); give it the role 'observation' or "
+            "record the trial again";
+      return -1;
+    }
+  }
+  return static_cast<int>(moved);
+}
+} // namespace vpProjectiveSessionInternal
+
+vpProjectiveSession::vpProjectiveSession()
+    : m_folder(), m_types(), m_frames(), m_trialJoint(), m_zero(-1), m_width(0), m_height(0)
+{
+}
+
+std::string vpProjectiveSession::toString(vpFrameRole role)
+{
+  return kRoles[static_cast<int>(role)];
+}
+
+int vpProjectiveSession::checkFrame(const vpFrame &frame, const std::string &where, const std::string &what) const
+{
+  const std::string name = what;
+  if (static_cast<int>(frame.role) < static_cast<int>(ZERO) || static_cast<int>(frame.role) > static_cast<int>(SERVO)) {
+    fail(vpProjectiveException::fileError, where, name + " has an unknown role; use one of vpFrameRole's values");
+  }
+  if (frame.q.getRows() != m_types.size()) {
+    fail(vpProjectiveException::fileError, where,
+         name + " has " + std::to_string(frame.q.getRows()) + " readings in 'q', the session has " +
+             std::to_string(m_types.size()) + " joints (joint_types); give one encoder reading per joint");
+  }
+  for (unsigned int i = 0; i < frame.q.getRows(); ++i) {
+    if (!std::isfinite(frame.q[i])) {
+      fail(vpProjectiveException::fileError, where,
+           name + ": reading " + std::to_string(i) + " of 'q' is not finite; record the encoders again");
+    }
+  }
+  if (frame.hasTime && !std::isfinite(frame.t)) {
+    fail(vpProjectiveException::fileError, where, name + ": its time 't' is not finite; fix or remove it");
+  }
+  if (!insideFolder(frame.left) || !insideFolder(frame.right)) {
+    fail(vpProjectiveException::fileError, where,
+         name + ": its image paths must be relative paths inside the session folder (no '..', no absolute path)");
+  }
+  if (frame.role == ZERO && m_zero >= 0) {
+    fail(vpProjectiveException::fileError, where,
+         name + " is a second zero frame (frame " + std::to_string(m_zero) +
+             " is the first); a session has exactly one: give the others the role 'observation'");
+  }
+  if (frame.role != TRIAL) {
+    return -1;
+  }
+  if (m_zero < 0) {
+    fail(vpProjectiveException::fileError, where,
+         name + " is a trial, but the session has no zero frame; add the zero reference's frame with the role 'zero'");
+  }
+  std::string why;
+  const int joint = vpProjectiveSessionInternal::trialJoint(m_frames[static_cast<size_t>(m_zero)].q, frame.q, why);
+  if (joint < 0) {
+    fail(vpProjectiveException::fileError, where, name + " is a trial, but " + why);
+  }
+  return joint;
+}
+
+vpProjectiveSession vpProjectiveSession::fromString(const std::string &text, const std::string &name)
+{
+  const Reader reader(name);
+  json file;
+  try {
+    file = json::parse(text);
+  } catch (const json::exception &e) {
+    reader.bad(std::string("it is not valid JSON (truncated or damaged file?): ") + e.what());
+  }
+  if (!file.is_object()) {
+    reader.bad("it is not a JSON object; a session.json starts with { \"format\": \"visp-projective-session\", ...");
+  }
+  const json &format = reader.member(file, "format", "the file");
+  if (!format.is_string() || format.get<std::string>() != formatName) {
+    reader.bad(std::string("its format is ") + format.dump() + ", not \"" + formatName + "\"; it is not a session");
+  }
+  const json &v = reader.member(file, "version", "the file");
+  if (!v.is_number_integer() || v.get<long long>() != version) {
+    reader.bad("it has version " + v.dump() + ", this build reads version " + std::to_string(version) +
+               "; read it with the build that recorded it, or record it again");
+  }
+  const json &types = reader.member(file, "joint_types", "the file");
+  if (!types.is_array() || types.empty() || types.size() > vpProjectiveArmModel::maxJoints) {
+    reader.bad("'joint_types' must be an array of 1 to " + std::to_string(vpProjectiveArmModel::maxJoints) +
+               " joint types (\"revolute\" or \"prismatic\")");
+  }
+  vpProjectiveSession session;
+  for (size_t i = 0; i < types.size(); ++i) {
+    if (types[i] == vpProjectiveJoint::name(vpProjectiveJoint::REVOLUTE)) {
+      session.m_types.push_back(vpProjectiveJoint::REVOLUTE);
+    } else if (types[i] == vpProjectiveJoint::name(vpProjectiveJoint::PRISMATIC)) {
+      session.m_types.push_back(vpProjectiveJoint::PRISMATIC);
+    } else {
+      reader.bad("joint " + std::to_string(i) + " has the type " + types[i].dump() +
+                 "; use \"revolute\" or \"prismatic\"");
+    }
+  }
+  const json &frames = reader.member(file, "frames", "the file");
+  if (!frames.is_array() || frames.empty()) {
+    reader.bad("'frames' must be a non-empty array of frames (at least the zero frame)");
+  }
+  // First pass: each frame on its own; the zero frame found.
+  std::vector<vpFrame> parsed(frames.size());
+  int zero = -1;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const json &f = frames[k];
+    const unsigned int index = static_cast<unsigned int>(k);
+    std::string label = frameName(index, "");
+    if (!f.is_object()) {
+      reader.bad(label + " is not a JSON object");
+    }
+    const json &left = reader.member(f, "left", label);
+    const json &right = reader.member(f, "right", label);
+    if (!left.is_string() || !right.is_string()) {
+      reader.bad(label + ": 'left' and 'right' must be image paths (strings) relative to the session folder");
+    }
+    vpFrame &frame = parsed[k];
+    frame.left = left.get<std::string>();
+    frame.right = right.get<std::string>();
+    label = frameName(index, frame.left);
+    const json &role = reader.member(f, "role", label);
+    bool known = false;
+    for (int r = 0; r < 5 && role.is_string(); ++r) {
+      if (role == kRoles[r]) {
+        frame.role = static_cast<vpFrameRole>(r);
+        known = true;
+      }
+    }
+    if (!known) {
+      reader.bad(label + " has the role " + role.dump() +
+                 "; use \"zero\", \"trial\", \"observation\", \"target\" or \"servo\"");
+    }
+    const json &q = reader.member(f, "q", label);
+    if (!q.is_array()) {
+      reader.bad(label + ": 'q' must be an array of encoder readings, one per joint");
+    }
+    frame.q.resize(static_cast<unsigned int>(std::min<size_t>(q.size(), 1000)));
+    for (unsigned int i = 0; i < frame.q.getRows(); ++i) {
+      if (!q[i].is_number()) {
+        reader.bad(label + ": reading " + std::to_string(i) + " of 'q' is " + q[i].dump() +
+                   ", not a finite number; record the encoders again");
+      }
+      frame.q[i] = q[i].get<double>();
+    }
+    if (q.size() > 1000) {
+      frame.q.resize(1001, false); // the length check below names the mismatch
+    }
+    frame.hasTime = f.contains("t");
+    frame.t = 0.0;
+    if (frame.hasTime) {
+      if (!f["t"].is_number()) {
+        reader.bad(label + ": its time 't' must be a number of seconds (or be left out)");
+      }
+      frame.t = f["t"].get<double>();
+    }
+    if (frame.role == ZERO) {
+      if (zero >= 0) {
+        reader.bad(label + " is a second zero frame (frame " + std::to_string(zero) +
+                   " is the first); a session has exactly one: give the others the role 'observation'");
+      }
+      zero = static_cast<int>(k);
+    }
+  }
+  if (zero < 0) {
+    reader.bad("it has no zero frame (role \"zero\"); a session has exactly one: the frame at the zero reference");
+  }
+  // Second pass: each frame against the session, the zero frame first.
+  const std::string where = at("read()");
+  const std::string prefix = "cannot read the session '" + name + "': ";
+  const size_t z = static_cast<size_t>(zero);
+  session.checkFrame(parsed[z], where, prefix + frameName(static_cast<unsigned int>(z), parsed[z].left));
+  session.m_frames = parsed;
+  session.m_zero = zero;
+  for (size_t k = 0; k < parsed.size(); ++k) {
+    const int joint =
+        k == z ? -1
+               : session.checkFrame(parsed[k], where, prefix + frameName(static_cast<unsigned int>(k), parsed[k].left));
+    session.m_trialJoint.push_back(joint);
+  }
+  return session;
+}
+
+vpProjectiveSession vpProjectiveSession::read(const std::string &folder, bool checkImages)
+{
+  const std::string path = folder + "/session.json";
+  std::ifstream file(path.c_str(), std::ios::binary);
+  if (!file) {
+    fail(vpProjectiveException::fileError, at("read()"),
+         "cannot open '" + path + "'; check that '" + folder + "' is a session folder (it holds session.json)");
+  }
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (!file.good() && !file.eof()) {
+    fail(vpProjectiveException::fileError, at("read()"), "cannot read '" + path + "' (an I/O error)");
+  }
+  vpProjectiveSession session = fromString(text.str(), path);
+  session.m_folder = folder;
+  unsigned int size[2][2] = {{0, 0}, {0, 0}};
+  for (unsigned int k = 0; k < session.getNumberOfFrames(); ++k) {
+    for (int side = 0; side < 2; ++side) {
+      const std::string &relative = side == 0 ? session.m_frames[k].left : session.m_frames[k].right;
+      const std::string image = folder + "/" + relative;
+      unsigned int w = 0, h = 0;
+      const std::string problem = vpProjectiveSessionInternal::checkPngHeader(image, w, h);
+      if (!problem.empty()) {
+        fail(vpProjectiveException::fileError, at("read()"),
+             "cannot read the session '" + path + "': " + frameName(k, session.m_frames[k].left) + ": the " +
+                 (side == 0 ? "left" : "right") + " image '" + image + "' " + problem +
+                 "; record the frame again or remove it from session.json");
+      }
+      if (k == 0) {
+        size[side][0] = w;
+        size[side][1] = h;
+      } else if (w != size[side][0] || h != size[side][1]) {
+        fail(vpProjectiveException::fileError, at("read()"),
+             "cannot read the session '" + path + "': " + frameName(k, session.m_frames[k].left) + ": the " +
+                 (side == 0 ? "left" : "right") + " image '" + image + "' is " + std::to_string(w) + " x " +
+                 std::to_string(h) + " pixels, the first frame's is " + std::to_string(size[side][0]) + " x " +
+                 std::to_string(size[side][1]) + "; every frame of a camera must have the same size");
+      }
+    }
+    if (checkImages) {
+      vpImage<unsigned char> Il, Ir;
+      session.getImages(k, Il, Ir);
+    }
+  }
+  session.m_width = size[0][0];
+  session.m_height = size[0][1];
+  return session;
+}
+
+std::string vpProjectiveSession::toString() const
+{
+  json file;
+  file["format"] = formatName;
+  file["version"] = version;
+  json types = json::array();
+  for (vpJointType type : m_types) {
+    types.push_back(vpProjectiveJoint::name(type));
+  }
+  file["joint_types"] = types;
+  json frames = json::array();
+  for (const vpFrame &frame : m_frames) {
+    json f;
+    f["role"] = toString(frame.role);
+    json q = json::array();
+    for (unsigned int i = 0; i < frame.q.getRows(); ++i) {
+      q.push_back(frame.q[i]);
+    }
+    f["q"] = q;
+    if (frame.hasTime) {
+      f["t"] = frame.t;
+    }
+    f["left"] = frame.left;
+    f["right"] = frame.right;
+    frames.push_back(f);
+  }
+  file["frames"] = frames;
+  return file.dump(1) + "\n";
+}
+
+const vpProjectiveSession::vpFrame &vpProjectiveSession::getFrame(unsigned int k) const
+{
+  if (k >= m_frames.size()) {
+    fail(vpProjectiveException::dimensionError, at("getFrame()"),
+         "frame " + std::to_string(k) + " does not exist: the session has " + std::to_string(m_frames.size()));
+  }
+  return m_frames[k];
+}
+
+unsigned int vpProjectiveSession::getZeroFrame() const
+{
+  if (m_zero < 0) {
+    fail(vpProjectiveException::notInitializedError, at("getZeroFrame()"),
+         "the session has no zero frame; read a session or add the zero frame first");
+  }
+  return static_cast<unsigned int>(m_zero);
+}
+
+int vpProjectiveSession::getTrialJoint(unsigned int k) const
+{
+  return k < m_trialJoint.size() ? m_trialJoint[k] : -1;
+}
+
+unsigned int vpProjectiveSession::getNumberOfFrames(vpFrameRole role) const
+{
+  unsigned int count = 0;
+  for (const vpFrame &frame : m_frames) {
+    count += frame.role == role ? 1 : 0;
+  }
+  return count;
+}
+
+std::string vpProjectiveSession::getImagePath(unsigned int k, bool left) const
+{
+  const vpFrame &frame = getFrame(k);
+  return (m_folder.empty() ? std::string() : m_folder + "/") + (left ? frame.left : frame.right);
+}
+
+void vpProjectiveSession::getImages(unsigned int k, vpImage<unsigned char> &Ileft, vpImage<unsigned char> &Iright) const
+{
+  const vpFrame &frame = getFrame(k);
+  for (int side = 0; side < 2; ++side) {
+    const std::string path = getImagePath(k, side == 0);
+    std::string problem;
+#ifdef VISP_HAVE_MODULE_IO
+    try {
+      vpImageIo::read(side == 0 ? Ileft : Iright, path);
+    } catch (const vpException &e) {
+      problem = e.getStringMessage();
+    } catch (const std::exception &e) {
+      problem = e.what();
+    }
+#else
+    problem = "this ViSP has no io module (vpImageIo)";
+#endif
+    if (problem.empty() && (side == 0 ? Ileft : Iright).getSize() == 0) {
+      problem = "empty image";
+    }
+    if (!problem.empty()) {
+      for (char &c : problem) {
+        c = (c == '\n' || c == '\r') ? ' ' : c;
+      }
+      fail(vpProjectiveException::fileError, at("getImages()"),
+           "cannot read the " + std::string(side == 0 ? "left" : "right") + " image '" + path + "' of " +
+               frameName(k, frame.left) + " (" + problem + "); record the frame again or remove it from session.json");
+    }
+  }
+}

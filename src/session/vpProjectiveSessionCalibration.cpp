@@ -1,0 +1,685 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+#include <visp3/projective/vpProjectiveSessionCalibration.h>
+#include <visp3/projective/vpStereoAprilTagDetector.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iomanip>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include <unistd.h>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/core/vpTime.h>
+#include <visp3/projective/vpProjectiveArmAcquisition.h>
+#include <visp3/projective/vpProjectiveModelFile.h>
+#include <visp3/projective/vpProjectiveStereoRig.h>
+
+#include "acquisition/vpProjectiveAcquisitionInternal.h"
+#include "core/vpProjectiveErrors.h"
+#include "session/vpProjectiveSessionInternal.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveInternal;
+
+namespace
+{
+const vpErrorSite at("vpProjectiveSessionCalibration");
+
+//! The markers of one frame: identifiers (ascending) and pixels (u, v, u', v').
+struct FrameMarkers {
+  std::vector<int> ids;
+  std::vector<Eigen::Vector4d> s;
+  //! Index of marker \e id in this frame, -1 if absent.
+  int find(int id) const
+  {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
+    return it != ids.end() && *it == id ? static_cast<int>(it - ids.begin()) : -1;
+  }
+};
+
+std::string frameLabel(const vpProjectiveSession &session, unsigned int k)
+{
+  const vpProjectiveSession::vpFrame &frame = session.getFrame(k);
+  return "frame " + std::to_string(k) + " ('" + frame.left + "', " + vpProjectiveSession::toString(frame.role) + ")";
+}
+
+std::string amountText(vpProjectiveJoint::vpJointType type, double amount)
+{
+  std::ostringstream os;
+  os << std::showpos << std::fixed;
+  if (type == vpProjectiveJoint::REVOLUTE) {
+    os << std::setprecision(2) << vpMath::deg(amount) << " deg";
+  } else {
+    os << std::setprecision(4) << amount << " m";
+  }
+  return os.str();
+}
+
+//! The markers of frame \e k by the extraction function, checked.
+FrameMarkers extract(const vpProjectiveSession &session, unsigned int k,
+                     const vpProjectiveSessionCalibration::vpMarkerExtractor &extractor, const std::string &where)
+{
+  vpImage<unsigned char> Il, Ir;
+  session.getImages(k, Il, Ir);
+  std::vector<int> ids;
+  std::vector<vpImagePoint> left, right;
+  const unsigned int n = extractor(Il, Ir, ids, left, right);
+  const std::string label = frameLabel(session, k);
+  if (n != ids.size() || n != left.size() || n != right.size()) {
+    fail(vpProjectiveException::dimensionError, where,
+         label + ": the marker extraction returned " + std::to_string(n) + " markers with " +
+             std::to_string(ids.size()) + " identifiers, " + std::to_string(left.size()) + " left and " +
+             std::to_string(right.size()) + " right points; it must give one of each per marker");
+  }
+  FrameMarkers markers;
+  markers.ids = ids;
+  for (size_t j = 0; j < n; ++j) {
+    if (j > 0 && ids[j] <= ids[j - 1]) {
+      fail(vpProjectiveException::invalidValueError, where,
+           label + ": the marker extraction's identifiers are not ascending and distinct; fix the extraction");
+    }
+    const Eigen::Vector4d s(left[j].get_u(), left[j].get_v(), right[j].get_u(), right[j].get_v());
+    if (!s.allFinite()) {
+      fail(vpProjectiveException::nonFiniteValueError, where,
+           label + ": the marker extraction gave a non-finite pixel for marker " + std::to_string(ids[j]));
+    }
+    markers.s.push_back(s);
+  }
+  if (n == 0) {
+    fail(vpProjectiveException::notEnoughPointsError, where,
+         label + ": no marker found in both images; check that the tags face both cameras, the exposure and the "
+                 "focus, or remove the frame from session.json");
+  }
+  return markers;
+}
+
+//! Readings of a frame as the model's joint vector.
+vpProjectiveArmModel::JointVector jointsOf(const vpColVector &q)
+{
+  vpProjectiveArmModel::JointVector v(static_cast<Eigen::Index>(q.getRows()));
+  for (unsigned int i = 0; i < q.getRows(); ++i) {
+    v(i) = q[i];
+  }
+  return v;
+}
+
+/*!
+  Squared prediction errors of \e model at readings \e q for the pairs (model marker j, measured s): adds the left
+  and right squared errors and the number of markers. A marker on a camera's focal plane counts as 1e6 px.
+*/
+void predictionError(const vpProjectiveArmModel &model, const vpColVector &q,
+                     const std::vector<std::pair<unsigned int, Eigen::Vector4d>> &pairs, double &left, double &right,
+                     unsigned int &count)
+{
+  const Eigen::Matrix4d H = model.displacement(jointsOf(q));
+  for (const auto &pair : pairs) {
+    Eigen::Vector4d s;
+    if (!model.predictMarker(pair.first, H, s)) {
+      left += 1e12;
+      right += 1e12;
+    } else {
+      left += (s.head<2>() - pair.second.head<2>()).squaredNorm();
+      right += (s.tail<2>() - pair.second.tail<2>()).squaredNorm();
+    }
+    ++count;
+  }
+}
+
+double rms(double sumSquares, unsigned int coordinates)
+{
+  return coordinates > 0 ? std::sqrt(sumSquares / coordinates) : 0.0;
+}
+
+std::string pixels(double px)
+{
+  std::ostringstream os;
+  os << std::setprecision(3) << px << " px";
+  return os.str();
+}
+} // namespace
+
+vpProjectiveSessionCalibration::vpProjectiveSessionCalibration(const vpMarkerExtractor &extractor)
+    : m_extractor(extractor ? extractor : aprilTagMarkers("36h11")), m_os(nullptr), m_mounting(MOUNTING_AUTO),
+      m_epipolar(2.0), m_outlier(0.0), m_coplanarity(2.0), m_mismatch(2.0), m_calibrated(false), m_model(), m_ids(),
+      m_residual(0.0), m_algebraicResidual(0.0), m_joints(), m_state(RIG_UNCHANGED), m_leftResidual(0.0),
+      m_rightResidual(0.0)
+{
+}
+
+vpProjectiveSessionCalibration::vpMarkerExtractor
+vpProjectiveSessionCalibration::aprilTagMarkers(const std::string &family)
+{
+#if defined(VISP_HAVE_APRILTAG)
+  // The families every ViSP from 3.5 on detects (the deprecated 36h10, 25h7 and ARToolKit ones are left out).
+  const std::vector<std::pair<std::string, vpDetectorAprilTag::vpAprilTagFamily>> families = {
+    {"36h11", vpDetectorAprilTag::TAG_36h11},
+    {"25h9", vpDetectorAprilTag::TAG_25h9},
+    {"16h5", vpDetectorAprilTag::TAG_16h5},
+    {"Circle21h7", vpDetectorAprilTag::TAG_CIRCLE21h7},
+#if defined(VISP_HAVE_APRILTAG_BIG_FAMILY)
+    {"Circle49h12", vpDetectorAprilTag::TAG_CIRCLE49h12},
+    {"Custom48h12", vpDetectorAprilTag::TAG_CUSTOM48h12},
+    {"Standard41h12", vpDetectorAprilTag::TAG_STANDARD41h12},
+    {"Standard52h13", vpDetectorAprilTag::TAG_STANDARD52h13},
+#endif
+  };
+  std::string names;
+  for (const auto &f : families) {
+    if (f.first == family) {
+      // Shared: the extraction function is copied with the calibration, the detector's settings go with it.
+      auto tags = std::make_shared<vpStereoAprilTagDetector>(f.second);
+      return [tags](const vpImage<unsigned char> &Il, const vpImage<unsigned char> &Ir, std::vector<int> &ids,
+                    std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
+        const unsigned int n = tags->detect(Il, Ir);
+        ids = tags->getIds();
+        left = tags->getLeftPoints();
+        right = tags->getRightPoints();
+        return n;
+      };
+    }
+    names += (names.empty() ? "" : ", ") + f.first;
+  }
+  fail(vpProjectiveException::invalidValueError, at("aprilTagMarkers()"),
+       "unknown AprilTag family '" + family + "'; use " + names);
+#else
+  return [family](const vpImage<unsigned char> &, const vpImage<unsigned char> &, std::vector<int> &,
+                  std::vector<vpImagePoint> &, std::vector<vpImagePoint> &) -> unsigned int {
+    fail(vpProjectiveException::notImplementedError, "vpProjectiveSessionCalibration",
+         "no detector for the AprilTag family " + family +
+             ": this ViSP was built without AprilTag (WITH_APRILTAG); give a marker extraction function");
+  };
+#endif
+}
+
+vpProjectiveAcquisitionProcedure::vpImageSource
+vpProjectiveSessionCalibration::markerSource(vpStereoImageSource &images, const vpMarkerExtractor &extractor,
+                                             vpRobot &robot, vpProjectiveSessionWriter *writer)
+{
+  if (!extractor) {
+    fail(vpProjectiveException::invalidValueError, at("markerSource()"), "the extraction function is empty");
+  }
+  struct State {
+    bool started = false;
+    double t0 = 0.0;
+    std::vector<int> ids; // the zero reference's markers
+    vpImage<unsigned char> Il, Ir;
+  };
+  auto state = std::make_shared<State>();
+  return
+      [state, &images, extractor, &robot, writer](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
+        if (!images.acquire(state->Il, state->Ir)) {
+          return false;
+        }
+        vpColVector q;
+        robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
+        const double now = vpTime::measureTimeSecond();
+        if (!state->started) {
+          state->t0 = now;
+        }
+        std::vector<int> ids;
+        std::vector<vpImagePoint> l, r;
+        const unsigned int n = extractor(state->Il, state->Ir, ids, l, r);
+        if (n != ids.size() || n != l.size() || n != r.size()) {
+          fail(vpProjectiveException::dimensionError, at("markerSource()"),
+               "the marker extraction must give one identifier, one left and one right point per marker");
+        }
+        if (!state->started) {
+          state->ids = ids;
+          state->started = true;
+        }
+        left.clear();
+        right.clear();
+        for (int id : state->ids) {
+          const auto it = std::find(ids.begin(), ids.end(), id);
+          if (it == ids.end()) {
+            return false; // a marker of the zero reference is lost
+          }
+          left.push_back(l[static_cast<size_t>(it - ids.begin())]);
+          right.push_back(r[static_cast<size_t>(it - ids.begin())]);
+        }
+        // Recorded once the markers are all seen: the session holds the frames that the procedure used.
+        if (writer != nullptr) {
+          writer->addAcquisitionFrame(q, now - state->t0, state->Il, state->Ir);
+        }
+        return true;
+      };
+}
+
+void vpProjectiveSessionCalibration::setMarkerExtractor(const vpMarkerExtractor &extractor)
+{
+  if (!extractor) {
+    fail(vpProjectiveException::invalidValueError, at("setMarkerExtractor()"), "the extraction function is empty");
+  }
+  m_extractor = extractor;
+}
+
+void vpProjectiveSessionCalibration::setEpipolarThreshold(double pixels)
+{
+  requireFinite(pixels, at("setEpipolarThreshold()"), "the epipolar threshold");
+  if (pixels <= 0.0) {
+    fail(vpProjectiveException::invalidValueError, at("setEpipolarThreshold()"),
+         "the epipolar threshold must be positive (pixels)");
+  }
+  m_epipolar = pixels;
+}
+
+void vpProjectiveSessionCalibration::setOutlierThreshold(double pixels)
+{
+  m_outlier =
+      nonNegative(pixels, at("setOutlierThreshold()"), "the outlier threshold", "pixels; 0 keeps every observation");
+}
+
+void vpProjectiveSessionCalibration::setCoplanarityThreshold(double pixels)
+{
+  requireFinite(pixels, at("setCoplanarityThreshold()"), "the coplanarity threshold");
+  if (pixels <= 0.0) {
+    fail(vpProjectiveException::invalidValueError, at("setCoplanarityThreshold()"),
+         "the coplanarity threshold must be positive (pixels)");
+  }
+  m_coplanarity = pixels;
+}
+
+void vpProjectiveSessionCalibration::setMismatchThreshold(double pixels)
+{
+  requireFinite(pixels, at("setMismatchThreshold()"), "the mismatch threshold");
+  if (pixels <= 0.0) {
+    fail(vpProjectiveException::invalidValueError, at("setMismatchThreshold()"),
+         "the mismatch threshold must be positive (pixels)");
+  }
+  m_mismatch = pixels;
+}
+
+void vpProjectiveSessionCalibration::progress(const std::string &line) const
+{
+  if (m_os != nullptr) {
+    *m_os << line << std::endl;
+  }
+}
+
+vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiveSession &session)
+{
+  const std::string where = at("calibrate()");
+  const unsigned int n = session.getNumberOfJoints();
+  const unsigned int zero = session.getZeroFrame();
+  const std::vector<vpProjectiveJoint::vpJointType> &types = session.getJointTypes();
+
+  // The frames used, in the file's order, and a trial per joint.
+  std::vector<unsigned int> used;
+  std::vector<unsigned int> trialsOf(n, 0);
+  for (unsigned int k = 0; k < session.getNumberOfFrames(); ++k) {
+    const vpProjectiveSession::vpFrameRole role = session.getFrame(k).role;
+    if (role == vpProjectiveSession::ZERO || role == vpProjectiveSession::TRIAL ||
+        role == vpProjectiveSession::OBSERVATION) {
+      used.push_back(k);
+    }
+    if (role == vpProjectiveSession::TRIAL) {
+      ++trialsOf[static_cast<size_t>(session.getTrialJoint(k))];
+    }
+  }
+  for (unsigned int i = 0; i < n; ++i) {
+    if (trialsOf[i] == 0) {
+      fail(vpProjectiveException::notInitializedError, where,
+           "joint " + std::to_string(i) +
+               " has no trial frame in the session; record trials of every joint (each "
+               "joint alone, both ways from the zero reference)");
+    }
+  }
+  {
+    std::ostringstream os;
+    os << "session '" << session.getFolder() << "': " << session.getNumberOfFrames() << " frames, " << n
+       << " joints; using the zero frame, " << session.getNumberOfFrames(vpProjectiveSession::TRIAL) << " trials and "
+       << session.getNumberOfFrames(vpProjectiveSession::OBSERVATION) << " observations";
+    progress(os.str());
+  }
+
+  // Markers of every frame used.
+  std::map<unsigned int, FrameMarkers> markers;
+  for (size_t u = 0; u < used.size(); ++u) {
+    const unsigned int k = used[u];
+    markers[k] = extract(session, k, m_extractor, where);
+    std::ostringstream os;
+    os << "frame " << (u + 1) << "/" << used.size() << " (" << session.getFrame(k).left << ", "
+       << vpProjectiveSession::toString(session.getFrame(k).role);
+    const int joint = session.getTrialJoint(k);
+    if (joint >= 0) {
+      const double amount = session.getFrame(k).q[static_cast<unsigned int>(joint)] -
+                            session.getFrame(zero).q[static_cast<unsigned int>(joint)];
+      os << " of joint " << joint << " by " << amountText(types[static_cast<size_t>(joint)], amount);
+    }
+    os << "): " << markers[k].ids.size() << " markers";
+    progress(os.str());
+  }
+
+  // The markers of the model: those of the zero frame. A trial may miss some (identified markers: matched by id),
+  // as long as it shows 5 of them.
+  const std::vector<int> ids = markers[zero].ids;
+  if (ids.size() < 5) {
+    fail(vpProjectiveException::notEnoughPointsError, where,
+         "only " + std::to_string(ids.size()) + " markers are seen in " + frameLabel(session, zero) +
+             "; the arm's motion needs at least 5, 5 of them with no 4 coplanar: keep more tags in view of both "
+             "cameras at the zero reference, or record it again");
+  }
+  for (unsigned int k : used) {
+    if (session.getFrame(k).role != vpProjectiveSession::TRIAL) {
+      continue;
+    }
+    size_t common = 0;
+    for (int id : ids) {
+      common += markers[k].find(id) >= 0 ? 1 : 0;
+    }
+    if (common < 5) {
+      fail(vpProjectiveException::notEnoughPointsError, where,
+           frameLabel(session, k) + " shows only " + std::to_string(common) + " of the " + std::to_string(ids.size()) +
+               " markers of the zero frame; a trial needs 5 of them, with no 4 "
+               "coplanar: record the trial again with a smaller motion, or remove it");
+    }
+  }
+  std::vector<vpImagePoint> l0, r0;
+  for (int id : ids) {
+    const Eigen::Vector4d &s = markers[zero].s[static_cast<size_t>(markers[zero].find(id))];
+    l0.push_back(vpImagePoint(s(1), s(0)));
+    r0.push_back(vpImagePoint(s(3), s(2)));
+  }
+  const double transfer = vpProjectiveAcquisitionInternal::homographyTransferError(l0, r0);
+  if (!(transfer >= m_coplanarity)) {
+    std::ostringstream os;
+    os << "the " << ids.size() << " markers of " << frameLabel(session, zero)
+       << " are coplanar: one homography maps their left images onto the right ones within " << std::setprecision(3)
+       << transfer << " px RMS (threshold " << m_coplanarity
+       << " px); a rigid motion needs 5 markers of which no 4 are coplanar: add tags on another plane, a few "
+          "centimetres in depth";
+    fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
+  }
+
+  // The rig from every match of the frames used.
+  std::vector<vpImagePoint> allLeft, allRight;
+  for (unsigned int k : used) {
+    for (const Eigen::Vector4d &s : markers[k].s) {
+      allLeft.push_back(vpImagePoint(s(1), s(0)));
+      allRight.push_back(vpImagePoint(s(3), s(2)));
+    }
+  }
+  vpProjectiveStereoRig rig;
+  try {
+    rig.estimate(allLeft, allRight, m_epipolar);
+  } catch (const vpException &e) {
+    fail(vpProjectiveException::estimationFailedError, where,
+         "the rig's epipolar geometry cannot be estimated from the " + std::to_string(allLeft.size()) +
+             " marker matches of the session (" + e.getStringMessage() + ")");
+  }
+  {
+    std::ostringstream os;
+    os << "rig: fundamental matrix from " << allLeft.size() << " matches, " << std::setprecision(3)
+       << rig.getEstimationResidual() << " px RMS epipolar residual";
+    progress(os.str());
+  }
+  std::vector<Eigen::Vector4d> X;
+  for (size_t j = 0; j < l0.size(); ++j) {
+    X.push_back(
+        rig.triangulate(Eigen::Vector2d(l0[j].get_u(), l0[j].get_v()), Eigen::Vector2d(r0[j].get_u(), r0[j].get_v())));
+  }
+  std::vector<unsigned int> best;
+  const double parallax = vpProjectiveAcquisitionInternal::generalPositionParallax(rig, X, best);
+  if (!(parallax >= m_coplanarity)) {
+    std::ostringstream os;
+    os << "the " << ids.size() << " markers of " << frameLabel(session, zero)
+       << " are too close to coplanar: every set of 5 has 4 within " << std::setprecision(3) << parallax
+       << " px RMS of plane parallax of a plane (threshold " << m_coplanarity
+       << " px); add tags off the plane of the others, a few centimetres in depth";
+    fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
+  }
+
+  // The acquisition.
+  vpProjectiveArmAcquisition acquisition(types);
+  std::vector<unsigned int> trialFrames;
+  vpProjectiveArmModel model;
+  try {
+    acquisition.setStereoRig(rig);
+    acquisition.setOutlierThreshold(m_outlier);
+    acquisition.setZeroReference(session.getFrame(zero).q, ids, l0, r0);
+    for (unsigned int k : used) {
+      if (session.getFrame(k).role != vpProjectiveSession::TRIAL) {
+        continue;
+      }
+      std::vector<int> seen;
+      std::vector<vpImagePoint> l, r;
+      for (int id : ids) {
+        const int f = markers[k].find(id);
+        if (f >= 0) {
+          const Eigen::Vector4d &s = markers[k].s[static_cast<size_t>(f)];
+          seen.push_back(id);
+          l.push_back(vpImagePoint(s(1), s(0)));
+          r.push_back(vpImagePoint(s(3), s(2)));
+        }
+      }
+      acquisition.addTrialMotion(session.getFrame(k).q, seen, l, r);
+      trialFrames.push_back(k);
+    }
+    model = acquisition.calibrate();
+  } catch (const vpException &e) {
+    fail(vpProjectiveException::estimationFailedError, where,
+         "the arm cannot be calibrated from the session (" + e.getStringMessage() + ")");
+  }
+
+  // The mounting.
+  auto withMounting = [&model](vpProjectiveArmModel::vpRigMounting mounting) {
+    std::vector<Eigen::Vector3d> axis, point;
+    for (unsigned int i = 0; i < model.getNumberOfJoints(); ++i) {
+      axis.push_back(model.axis(i));
+      point.push_back(model.point(i));
+    }
+    return vpProjectiveArmModel(model.jointTypes(), mounting, model.getStereoRig(), model.projectiveToMetric(), axis,
+                                point, model.markers(), model.zeroReferenceJoints());
+  };
+  auto pairsOf = [&ids, &markers](unsigned int k) {
+    std::vector<std::pair<unsigned int, Eigen::Vector4d>> pairs;
+    for (size_t j = 0; j < ids.size(); ++j) {
+      const int f = markers[k].find(ids[j]);
+      if (f >= 0) {
+        pairs.push_back(std::make_pair(static_cast<unsigned int>(j), markers[k].s[static_cast<size_t>(f)]));
+      }
+    }
+    return pairs;
+  };
+  const unsigned int observations = session.getNumberOfFrames(vpProjectiveSession::OBSERVATION);
+  if (m_mounting != MOUNTING_AUTO) {
+    model = withMounting(m_mounting == MOUNTING_EYE_IN_HAND ? vpProjectiveArmModel::EYE_IN_HAND
+                                                            : vpProjectiveArmModel::EYE_TO_HAND);
+    progress(std::string("mounting: ") + (m_mounting == MOUNTING_EYE_IN_HAND ? "eye-in-hand" : "eye-to-hand") +
+             " (as set)");
+  } else if (observations == 0) {
+    model = withMounting(vpProjectiveArmModel::EYE_TO_HAND);
+    progress("mounting: eye-to-hand (no observation frame tells it; set it if the cameras ride on the arm)");
+  } else {
+    double error[2] = {0.0, 0.0};
+    vpProjectiveArmModel candidate[2] = {withMounting(vpProjectiveArmModel::EYE_TO_HAND),
+                                         withMounting(vpProjectiveArmModel::EYE_IN_HAND)};
+    for (int c = 0; c < 2; ++c) {
+      double l = 0.0, r = 0.0;
+      unsigned int count = 0;
+      for (unsigned int k : used) {
+        if (session.getFrame(k).role == vpProjectiveSession::OBSERVATION) {
+          predictionError(candidate[c], session.getFrame(k).q, pairsOf(k), l, r, count);
+        }
+      }
+      error[c] = rms(l + r, 4 * count);
+    }
+    const int kept = error[1] < error[0] ? 1 : 0;
+    model = candidate[kept];
+    progress(std::string("mounting: ") + (kept == 1 ? "eye-in-hand" : "eye-to-hand") + " (the " +
+             std::to_string(observations) + " observation frames predicted within " + pixels(error[kept]) +
+             " RMS; the other mounting: " + pixels(error[1 - kept]) + ")");
+  }
+
+  // Per-joint summary.
+  std::vector<vpJointSummary> joints(n);
+  std::vector<double> sums(n, 0.0);
+  std::vector<unsigned int> counts(n, 0);
+  for (unsigned int i = 0; i < n; ++i) {
+    joints[i] = vpJointSummary{types[i], 0, 0.0, 0.0, 0.0};
+  }
+  for (unsigned int k : trialFrames) {
+    const unsigned int i = static_cast<unsigned int>(session.getTrialJoint(k));
+    const double amount = session.getFrame(k).q[i] - session.getFrame(zero).q[i];
+    vpJointSummary &summary = joints[i];
+    summary.smallest = summary.trials == 0 ? amount : std::min(summary.smallest, amount);
+    summary.largest = summary.trials == 0 ? amount : std::max(summary.largest, amount);
+    ++summary.trials;
+    double l = 0.0, r = 0.0;
+    predictionError(model, session.getFrame(k).q, pairsOf(k), l, r, counts[i]);
+    sums[i] += l + r;
+  }
+  for (unsigned int i = 0; i < n; ++i) {
+    joints[i].residual = rms(sums[i], 4 * counts[i]);
+    std::ostringstream os;
+    os << "joint " << i << " (" << vpProjectiveJoint::name(types[i]) << "): " << joints[i].trials << " trials from "
+       << amountText(types[i], joints[i].smallest) << " to " << amountText(types[i], joints[i].largest)
+       << ", prediction " << pixels(joints[i].residual) << " RMS";
+    progress(os.str());
+  }
+  {
+    std::ostringstream os;
+    os << "model: " << ids.size() << " markers, bundle adjustment " << pixels(acquisition.getCalibrationResidual())
+       << " RMS (algebraic generators: " << pixels(acquisition.getAlgebraicResidual()) << "), "
+       << acquisition.getNumberOfOutliers() << " outliers left out";
+    progress(os.str());
+  }
+
+  m_model = model;
+  m_ids = ids;
+  m_residual = acquisition.getCalibrationResidual();
+  m_algebraicResidual = acquisition.getAlgebraicResidual();
+  m_joints = joints;
+  m_calibrated = true;
+  return model;
+}
+
+void vpProjectiveSessionCalibration::checkWritable(const std::string &filename)
+{
+  const size_t slash = filename.find_last_of('/');
+  const std::string folder = slash == std::string::npos ? std::string() : filename.substr(0, slash + 1);
+  const std::string probe = folder + ".tmp-" + std::to_string(static_cast<long>(getpid())) + "-probe";
+  std::FILE *file = filename.empty() ? nullptr : std::fopen(probe.c_str(), "wb");
+  if (file == nullptr) {
+    fail(vpProjectiveException::fileError, at("checkWritable()"),
+         "cannot write the model file '" + filename +
+             "': its folder does not exist or is not writable; choose another output path");
+  }
+  std::fclose(file);
+  std::remove(probe.c_str());
+}
+
+void vpProjectiveSessionCalibration::saveModel(const std::string &filename) const
+{
+  if (!m_calibrated) {
+    fail(vpProjectiveException::notInitializedError, at("saveModel()"), "no model yet; call calibrate() first");
+  }
+  vpProjectiveSessionInternal::writeAtomically(
+      filename, vpProjectiveModelFile::toString(m_model, m_residual, m_algebraicResidual, m_ids), at("saveModel()"));
+}
+
+std::string vpProjectiveSessionCalibration::toString(vpRigState state)
+{
+  switch (state) {
+  case RIG_UNCHANGED:
+    return "the model fits: the rig has not moved since the model was made";
+  case LEFT_CAMERA_MOVED:
+    return "the left camera moved since the model was made (its images are off, the right ones fit): calibrate again, "
+           "or re-register the rig (vpProjectiveRobot::updateRig())";
+  case RIGHT_CAMERA_MOVED:
+    return "the right camera moved since the model was made (its images are off, the left ones fit): calibrate again, "
+           "or re-register the rig (vpProjectiveRobot::updateRig())";
+  default:
+    return "both images are off: both cameras moved, or the markers moved on the tool, or the readings are not the "
+           "model's encoders; calibrate again";
+  }
+}
+
+std::vector<vpProjectiveSessionCalibration::vpFrameCheck>
+vpProjectiveSessionCalibration::check(const vpProjectiveArmModel &model, const std::vector<int> &ids,
+                                      const vpProjectiveSession &session)
+{
+  const std::string where = at("check()");
+  if (model.getNumberOfJoints() == 0) {
+    fail(vpProjectiveException::notInitializedError, where, "the model is empty; load one first");
+  }
+  if (session.getJointTypes() != model.jointTypes()) {
+    fail(vpProjectiveException::dimensionError, where,
+         "the session's joints (" + std::to_string(session.getNumberOfJoints()) +
+             ", joint_types) are not the model's (" + std::to_string(model.getNumberOfJoints()) +
+             "); check a session of the arm the model was made for");
+  }
+  if (ids.size() != model.markers().size()) {
+    fail(vpProjectiveException::dimensionError, where,
+         "the model has " + std::to_string(model.markers().size()) + " markers and " + std::to_string(ids.size()) +
+             " marker identifiers; use a model calibrated from a session (visp-projective calibrate)");
+  }
+  std::vector<vpFrameCheck> checks;
+  double sumLeft = 0.0, sumRight = 0.0;
+  unsigned int total = 0, leftOff = 0, rightOff = 0;
+  for (unsigned int k = 0; k < session.getNumberOfFrames(); ++k) {
+    const FrameMarkers markers = extract(session, k, m_extractor, where);
+    std::vector<std::pair<unsigned int, Eigen::Vector4d>> pairs;
+    for (size_t j = 0; j < ids.size(); ++j) {
+      const int f = markers.find(ids[j]);
+      if (f >= 0) {
+        pairs.push_back(std::make_pair(static_cast<unsigned int>(j), markers.s[static_cast<size_t>(f)]));
+      }
+    }
+    if (pairs.empty()) {
+      fail(vpProjectiveException::notEnoughPointsError, where,
+           frameLabel(session, k) + ": none of the model's markers is seen in both images; check that the tags face "
+                                    "both cameras, or remove the frame from session.json");
+    }
+    double l = 0.0, r = 0.0;
+    unsigned int count = 0;
+    predictionError(model, session.getFrame(k).q, pairs, l, r, count);
+    vpFrameCheck c;
+    c.frame = k;
+    c.role = session.getFrame(k).role;
+    c.markers = count;
+    c.left = rms(l, 2 * count);
+    c.right = rms(r, 2 * count);
+    c.rms = rms(l + r, 4 * count);
+    c.fits = c.left <= m_mismatch && c.right <= m_mismatch;
+    leftOff += c.left > m_mismatch ? 1 : 0;
+    rightOff += c.right > m_mismatch ? 1 : 0;
+    sumLeft += l;
+    sumRight += r;
+    total += count;
+    checks.push_back(c);
+    std::ostringstream os;
+    os << "frame " << (k + 1) << "/" << session.getNumberOfFrames() << " (" << session.getFrame(k).left << ", "
+       << vpProjectiveSession::toString(c.role) << "): " << count << " markers, left " << pixels(c.left) << ", right "
+       << pixels(c.right) << (c.fits ? ": fits" : ": DOES NOT FIT");
+    progress(os.str());
+  }
+  m_leftResidual = rms(sumLeft, 2 * total);
+  m_rightResidual = rms(sumRight, 2 * total);
+  m_state = leftOff == 0 && rightOff == 0 ? RIG_UNCHANGED
+            : rightOff == 0               ? LEFT_CAMERA_MOVED
+            : leftOff == 0                ? RIGHT_CAMERA_MOVED
+                                          : BOTH_CAMERAS_MOVED;
+  return checks;
+}

@@ -1,0 +1,115 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+#include <visp3/projective/vpStereoGrabberSource.h>
+
+#include <filesystem>
+
+#include <visp3/core/vpConfig.h>
+#include <visp3/core/vpException.h>
+
+#if defined(VISP_HAVE_MODULE_SENSOR) && defined(VISP_HAVE_V4L2)
+#include <visp3/sensor/vpV4l2Grabber.h>
+#endif
+
+#include "core/vpProjectiveErrors.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveInternal;
+
+namespace
+{
+const vpErrorSite at("vpStereoGrabberSource");
+
+#if defined(VISP_HAVE_MODULE_SENSOR) && defined(VISP_HAVE_V4L2)
+//! A V4L2 grabber opened on \e device, or the error that names it.
+std::unique_ptr<vpFrameGrabber> openV4l2(const std::string &device, unsigned int scale, const char *side)
+{
+  if (device.empty() || device.size() >= FILENAME_MAX) {
+    fail(vpProjectiveException::invalidValueError, at("vpStereoGrabberSource()"),
+         std::string("the ") + side + " camera's device name is empty or too long; give a path such as /dev/video0");
+  }
+  std::error_code error;
+  if (!std::filesystem::exists(device, error)) {
+    fail(vpProjectiveException::fileError, at("vpStereoGrabberSource()"),
+         std::string("cannot open the ") + side + " camera '" + device +
+             "': no such device; check that the camera is plugged in and its name (ls /dev/video*)");
+  }
+  std::unique_ptr<vpV4l2Grabber> g(new vpV4l2Grabber());
+  g->setDevice(device);
+  g->setScale(scale);
+  vpImage<unsigned char> I;
+  try {
+    g->open(I);
+  } catch (const vpException &e) {
+    fail(vpProjectiveException::fileError, at("vpStereoGrabberSource()"),
+         std::string("cannot open the ") + side + " camera '" + device + "' (" + e.getStringMessage() +
+             "); check that the camera is plugged in, that the device exists (ls /dev/video*) and that you may read "
+             "it (group video)");
+  }
+  return std::unique_ptr<vpFrameGrabber>(g.release());
+}
+#endif
+} // namespace
+
+vpStereoGrabberSource::vpStereoGrabberSource(const std::string &leftDevice, const std::string &rightDevice,
+                                             unsigned int scale)
+    : m_ownedLeft(), m_ownedRight(), m_left(nullptr), m_right(nullptr), m_leftName(leftDevice), m_rightName(rightDevice)
+{
+#if defined(VISP_HAVE_MODULE_SENSOR) && defined(VISP_HAVE_V4L2)
+  if (scale == 0) {
+    fail(vpProjectiveException::invalidValueError, at("vpStereoGrabberSource()"),
+         "the subsampling scale must be 1 (full resolution) or more");
+  }
+  m_ownedLeft = openV4l2(leftDevice, scale, "left");
+  m_ownedRight = openV4l2(rightDevice, scale, "right");
+  m_left = m_ownedLeft.get();
+  m_right = m_ownedRight.get();
+#else
+  (void)scale;
+  fail(vpProjectiveException::fileError, at("vpStereoGrabberSource()"),
+       "cannot open '" + leftDevice + "' and '" + rightDevice +
+           "': this ViSP was built without V4L2; open the cameras with another ViSP grabber and pass them to "
+           "vpStereoGrabberSource(vpFrameGrabber &, vpFrameGrabber &)");
+#endif
+}
+
+vpStereoGrabberSource::vpStereoGrabberSource(vpFrameGrabber &left, vpFrameGrabber &right)
+    : m_ownedLeft(), m_ownedRight(), m_left(&left), m_right(&right), m_leftName("left grabber"),
+      m_rightName("right grabber")
+{
+  if (left.getWidth() == 0 || left.getHeight() == 0 || right.getWidth() == 0 || right.getHeight() == 0) {
+    fail(vpProjectiveException::notInitializedError, at("vpStereoGrabberSource()"),
+         "a grabber has an image size of 0: open() both grabbers before passing them");
+  }
+}
+
+vpStereoGrabberSource::~vpStereoGrabberSource() {}
+
+bool vpStereoGrabberSource::acquire(vpImage<unsigned char> &Ileft, vpImage<unsigned char> &Iright)
+{
+  for (int camera = 0; camera < 2; ++camera) {
+    try {
+      (camera == 0 ? m_left : m_right)->acquire(camera == 0 ? Ileft : Iright);
+    } catch (const vpException &e) {
+      fail(vpProjectiveException::fileError, at("acquire()"),
+           "the " + std::string(camera == 0 ? "left" : "right") + " camera '" +
+               (camera == 0 ? m_leftName : m_rightName) + "' failed to give an image (" + e.getStringMessage() +
+               "); check its cable and that no other program uses it");
+    }
+  }
+  return true;
+}
