@@ -80,6 +80,7 @@ unsigned int recordRenderedCell(const std::string &folder, double noise, double 
     writer.addFrame(vpProjectiveSession::OBSERVATION, readings, robot.getTime(), Il, Ir);
     ++k;
   }
+  writer.close(); // session.json with every frame (the writer saves at intervals while it records)
   os << "recorded " << writer.getSession().getNumberOfFrames() << " frames in " << folder << " (model residual "
      << procedure.getCalibrationResidual() << " px RMS)" << std::endl;
   return writer.getSession().getNumberOfFrames();
