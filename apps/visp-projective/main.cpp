@@ -82,7 +82,7 @@ const char *const kRecordUsage =
     "  -h, --help                     this help\n";
 
 const char *const kCalibrateUsage =
-    "Usage: visp-projective calibrate SESSION --output MODEL.json [--family 36h11] [OPTIONS]\n"
+    "Usage: visp-projective calibrate SESSION --output MODEL.json [--family 36h11 | --recorded-markers] [OPTIONS]\n"
     "Extracts the markers (AprilTag corners) of the zero, trial and observation frames of SESSION, estimates the\n"
     "rig, acquires and bundle-adjusts the arm, and writes the model (read by vpProjectiveRobot::loadModel(); it takes\n"
     "the session's absolute encoder readings). A progress line per frame, a summary per joint. On any error no\n"
@@ -96,11 +96,14 @@ const char *const kCalibrateUsage =
     "  --epipolar-threshold PX        inlier threshold of the rig's estimation (default 2)\n"
     "  --outlier-threshold PX         leave out trial observations farther than PX from the model (default 0: none)\n"
     "  --coplanarity-threshold PX     plane parallax below which markers count as coplanar (default 2)\n"
+    "  --recorded-markers             take each frame's recorded markers (its recorded_markers entry: sessions of\n"
+    "                                 programs whose markers are not tags, e.g. projective-paper --record) instead\n"
+    "                                 of detecting tags in its images\n"
     "  --quiet                        no progress lines\n"
     "  -h, --help                     this help\n";
 
 const char *const kCheckUsage =
-    "Usage: visp-projective check MODEL.json SESSION [--family 36h11] [--threshold PX]\n"
+    "Usage: visp-projective check MODEL.json SESSION [--family 36h11 | --recorded-markers] [--threshold PX]\n"
     "Predicts, at each frame's encoder readings, the markers of the model seen in the frame and prints the RMS error\n"
     "of the left and right images; says whether the rig moved since the model was made, and which camera.\n"
     "Exit status 0 if every frame fits, 3 if not, 1 on bad input.\n"
@@ -108,6 +111,7 @@ const char *const kCheckUsage =
     "Options:\n"
     "  --family NAME                  AprilTag family (default 36h11)\n"
     "  --threshold PX                 RMS per coordinate above which a frame does not fit (default 2)\n"
+    "  --recorded-markers             take each frame's recorded markers instead of detecting tags (see calibrate)\n"
     "  --quiet                        no line per frame\n"
     "  -h, --help                     this help\n";
 
@@ -162,7 +166,7 @@ int calibrate(int argc, char **argv)
   vispProjective::Arguments args("visp-projective calibrate", {"SESSION"},
                                  {"--output", "-o", "--family", "--mounting", "--epipolar-threshold",
                                   "--outlier-threshold", "--coplanarity-threshold"},
-                                 {"--quiet"});
+                                 {"--quiet", "--recorded-markers"});
   const int parsed = parseArguments(args, argc, argv, "calibrate", kCalibrateUsage);
   if (parsed >= 0) {
     return parsed;
@@ -190,6 +194,7 @@ int calibrate(int argc, char **argv)
   calibration.setEpipolarThreshold(epipolar);
   calibration.setOutlierThreshold(outlier);
   calibration.setCoplanarityThreshold(coplanarity);
+  calibration.setRecordedMarkers(args.has("--recorded-markers"));
   calibration.setMounting(mounting == "eye-to-hand"   ? vpProjectiveSessionCalibration::MOUNTING_EYE_TO_HAND
                           : mounting == "eye-in-hand" ? vpProjectiveSessionCalibration::MOUNTING_EYE_IN_HAND
                                                       : vpProjectiveSessionCalibration::MOUNTING_AUTO);
@@ -212,7 +217,7 @@ vpProjectiveArmModel loadModel(const std::string &file, std::vector<int> &ids, d
 int check(int argc, char **argv)
 {
   vispProjective::Arguments args("visp-projective check", {"MODEL.json", "SESSION"}, {"--family", "--threshold"},
-                                 {"--quiet"});
+                                 {"--quiet", "--recorded-markers"});
   const int parsed = parseArguments(args, argc, argv, "check", kCheckUsage);
   if (parsed >= 0) {
     return parsed;
@@ -235,6 +240,7 @@ int check(int argc, char **argv)
   const vpProjectiveSession session = vpProjectiveSession::read(args.positional(1));
   calibration.setOutput(args.has("--quiet") ? nullptr : &std::cout);
   calibration.setMismatchThreshold(threshold);
+  calibration.setRecordedMarkers(args.has("--recorded-markers"));
   const std::vector<vpProjectiveSessionCalibration::vpFrameCheck> checks = calibration.check(model, ids, session);
   unsigned int off = 0;
   for (const auto &c : checks) {
