@@ -16,7 +16,9 @@
   temporary folder gives the same results as without, its session is calibrated and checked offline by
   visp-projective, and its figure is made again from the recording alone: the tutorial's last image with the corners'
   paths, pixel for pixel, and its final image error; the main job's trajectory and target CSV (the data of Fig. 2, 4
-  and 5), byte for byte.
+  and 5), byte for byte. And `visp-projective record` from cameras and typed-in readings (recordFromReadings(), here
+  on a replayed session as the cameras): one frame per line, the readings bit for bit, the roles given or told by
+  the readings, malformed lines refused naming the line; a missing camera is refused before any folder is made.
 */
 
 #include <sys/wait.h>
@@ -35,8 +37,10 @@
 #include <visp3/core/vpImageDraw.h>
 #include <visp3/io/vpImageIo.h>
 #include <visp3/projective/vpFeatureStereoPoint.h>
+#include <visp3/projective/vpProjectiveSessionSource.h>
 #include <visp3/projective/vpStereoAprilTagDetector.h>
 
+#include "visp-projective-record.h"
 #include "vpProjectiveToolTestTools.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -201,4 +205,72 @@ TEST(ProjectiveToolRecordings, TheMainJobsRecordingReplaysItsFiguresAndCalibrate
   EXPECT_EQ(check.status, 0) << check.out << check.err;
   const ToolRun tags = runTool(tmp, "calibrate '" + (tmp / "session") + "' --output '" + (tmp / "tags.json") + "'");
   EXPECT_EQ(tags.status, 1) << "tags found in the rendered balls?";
+}
+
+TEST(ProjectiveToolRecordings, RecordingFromCamerasAndTypedReadingsKeepsEveryLine)
+{
+  TemporaryFolder tmp;
+  {
+    vpProjectiveSessionWriter writer(tmp / "cameras", std::vector<vpProjectiveJoint::vpJointType>(3));
+    for (unsigned int k = 0; k < 9; ++k) {
+      writer.addFrame(k == 0 ? vpProjectiveSession::ZERO : vpProjectiveSession::SERVO, vpColVector(3, 0.01 * k), k,
+                      keyImage(k), keyImage(100 + k));
+    }
+  }
+  const std::string typed = "# readings of the controller\n"
+                            "0.1 -0.2 0.05\n"
+                            "0.6, -0.2, 0.05\n"
+                            "\n"
+                            "observation 0.3\t0.1 0.07\n"
+                            "servo 0.2 0 0.06\n";
+  {
+    vpProjectiveSessionSource cameras(vpProjectiveSession::read(tmp / "cameras"));
+    std::istringstream readings(typed);
+    std::ostringstream progress;
+    EXPECT_EQ(vispProjective::recordFromReadings(tmp / "live", cameras, {}, readings, 1, false, progress), 4u);
+  }
+  const vpProjectiveSession live = vpProjectiveSession::read(tmp / "live");
+  ASSERT_EQ(live.getNumberOfFrames(), 4u);
+  EXPECT_EQ(live.getNumberOfJoints(), 3u);
+  const vpProjectiveSession::vpFrameRole roles[4] = {vpProjectiveSession::ZERO, vpProjectiveSession::TRIAL,
+                                                     vpProjectiveSession::OBSERVATION, vpProjectiveSession::SERVO};
+  const double q1[4] = {0.1, 0.6, 0.3, 0.2};
+  for (unsigned int k = 0; k < 4; ++k) {
+    EXPECT_EQ(live.getFrame(k).role, roles[k]) << k;
+    EXPECT_EQ(live.getFrame(k).q[0], q1[k]) << k; // as typed, bit for bit
+    vpImage<unsigned char> Il, Ir;
+    live.getImages(k, Il, Ir);
+    EXPECT_TRUE(Il == keyImage(2 * k + 1) && Ir == keyImage(101 + 2 * k)) << k; // one pair dropped before each
+  }
+  EXPECT_EQ(live.getTrialJoint(1), 0);
+  EXPECT_EQ(live.getFrame(3).q[2], 0.06);
+
+  // Malformed readings name their line; the cameras running out is an error too.
+  const std::vector<std::pair<std::string, std::string>> bad = {{"0.1 x 0.3\n", "line 1"},
+                                                                {"0.1 0.2\n0.1 0.2 0.3\n", "line 2"},
+                                                                {"# nothing\n", "no frame line"},
+                                                                {"0 0 0\n0 0 1\n0 0 2\n0 0 3\n0 0 4\n", "line 5"},
+                                                                {"zero 0 0 nan\n", "line 1"}};
+  for (size_t b = 0; b < bad.size(); ++b) {
+    vpProjectiveSessionSource cameras(vpProjectiveSession::read(tmp / "cameras"));
+    std::istringstream readings(bad[b].first);
+    std::ostringstream progress;
+    try {
+      vispProjective::recordFromReadings(tmp / ("bad" + std::to_string(b)), cameras, {}, readings, 1, false, progress);
+      ADD_FAILURE() << "accepted: " << bad[b].first;
+    } catch (const vpException &e) {
+      EXPECT_NE(e.getStringMessage().find(bad[b].second), std::string::npos) << b << ": " << e.getStringMessage();
+    }
+  }
+
+  // The tool: a missing camera is one line naming it, and no session folder is made.
+  writeText(tmp / "readings.txt", typed);
+  const ToolRun run = runTool(tmp, "record '" + (tmp / "nothing") +
+                                       "' --left /dev/visp-projective-none0 --right "
+                                       "/dev/visp-projective-none1 --joints '" +
+                                       (tmp / "readings.txt") + "'");
+  EXPECT_EQ(run.status, 1);
+  EXPECT_EQ(lines(run.err), 1u) << run.err;
+  EXPECT_NE(run.err.find("/dev/visp-projective-none0"), std::string::npos) << run.err;
+  EXPECT_FALSE(std::filesystem::exists(tmp / "nothing"));
 }
