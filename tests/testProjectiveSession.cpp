@@ -198,6 +198,7 @@ TEST(ProjectiveSession, ColourImagesAreRecordedAsRgbAndReadAsGrey)
   vpProjectiveSessionWriter writer(tmp / "s", kTypes);
   vpImage<vpRGBa> colour(10, 14, vpRGBa(200, 100, 50));
   writer.addFrame(vpProjectiveSession::ZERO, joints(0, 0, 0), 0.0, colour, colour);
+  writer.close();
   const vpProjectiveSession session = vpProjectiveSession::read(tmp / "s");
   vpImage<unsigned char> Il, Ir;
   session.getImages(0, Il, Ir);
@@ -253,6 +254,7 @@ TEST(ProjectiveSession, AcquisitionFramesGetTheirRoleFromTheReadings)
             vpProjectiveSession::OBSERVATION);
   EXPECT_EQ(writer.addAcquisitionFrame(joints(0.1, 0.2 + 1e-5, 0.3), 3.0, pattern(0), pattern(1)),
             vpProjectiveSession::OBSERVATION); // back at the zero reference within the encoders' noise
+  writer.close();
   const vpProjectiveSession session = vpProjectiveSession::read(tmp / "s");
   EXPECT_EQ(session.getTrialJoint(1), 1);
   EXPECT_EQ(session.getTrialJoint(2), 2);
@@ -279,6 +281,7 @@ TEST(ProjectiveSession, TheWriterRecordsNoFrameTheReaderWouldRefuse)
   EXPECT_THROW(writer.addFrame(vpProjectiveSession::SERVO, joints(0, 0, 0), 0.0, vpImage<unsigned char>(), pattern(1)),
                vpProjectiveException);
   EXPECT_EQ(writer.getSession().getNumberOfFrames(), 1u);
+  writer.save();
   EXPECT_EQ(vpProjectiveSession::read(tmp / "s").getNumberOfFrames(), 1u);
   EXPECT_FALSE(std::filesystem::exists(tmp / "s/left/000001.png"));
   // A recording is never overwritten; a folder that cannot be created is reported at once.

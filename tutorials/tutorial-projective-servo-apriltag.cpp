@@ -15,23 +15,24 @@
 /*!
   A robot cell servoed on printed AprilTags by two cameras nobody calibrated, in one main() to copy into a real
   cell: replace the rendered cell (vpSimulatorStereoCell) by your vpRobot and your two grabbers, and keep the rest.
-
   1. The cell: a PUMA-like arm behind vpRobot (joint velocity control, 25 Hz), three 3 cm tags (36h11, ids 0-2) on
      its tool, two cameras rendering them with noise, blur and a lighting that changes during the run.
   2. The acquisition (vpProjectiveAcquisitionProcedure): the tag corners at the zero reference, then each joint moved
-     alone by velocity; corners are identified by tag id, so a corner lost in some frames does no harm. The stereo
-     rig and the arm's projective model come from the same images.
+     alone by velocity (corners identified by tag id); the stereo rig and the arm's model come from the same images.
   3. s* taught by showing: the arm at the target, 16 frames of the middle tag's 4 corners averaged.
-  4. The planned servo from a start 25-40 deg away per joint, detection restricted to the regions around the last
-     corners, until the image error settles; the final images are written with the corners' paths.
-
-  Usage: tutorial-projective-servo-apriltag [--blur SIGMA] [--output DIR] [--help]
+  4. The planned servo from a start 25-40 deg away per joint, detection near the last corners, until the image error
+     settles; the first and last left images are written with the corners' paths.
+  --record DIR writes every stereo frame used with its encoder readings to a session (visp-projective calibrate and
+  check read it; the figures can be made again from it offline). Recording changes nothing in the run.
+  Usage: tutorial-projective-servo-apriltag [--blur SIGMA] [--output DIR] [--record DIR] [--help]
   The exit code is 0 if the task converged (image error within 1 px RMS).
 */
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,7 @@
 #include <visp3/projective/vpFeatureStereoPoint.h>
 #include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 #include <visp3/projective/vpProjectiveRobot.h>
+#include <visp3/projective/vpProjectiveSessionWriter.h>
 #include <visp3/projective/vpServoProjective.h>
 #include <visp3/projective/vpSimulatorStereoCell.h>
 #include <visp3/projective/vpStereoAprilTagDetector.h>
@@ -53,19 +55,20 @@
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-int main(int argc, char **argv)
+int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
 {
 #if defined(VISP_HAVE_APRILTAG)
   double blur = 0.5;                     // optical blur of the cameras (px)
   std::string output = "apriltag-servo"; // where the figures go
+  std::string record;                    // where to record the session (empty: no recording)
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--blur" && i + 1 < argc) {
       blur = std::atof(argv[++i]);
-    } else if (arg == "--output" && i + 1 < argc) {
-      output = argv[++i];
+    } else if ((arg == "--output" || arg == "--record") && i + 1 < argc) {
+      (arg == "--output" ? output : record) = argv[++i];
     } else {
-      std::cout << "Usage: " << argv[0] << " [--blur SIGMA (px, default 0.5)] [--output DIR] [--help]\n";
+      std::cout << "Usage: " << argv[0] << " [--blur SIGMA (px, default 0.5)] [--output DIR] [--record DIR] [--help]\n";
       return arg == "--help" || arg == "-h" ? EXIT_SUCCESS : EXIT_FAILURE;
     }
   }
@@ -84,14 +87,29 @@ int main(int argc, char **argv)
     robot.setMaxRotationVelocity(vpMath::rad(30.0));
     const unsigned int n = robot.getNumberOfJoints();
     vpImage<unsigned char> Ileft(cell.getHeight(), cell.getWidth()), Iright(cell.getHeight(), cell.getWidth());
+    const std::vector<vpProjectiveRobot::vpJointType> types(n, vpProjectiveRobot::REVOLUTE);
+    std::unique_ptr<vpProjectiveSessionWriter> writer(record.empty() ? nullptr
+                                                                     : new vpProjectiveSessionWriter(record, types));
+    vpStereoAprilTagDetector tags(vpDetectorAprilTag::TAG_36h11);
+    // A stereo frame, its tags, the encoders; --record writes it (role -1: acquisition, if it shows 5 corners).
+    auto see = [&](int role) {
+      cell.acquire(Ileft, Iright);
+      tags.detect(Ileft, Iright);
+      vpColVector q;
+      robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
+      if (writer && role < 0 && tags.getIds().size() >= 5) {
+        writer->addAcquisitionFrame(q, robot.getTime(), Ileft, Iright);
+      } else if (writer && role >= 0) {
+        writer->addFrame(static_cast<vpProjectiveSession::vpFrameRole>(role), q, robot.getTime(), Ileft, Iright);
+      }
+      return q;
+    };
     //! [Cell]
 
     //! [Acquisition]
     // The tags' corners, identified by 4 * tag id + corner index, are the acquisition's markers.
-    vpStereoAprilTagDetector tags(vpDetectorAprilTag::TAG_36h11);
     auto corners = [&](std::vector<int> &ids, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
-      cell.acquire(Ileft, Iright);
-      tags.detect(Ileft, Iright);
+      see(-1);
       ids = tags.getIds();
       left = tags.getLeftPoints();
       right = tags.getRightPoints();
@@ -99,41 +117,38 @@ int main(int argc, char **argv)
     };
     vpProjectiveAcquisitionProcedure acquisition(corners, cell.getWidth(), cell.getHeight());
     acquisition.setOutput(&std::cout);
-    vpProjectiveRobot model(std::vector<vpProjectiveRobot::vpJointType>(n, vpProjectiveRobot::REVOLUTE));
+    vpProjectiveRobot model(types);
     acquisition.run(robot, model); // moves the arm: keep a hand on the emergency stop of a real one
     std::cout << "Model: residual " << acquisition.getCalibrationResidual() << " px RMS" << std::endl;
     //! [Acquisition]
 
     //! [Teach]
     // s*: the arm shown the target, the 4 corners of tag 1 (ids 4 to 7) averaged over 16 frames.
-    const double targetDeg[6] = {10, -8, 12, 15, -12, 20}, startDeg[6] = {-25, 20, -25, 40, 30, -35};
-    vpColVector qTarget(n), qStart(n);
+    vpColVector qTarget({10, -8, 12, 15, -12, 20}), qStart({-25, 20, -25, 40, 30, -35}); // deg, then rad:
     for (unsigned int i = 0; i < n; ++i) {
-      qTarget[i] = vpMath::rad(targetDeg[i]);
-      qStart[i] = vpMath::rad(startDeg[i]);
+      qTarget[i] = vpMath::rad(qTarget[i]);
+      qStart[i] = vpMath::rad(qStart[i]);
     }
     robot.setPosition(vpRobot::ARTICULAR_FRAME, qTarget);
-    const std::vector<int> servoIds = {4, 5, 6, 7};
+    auto find = [&](unsigned int k) { // index of corner k of tag 1 (id 4 + k) in the last detection, -1 if not seen
+      const auto it = std::find(tags.getIds().begin(), tags.getIds().end(), static_cast<int>(4 + k));
+      return it == tags.getIds().end() ? -1 : static_cast<int>(it - tags.getIds().begin());
+    };
     std::vector<std::vector<vpImagePoint>> starLeft(4), starRight(4);
     for (unsigned int frame = 0; frame < 16; ++frame) {
-      cell.acquire(Ileft, Iright);
-      tags.detect(Ileft, Iright);
+      see(vpProjectiveSession::TARGET);
       for (unsigned int k = 0; k < 4; ++k) {
-        for (size_t j = 0; j < tags.getIds().size(); ++j) {
-          if (tags.getIds()[j] == servoIds[k]) {
-            starLeft[k].push_back(tags.getLeftPoints()[j]);
-            starRight[k].push_back(tags.getRightPoints()[j]);
-          }
+        const int j = find(k);
+        if (j >= 0) {
+          starLeft[k].push_back(tags.getLeftPoints()[static_cast<size_t>(j)]);
+          starRight[k].push_back(tags.getRightPoints()[static_cast<size_t>(j)]);
         }
       }
-    }
-    vpFeatureStereoPoint s[4], s_star[4];
-    for (unsigned int k = 0; k < 4; ++k) {
-      s_star[k].buildFrom(starLeft[k], starRight[k]); // the mean of the frames where corner k was seen
     }
     //! [Teach]
 
     //! [Task]
+    vpFeatureStereoPoint s[4], s_star[4];
     vpServoProjective task;
     task.setRobot(model);
     task.setControlPeriod(robot.getSamplingTime()); // one call per camera frame: qdot is sent as a velocity
@@ -144,6 +159,7 @@ int main(int argc, char **argv)
     task.setPathPlanning(true); // rehearse law (47) on the model, plan a path if it would fail
     task.setSettling(true);     // once converged, average rather than chase each frame's noise
     for (unsigned int k = 0; k < 4; ++k) {
+      s_star[k].buildFrom(starLeft[k], starRight[k]); // s*: the mean of the frames where corner k was seen
       task.addFeature(s[k], s_star[k]);
     }
     //! [Task]
@@ -152,36 +168,27 @@ int main(int argc, char **argv)
     robot.setPosition(vpRobot::ARTICULAR_FRAME, qStart);
     robot.setRobotState(vpRobot::STATE_VELOCITY_CONTROL);
     std::vector<std::vector<vpImagePoint>> path(4);
-    vpImage<unsigned char> Istart;
+    vpImage<vpRGBa> figure[2]; // the left image at the start and at the end
     double errorRms = 0.0;
     unsigned int it = 0, lost = 0; // lost: consecutive frames without the servo tag
     for (; it < 300; ++it) {
-      cell.acquire(Ileft, Iright);
+      const vpColVector q = see(vpProjectiveSession::SERVO); // tags near the last corners, else in the whole images
       if (it == 100) {
-        cell.getRenderer().setLighting(0.7, 20.0, 0.3, 0.0); // a cloud: darker, less contrast, a gradient
+        cell.getRenderer().setLighting(0.7, 20.0, 0.3, 0.0); // a cloud from the next frame: darker, a gradient
       }
-      tags.detect(Ileft, Iright); // near the last corners; a tag not found there is searched for in the whole images
-      unsigned int seenCorners = 0;
+      vpColVector e; // s - s*: the final target, whatever intermediate features a planned path aims at
       for (unsigned int k = 0; k < 4; ++k) {
-        bool seen = false;
-        for (size_t j = 0; j < tags.getIds().size(); ++j) {
-          if (tags.getIds()[j] == servoIds[k]) {
-            s[k].buildFrom(tags.getLeftPoints()[j], tags.getRightPoints()[j]);
-            path[k].push_back(tags.getLeftPoints()[j]);
-            seen = true;
-          }
+        const int j = find(k);
+        if (j >= 0) {
+          s[k].buildFrom(tags.getLeftPoints()[static_cast<size_t>(j)], tags.getRightPoints()[static_cast<size_t>(j)]);
+          path[k].push_back(tags.getLeftPoints()[static_cast<size_t>(j)]);
         }
-        task.setFeatureTracked(k, seen); // a corner out of view is set aside for this iteration
-        seenCorners += seen ? 1 : 0;
+        task.setFeatureTracked(k, j >= 0); // a corner out of view is set aside for this iteration
+        e.stack(s[k].error(s_star[k]));
       }
-      if (seenCorners == 4) {
+      if (find(0) >= 0 && find(1) >= 0 && find(2) >= 0 && find(3) >= 0) { // the whole servo tag seen
         tags.setPredictedRegions(tags.getIds(), tags.getLeftPoints(), tags.getRightPoints()); // next: search there
       }
-      if (it == 0) {
-        Istart = Ileft;
-      }
-      vpColVector q;
-      robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
       const vpColVector qdot = task.computeControlLaw(q);
       lost = task.getStatus() == vpServoProjective::SERVO_STOPPED ? lost + 1 : 0; // this frame: qdot = 0
       if (lost > 25 || task.getStatus() == vpServoProjective::SERVO_MODEL_MISMATCH ||
@@ -190,12 +197,9 @@ int main(int argc, char **argv)
         break;
       }
       robot.setVelocity(vpRobot::ARTICULAR_FRAME, qdot);
-      vpColVector e; // s - s*: the final target, whatever intermediate features a planned path aims at
-      for (unsigned int k = 0; k < 4; ++k) {
-        e.stack(s[k].error(s_star[k]));
-      }
       errorRms = std::sqrt(e.sumSquare() / e.size());
       if (it == 0) {
+        vpImageConvert::convert(Ileft, figure[0]);
         std::cout << "Plan: " << task.getPathPlanner().getDescription() << "\n";
       }
       if (it % 20 == 0) {
@@ -207,24 +211,24 @@ int main(int argc, char **argv)
       }
     }
     robot.setRobotState(vpRobot::STATE_STOP);
+    if (writer) {
+      writer->close(); // session.json naming every frame (the writer saves at intervals while recording)
+    }
     //! [Loop]
 
     //! [Figures]
     // The left image at the start and at the end, the corners' paths in green and s* in red.
     vpIoTools::makeDirectory(output);
-    vpImage<vpRGBa> start, end;
-    vpImageConvert::convert(Istart, start);
-    vpImageConvert::convert(Ileft, end);
-    for (unsigned int k = 0; k < 4; ++k) {
-      for (size_t j = 1; j < path[k].size(); ++j) {
-        vpImageDraw::drawLine(start, path[k][j - 1], path[k][j], vpColor::green, 1);
-        vpImageDraw::drawLine(end, path[k][j - 1], path[k][j], vpColor::green, 1);
+    vpImageConvert::convert(Ileft, figure[1]);
+    for (int f = 0; f < 2; ++f) {
+      for (unsigned int k = 0; k < 4; ++k) {
+        for (size_t j = 1; j < path[k].size(); ++j) {
+          vpImageDraw::drawLine(figure[f], path[k][j - 1], path[k][j], vpColor::green, 1);
+        }
+        vpImageDraw::drawCross(figure[f], vpImagePoint(s_star[k].get_v(), s_star[k].get_u()), 9, vpColor::red, 1);
       }
-      vpImageDraw::drawCross(start, vpImagePoint(s_star[k].get_v(), s_star[k].get_u()), 9, vpColor::red, 1);
-      vpImageDraw::drawCross(end, vpImagePoint(s_star[k].get_v(), s_star[k].get_u()), 9, vpColor::red, 1);
+      vpImageIo::write(figure[f], output + (f == 0 ? "/left-start.png" : "/left-end.png"));
     }
-    vpImageIo::write(start, output + "/left-start.png");
-    vpImageIo::write(end, output + "/left-end.png");
     std::cout << "Figures: " << output << "/left-start.png, " << output << "/left-end.png\n";
     //! [Figures]
 
@@ -233,16 +237,13 @@ int main(int argc, char **argv)
         robot.getArm().get_wMt(qTarget).inverse() * robot.getArm().get_wMt(robot.getArmJoints());
     std::cout << "After " << it << " iterations: image error " << errorRms << " px RMS; the tool is "
               << 1000.0 * tMt.getTranslationVector().frobeniusNorm() << " mm and "
-              << vpMath::deg(vpThetaUVector(tMt.getRotationMatrix()).getTheta()) << " deg from its pose at the target"
-              << std::endl;
+              << vpMath::deg(vpThetaUVector(tMt.getRotationMatrix()).getTheta()) << " deg from its target pose\n";
     return errorRms < 1.0 ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getStringMessage() << std::endl;
     return EXIT_FAILURE;
   }
 #else
-  (void)argc;
-  (void)argv;
   std::cout << "This tutorial needs ViSP's AprilTag detector (ViSP built with WITH_APRILTAG, the default)" << std::endl;
   return EXIT_SUCCESS;
 #endif

@@ -12,6 +12,7 @@
  */
 
 #include "paper-experiment.h"
+#include "paper-record.h"
 
 #include <algorithm>
 #include <memory>
@@ -29,27 +30,31 @@ using namespace VISP_NAMESPACE_NAME;
 namespace app
 {
 //! [Acquisition]
-vpProjectiveRobot acquire(const PaperWorld &world, double sigma, vpGaussRand &noise, bool verbose)
+vpProjectiveRobot acquire(const PaperWorld &world, double sigma, vpGaussRand &noise, bool verbose,
+                          PaperRecorder *recorder)
 {
   // The images at q: noisy projections of all the markers, in view of both cameras or not.
+  bool first = true;
   const ImagesAt imagesAt = [&](const vpColVector &q, std::vector<vpImagePoint> &left,
                                 std::vector<vpImagePoint> &right) {
-    return world.rig.project(world.arm.getMarkers(q), left, right, sigma, noise);
+    const bool inView = world.rig.project(world.arm.getMarkers(q), left, right, sigma, noise);
+    if (recorder != nullptr && inView) { // the frames the acquisition uses: the zero reference, then the trials
+      std::vector<unsigned int> all(left.size());
+      for (unsigned int k = 0; k < all.size(); ++k) {
+        all[k] = k;
+      }
+      recorder->add(first ? vpProjectiveSession::ZERO : vpProjectiveSession::TRIAL, q, all, left, right);
+    }
+    first = false;
+    return inView;
   };
-  return acquireByTrials(world.trialDeg, imagesAt, std::max(1.0, 4.0 * sigma), verbose);
+  return acquireByTrials(world.trialDeg, imagesAt, acquisitionThreshold(sigma), verbose);
 }
 //! [Acquisition]
 
-//! [Servo]
-ServoRun servo(const PaperWorld &world, const vpProjectiveRobot &robot, double sigma, vpGaussRand &noise,
-               unsigned int iterations, double maxExcursionDeg, unsigned int targetFrames, bool settling, long seed)
+void configureTask(vpServoProjective &task, const PaperWorld &world, const vpProjectiveRobot &robot,
+                   double maxExcursionDeg, bool settling)
 {
-  ServoRun run;
-  const vpColVector qTarget = degToRad(world.targetDeg);
-  const unsigned int nbPoints = static_cast<unsigned int>(world.tracked.size());
-
-  std::vector<vpFeatureStereoPoint> s(nbPoints), s_star(nbPoints);
-  vpServoProjective task;
   task.setRobot(robot);
   task.setLambda(0.5);
   // The task starts 240 px away from its target: joint steps are limited to 15 deg and damped when the smallest
@@ -66,6 +71,20 @@ ServoRun servo(const PaperWorld &world, const vpProjectiveRobot &robot, double s
   task.getPathPlanner().setMaxJointStep(vpMath::rad(10.0));
   task.getPathPlanner().setMaxExcursion(vpMath::rad(maxExcursionDeg));
   task.setSettling(settling); // once converged, average the frames instead of chasing each one's noise
+}
+
+//! [Servo]
+ServoRun servo(const PaperWorld &world, const vpProjectiveRobot &robot, double sigma, vpGaussRand &noise,
+               unsigned int iterations, double maxExcursionDeg, unsigned int targetFrames, bool settling, long seed,
+               PaperRecorder *recorder)
+{
+  ServoRun run;
+  const vpColVector qTarget = degToRad(world.targetDeg);
+  const unsigned int nbPoints = static_cast<unsigned int>(world.tracked.size());
+
+  std::vector<vpFeatureStereoPoint> s(nbPoints), s_star(nbPoints);
+  vpServoProjective task;
+  configureTask(task, world, robot, maxExcursionDeg, settling);
   const std::vector<vpColVector> targetMarkers = world.arm.getMarkers(qTarget);
   vpGaussRand teachingNoise(1.0, 0.0, 1000 + seed);
   std::vector<std::vector<vpImagePoint>> leftFrames(nbPoints), rightFrames(nbPoints);
@@ -75,6 +94,14 @@ ServoRun servo(const PaperWorld &world, const vpProjectiveRobot &robot, double s
       world.rig.project(targetMarkers[world.tracked[k]], l, r, sigma, f == 0 ? noise : teachingNoise);
       leftFrames[k].push_back(l);
       rightFrames[k].push_back(r);
+    }
+    if (recorder != nullptr) { // the frame that taught s*, with the tracked markers
+      std::vector<vpImagePoint> l, r;
+      for (unsigned int k = 0; k < nbPoints; ++k) {
+        l.push_back(leftFrames[k].back());
+        r.push_back(rightFrames[k].back());
+      }
+      recorder->add(vpProjectiveSession::TARGET, qTarget, world.tracked, l, r);
     }
   }
   for (unsigned int k = 0; k < nbPoints; ++k) {
@@ -95,6 +122,9 @@ ServoRun servo(const PaperWorld &world, const vpProjectiveRobot &robot, double s
     }
     if (!run.inView) {
       break;
+    }
+    if (recorder != nullptr) {
+      recorder->add(vpProjectiveSession::SERVO, q, world.tracked, left, right);
     }
     const vpColVector qdot = task.computeControlLaw(q); // eq. (47), J from the model at q
     if (it == 0) {

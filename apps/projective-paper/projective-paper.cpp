@@ -28,11 +28,16 @@
   5. writes the trajectories of seed 1 as CSV and as PNG figures like the paper's Fig. 2, 4 and 5 (with gnuplot);
      with a display it also shows them live.
 
-  Usage: projective-paper [--seeds N] [--output DIR] [--model FILE] [--max-excursion DEG] [--no-display] [--help]
+  Usage: projective-paper [--seeds N] [--output DIR] [--model FILE] [--max-excursion DEG] [--record DIR]
+                          [--replay DIR] [--no-display] [--help]
   --max-excursion 40 lets the plan follow straight image lines (Fig. 2) at the price of joints folding past their
   targets (Fig. 4); the default 20 keeps the joints monotonic.
   With --model FILE, the first run acquires the arm and saves its model; later runs load it instead of acquiring
   (the multi-seed study always acquires anew, since it measures the acquisition's noise too).
+  With --record DIR, seed 1's detailed run (the figures) is recorded as a session: its acquisition, target and servo
+  frames with the marker pixels it used (paper-record.h). --replay DIR makes the figures again from a recording,
+  offline, and checks that each recorded servo step is the replayed control law's; `visp-projective calibrate DIR
+  --recorded-markers` calibrates it with the tool's own pipeline.
 
   The steps (acquisition, servo run, study) are in paper-experiment.cpp; the paper's world, the report and the
   figures in apps/common/ (paper-world.h, servo-report.h, figures.h). tutorials/tutorial-projective-servo.cpp is the
@@ -40,6 +45,7 @@
 */
 
 #include <cstdlib>
+#include <memory>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -54,6 +60,7 @@
 #include "paper-world.h"
 #include "figures.h"
 #include "paper-experiment.h"
+#include "paper-record.h"
 #include "servo-report.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -64,14 +71,45 @@ int main(int argc, char **argv)
 {
   app::ServoOptions options;
   options.output = ".";
+  std::string record, replay;
+  app::CommandLine cmd;
+  cmd.add("--seeds", options.seeds, "N", "noise seeds of the study", 1)
+      .add("--model", options.modelFile, "FILE", "model file (arm.json): acquired and saved once, loaded by later runs")
+      .add("--output", options.output, "DIR", "where to write the run's data and figures")
+      .add("--max-excursion", options.maxExcursionDeg, "DEG",
+           "largest motion of a joint beyond its start and target values on the plan (40: straight image lines)", 0.0)
+      .add("--record", record, "DIR", "record seed 1's detailed run (the figures) as a session in the new folder DIR")
+      .add("--replay", replay, "DIR", "make the figures again from the recording DIR (offline), and nothing else")
+      .flag("--no-display", options.display, false, "no window even if a display is available");
   int exitCode = EXIT_SUCCESS;
-  if (!app::parseServoOptions(argc, argv, options, exitCode, true, true)) {
+  if (!cmd.parse(argc, argv, exitCode)) {
     return exitCode;
+  }
+  if (!record.empty() && !options.modelFile.empty()) {
+    std::cerr << "Error: --record records the acquisition too: it cannot be combined with --model" << std::endl;
+    return EXIT_FAILURE;
   }
 
   try {
     const app::PaperWorld world;
     vpIoTools::makeDirectory(options.output);
+    if (!replay.empty()) { // the figures from a recording, offline
+      const app::PaperReplay r = app::replay(world, replay);
+      const vpColVector qStart = app::degToRad(world.startDeg), qTarget = app::degToRad(world.targetDeg);
+      app::printTask("the gripper", world.arm.get_wMt(qStart).inverse() * world.arm.get_wMt(qTarget), qStart, qTarget);
+      std::cout << "Replay of " << replay << ": model from the recorded acquisition, servo law on " << r.run.q.size()
+                << " recorded frames; largest difference between a recorded step and the replayed "
+                << "law's: " << r.maxStepMismatch << " rad\n";
+      app::printDetailedRun(
+          r.run, "tool",
+          world.arm.get_wMt(r.run.q.back()).inverse() * world.arm.get_wMt(app::degToRad(world.targetDeg)), 26);
+      app::writeFigures(r.run, options.output);
+      return r.maxStepMismatch < 1e-9 ? EXIT_SUCCESS : EXIT_FAILURE;
+    }
+    std::unique_ptr<app::PaperRecorder> recorder;
+    if (!record.empty()) {
+      recorder.reset(new app::PaperRecorder(record, world, {0.5, options.maxExcursionDeg, 40}));
+    }
 
     //! [Detailed run]
     std::cout << "Non-metric visual servoing of a PUMA-like arm from an uncalibrated stereo rig (Ruf & Horaud)\n";
@@ -81,10 +119,15 @@ int main(int argc, char **argv)
     std::cout << "\nSeed 1 at 0.5 px: acquisition and calibration\n";
     vpGaussRand noise(1.0, 0.0, 1);
     const vpProjectiveRobot robot = app::loadOrAcquire(
-        options.modelFile, [&] { return app::acquire(world, 0.5, noise, true); },
+        options.modelFile, [&] { return app::acquire(world, 0.5, noise, true, recorder.get()); },
         app::trueMarkerImages(world.rig, world.arm), 30.0);
 
-    const app::ServoRun run = app::servo(world, robot, 0.5, noise, 40, options.maxExcursionDeg);
+    const app::ServoRun run =
+        app::servo(world, robot, 0.5, noise, 40, options.maxExcursionDeg, 1, false, 1, recorder.get());
+    if (recorder) {
+      recorder->close();
+      std::cout << "Recorded " << recorder->getNumberOfFrames() << " frames in " << record << "\n";
+    }
     app::printDetailedRun(run, "tool", world.arm.get_wMt(run.q.back()).inverse() * world.arm.get_wMt(qTarget), 26);
     app::writeFigures(run, options.output);
     //! [Detailed run]

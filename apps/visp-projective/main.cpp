@@ -24,6 +24,7 @@
 */
 
 #include <chrono>
+#include <fstream>
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
@@ -37,6 +38,7 @@
 #include <visp3/projective/vpProjectiveSelfCalibration.h>
 #include <visp3/projective/vpProjectiveSession.h>
 #include <visp3/projective/vpProjectiveSessionCalibration.h>
+#include <visp3/projective/vpStereoGrabberSource.h>
 
 #include "visp-projective-markers.h"
 #include "visp-projective-options.h"
@@ -61,28 +63,45 @@ const char *const kMainUsage =
     "  calibrate SESSION --output MODEL.json   markers of every frame, rig, arm acquisition -> model file\n"
     "  check MODEL.json SESSION                prediction error of the model on each frame: did a camera move?\n"
     "  report MODEL.json                       joints, residuals, the metric self-calibration K, R, t\n"
-    "  record SESSION                          the acquisition session of the rendered tag cell (no camera needed)\n"
+    "  record SESSION                          a session from two cameras and typed-in joint readings, or the\n"
+    "                                          acquisition of the rendered tag cell (no camera needed)\n"
     "\n"
     "'visp-projective COMMAND --help' describes each command. A SESSION is a folder holding session.json\n"
     "(format visp-projective-session, version 1) and its PNG images.\n"
     "Exit status: 0 success, 1 bad input or error (one line on stderr), 2 usage, 3 check: the model does not fit.\n";
 
 const char *const kRecordUsage =
-    "Usage: visp-projective record SESSION [--noise GREY] [--blur PX] [--observations N] [--seed S]\n"
-    "Records in the new folder SESSION the acquisition of the rendered cell (vpSimulatorStereoCell: the paper's\n"
-    "PUMA-like arm and rig, three 36h11 tags on the tool): the frames vpProjectiveAcquisitionProcedure takes while it\n"
-    "moves the arm, then N observation frames at random configurations. A live cell records the same way from its\n"
-    "own program (vpProjectiveSessionCalibration::markerSource() with a vpProjectiveSessionWriter).\n"
+    "Usage: visp-projective record SESSION --left DEV --right DEV --joints FILE [--joint-types TYPES] [--scale N]\n"
+    "                              [--discard N]\n"
+    "       visp-projective record SESSION [--noise GREY] [--blur PX] [--observations N] [--seed S]\n"
+    "With --left and --right, records in the new folder SESSION one stereo frame of two V4L2 cameras\n"
+    "(vpStereoGrabberSource) per line of FILE ('-': standard input), once the line is read: a line is the encoder\n"
+    "readings of the arm standing still (radians, metres, separated by spaces or commas), optionally preceded by a\n"
+    "role (zero, trial, observation, target, servo); without a role the readings tell it: the first frame is the zero\n"
+    "reference, a frame moving one joint from it a trial, any other an observation. Type the readings of your\n"
+    "controller, or pipe them in; '#' starts a comment line. On standard input session.json is written after every\n"
+    "frame. Then 'visp-projective calibrate SESSION' calibrates the cell.\n"
+    "Without cameras, records the acquisition of the rendered cell (vpSimulatorStereoCell: the paper's PUMA-like arm\n"
+    "and rig, three 36h11 tags on the tool): the frames vpProjectiveAcquisitionProcedure takes while it moves the\n"
+    "arm, then N observation frames at random configurations. A live cell driven by a program records from it\n"
+    "(vpProjectiveSessionCalibration::markerSource() with a vpProjectiveSessionWriter).\n"
     "\n"
     "Options:\n"
-    "  --noise GREY                   image noise in grey levels (default 1)\n"
-    "  --blur PX                      optical blur in pixels (default 0.5)\n"
-    "  --observations N               observation frames (default 4)\n"
-    "  --seed S                       seed of the noise and of the observation poses (default 1)\n"
+    "  --left DEV, --right DEV        the two cameras (e.g. /dev/video0 and /dev/video2)\n"
+    "  --joints FILE                  the readings, one frame per line ('-': standard input)\n"
+    "  --joint-types TYPES            one letter per joint, r revolute or p prismatic (default: r for each reading\n"
+    "                                 of the first line)\n"
+    "  --scale N                      camera subsampling (default 1: full resolution)\n"
+    "  --discard N                    image pairs dropped before each recorded one (default 4: a V4L2 camera\n"
+    "                                 queues images taken while the arm was moving)\n"
+    "  --noise GREY                   rendered cell: image noise in grey levels (default 1)\n"
+    "  --blur PX                      rendered cell: optical blur in pixels (default 0.5)\n"
+    "  --observations N               rendered cell: observation frames (default 4)\n"
+    "  --seed S                       rendered cell: seed of the noise and of the observation poses (default 1)\n"
     "  -h, --help                     this help\n";
 
 const char *const kCalibrateUsage =
-    "Usage: visp-projective calibrate SESSION --output MODEL.json [--family 36h11] [OPTIONS]\n"
+    "Usage: visp-projective calibrate SESSION --output MODEL.json [--family 36h11 | --recorded-markers] [OPTIONS]\n"
     "Extracts the markers (AprilTag corners) of the zero, trial and observation frames of SESSION, estimates the\n"
     "rig, acquires and bundle-adjusts the arm, and writes the model (read by vpProjectiveRobot::loadModel(); it takes\n"
     "the session's absolute encoder readings). A progress line per frame, a summary per joint. On any error no\n"
@@ -96,11 +115,14 @@ const char *const kCalibrateUsage =
     "  --epipolar-threshold PX        inlier threshold of the rig's estimation (default 2)\n"
     "  --outlier-threshold PX         leave out trial observations farther than PX from the model (default 0: none)\n"
     "  --coplanarity-threshold PX     plane parallax below which markers count as coplanar (default 2)\n"
+    "  --recorded-markers             take each frame's recorded markers (its recorded_markers entry: sessions of\n"
+    "                                 programs whose markers are not tags, e.g. projective-paper --record) instead\n"
+    "                                 of detecting tags in its images\n"
     "  --quiet                        no progress lines\n"
     "  -h, --help                     this help\n";
 
 const char *const kCheckUsage =
-    "Usage: visp-projective check MODEL.json SESSION [--family 36h11] [--threshold PX]\n"
+    "Usage: visp-projective check MODEL.json SESSION [--family 36h11 | --recorded-markers] [--threshold PX]\n"
     "Predicts, at each frame's encoder readings, the markers of the model seen in the frame and prints the RMS error\n"
     "of the left and right images; says whether the rig moved since the model was made, and which camera.\n"
     "Exit status 0 if every frame fits, 3 if not, 1 on bad input.\n"
@@ -108,6 +130,7 @@ const char *const kCheckUsage =
     "Options:\n"
     "  --family NAME                  AprilTag family (default 36h11)\n"
     "  --threshold PX                 RMS per coordinate above which a frame does not fit (default 2)\n"
+    "  --recorded-markers             take each frame's recorded markers instead of detecting tags (see calibrate)\n"
     "  --quiet                        no line per frame\n"
     "  -h, --help                     this help\n";
 
@@ -162,7 +185,7 @@ int calibrate(int argc, char **argv)
   vispProjective::Arguments args("visp-projective calibrate", {"SESSION"},
                                  {"--output", "-o", "--family", "--mounting", "--epipolar-threshold",
                                   "--outlier-threshold", "--coplanarity-threshold"},
-                                 {"--quiet"});
+                                 {"--quiet", "--recorded-markers"});
   const int parsed = parseArguments(args, argc, argv, "calibrate", kCalibrateUsage);
   if (parsed >= 0) {
     return parsed;
@@ -190,6 +213,7 @@ int calibrate(int argc, char **argv)
   calibration.setEpipolarThreshold(epipolar);
   calibration.setOutlierThreshold(outlier);
   calibration.setCoplanarityThreshold(coplanarity);
+  calibration.setRecordedMarkers(args.has("--recorded-markers"));
   calibration.setMounting(mounting == "eye-to-hand"   ? vpProjectiveSessionCalibration::MOUNTING_EYE_TO_HAND
                           : mounting == "eye-in-hand" ? vpProjectiveSessionCalibration::MOUNTING_EYE_IN_HAND
                                                       : vpProjectiveSessionCalibration::MOUNTING_AUTO);
@@ -212,7 +236,7 @@ vpProjectiveArmModel loadModel(const std::string &file, std::vector<int> &ids, d
 int check(int argc, char **argv)
 {
   vispProjective::Arguments args("visp-projective check", {"MODEL.json", "SESSION"}, {"--family", "--threshold"},
-                                 {"--quiet"});
+                                 {"--quiet", "--recorded-markers"});
   const int parsed = parseArguments(args, argc, argv, "check", kCheckUsage);
   if (parsed >= 0) {
     return parsed;
@@ -235,6 +259,7 @@ int check(int argc, char **argv)
   const vpProjectiveSession session = vpProjectiveSession::read(args.positional(1));
   calibration.setOutput(args.has("--quiet") ? nullptr : &std::cout);
   calibration.setMismatchThreshold(threshold);
+  calibration.setRecordedMarkers(args.has("--recorded-markers"));
   const std::vector<vpProjectiveSessionCalibration::vpFrameCheck> checks = calibration.check(model, ids, session);
   unsigned int off = 0;
   for (const auto &c : checks) {
@@ -257,13 +282,44 @@ std::string vectorText(const Eigen::Vector3d &v, int precision)
 int record(int argc, char **argv)
 {
   vispProjective::Arguments args("visp-projective record", {"SESSION"},
-                                 {"--noise", "--blur", "--observations", "--seed"}, {});
+                                 {"--noise", "--blur", "--observations", "--seed", "--left", "--right", "--joints",
+                                  "--joint-types", "--scale", "--discard"},
+                                 {});
   const int parsed = parseArguments(args, argc, argv, "record", kRecordUsage);
   if (parsed >= 0) {
     return parsed;
   }
-  double noise = 1.0, blur = 0.5, observations = 4.0, seed = 1.0;
   std::string error;
+  if (args.has("--left") || args.has("--right") || args.has("--joints")) { // two live cameras
+    if (!args.has("--left") || !args.has("--right") || !args.has("--joints")) {
+      return usageError("record", "a live recording needs --left DEV, --right DEV and --joints FILE");
+    }
+    double scale = 1.0, discard = 4.0;
+    if (!args.number("--scale", 1.0, 1.0, scale, error) || !args.number("--discard", 4.0, 0.0, discard, error)) {
+      return usageError("record", error);
+    }
+    const std::string file = args.value("--joints");
+    std::ifstream readings;
+    if (file != "-") {
+      readings.open(file.c_str());
+      if (!readings) {
+        throw vpException(vpException::ioError, "cannot open the joint readings '" + file + "'; check the path");
+      }
+    }
+    std::istream &in = file == "-" ? std::cin : readings;
+    const std::string types = args.value("--joint-types");
+    if (std::ifstream((args.positional(0) + "/session.json").c_str())) {
+      throw vpException(vpException::badValue,
+                        "'" + args.positional(0) + "' already holds a session; record into a new folder");
+    }
+    const std::vector<vpProjectiveJoint::vpJointType> jointTypes =
+        types.empty() ? std::vector<vpProjectiveJoint::vpJointType>() : vispProjective::jointTypesOf(types);
+    vpStereoGrabberSource cameras(args.value("--left"), args.value("--right"), static_cast<unsigned int>(scale));
+    vispProjective::recordFromReadings(args.positional(0), cameras, jointTypes, in, static_cast<unsigned int>(discard),
+                                       file == "-", std::cout);
+    return EXIT_SUCCESS;
+  }
+  double noise = 1.0, blur = 0.5, observations = 4.0, seed = 1.0;
   if (!args.number("--noise", 1.0, 0.0, noise, error) || !args.number("--blur", 0.5, 0.0, blur, error) ||
       !args.number("--observations", 4.0, 0.0, observations, error) || !args.number("--seed", 1.0, 0.0, seed, error)) {
     return usageError("record", error);
@@ -383,7 +439,7 @@ int main(int argc, char **argv)
     std::cerr << "visp-projective " << command << ": " << oneLine(e.what()) << std::endl;
     return EXIT_FAILURE;
   }
-  std::cerr << "visp-projective: unknown command '" << command << "'; use calibrate, check or report (see "
+  std::cerr << "visp-projective: unknown command '" << command << "'; use calibrate, check, report or record (see "
             << "'visp-projective --help')" << std::endl;
   return kUsageError;
 }

@@ -19,8 +19,17 @@
 #ifndef _visp_projective_record_h_
 #define _visp_projective_record_h_
 
+#include <istream>
 #include <ostream>
 #include <string>
+#include <vector>
+
+#include <visp3/projective/vpProjectiveJoint.h>
+#include <visp3/projective/vpStereoImageSource.h>
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
 
 namespace vispProjective
 {
@@ -34,6 +43,31 @@ namespace vispProjective
 */
 unsigned int recordRenderedCell(const std::string &folder, double noise, double blur, unsigned int observations,
                                 long seed, std::ostream &os);
+
+/*!
+  Records in \e folder, from the live (or any) stereo source \e images, one frame per line of \e joints: the
+  encoder readings of a real cell, typed in or written by the robot's controller, as the arm stands still. A line is
+  the readings (numbers separated by spaces or commas, radians and metres, one per joint of \e types), optionally
+  preceded by a role ("zero", "trial", "observation", "target", "servo"); \e types empty: one revolute joint per
+  reading of the first frame line. Without a role, the readings tell it
+  (vpProjectiveSessionWriter::addAcquisitionFrame(): the first frame is the zero reference, then trials of one
+  joint, else observations). Blank lines and lines starting with '#' are skipped. For each frame line a stereo pair
+  is taken from \e images after the line was read (after \e discard pairs are dropped: a live V4L2 camera queues a
+  few images, taken while the arm was still moving), and recorded with the readings; a line per frame on \e os.
+  session.json is complete after each frame when \e joints is interactive (save interval of one frame), and at
+  the end otherwise. Returns the number of frames.
+  \exception vpException if a line is malformed (naming its number and what to write), its readings are refused by
+  the writer (wrong count, a trial of two joints...), the source has no more images, or the folder exists.
+*/
+unsigned int recordFromReadings(const std::string &folder, vpStereoImageSource &images,
+                                const std::vector<vpProjectiveJoint::vpJointType> &types, std::istream &joints,
+                                unsigned int discard, bool interactive, std::ostream &os);
+
+/*!
+  The joint kinds of \e text, one letter per joint base to tip: 'r' revolute, 'p' prismatic (e.g. "rrprrr").
+  \exception vpException on another letter or an empty text.
+*/
+std::vector<vpProjectiveJoint::vpJointType> jointTypesOf(const std::string &text);
 } // namespace vispProjective
 
 #endif

@@ -79,6 +79,33 @@ private:
   std::string m_name;
 };
 
+//! The optional "recorded_markers" entry of a frame: {"ids": [...], "left": [[u, v], ...], "right": [[u, v], ...]}.
+void readMarkers(const Reader &reader, const json &m, const std::string &label, vpProjectiveSession::vpFrame &frame)
+{
+  const std::string what = label + ": 'recorded_markers' must be {\"ids\": [...], \"left\": [[u, v], ...], \"right\": "
+                                   "[[u, v], ...]} with one identifier and one finite pixel per image for each marker";
+  if (!m.is_object() || !m.contains("ids") || !m.contains("left") || !m.contains("right") || !m["ids"].is_array() ||
+      !m["left"].is_array() || !m["right"].is_array() || m["left"].size() != m["ids"].size() ||
+      m["right"].size() != m["ids"].size()) {
+    reader.bad(what);
+  }
+  for (size_t j = 0; j < m["ids"].size(); ++j) {
+    const json &id = m["ids"][j];
+    if (!id.is_number_integer() || id.get<long long>() < 0 || id.get<long long>() > 1000000000LL) {
+      reader.bad(what);
+    }
+    frame.markerIds.push_back(static_cast<int>(id.get<long long>()));
+    for (int side = 0; side < 2; ++side) {
+      const json &p = m[side == 0 ? "left" : "right"][j];
+      if (!p.is_array() || p.size() != 2 || !p[0].is_number() || !p[1].is_number()) {
+        reader.bad(what);
+      }
+      (side == 0 ? frame.markerLeft : frame.markerRight)
+          .push_back(vpImagePoint(p[1].get<double>(), p[0].get<double>()));
+    }
+  }
+}
+
 //! True if \e path is relative and stays inside the folder (no "..", no absolute path, no empty component).
 bool insideFolder(const std::string &path)
 {
@@ -133,6 +160,43 @@ std::string checkPngHeader(const std::string &path, unsigned int &width, unsigne
            ", not 8-bit grey or RGB; save it as an 8-bit grey or RGB PNG";
   }
   return std::string();
+}
+
+void appendFrame(std::string &frames, const vpProjectiveSession::vpFrame &frame)
+{
+  json f;
+  f["role"] = vpProjectiveSession::toString(frame.role);
+  json q = json::array();
+  for (unsigned int i = 0; i < frame.q.getRows(); ++i) {
+    q.push_back(frame.q[i]);
+  }
+  f["q"] = q;
+  if (frame.hasTime) {
+    f["t"] = frame.t;
+  }
+  f["left"] = frame.left;
+  f["right"] = frame.right;
+  if (!frame.markerIds.empty()) {
+    json ids = json::array(), left = json::array(), right = json::array();
+    for (size_t j = 0; j < frame.markerIds.size(); ++j) {
+      ids.push_back(frame.markerIds[j]);
+      left.push_back({frame.markerLeft[j].get_u(), frame.markerLeft[j].get_v()});
+      right.push_back({frame.markerRight[j].get_u(), frame.markerRight[j].get_v()});
+    }
+    f["recorded_markers"] = {{"ids", ids}, {"left", left}, {"right", right}};
+  }
+  frames += (frames.empty() ? "\n  " : ",\n  ") + f.dump();
+}
+
+std::string sessionText(const std::vector<vpProjectiveJoint::vpJointType> &types, const std::string &frames)
+{
+  json typeNames = json::array();
+  for (vpProjectiveJoint::vpJointType type : types) {
+    typeNames.push_back(vpProjectiveJoint::name(type));
+  }
+  return std::string("{\"format\": ") + json(vpProjectiveSession::formatName).dump() +
+         ", \"version\": " + std::to_string(vpProjectiveSession::version) + ", \"joint_types\": " + typeNames.dump() +
+         ",\n \"frames\": [" + frames + "\n]}\n";
 }
 
 int trialJoint(const vpColVector &q0, const vpColVector &q, std::string &why)
@@ -194,6 +258,24 @@ int vpProjectiveSession::checkFrame(const vpFrame &frame, const std::string &whe
   if (!insideFolder(frame.left) || !insideFolder(frame.right)) {
     fail(vpProjectiveException::fileError, where,
          name + ": its image paths must be relative paths inside the session folder (no '..', no absolute path)");
+  }
+  if (frame.markerLeft.size() != frame.markerIds.size() || frame.markerRight.size() != frame.markerIds.size()) {
+    fail(vpProjectiveException::fileError, where,
+         name + " has " + std::to_string(frame.markerIds.size()) + " recorded marker identifiers, " +
+             std::to_string(frame.markerLeft.size()) + " left and " + std::to_string(frame.markerRight.size()) +
+             " right pixels; give one of each per marker");
+  }
+  for (size_t j = 0; j < frame.markerIds.size(); ++j) {
+    if (frame.markerIds[j] < 0 || (j > 0 && frame.markerIds[j] <= frame.markerIds[j - 1])) {
+      fail(vpProjectiveException::fileError, where,
+           name + ": the recorded markers' identifiers must be non-negative, ascending and distinct");
+    }
+    const vpImagePoint &l = frame.markerLeft[j], &r = frame.markerRight[j];
+    if (!std::isfinite(l.get_u()) || !std::isfinite(l.get_v()) || !std::isfinite(r.get_u()) ||
+        !std::isfinite(r.get_v())) {
+      fail(vpProjectiveException::fileError, where,
+           name + ": recorded marker " + std::to_string(frame.markerIds[j]) + " has a non-finite pixel");
+    }
   }
   if (frame.role == ZERO && m_zero >= 0) {
     fail(vpProjectiveException::fileError, where,
@@ -310,6 +392,9 @@ vpProjectiveSession vpProjectiveSession::fromString(const std::string &text, con
       }
       frame.t = f["t"].get<double>();
     }
+    if (f.contains("recorded_markers")) {
+      readMarkers(reader, f["recorded_markers"], label, frame);
+    }
     if (frame.role == ZERO) {
       if (zero >= 0) {
         reader.bad(label + " is a second zero frame (frame " + std::to_string(zero) +
@@ -388,32 +473,11 @@ vpProjectiveSession vpProjectiveSession::read(const std::string &folder, bool ch
 
 std::string vpProjectiveSession::toString() const
 {
-  json file;
-  file["format"] = formatName;
-  file["version"] = version;
-  json types = json::array();
-  for (vpJointType type : m_types) {
-    types.push_back(vpProjectiveJoint::name(type));
-  }
-  file["joint_types"] = types;
-  json frames = json::array();
+  std::string frames;
   for (const vpFrame &frame : m_frames) {
-    json f;
-    f["role"] = toString(frame.role);
-    json q = json::array();
-    for (unsigned int i = 0; i < frame.q.getRows(); ++i) {
-      q.push_back(frame.q[i]);
-    }
-    f["q"] = q;
-    if (frame.hasTime) {
-      f["t"] = frame.t;
-    }
-    f["left"] = frame.left;
-    f["right"] = frame.right;
-    frames.push_back(f);
+    vpProjectiveSessionInternal::appendFrame(frames, frame);
   }
-  file["frames"] = frames;
-  return file.dump(1) + "\n";
+  return vpProjectiveSessionInternal::sessionText(m_types, frames);
 }
 
 const vpProjectiveSession::vpFrame &vpProjectiveSession::getFrame(unsigned int k) const

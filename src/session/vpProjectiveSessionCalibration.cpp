@@ -78,14 +78,30 @@ std::string amountText(vpProjectiveJoint::vpJointType type, double amount)
 
 //! The markers of frame \e k by the extraction function, checked.
 FrameMarkers extract(const vpProjectiveSession &session, unsigned int k,
-                     const vpProjectiveSessionCalibration::vpMarkerExtractor &extractor, const std::string &where)
+                     const vpProjectiveSessionCalibration::vpMarkerExtractor &extractor, bool recorded,
+                     const std::string &where)
 {
-  vpImage<unsigned char> Il, Ir;
-  session.getImages(k, Il, Ir);
+  const std::string label = frameLabel(session, k);
   std::vector<int> ids;
   std::vector<vpImagePoint> left, right;
-  const unsigned int n = extractor(Il, Ir, ids, left, right);
-  const std::string label = frameLabel(session, k);
+  unsigned int n = 0;
+  if (recorded) { // the markers the recording program measured (vpProjectiveSession::vpFrame::markerIds)
+    const vpProjectiveSession::vpFrame &frame = session.getFrame(k);
+    if (frame.markerIds.empty()) {
+      fail(vpProjectiveException::notEnoughPointsError, where,
+           label +
+               " has no recorded markers (no 'recorded_markers' entry); extract them from the images instead (a marker "
+               "extraction function; visp-projective: without --recorded-markers)");
+    }
+    ids = frame.markerIds;
+    left = frame.markerLeft;
+    right = frame.markerRight;
+    n = static_cast<unsigned int>(ids.size());
+  } else {
+    vpImage<unsigned char> Il, Ir;
+    session.getImages(k, Il, Ir);
+    n = extractor(Il, Ir, ids, left, right);
+  }
   if (n != ids.size() || n != left.size() || n != right.size()) {
     fail(vpProjectiveException::dimensionError, where,
          label + ": the marker extraction returned " + std::to_string(n) + " markers with " +
@@ -163,7 +179,7 @@ vpProjectiveSessionCalibration::vpProjectiveSessionCalibration(const vpMarkerExt
     : m_extractor(extractor ? extractor : aprilTagMarkers("36h11")), m_os(nullptr), m_mounting(MOUNTING_AUTO),
       m_epipolar(2.0), m_outlier(0.0), m_coplanarity(2.0), m_mismatch(2.0), m_calibrated(false), m_model(), m_ids(),
       m_residual(0.0), m_algebraicResidual(0.0), m_joints(), m_state(RIG_UNCHANGED), m_leftResidual(0.0),
-      m_rightResidual(0.0)
+      m_rightResidual(0.0), m_recorded(false)
 {
 }
 
@@ -357,7 +373,7 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
   std::map<unsigned int, FrameMarkers> markers;
   for (size_t u = 0; u < used.size(); ++u) {
     const unsigned int k = used[u];
-    markers[k] = extract(session, k, m_extractor, where);
+    markers[k] = extract(session, k, m_extractor, m_recorded, where);
     std::ostringstream os;
     os << "frame " << (u + 1) << "/" << used.size() << " (" << session.getFrame(k).left << ", "
        << vpProjectiveSession::toString(session.getFrame(k).role);
@@ -639,7 +655,7 @@ vpProjectiveSessionCalibration::check(const vpProjectiveArmModel &model, const s
   double sumLeft = 0.0, sumRight = 0.0;
   unsigned int total = 0, leftOff = 0, rightOff = 0;
   for (unsigned int k = 0; k < session.getNumberOfFrames(); ++k) {
-    const FrameMarkers markers = extract(session, k, m_extractor, where);
+    const FrameMarkers markers = extract(session, k, m_extractor, m_recorded, where);
     std::vector<std::pair<unsigned int, Eigen::Vector4d>> pairs;
     for (size_t j = 0; j < ids.size(); ++j) {
       const int f = markers.find(ids[j]);

@@ -19,9 +19,11 @@
 #define _vpProjectiveSessionInternal_h_
 
 #include <string>
+#include <vector>
 
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpConfig.h>
+#include <visp3/projective/vpProjectiveSession.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -40,6 +42,18 @@ std::string checkPngHeader(const std::string &path, unsigned int &width, unsigne
   no joint moved, or another joint moved by more than 1 % of the largest motion.
 */
 int trialJoint(const vpColVector &q0, const vpColVector &q, std::string &why);
+
+/*!
+  Appends the JSON text of \e frame (one line) to \e frames, the text of a session's frame list: what
+  sessionText() puts between the brackets of "frames". Each frame is serialised once (the writer keeps the text).
+*/
+void appendFrame(std::string &frames, const vpProjectiveSession::vpFrame &frame);
+
+/*!
+  The text of a session.json with joints \e types and the frame list \e frames (appendFrame()'s): a JSON object, one
+  line per frame.
+*/
+std::string sessionText(const std::vector<vpProjectiveJoint::vpJointType> &types, const std::string &frames);
 
 /*!
   Writes \e text to \e path atomically: to a temporary file in the same folder, then renamed over \e path, so that

@@ -13,6 +13,7 @@
 
 #include <visp3/projective/vpProjectiveSessionWriter.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -24,6 +25,7 @@
 
 #include <visp3/core/vpConfig.h>
 #include <visp3/core/vpException.h>
+#include <visp3/core/vpTime.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
 #ifdef VISP_HAVE_MODULE_IO
 #include <visp3/io/vpImageIo.h>
@@ -86,7 +88,7 @@ void writeAtomically(const std::string &path, const std::string &text, const std
 } // namespace vpProjectiveSessionInternal
 
 vpProjectiveSessionWriter::vpProjectiveSessionWriter(const std::string &folder, const std::vector<vpJointType> &types)
-    : m_session()
+    : m_session(), m_frames(), m_saved(0), m_interval(25), m_seconds(1.0), m_lastSave(0.0), m_closed(false)
 {
   const std::string where = at("vpProjectiveSessionWriter()");
   if (types.empty() || types.size() > vpProjectiveArmModel::maxJoints) {
@@ -122,14 +124,59 @@ vpProjectiveSessionWriter::vpProjectiveSessionWriter(const std::string &folder, 
   m_session.m_types = types;
   // An empty session.json at once: an unwritable folder is reported now, not at the first frame.
   vpProjectiveSessionInternal::writeAtomically(folder + "/session.json", m_session.toString(), where);
+  m_lastSave = vpTime::measureTimeSecond();
+}
+
+vpProjectiveSessionWriter::~vpProjectiveSessionWriter()
+{
+  if (!m_closed && m_saved != m_session.getNumberOfFrames()) {
+    try {
+      save();
+    } catch (...) {
+      // A destructor does not throw: close() reports the error.
+    }
+  }
+}
+
+void vpProjectiveSessionWriter::setSaveInterval(unsigned int frames, double seconds)
+{
+  if (frames == 0 || !(seconds > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, at("setSaveInterval()"),
+         "the save interval needs at least 1 frame and a positive time (infinity: no time bound)");
+  }
+  m_interval = frames;
+  m_seconds = seconds;
+}
+
+void vpProjectiveSessionWriter::save()
+{
+  vpProjectiveSessionInternal::writeAtomically(
+      m_session.getFolder() + "/session.json",
+      vpProjectiveSessionInternal::sessionText(m_session.getJointTypes(), m_frames), at("save()"));
+  m_saved = m_session.getNumberOfFrames();
+  m_lastSave = vpTime::measureTimeSecond();
+}
+
+void vpProjectiveSessionWriter::close()
+{
+  if (!m_closed) {
+    save();
+    m_closed = true;
+  }
 }
 
 template <typename Type>
 unsigned int vpProjectiveSessionWriter::add(vpProjectiveSession::vpFrameRole role, const vpColVector &q, double t,
-                                            const vpImage<Type> &Ileft, const vpImage<Type> &Iright)
+                                            const vpImage<Type> &Ileft, const vpImage<Type> &Iright,
+                                            const std::vector<int> &ids, const std::vector<vpImagePoint> &left,
+                                            const std::vector<vpImagePoint> &right)
 {
   const std::string where = at("addFrame()");
   const unsigned int k = m_session.getNumberOfFrames();
+  if (m_closed) {
+    fail(vpProjectiveException::fileError, where,
+         "the session '" + m_session.getFolder() + "' was closed; record into a new writer");
+  }
   char name[32];
   std::snprintf(name, sizeof(name), "%06u.png", k);
   vpProjectiveSession::vpFrame frame;
@@ -139,6 +186,9 @@ unsigned int vpProjectiveSessionWriter::add(vpProjectiveSession::vpFrameRole rol
   frame.t = frame.hasTime ? t : 0.0;
   frame.left = std::string("left/") + name;
   frame.right = std::string("right/") + name;
+  frame.markerIds = ids;
+  frame.markerLeft = left;
+  frame.markerRight = right;
   const int joint = m_session.checkFrame(frame, where, "frame " + std::to_string(k));
   if (Ileft.getSize() == 0 || Iright.getSize() == 0) {
     fail(vpProjectiveException::fileError, where,
@@ -160,20 +210,26 @@ unsigned int vpProjectiveSessionWriter::add(vpProjectiveSession::vpFrameRole rol
 #endif
     renameOver(tmp, path, where);
   }
+  const size_t framesLength = m_frames.size();
   m_session.m_frames.push_back(frame);
   m_session.m_trialJoint.push_back(joint);
   if (role == vpProjectiveSession::ZERO) {
     m_session.m_zero = static_cast<int>(k);
   }
-  try {
-    vpProjectiveSessionInternal::writeAtomically(m_session.getFolder() + "/session.json", m_session.toString(), where);
-  } catch (...) {
-    m_session.m_frames.pop_back(); // the images stay, unnamed by session.json
-    m_session.m_trialJoint.pop_back();
-    if (role == vpProjectiveSession::ZERO) {
-      m_session.m_zero = -1;
+  vpProjectiveSessionInternal::appendFrame(m_frames, frame);
+  const unsigned int pending = k + 1 - m_saved;
+  if (pending >= std::max(m_interval, m_saved / 8) || vpTime::measureTimeSecond() - m_lastSave >= m_seconds) {
+    try {
+      save();
+    } catch (...) {
+      m_session.m_frames.pop_back(); // the images stay, unnamed by session.json
+      m_session.m_trialJoint.pop_back();
+      m_frames.resize(framesLength);
+      if (role == vpProjectiveSession::ZERO) {
+        m_session.m_zero = -1;
+      }
+      throw;
     }
-    throw;
   }
   if (k == 0) {
     m_session.m_width = Ileft.getWidth();
@@ -193,6 +249,15 @@ unsigned int vpProjectiveSessionWriter::addFrame(vpProjectiveSession::vpFrameRol
                                                  const vpImage<vpRGBa> &Ileft, const vpImage<vpRGBa> &Iright)
 {
   return add(role, q, t, Ileft, Iright);
+}
+
+unsigned int vpProjectiveSessionWriter::addFrame(vpProjectiveSession::vpFrameRole role, const vpColVector &q, double t,
+                                                 const vpImage<unsigned char> &Ileft,
+                                                 const vpImage<unsigned char> &Iright, const std::vector<int> &ids,
+                                                 const std::vector<vpImagePoint> &left,
+                                                 const std::vector<vpImagePoint> &right)
+{
+  return add(role, q, t, Ileft, Iright, ids, left, right);
 }
 
 vpProjectiveSession::vpFrameRole vpProjectiveSessionWriter::addAcquisitionFrame(const vpColVector &q, double t,

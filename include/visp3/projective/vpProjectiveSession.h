@@ -26,6 +26,7 @@
 
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpImage.h>
+#include <visp3/core/vpImagePoint.h>
 #include <visp3/projective/vpProjectiveJoint.h>
 
 BEGIN_VISP_NAMESPACE
@@ -52,15 +53,23 @@ class vpProjectiveSessionWriter;
     any other configuration), \c "target" (the images that teach s*), \c "servo" (a frame of a servo run);
   - \c left, \c right: paths relative to the folder, inside it, of 8-bit grey or RGB PNG images;
   - \c t: seconds, optional. Keys that the reader does not know are ignored.
+  - \c recorded_markers: optional, the markers as the recording program measured them in the frame's images:
+    \c {"ids": [0, 1, ...], "left": [[u, v], ...], "right": [[u, v], ...]} (identifiers ascending and distinct, one
+    left and one right pixel each, ViSP's convention (u, v) = (j, i)). A program whose markers are not found in its
+    images by an image-processing step of this plugin (the paper's experiment: projected points) records them here,
+    so that calibrating the session (vpProjectiveSessionCalibration::setRecordedMarkers(), \c visp-projective
+    \c calibrate \c --recorded-markers) uses exactly what the program used; readers of version 1 that do not know
+    the key ignore it.
 
   read() validates everything and throws a vpProjectiveException (fileError) whose one-line message names the file
   or the frame, what is wrong and what to do: a missing or unreadable session.json, text that is not JSON, another
   format name or version, unknown joint types, a frame without a known role, readings of the wrong length or not
   finite, no zero frame or several, a trial that moves no joint or several (the joint that moved most and the other
   that moved are named; a trial's other readings may differ by at most 1 % of its motion, encoder noise), an image
-  path outside the folder, a missing image, one that is not an 8-bit grey or RGB PNG or cannot be decoded, and
-  images whose size differs from the first frame's. Frames are kept in the file's order, which replay follows
-  (vpProjectiveSessionSource): the same session always gives the same images and readings.
+  path outside the folder, recorded markers whose identifiers are not ascending and distinct or whose pixels are
+  not one finite (u, v) pair per identifier, a missing image, one that is not an 8-bit grey or RGB PNG or cannot be
+  decoded, and images whose size differs from the first frame's. Frames are kept in the file's order, which replay
+  follows (vpProjectiveSessionSource): the same session always gives the same images and readings.
 
   vpProjectiveSessionWriter records a session; vpProjectiveSessionCalibration calibrates an arm from one.
 */
@@ -81,12 +90,15 @@ public:
 
   //! One stereo frame as recorded.
   struct vpFrame {
-    vpFrameRole role;  //!< What the frame is for.
-    vpColVector q;     //!< Encoder readings (n x 1: radians, metres), as read.
-    bool hasTime;      //!< True if the frame has a time.
-    double t;          //!< Seconds (0 if hasTime is false).
-    std::string left;  //!< Left image, relative to the session folder.
-    std::string right; //!< Right image, relative to the session folder.
+    vpFrameRole role;                      //!< What the frame is for.
+    vpColVector q;                         //!< Encoder readings (n x 1: radians, metres), as read.
+    bool hasTime;                          //!< True if the frame has a time.
+    double t;                              //!< Seconds (0 if hasTime is false).
+    std::string left;                      //!< Left image, relative to the session folder.
+    std::string right;                     //!< Right image, relative to the session folder.
+    std::vector<int> markerIds;            //!< Recorded markers' identifiers (ascending; empty: none recorded).
+    std::vector<vpImagePoint> markerLeft;  //!< Their left pixels (one per identifier).
+    std::vector<vpImagePoint> markerRight; //!< Their right pixels (one per identifier).
   };
 
   //! The format name of session.json.

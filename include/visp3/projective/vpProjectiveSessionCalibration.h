@@ -159,6 +159,15 @@ public:
 
   //! The marker extraction function.
   void setMarkerExtractor(const vpMarkerExtractor &extractor);
+  /*!
+    With true, calibrate() and check() take each frame's recorded markers (its \c recorded_markers entry, see
+    vpProjectiveSession) instead of extracting them from its images: for sessions recorded by a program whose markers
+    are not found in images by this plugin (the paper's experiment), which then calibrate from exactly the pixels
+    the program used. A frame without recorded markers is then an error. Default false.
+  */
+  void setRecordedMarkers(bool recorded) { m_recorded = recorded; }
+  //! True if the recorded markers are used (setRecordedMarkers()).
+  bool getRecordedMarkers() const { return m_recorded; }
   //! Where to write the progress, a line per frame and a summary (null: nothing). Default null.
   void setOutput(std::ostream *os) { m_os = os; }
   //! The mounting (default MOUNTING_AUTO).
@@ -245,6 +254,7 @@ private:
   std::vector<vpJointSummary> m_joints;
   vpRigState m_state;
   double m_leftResidual, m_rightResidual;
+  bool m_recorded;
 };
 
 END_VISP_NAMESPACE

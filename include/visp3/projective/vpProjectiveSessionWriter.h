@@ -26,6 +26,7 @@
 
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpImage.h>
+#include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpRGBa.h>
 #include <visp3/projective/vpProjectiveSession.h>
 
@@ -37,11 +38,22 @@ BEGIN_VISP_NAMESPACE
   \brief Writes a session (see vpProjectiveSession for the format) frame by frame, so that an acquisition or a servo
   run can be replayed, calibrated and checked offline.
 
-  The constructor creates the folder (and its parents), \c left/ and \c right/; each addFrame() writes the two images
-  as PNG (\c left/000000.png, ...) and rewrites \c session.json. Every file is written to a temporary name in its
-  folder and then renamed: a session interrupted at any point (a crash, a full disk) is the complete session of the
-  frames added so far. The frames are checked as vpProjectiveSession::read() checks them (readings, one zero frame,
-  trials of one joint each), so a writer never records a session that the reader refuses.
+  The constructor creates the folder (and its parents), \c left/ and \c right/ and an empty \c session.json; each
+  addFrame() writes the two images as PNG (\c left/000000.png, ...) at once, and the frame list is written to
+  \c session.json at save points:
+  - when the frames added since the last save reach the save interval: max(setSaveInterval()'s frames, default 25,
+    one eighth of the frames already saved), so that the text written over a recording is a constant amount per
+    frame (appending a frame costs O(1) amortised: each frame is serialised once, and the file is rewritten after
+    a number of frames proportional to its length);
+  - when setSaveInterval()'s seconds (default 1 s) have passed since the last save, whatever the count, so that a
+    slow recording is on disk within a second;
+  - at save(), close(), and in the destructor (which swallows errors: call close() to hear of them).
+  Every file is written to a temporary name in its folder and then renamed: at any moment (a crash, a full disk, a
+  kill between two frames) \c session.json is a complete session of the frames up to the last save point, readable by
+  vpProjectiveSession::read(); the frames added since are lost from it (their images stay in \c left/ and \c right/,
+  unnamed, and are ignored). Close the writer before reading the session it records. The frames are checked as
+  vpProjectiveSession::read() checks them (readings, one zero frame, trials of one joint each, recorded markers), so a
+  writer never records a session that the reader refuses (except one without a zero frame yet).
 
   Attaching it to the acquisition procedure: vpProjectiveSessionCalibration::markerSource() makes the procedure's
   image source from a vpStereoImageSource and a marker extraction function, and records every stereo pair the
@@ -80,6 +92,17 @@ public:
   unsigned int addFrame(vpProjectiveSession::vpFrameRole role, const vpColVector &q, double t,
                         const vpImage<vpRGBa> &Ileft, const vpImage<vpRGBa> &Iright);
   /*!
+    A frame with the markers that the recording program measured in it (\e ids ascending and distinct, one left and
+    one right pixel each), saved in the frame's \c recorded_markers entry (see vpProjectiveSession): for a program whose
+    markers are not extracted from its images by the plugin, so that the session calibrates offline from exactly what
+    the program used.
+    \exception vpProjectiveException as addFrame(), and (fileError) if the markers are not as described.
+  */
+  unsigned int addFrame(vpProjectiveSession::vpFrameRole role, const vpColVector &q, double t,
+                        const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
+                        const std::vector<int> &ids, const std::vector<vpImagePoint> &left,
+                        const std::vector<vpImagePoint> &right);
+  /*!
     A frame of an acquisition, its role found from the readings: ZERO for the first frame, TRIAL if exactly one joint
     differs from the zero frame's readings by 1e-3 (rad or m) or more (the others within 1 % of its motion),
     OBSERVATION otherwise (a motion of several joints, e.g. the procedure's mounting check, or the arm back at the zero
@@ -90,17 +113,52 @@ public:
                                                        const vpImage<unsigned char> &Ileft,
                                                        const vpImage<unsigned char> &Iright);
 
-  //! The session as recorded so far (the content of session.json).
+  /*!
+    Save points (see the class documentation): session.json is written when \e frames frames (>= 1; at least an
+    eighth of those already saved) were added since the last save, or when \e seconds (> 0; infinity: no time bound)
+    have passed since it and a frame is added.
+    \exception vpProjectiveException (invalidValueError) on a zero count or a non-positive or NaN time.
+  */
+  void setSaveInterval(unsigned int frames, double seconds);
+  /*!
+    Writes session.json now with every frame added (atomically).
+    \exception vpProjectiveException (fileError) if it cannot be written (the previous session.json is kept).
+  */
+  void save();
+  /*!
+    Saves and ends the recording: addFrame() is refused afterwards. Calling it again does nothing.
+    \exception vpProjectiveException (fileError) as save().
+  */
+  void close();
+  //! True after close().
+  bool isClosed() const { return m_closed; }
+  //! Saves if not closed, ignoring errors (close() reports them).
+  ~vpProjectiveSessionWriter();
+
+  //! The session as recorded so far (every frame added; session.json holds those up to the last save point).
   const vpProjectiveSession &getSession() const { return m_session; }
+  //! Number of frames in session.json on disk (at the last save point).
+  unsigned int getNumberOfSavedFrames() const { return m_saved; }
   //! The session folder.
   const std::string &getFolder() const { return m_session.getFolder(); }
 
 private:
   template <typename Type>
   unsigned int add(vpProjectiveSession::vpFrameRole role, const vpColVector &q, double t, const vpImage<Type> &Ileft,
-                   const vpImage<Type> &Iright);
+                   const vpImage<Type> &Iright, const std::vector<int> &ids = std::vector<int>(),
+                   const std::vector<vpImagePoint> &left = std::vector<vpImagePoint>(),
+                   const std::vector<vpImagePoint> &right = std::vector<vpImagePoint>());
+
+  vpProjectiveSessionWriter(const vpProjectiveSessionWriter &) = delete;
+  vpProjectiveSessionWriter &operator=(const vpProjectiveSessionWriter &) = delete;
 
   vpProjectiveSession m_session;
+  std::string m_frames;    // the JSON text of the frame list, each frame serialised once
+  unsigned int m_saved;    // frames in session.json
+  unsigned int m_interval; // save after this many frames (at least m_saved / 8)
+  double m_seconds;        // or after this many seconds
+  double m_lastSave;       // vpTime::measureTimeSecond() of the last save
+  bool m_closed;
 };
 
 END_VISP_NAMESPACE
