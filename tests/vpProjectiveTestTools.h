@@ -57,7 +57,8 @@ namespace vpProjectiveTest
 {
 /*
   ViSP <-> Eigen conversions: ViSP's own (vpEigenConversion.h), declared in namespace vp by ViSP 3.5 and 3.6 and in
-  VISP_NAMESPACE_NAME by ViSP 3.7, whether or not its classes are in that namespace (as src/vpProjectiveInternal.h).
+  VISP_NAMESPACE_NAME by ViSP 3.7, whether or not its classes are in that namespace (as
+  src/core/vpProjectiveConversions.h).
 */
 #ifdef VISP_NAMESPACE_NAME
 namespace conversion = VISP_NAMESPACE_NAME;
@@ -85,7 +86,7 @@ inline Eigen::MatrixXd toEigenX(const vpHomogeneousMatrix &M)
 inline Eigen::VectorXd toEigenV(const vpColVector &v)
 {
   // Not ViSP's compiled visp2eigen(vpColVector, VectorXd): it allocates inside libvisp_core, under another Eigen
-  // allocator than this code's in the sanitizer build (see src/vpProjectiveInternal.h, eigenMap()).
+  // allocator than this code's in the sanitizer build (see src/core/vpProjectiveConversions.h, eigenMap()).
   return Eigen::Map<const Eigen::VectorXd>(v.data, static_cast<Eigen::Index>(v.getRows()));
 }
 

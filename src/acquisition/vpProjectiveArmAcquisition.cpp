@@ -14,6 +14,7 @@
 #include <visp3/projective/vpProjectiveArmAcquisition.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -254,9 +255,9 @@ void vpProjectiveArmAcquisition::addTrialMotion(unsigned int i, double amount, c
   m_trials.push_back(trial);
 }
 
-void vpProjectiveArmAcquisition::addTrialMotion(unsigned int i, double amount, const std::vector<int> &ids,
-                                                const std::vector<vpImagePoint> &left,
-                                                const std::vector<vpImagePoint> &right)
+void vpProjectiveArmAcquisition::addIdentifiedTrial(
+    const std::vector<int> &ids, const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right,
+    const std::function<void(const std::vector<vpImagePoint> &, const std::vector<vpImagePoint> &)> &addPlainTrial)
 {
   const std::string where = at("addTrialMotion()");
   if (m_zeroImages.empty()) {
@@ -270,29 +271,27 @@ void vpProjectiveArmAcquisition::addTrialMotion(unsigned int i, double amount, c
     l0[j].set_uv(m_zeroImages[j](0), m_zeroImages[j](1));
     r0[j].set_uv(m_zeroImages[j](2), m_zeroImages[j](3));
   }
-  addTrialMotion(i, amount, l0, r0);
+  addPlainTrial(l0, r0);
   m_trials.back().s = s;
   m_trials.back().seen = seen;
+}
+
+void vpProjectiveArmAcquisition::addTrialMotion(unsigned int i, double amount, const std::vector<int> &ids,
+                                                const std::vector<vpImagePoint> &left,
+                                                const std::vector<vpImagePoint> &right)
+{
+  addIdentifiedTrial(ids, left, right, [&](const std::vector<vpImagePoint> &l0, const std::vector<vpImagePoint> &r0) {
+    addTrialMotion(i, amount, l0, r0);
+  });
 }
 
 void vpProjectiveArmAcquisition::addTrialMotion(const vpColVector &q, const std::vector<int> &ids,
                                                 const std::vector<vpImagePoint> &left,
                                                 const std::vector<vpImagePoint> &right)
 {
-  const std::string where = at("addTrialMotion()");
-  if (m_zeroImages.empty()) {
-    fail(vpProjectiveException::notInitializedError, where, "call setZeroReference() before adding trial motions");
-  }
-  std::vector<bool> seen;
-  const std::vector<Eigen::Vector4d> s = matchByIds(ids, left, right, where, seen);
-  std::vector<vpImagePoint> l0(m_zeroImages.size()), r0(m_zeroImages.size());
-  for (size_t j = 0; j < m_zeroImages.size(); ++j) {
-    l0[j].set_uv(m_zeroImages[j](0), m_zeroImages[j](1));
-    r0[j].set_uv(m_zeroImages[j](2), m_zeroImages[j](3));
-  }
-  addTrialMotion(q, l0, r0);
-  m_trials.back().s = s;
-  m_trials.back().seen = seen;
+  addIdentifiedTrial(ids, left, right, [&](const std::vector<vpImagePoint> &l0, const std::vector<vpImagePoint> &r0) {
+    addTrialMotion(q, l0, r0);
+  });
 }
 
 bool vpProjectiveArmAcquisition::isObserved(unsigned int trial, unsigned int marker) const

@@ -11,20 +11,21 @@
  * more details.
  */
 
+/*
+  vpProjectiveSessionCalibration: its settings and calibrate() (the arm acquired from a recorded session). The marker
+  extraction is in vpProjectiveSessionMarkers.cpp, the check of a model and the model file in
+  vpProjectiveSessionCheck.cpp.
+*/
+
 #include <visp3/projective/vpProjectiveSessionCalibration.h>
-#include <visp3/projective/vpStereoAprilTagDetector.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <iomanip>
 #include <map>
-#include <memory>
 #include <sstream>
 #include <utility>
 #include <vector>
-
-#include <unistd.h>
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpTime.h>
@@ -41,28 +42,11 @@ using namespace VISP_NAMESPACE_NAME;
 #endif
 
 using namespace vpProjectiveInternal;
+using namespace vpProjectiveSessionInternal;
 
 namespace
 {
 const vpErrorSite at("vpProjectiveSessionCalibration");
-
-//! The markers of one frame: identifiers (ascending) and pixels (u, v, u', v').
-struct FrameMarkers {
-  std::vector<int> ids;
-  std::vector<Eigen::Vector4d> s;
-  //! Index of marker \e id in this frame, -1 if absent.
-  int find(int id) const
-  {
-    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
-    return it != ids.end() && *it == id ? static_cast<int>(it - ids.begin()) : -1;
-  }
-};
-
-std::string frameLabel(const vpProjectiveSession &session, unsigned int k)
-{
-  const vpProjectiveSession::vpFrame &frame = session.getFrame(k);
-  return "frame " + std::to_string(k) + " ('" + frame.left + "', " + vpProjectiveSession::toString(frame.role) + ")";
-}
 
 std::string amountText(vpProjectiveJoint::vpJointType type, double amount)
 {
@@ -75,104 +59,6 @@ std::string amountText(vpProjectiveJoint::vpJointType type, double amount)
   }
   return os.str();
 }
-
-//! The markers of frame \e k by the extraction function, checked.
-FrameMarkers extract(const vpProjectiveSession &session, unsigned int k,
-                     const vpProjectiveSessionCalibration::vpMarkerExtractor &extractor, bool recorded,
-                     const std::string &where)
-{
-  const std::string label = frameLabel(session, k);
-  std::vector<int> ids;
-  std::vector<vpImagePoint> left, right;
-  unsigned int n = 0;
-  if (recorded) { // the markers the recording program measured (vpProjectiveSession::vpFrame::markerIds)
-    const vpProjectiveSession::vpFrame &frame = session.getFrame(k);
-    if (frame.markerIds.empty()) {
-      fail(vpProjectiveException::notEnoughPointsError, where,
-           label +
-               " has no recorded markers (no 'recorded_markers' entry); extract them from the images instead (a marker "
-               "extraction function; visp-projective: without --recorded-markers)");
-    }
-    ids = frame.markerIds;
-    left = frame.markerLeft;
-    right = frame.markerRight;
-    n = static_cast<unsigned int>(ids.size());
-  } else {
-    vpImage<unsigned char> Il, Ir;
-    session.getImages(k, Il, Ir);
-    n = extractor(Il, Ir, ids, left, right);
-  }
-  if (n != ids.size() || n != left.size() || n != right.size()) {
-    fail(vpProjectiveException::dimensionError, where,
-         label + ": the marker extraction returned " + std::to_string(n) + " markers with " +
-             std::to_string(ids.size()) + " identifiers, " + std::to_string(left.size()) + " left and " +
-             std::to_string(right.size()) + " right points; it must give one of each per marker");
-  }
-  FrameMarkers markers;
-  markers.ids = ids;
-  for (size_t j = 0; j < n; ++j) {
-    if (j > 0 && ids[j] <= ids[j - 1]) {
-      fail(vpProjectiveException::invalidValueError, where,
-           label + ": the marker extraction's identifiers are not ascending and distinct; fix the extraction");
-    }
-    const Eigen::Vector4d s(left[j].get_u(), left[j].get_v(), right[j].get_u(), right[j].get_v());
-    if (!s.allFinite()) {
-      fail(vpProjectiveException::nonFiniteValueError, where,
-           label + ": the marker extraction gave a non-finite pixel for marker " + std::to_string(ids[j]));
-    }
-    markers.s.push_back(s);
-  }
-  if (n == 0) {
-    fail(vpProjectiveException::notEnoughPointsError, where,
-         label + ": no marker found in both images; check that the tags face both cameras, the exposure and the "
-                 "focus, or remove the frame from session.json");
-  }
-  return markers;
-}
-
-//! Readings of a frame as the model's joint vector.
-vpProjectiveArmModel::JointVector jointsOf(const vpColVector &q)
-{
-  vpProjectiveArmModel::JointVector v(static_cast<Eigen::Index>(q.getRows()));
-  for (unsigned int i = 0; i < q.getRows(); ++i) {
-    v(i) = q[i];
-  }
-  return v;
-}
-
-/*!
-  Squared prediction errors of \e model at readings \e q for the pairs (model marker j, measured s): adds the left
-  and right squared errors and the number of markers. A marker on a camera's focal plane counts as 1e6 px.
-*/
-void predictionError(const vpProjectiveArmModel &model, const vpColVector &q,
-                     const std::vector<std::pair<unsigned int, Eigen::Vector4d>> &pairs, double &left, double &right,
-                     unsigned int &count)
-{
-  const Eigen::Matrix4d H = model.displacement(jointsOf(q));
-  for (const auto &pair : pairs) {
-    Eigen::Vector4d s;
-    if (!model.predictMarker(pair.first, H, s)) {
-      left += 1e12;
-      right += 1e12;
-    } else {
-      left += (s.head<2>() - pair.second.head<2>()).squaredNorm();
-      right += (s.tail<2>() - pair.second.tail<2>()).squaredNorm();
-    }
-    ++count;
-  }
-}
-
-double rms(double sumSquares, unsigned int coordinates)
-{
-  return coordinates > 0 ? std::sqrt(sumSquares / coordinates) : 0.0;
-}
-
-std::string pixels(double px)
-{
-  std::ostringstream os;
-  os << std::setprecision(3) << px << " px";
-  return os.str();
-}
 } // namespace
 
 vpProjectiveSessionCalibration::vpProjectiveSessionCalibration(const vpMarkerExtractor &extractor)
@@ -181,105 +67,6 @@ vpProjectiveSessionCalibration::vpProjectiveSessionCalibration(const vpMarkerExt
       m_residual(0.0), m_algebraicResidual(0.0), m_joints(), m_state(RIG_UNCHANGED), m_leftResidual(0.0),
       m_rightResidual(0.0), m_recorded(false)
 {
-}
-
-vpProjectiveSessionCalibration::vpMarkerExtractor
-vpProjectiveSessionCalibration::aprilTagMarkers(const std::string &family)
-{
-#if defined(VISP_HAVE_APRILTAG)
-  // The families every ViSP from 3.5 on detects (the deprecated 36h10, 25h7 and ARToolKit ones are left out).
-  const std::vector<std::pair<std::string, vpDetectorAprilTag::vpAprilTagFamily>> families = {
-    {"36h11", vpDetectorAprilTag::TAG_36h11},
-    {"25h9", vpDetectorAprilTag::TAG_25h9},
-    {"16h5", vpDetectorAprilTag::TAG_16h5},
-    {"Circle21h7", vpDetectorAprilTag::TAG_CIRCLE21h7},
-#if defined(VISP_HAVE_APRILTAG_BIG_FAMILY)
-    {"Circle49h12", vpDetectorAprilTag::TAG_CIRCLE49h12},
-    {"Custom48h12", vpDetectorAprilTag::TAG_CUSTOM48h12},
-    {"Standard41h12", vpDetectorAprilTag::TAG_STANDARD41h12},
-    {"Standard52h13", vpDetectorAprilTag::TAG_STANDARD52h13},
-#endif
-  };
-  std::string names;
-  for (const auto &f : families) {
-    if (f.first == family) {
-      // Shared: the extraction function is copied with the calibration, the detector's settings go with it.
-      auto tags = std::make_shared<vpStereoAprilTagDetector>(f.second);
-      return [tags](const vpImage<unsigned char> &Il, const vpImage<unsigned char> &Ir, std::vector<int> &ids,
-                    std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
-        const unsigned int n = tags->detect(Il, Ir);
-        ids = tags->getIds();
-        left = tags->getLeftPoints();
-        right = tags->getRightPoints();
-        return n;
-      };
-    }
-    names += (names.empty() ? "" : ", ") + f.first;
-  }
-  fail(vpProjectiveException::invalidValueError, at("aprilTagMarkers()"),
-       "unknown AprilTag family '" + family + "'; use " + names);
-#else
-  return [family](const vpImage<unsigned char> &, const vpImage<unsigned char> &, std::vector<int> &,
-                  std::vector<vpImagePoint> &, std::vector<vpImagePoint> &) -> unsigned int {
-    fail(vpProjectiveException::notImplementedError, "vpProjectiveSessionCalibration",
-         "no detector for the AprilTag family " + family +
-             ": this ViSP was built without AprilTag (WITH_APRILTAG); give a marker extraction function");
-  };
-#endif
-}
-
-vpProjectiveAcquisitionProcedure::vpImageSource
-vpProjectiveSessionCalibration::markerSource(vpStereoImageSource &images, const vpMarkerExtractor &extractor,
-                                             vpRobot &robot, vpProjectiveSessionWriter *writer)
-{
-  if (!extractor) {
-    fail(vpProjectiveException::invalidValueError, at("markerSource()"), "the extraction function is empty");
-  }
-  struct State {
-    bool started = false;
-    double t0 = 0.0;
-    std::vector<int> ids; // the zero reference's markers
-    vpImage<unsigned char> Il, Ir;
-  };
-  auto state = std::make_shared<State>();
-  return
-      [state, &images, extractor, &robot, writer](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
-        if (!images.acquire(state->Il, state->Ir)) {
-          return false;
-        }
-        vpColVector q;
-        robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
-        const double now = vpTime::measureTimeSecond();
-        if (!state->started) {
-          state->t0 = now;
-        }
-        std::vector<int> ids;
-        std::vector<vpImagePoint> l, r;
-        const unsigned int n = extractor(state->Il, state->Ir, ids, l, r);
-        if (n != ids.size() || n != l.size() || n != r.size()) {
-          fail(vpProjectiveException::dimensionError, at("markerSource()"),
-               "the marker extraction must give one identifier, one left and one right point per marker");
-        }
-        if (!state->started) {
-          state->ids = ids;
-          state->started = true;
-        }
-        left.clear();
-        right.clear();
-        for (int id : state->ids) {
-          const auto it = std::find(ids.begin(), ids.end(), id);
-          if (it == ids.end()) {
-            return false; // a marker of the zero reference is lost
-          }
-          left.push_back(l[static_cast<size_t>(it - ids.begin())]);
-          right.push_back(r[static_cast<size_t>(it - ids.begin())]);
-        }
-        // Recorded once the markers are all seen: the session holds the frames that the procedure used.
-        if (writer != nullptr) {
-          writer->addAcquisitionFrame(q, now - state->t0, state->Il, state->Ir);
-        }
-        return true;
-      };
 }
 
 void vpProjectiveSessionCalibration::setMarkerExtractor(const vpMarkerExtractor &extractor)
@@ -589,113 +376,4 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
   m_joints = joints;
   m_calibrated = true;
   return model;
-}
-
-void vpProjectiveSessionCalibration::checkWritable(const std::string &filename)
-{
-  const size_t slash = filename.find_last_of('/');
-  const std::string folder = slash == std::string::npos ? std::string() : filename.substr(0, slash + 1);
-  const std::string probe = folder + ".tmp-" + std::to_string(static_cast<long>(getpid())) + "-probe";
-  std::FILE *file = filename.empty() ? nullptr : std::fopen(probe.c_str(), "wb");
-  if (file == nullptr) {
-    fail(vpProjectiveException::fileError, at("checkWritable()"),
-         "cannot write the model file '" + filename +
-             "': its folder does not exist or is not writable; choose another output path");
-  }
-  std::fclose(file);
-  std::remove(probe.c_str());
-}
-
-void vpProjectiveSessionCalibration::saveModel(const std::string &filename) const
-{
-  if (!m_calibrated) {
-    fail(vpProjectiveException::notInitializedError, at("saveModel()"), "no model yet; call calibrate() first");
-  }
-  vpProjectiveSessionInternal::writeAtomically(
-      filename, vpProjectiveModelFile::toString(m_model, m_residual, m_algebraicResidual, m_ids), at("saveModel()"));
-}
-
-std::string vpProjectiveSessionCalibration::toString(vpRigState state)
-{
-  switch (state) {
-  case RIG_UNCHANGED:
-    return "the model fits: the rig has not moved since the model was made";
-  case LEFT_CAMERA_MOVED:
-    return "the left camera moved since the model was made (its images are off, the right ones fit): calibrate again, "
-           "or re-register the rig (vpProjectiveRobot::updateRig())";
-  case RIGHT_CAMERA_MOVED:
-    return "the right camera moved since the model was made (its images are off, the left ones fit): calibrate again, "
-           "or re-register the rig (vpProjectiveRobot::updateRig())";
-  default:
-    return "both images are off: both cameras moved, or the markers moved on the tool, or the readings are not the "
-           "model's encoders; calibrate again";
-  }
-}
-
-std::vector<vpProjectiveSessionCalibration::vpFrameCheck>
-vpProjectiveSessionCalibration::check(const vpProjectiveArmModel &model, const std::vector<int> &ids,
-                                      const vpProjectiveSession &session)
-{
-  const std::string where = at("check()");
-  if (model.getNumberOfJoints() == 0) {
-    fail(vpProjectiveException::notInitializedError, where, "the model is empty; load one first");
-  }
-  if (session.getJointTypes() != model.jointTypes()) {
-    fail(vpProjectiveException::dimensionError, where,
-         "the session's joints (" + std::to_string(session.getNumberOfJoints()) +
-             ", joint_types) are not the model's (" + std::to_string(model.getNumberOfJoints()) +
-             "); check a session of the arm the model was made for");
-  }
-  if (ids.size() != model.markers().size()) {
-    fail(vpProjectiveException::dimensionError, where,
-         "the model has " + std::to_string(model.markers().size()) + " markers and " + std::to_string(ids.size()) +
-             " marker identifiers; use a model calibrated from a session (visp-projective calibrate)");
-  }
-  std::vector<vpFrameCheck> checks;
-  double sumLeft = 0.0, sumRight = 0.0;
-  unsigned int total = 0, leftOff = 0, rightOff = 0;
-  for (unsigned int k = 0; k < session.getNumberOfFrames(); ++k) {
-    const FrameMarkers markers = extract(session, k, m_extractor, m_recorded, where);
-    std::vector<std::pair<unsigned int, Eigen::Vector4d>> pairs;
-    for (size_t j = 0; j < ids.size(); ++j) {
-      const int f = markers.find(ids[j]);
-      if (f >= 0) {
-        pairs.push_back(std::make_pair(static_cast<unsigned int>(j), markers.s[static_cast<size_t>(f)]));
-      }
-    }
-    if (pairs.empty()) {
-      fail(vpProjectiveException::notEnoughPointsError, where,
-           frameLabel(session, k) + ": none of the model's markers is seen in both images; check that the tags face "
-                                    "both cameras, or remove the frame from session.json");
-    }
-    double l = 0.0, r = 0.0;
-    unsigned int count = 0;
-    predictionError(model, session.getFrame(k).q, pairs, l, r, count);
-    vpFrameCheck c;
-    c.frame = k;
-    c.role = session.getFrame(k).role;
-    c.markers = count;
-    c.left = rms(l, 2 * count);
-    c.right = rms(r, 2 * count);
-    c.rms = rms(l + r, 4 * count);
-    c.fits = c.left <= m_mismatch && c.right <= m_mismatch;
-    leftOff += c.left > m_mismatch ? 1 : 0;
-    rightOff += c.right > m_mismatch ? 1 : 0;
-    sumLeft += l;
-    sumRight += r;
-    total += count;
-    checks.push_back(c);
-    std::ostringstream os;
-    os << "frame " << (k + 1) << "/" << session.getNumberOfFrames() << " (" << session.getFrame(k).left << ", "
-       << vpProjectiveSession::toString(c.role) << "): " << count << " markers, left " << pixels(c.left) << ", right "
-       << pixels(c.right) << (c.fits ? ": fits" : ": DOES NOT FIT");
-    progress(os.str());
-  }
-  m_leftResidual = rms(sumLeft, 2 * total);
-  m_rightResidual = rms(sumRight, 2 * total);
-  m_state = leftOff == 0 && rightOff == 0 ? RIG_UNCHANGED
-            : rightOff == 0               ? LEFT_CAMERA_MOVED
-            : leftOff == 0                ? RIGHT_CAMERA_MOVED
-                                          : BOTH_CAMERAS_MOVED;
-  return checks;
 }

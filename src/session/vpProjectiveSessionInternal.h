@@ -18,12 +18,18 @@
 #ifndef _vpProjectiveSessionInternal_h_
 #define _vpProjectiveSessionInternal_h_
 
+#include <algorithm>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpConfig.h>
+#include <Eigen/Core>
+
+#include <visp3/projective/vpProjectiveArmModel.h>
 #include <visp3/projective/vpProjectiveSession.h>
+#include <visp3/projective/vpProjectiveSessionCalibration.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -60,6 +66,46 @@ std::string sessionText(const std::vector<vpProjectiveJoint::vpJointType> &types
   \e path is either as before or complete. Throws vpProjectiveException (fileError) naming \e path, \e where.
 */
 void writeAtomically(const std::string &path, const std::string &text, const std::string &where);
+
+// What the calibration and the check of a session share (vpProjectiveSessionMarkers.cpp).
+
+//! The markers of one frame: identifiers (ascending) and pixels (u, v, u', v').
+struct FrameMarkers {
+  std::vector<int> ids;
+  std::vector<Eigen::Vector4d> s;
+  //! Index of marker \e id in this frame, -1 if absent.
+  int find(int id) const
+  {
+    const auto it = std::lower_bound(ids.begin(), ids.end(), id);
+    return it != ids.end() && *it == id ? static_cast<int>(it - ids.begin()) : -1;
+  }
+};
+
+//! How messages name frame \e k: "frame k ('left image', role)".
+std::string frameLabel(const vpProjectiveSession &session, unsigned int k);
+
+//! The markers of frame \e k by the extraction function, checked. Throws (naming \e where and the frame) if it fails or
+//! gives bad markers.
+FrameMarkers extract(const vpProjectiveSession &session, unsigned int k,
+                     const vpProjectiveSessionCalibration::vpMarkerExtractor &extractor, bool recorded,
+                     const std::string &where);
+
+//! Readings of a frame as the model's joint vector.
+vpProjectiveArmModel::JointVector jointsOf(const vpColVector &q);
+
+/*!
+  Squared prediction errors of \e model at readings \e q for the pairs (model marker j, measured s): adds the left
+  and right squared errors and the number of markers. A marker on a camera's focal plane counts as 1e6 px.
+*/
+void predictionError(const vpProjectiveArmModel &model, const vpColVector &q,
+                     const std::vector<std::pair<unsigned int, Eigen::Vector4d>> &pairs, double &left, double &right,
+                     unsigned int &count);
+
+//! Root mean square of \e coordinates coordinates whose squares sum to \e sumSquares (0 for none).
+double rms(double sumSquares, unsigned int coordinates);
+
+//! \e px as "1.23 px".
+std::string pixels(double px);
 } // namespace vpProjectiveSessionInternal
 
 #endif

@@ -22,6 +22,7 @@
 
 #include <visp3/projective/vpProjectiveConfig.h>
 
+#include <functional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -229,6 +230,11 @@ private:
   std::vector<Eigen::Vector4d> matchByIds(const std::vector<int> &ids, const std::vector<vpImagePoint> &left,
                                           const std::vector<vpImagePoint> &right, const std::string &where,
                                           std::vector<bool> &seen) const;
+  // The trial of identified markers: the plain overload \e addPlainTrial checks the joint and the amount on the zero
+  // reference's images, then this trial's matched images replace them.
+  void addIdentifiedTrial(
+      const std::vector<int> &ids, const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right,
+      const std::function<void(const std::vector<vpImagePoint> &, const std::vector<vpImagePoint> &)> &addPlainTrial);
   std::vector<vpTrial> m_trials;
   std::vector<int> m_ids; // of the zero reference's markers, ascending
   double m_outlierThreshold;

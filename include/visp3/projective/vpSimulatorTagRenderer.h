@@ -57,7 +57,7 @@ BEGIN_VISP_NAMESPACE
   lattice, each on its own row and column of \f$ 1/N \f$ px. Then, in order: Gaussian optical blur (setBlur()), lighting
   \f$ g = o + a (1 + b_u (u - W/2)/W + b_v (v - H/2)/H)\, g \f$ (setLighting()), Gaussian sensor noise (setNoise(),
   vpSimulatorImageNoise) and 8-bit quantisation. Only the
-  tags' boxes are rendered and blurred: a 640 x 480 pair of 8 tags of 67 px takes 5 to 9 ms (benchmarkAprilTag).
+  tags' boxes are rendered and blurred (speed: tests/benchmark/benchmarkAprilTag).
 
   A tag is drawn when its printed side faces the camera and its whole quiet zone is in front of it (depth > 1 mm);
   the occluder (setOccluder()), a dark ball, is drawn over the tags.

@@ -47,18 +47,15 @@ class vpProjectiveStereoRig;
   of the black border.
 
   Points are in ViSP's pixel convention, the centre of pixel (i, j) at (u, v) = (j, i). vpDetectorAprilTag (AprilTag
-  3) returns them half a pixel further on both axes (its pixel centres are at (j + 1/2, i + 1/2); measured on
-  vpSimulatorTagRenderer's images, whose truth is exact): detect() removes that offset.
+  3) returns them half a pixel further on both axes (its pixel centres are at (j + 1/2, i + 1/2)): detect() removes
+  that offset.
 
   Refinement (setRefinement(), on by default): each of the 4 outer edges of the black border is relocated at points
   2 px apart, away from the corners, as the centroid of the positive intensity derivative across it (bilinear
   samples every 0.5 px within 3 px, black inside, white outside), a line is fitted to those points (total least
   squares), and each corner becomes the intersection of its two edges' lines; again if a corner moved by 0.1 px or more.
   A corner that would move by more than 2 px keeps vpDetectorAprilTag's position. AprilTag's own edge refinement is then
-  redundant and off. Measured on vpSimulatorTagRenderer's images (tags of about 67 px tilted by up to 0.6 rad, noise 1
-  grey level), RMS corner error without blur / with 1 px blur: this refit 0.029 / 0.015 px (worst corners 0.09 /
-  0.07 px); AprilTag's edge refinement (offset removed) 0.092 / 0.053 px; cv::cornerSubPix from there 0.22 / 0.21 px
-  (its model does not fit an L-shaped corner).
+  redundant and off. Measured accuracy: \ref page_estimation_tags.
 
   Tracking: setPredictedRegions() gives where the tags are expected (e.g. the model's predictions, or the last
   detection's corners); detect() then runs vpDetectorAprilTag only in the box around each predicted tag (grown by
@@ -99,10 +96,8 @@ public:
   void setEpipolarThreshold(double pixels);
   /*!
     vpDetectorAprilTag's quad decimation (1 to 8; default 1.5): the quads are searched in an image decimated by this
-    factor, the refinement then works at full resolution (same accuracy). Measured on 640 x 480 pairs of 8 tags
-    tilted by up to 0.5 rad: at 1.5 (AprilTag's fast path) every tag of 25 px or more is found, 98 % at 20 px, 75 %
-    at 17 px, in about a tenth of the time of 1 (which finds them all down to 13 px); 2 needs 25 px and is slower than
-    1.5. Give 1 for smaller tags.
+    factor, the refinement then works at full resolution (same accuracy). 1.5 finds every tag of 25 px or more
+    (\ref page_estimation_tags); give 1 for smaller tags.
   */
   void setDecimation(double decimation);
   //! Sub-pixel refinement of the corners (class description), on by default.

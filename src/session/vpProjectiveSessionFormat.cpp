@@ -1,0 +1,147 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*
+  The session format's pieces that the reader (vpProjectiveSession.cpp) and the writer share: the PNG header check,
+  a frame's JSON text, the session.json text, the joint a trial moved.
+*/
+
+#include <visp3/projective/vpProjectiveSession.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include <visp3/core/vpConfig.h>
+#include <visp3/core/vpException.h>
+#include <visp3/core/vpMath.h>
+#include <visp3/projective/vpProjectiveArmModel.h>
+#ifdef VISP_HAVE_MODULE_IO
+#include <visp3/io/vpImageIo.h>
+#endif
+
+#include "core/vpProjectiveErrors.h"
+#include "session/vpProjectiveSessionInternal.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using namespace vpProjectiveInternal;
+
+namespace vpProjectiveSessionInternal
+{
+using json = nlohmann::json;
+
+std::string checkPngHeader(const std::string &path, unsigned int &width, unsigned int &height)
+{
+  std::ifstream file(path.c_str(), std::ios::binary);
+  if (!file) {
+    return "is missing or cannot be opened";
+  }
+  unsigned char h[33];
+  file.read(reinterpret_cast<char *>(h), sizeof(h));
+  if (file.gcount() != static_cast<std::streamsize>(sizeof(h))) {
+    return "is too short to be a PNG image (empty or truncated file)";
+  }
+  const unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  for (int i = 0; i < 8; ++i) {
+    if (h[i] != signature[i]) {
+      return "is not a PNG image";
+    }
+  }
+  if (h[12] != 'I' || h[13] != 'H' || h[14] != 'D' || h[15] != 'R') {
+    return "is a damaged PNG image (no IHDR header)";
+  }
+  auto be32 = [&h](int i) {
+    return (static_cast<unsigned int>(h[i]) << 24) | (static_cast<unsigned int>(h[i + 1]) << 16) |
+           (static_cast<unsigned int>(h[i + 2]) << 8) | static_cast<unsigned int>(h[i + 3]);
+  };
+  width = be32(16);
+  height = be32(20);
+  const unsigned int depth = h[24], colour = h[25];
+  if (width == 0 || height == 0 || width > 100000 || height > 100000) {
+    return "is a PNG image of an invalid size";
+  }
+  if (depth != 8 || (colour != 0 && colour != 2)) {
+    return "is a PNG image of bit depth " + std::to_string(depth) + " and colour type " + std::to_string(colour) +
+           ", not 8-bit grey or RGB; save it as an 8-bit grey or RGB PNG";
+  }
+  return std::string();
+}
+
+void appendFrame(std::string &frames, const vpProjectiveSession::vpFrame &frame)
+{
+  json f;
+  f["role"] = vpProjectiveSession::toString(frame.role);
+  json q = json::array();
+  for (unsigned int i = 0; i < frame.q.getRows(); ++i) {
+    q.push_back(frame.q[i]);
+  }
+  f["q"] = q;
+  if (frame.hasTime) {
+    f["t"] = frame.t;
+  }
+  f["left"] = frame.left;
+  f["right"] = frame.right;
+  if (!frame.markerIds.empty()) {
+    json ids = json::array(), left = json::array(), right = json::array();
+    for (size_t j = 0; j < frame.markerIds.size(); ++j) {
+      ids.push_back(frame.markerIds[j]);
+      left.push_back({frame.markerLeft[j].get_u(), frame.markerLeft[j].get_v()});
+      right.push_back({frame.markerRight[j].get_u(), frame.markerRight[j].get_v()});
+    }
+    f["recorded_markers"] = {{"ids", ids}, {"left", left}, {"right", right}};
+  }
+  frames += (frames.empty() ? "\n  " : ",\n  ") + f.dump();
+}
+
+std::string sessionText(const std::vector<vpProjectiveJoint::vpJointType> &types, const std::string &frames)
+{
+  json typeNames = json::array();
+  for (vpProjectiveJoint::vpJointType type : types) {
+    typeNames.push_back(vpProjectiveJoint::name(type));
+  }
+  return std::string("{\"format\": ") + json(vpProjectiveSession::formatName).dump() +
+         ", \"version\": " + std::to_string(vpProjectiveSession::version) + ", \"joint_types\": " + typeNames.dump() +
+         ",\n \"frames\": [" + frames + "\n]}\n";
+}
+
+int trialJoint(const vpColVector &q0, const vpColVector &q, std::string &why)
+{
+  unsigned int moved = 0;
+  double largest = 0.0;
+  for (unsigned int i = 0; i < q.getRows(); ++i) {
+    if (std::fabs(q[i] - q0[i]) > largest) {
+      largest = std::fabs(q[i] - q0[i]);
+      moved = i;
+    }
+  }
+  if (!(largest > 0.0)) {
+    why = "it moves no joint (its readings are the zero frame's); give it the role 'observation' or remove it";
+    return -1;
+  }
+  for (unsigned int i = 0; i < q.getRows(); ++i) {
+    if (i != moved && std::fabs(q[i] - q0[i]) > 0.01 * largest) {
+      why = "it moves joints " + std::to_string(moved) + " and " + std::to_string(i) +
+            " (a trial moves one joint alone from the zero frame's readings); give it the role 'observation' or "
+            "record the trial again";
+      return -1;
+    }
+  }
+  return static_cast<int>(moved);
+}
+} // namespace vpProjectiveSessionInternal
