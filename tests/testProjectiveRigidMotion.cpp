@@ -84,7 +84,7 @@ TEST(vpProjectiveDisplacement, LogarithmOfAnyDisplacement)
       const Eigen::Matrix4d T = expm(That);
       const double scale = (k % 2 ? -1.0 : 1.0) * rng.uniform(0.01, 100.0);
       const vpProjectiveDisplacement H(Eigen::Matrix4d(scale * scene.HpeInv * T * scene.Hpe));
-      const Eigen::Matrix4d Hhat = H.logarithm();
+      const Eigen::Matrix4d Hhat = vpProjectiveDisplacement::log(H);
       // Back in the metric frame, the logarithm is the twist.
       const Eigen::Matrix4d metric = scene.Hpe * Hhat * scene.HpeInv;
       // The logarithm's conditioning grows as 1 / (pi - theta) (b3 of log() does): the bound follows it.

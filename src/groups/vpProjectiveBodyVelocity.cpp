@@ -49,7 +49,7 @@ vpProjectiveBodyVelocity vpProjectiveBodyVelocity::fromDisplacements(const vpPro
     os << "the time step must be positive and finite, got " << dt;
     fail(vpProjectiveException::invalidValueError, at("fromDisplacements()"), os.str());
   }
-  return vpProjectiveBodyVelocity((H1 * H0.inverse()).logarithm() / dt);
+  return vpProjectiveBodyVelocity(vpProjectiveDisplacement::log(H1 * H0.inverse(), dt));
 }
 
 vpProjectiveBodyVelocity vpProjectiveBodyVelocity::fromSequence(const std::vector<vpProjectiveDisplacement> &H,
@@ -66,7 +66,7 @@ vpProjectiveBodyVelocity vpProjectiveBodyVelocity::fromSequence(const std::vecto
   const vpProjectiveDisplacement HkInv = H[k].inverse();
   Eigen::Matrix4d slope = Eigen::Matrix4d::Zero();
   for (const std::pair<size_t, double> &w : weights) {
-    slope += w.second * (H[w.first] * HkInv).logarithm();
+    slope += w.second * vpProjectiveDisplacement::log(H[w.first] * HkInv);
   }
   return vpProjectiveBodyVelocity(slope);
 }

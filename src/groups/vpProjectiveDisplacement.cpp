@@ -105,13 +105,22 @@ vpProjectiveDisplacement vpProjectiveDisplacement::inverse() const
   return vpProjectiveDisplacement(Eigen::Matrix4d(m_H.inverse()));
 }
 
-Eigen::Matrix4d vpProjectiveDisplacement::logarithm() const
+Eigen::Matrix4d vpProjectiveDisplacement::log(const vpProjectiveDisplacement &H, double amount)
 {
-  const double c = std::max(-1.0, std::min(1.0, 0.5 * (m_H.trace() - 2.0)));
+  const std::string where = at("log()");
+  if (!std::isfinite(amount)) {
+    fail(vpProjectiveException::nonFiniteValueError, where, "the amount is not finite");
+  }
+  if (amount == 0.0) {
+    fail(vpProjectiveException::invalidValueError, where,
+         "the amount is zero; give the amount q with H = exp(q Hhat), or 1 for the logarithm itself");
+  }
+  const Eigen::Matrix4d &Hn = H.m_H;
+  const double c = std::max(-1.0, std::min(1.0, 0.5 * (Hn.trace() - 2.0)));
   const double theta = std::acos(c);
   const double s = std::sin(theta);
   if (c < 0.0 && s < 1e-6) {
-    fail(vpProjectiveException::degenerateConfigurationError, at("log()"),
+    fail(vpProjectiveException::degenerateConfigurationError, where,
          "the rotation angle is pi: the logarithm of a half turn is not unique (the axis direction is); compose two "
          "smaller displacements instead");
   }
@@ -127,14 +136,14 @@ Eigen::Matrix4d vpProjectiveDisplacement::logarithm() const
     b2 = 1.0 - 0.5 * theta * (1.0 / std::tan(0.5 * theta) + c / s);
     b3 = (s - theta * c) / (2.0 * oneMinusCos * s);
   }
-  const Eigen::Matrix4d D = m_H - Eigen::Matrix4d::Identity();
+  const Eigen::Matrix4d D = Hn - Eigen::Matrix4d::Identity();
   const Eigen::Matrix4d D2 = D * D;
-  return D + b2 * D2 + b3 * (D2 * D);
+  return (D + b2 * D2 + b3 * (D2 * D)) / amount;
 }
 
 vpMatrix vpProjectiveDisplacement::log() const
 {
-  return toVisp(logarithm());
+  return toVisp(log(*this));
 }
 
 vpProjectiveDisplacement vpProjectiveDisplacement::exp(const Eigen::Matrix4d &Hhat)
@@ -142,22 +151,15 @@ vpProjectiveDisplacement vpProjectiveDisplacement::exp(const Eigen::Matrix4d &Hh
   if (!Hhat.allFinite()) {
     fail(vpProjectiveException::nonFiniteValueError, at("exp()"), "Hhat has a NaN or infinite entry");
   }
-  const Eigen::Matrix4d H2 = Hhat * Hhat;
-  const double theta2 = std::max(0.0, -0.5 * H2.trace());
-  const double theta = std::sqrt(theta2);
-  double a2, a3; // (1 - cos) / theta^2, (theta - sin) / theta^3, by their series near 0
-  if (theta < 1e-3) {
-    a2 = 0.5 - theta2 / 24.0;
-    a3 = 1.0 / 6.0 - theta2 / 120.0;
-  } else {
-    a2 = 2.0 * std::sin(0.5 * theta) * std::sin(0.5 * theta) / theta2;
-    a3 = (theta - std::sin(theta)) / (theta2 * theta);
-  }
-  return vpProjectiveDisplacement(Eigen::Matrix4d(Eigen::Matrix4d::Identity() + Hhat + a2 * H2 + a3 * (H2 * Hhat)),
-                                  vpNormalized());
+  return vpProjectiveDisplacement(exp(Hhat, 1.0), vpNormalized());
 }
 
 vpProjectiveDisplacement vpProjectiveDisplacement::exp(const vpMatrix &Hhat)
 {
   return exp(toEigen<4, 4>(Hhat, at("exp()"), "Hhat"));
+}
+
+vpColVector vpProjectiveDisplacement::act(const vpColVector &M) const
+{
+  return toVispVector(act(toEigen<4>(M, at("act()"), "the point M")));
 }

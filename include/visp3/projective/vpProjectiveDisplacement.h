@@ -21,6 +21,7 @@
 
 #include <visp3/projective/vpProjectiveConfig.h>
 
+#include <cmath>
 #include <vector>
 
 #include <Eigen/Core>
@@ -217,6 +218,12 @@ public:
   */
   vpMotionType classify(double tolerance = 1e-6) const;
 
+  /*! \name Group operations
+    One API with vpProjectiveRotation and vpProjectiveTranslation, one name per operation (\ref page_groups): the
+    kernels exp(Hhat, q) and act(Hhat, q, M) (static, Eigen, templated on the scalar), log(H, amount), and for the
+    element inverse(), operator*() (compose) and act(M).
+  */
+  //@{
   /*!
     Principal logarithm \f$ \hat H \in pse(3) \f$ (4x4) of any p-displacement (rotation, translation, screw,
     identity): \f$ \exp(\hat H) = H \f$ and, for \f$ H = H_{PE}^{-1} T H_{PE} \f$, \f$ \hat H = H_{PE}^{-1} \log(T)
@@ -228,30 +235,70 @@ public:
         b_3 = \frac{\sin\theta - \theta \cos\theta}{2 (1 - \cos\theta) \sin\theta}, \f]
     the Hermite interpolant of \f$ \log \f$ at the eigenvalues \f$ 1, 1, e^{\pm i\theta} \f$ (\f$ b_2 \to -1/2 \f$,
     \f$ b_3 \to 1/3 \f$ as \f$ \theta \to 0 \f$: the series of \f$ \log(I + D) \f$). A scaled or negated \f$ H \f$
-    gives the same result (the matrix is kept normalised by eq. (12)).
+    gives the same result (the matrix is kept normalised by eq. (12)). ViSP-typed form of log(H).
     \exception vpProjectiveException (degenerateConfigurationError) if the rotation angle is \f$ \pi \f$ (within
     1e-6 rad): the logarithm is not unique there.
   */
   vpMatrix log() const;
-  //! log() on Eigen types.
-  Eigen::Matrix4d logarithm() const;
+  /*!
+    The generator \f$ \hat H \f$ (4x4) with \f$ H = \exp(\mathrm{amount}\, \hat H) \f$: the principal logarithm of log()
+    divided by \e amount (default 1: the logarithm itself), on Eigen types, no allocation. Same signature as
+    vpProjectiveRotation::log() and vpProjectiveTranslation::log().
+    \exception vpProjectiveException as log(); nonFiniteValueError or invalidValueError if \e amount is not finite or
+    is zero.
+  */
+  static Eigen::Matrix4d log(const vpProjectiveDisplacement &H, double amount = 1.0);
+
   /*!
     The p-displacement \f$ \exp(\hat H) \f$ of an element \e Hhat (4x4) of pse(3), such as log() gives or a body
-    velocity times a duration: with \f$ \theta^2 = -\mathrm{trace}(\hat H^2) / 2 \f$,
-    \f[ \exp(\hat H) = I + \hat H + \frac{1 - \cos\theta}{\theta^2} \hat H^2
-        + \frac{\theta - \sin\theta}{\theta^3} \hat H^3, \f]
-    exact for \f$ \hat H = H_{PE}^{-1} \hat T H_{PE} \f$, \f$ \hat T \in se(3) \f$ (\f$ \hat T^4 = -\theta^2 \hat T^2
-    \f$).
+    velocity times a duration: the kernel exp(Hhat, 1).
     \exception vpProjectiveException (nonFiniteValueError, dimensionError) if \e Hhat is not finite or not 4x4.
   */
   static vpProjectiveDisplacement exp(const vpMatrix &Hhat);
   //! \overload
   static vpProjectiveDisplacement exp(const Eigen::Matrix4d &Hhat);
 
+  /*!
+    The kernel \f$ \exp(q \hat H) \f$ (4x4) for any \e Hhat of pse(3), templated on the scalar (double or a Ceres
+    Jet), unchecked: with \f$ A = q \hat H \f$ and \f$ \theta^2 = -\mathrm{trace}(A^2) / 2 \f$,
+    \f[ \exp(A) = I + A + \frac{1 - \cos\theta}{\theta^2} A^2 + \frac{\theta - \sin\theta}{\theta^3} A^3, \f]
+    exact for \f$ \hat H = H_{PE}^{-1} \hat T H_{PE} \f$, \f$ \hat T \in se(3) \f$ (\f$ \hat T^4 = -\theta^2 \hat T^2
+    \f$); the coefficients by their series below \f$ \theta = 10^{-3} \f$.
+  */
+  template <typename T> static Eigen::Matrix<T, 4, 4> exp(const Eigen::Matrix<T, 4, 4> &Hhat, const T &q)
+  {
+    const Eigen::Matrix<T, 4, 4> A = q * Hhat;
+    const Eigen::Matrix<T, 4, 4> A2 = A * A;
+    T a2, a3;
+    expCoefficients(T(-0.5) * A2.trace(), a2, a3);
+    return Eigen::Matrix<T, 4, 4>::Identity() + A + a2 * A2 + a3 * (A2 * A);
+  }
+  /*!
+    The kernel \f$ \exp(q \hat H) M \f$ (4x1) from the same series, with three matrix-vector products instead of
+    4x4 products; templated on the scalar, unchecked.
+  */
+  template <typename T>
+  static Eigen::Matrix<T, 4, 1> act(const Eigen::Matrix<T, 4, 4> &Hhat, const T &q, const Eigen::Matrix<T, 4, 1> &M)
+  {
+    const Eigen::Matrix<T, 4, 1> AM = q * (Hhat * M);
+    const Eigen::Matrix<T, 4, 1> A2M = q * (Hhat * AM);
+    T a2, a3;
+    expCoefficients(T(-0.5) * q * q * Hhat.cwiseProduct(Hhat.transpose()).sum(), a2, a3);
+    return M + AM + a2 * A2M + a3 * (q * (Hhat * A2M));
+  }
+  //! The point \f$ H M \f$ (4x1) moved by this displacement (no division by a last coordinate).
+  Eigen::Vector4d act(const Eigen::Vector4d &M) const { return m_H * M; }
+  /*!
+    \overload
+    \exception vpProjectiveException (dimensionError, nonFiniteValueError) if \e M is not a finite 4-vector.
+  */
+  vpColVector act(const vpColVector &M) const;
+
   //! Composition: points move by \f$ H_2 H_1 \f$ when they move by \f$ H_1 \f$, then \f$ H_2 \f$.
   vpProjectiveDisplacement operator*(const vpProjectiveDisplacement &other) const;
   //! Inverse displacement.
   vpProjectiveDisplacement inverse() const;
+  //@}
 
 private:
   friend class vpProjectiveRotation;
@@ -260,6 +307,25 @@ private:
   struct vpNormalized {
   };
   vpProjectiveDisplacement(const Eigen::Matrix4d &H, vpNormalized) : m_H(H) {}
+
+  //! \f$ (1 - \cos\theta) / \theta^2 \f$ and \f$ (\theta - \sin\theta) / \theta^3 \f$ from \f$ \theta^2 \f$ (clamped at
+  //! 0)
+  template <typename T> static void expCoefficients(const T &theta2In, T &a2, T &a3)
+  {
+    using std::cos;
+    using std::sin;
+    using std::sqrt;
+    const T theta2 = theta2In < T(0.0) ? T(0.0) : theta2In;
+    if (theta2 < T(1e-6)) {
+      a2 = T(0.5) - theta2 / T(24.0);
+      a3 = T(1.0 / 6.0) - theta2 / T(120.0);
+    } else {
+      const T theta = sqrt(theta2);
+      const T s = sin(T(0.5) * theta);
+      a2 = T(2.0) * s * s / theta2;
+      a3 = (theta - sin(theta)) / (theta2 * theta);
+    }
+  }
 
   Eigen::Matrix4d m_H;
 };

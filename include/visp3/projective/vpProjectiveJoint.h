@@ -37,7 +37,8 @@ BEGIN_VISP_NAMESPACE
 
   A revolute joint moves by a p-rotation (vpProjectiveRotation), a prismatic one by a p-translation
   (vpProjectiveTranslation). The functions here dispatch on the kind, so that the robot model, its acquisition, the
-  Ceres cost functors and the simulator all use the same exponential for the same joint. Joint values are radians
+  Ceres cost functors and the simulator all use the same exponential for the same joint. The names and signatures are
+  those of the group API (\ref page_groups), with the joint's type first. Joint values are radians
   (revolute) or the encoder's length unit (prismatic).
 */
 class VISP_EXPORT vpProjectiveJoint

@@ -48,9 +48,11 @@ BEGIN_VISP_NAMESPACE
 
   The generator is unique although the Jordan decomposition of \f$ H_R \f$ is not.
 
-  vpProjectiveRotation and vpProjectiveTranslation share one interface (log(), exp(), dexp(), generator(),
-  project(), generatorResidual()), so that generic code and tests treat both joint groups alike; vpProjectiveJoint
-  dispatches on a joint's type.
+  The group API is the one of vpProjectiveDisplacement and vpProjectiveTranslation (see vpProjectiveDisplacement,
+  Group operations, and the page \ref page_groups): the kernels exp(Hhat, q) and act(Hhat, q, M), log(H, amount),
+  and for the elements exp(q) returns, their inverse(), operator*() and act(M); with dexp(), generator(), project()
+  and generatorResidual() shared by the two joint subgroups, so that generic code and tests treat the groups alike.
+  vpProjectiveJoint dispatches on a joint's type.
 */
 class VISP_EXPORT vpProjectiveRotation
 {
@@ -80,7 +82,7 @@ public:
   */
   static vpProjectiveRotation log(const vpProjectiveDisplacement &H, double amount);
 
-  //! The p-rotation \f$ \exp(\theta \hat H_R) \f$ by Rodrigues' form (26).
+  //! The p-rotation \f$ \exp(\theta \hat H_R) \f$ by Rodrigues' form (26): the kernel exp(generator(), theta).
   vpProjectiveDisplacement exp(double theta) const;
   //! \f$ \frac{d}{d\theta} \exp(\theta \hat H_R) = \hat H_R \exp(\theta \hat H_R) \f$ (4x4).
   Eigen::Matrix4d dexp(double theta) const;
@@ -88,7 +90,8 @@ public:
   /*!
     Rodrigues' form (26), \f$ \exp(\theta \hat H) = I + \sin\theta\, \hat H + (1 - \cos\theta) \hat H^2 \f$ (4x4), for
     any \e Hhat with \f$ \hat H^3 = -\hat H \f$: the plugin's one exponential of a revolute joint, templated on the
-    scalar (double, or a Ceres Jet for automatic differentiation).
+    scalar (double, or a Ceres Jet for automatic differentiation), unchecked. Same signature as
+    vpProjectiveDisplacement::exp(Hhat, q), whose general series it specialises.
   */
   template <typename T> static Eigen::Matrix<T, 4, 4> exp(const Eigen::Matrix<T, 4, 4> &Hhat, const T &theta)
   {

@@ -44,7 +44,8 @@ BEGIN_VISP_NAMESPACE
   - the derivative is \f$ \frac{d}{d\tau} \exp(\tau \hat H_T) = \hat H_T = \hat H_T \exp(\tau \hat H_T) \f$, and the
     inverse is \f$ I - \tau \hat H_T \f$.
 
-  Same interface as vpProjectiveRotation (see there).
+  The group API is the one of vpProjectiveDisplacement and vpProjectiveRotation (see there and the page
+  \ref page_groups).
 */
 class VISP_EXPORT vpProjectiveTranslation
 {
@@ -68,14 +69,15 @@ public:
   */
   static vpProjectiveTranslation log(const vpProjectiveDisplacement &H, double amount);
 
-  //! The p-translation \f$ I + \tau \hat H_T \f$ (31).
+  //! The p-translation \f$ I + \tau \hat H_T \f$ (31): the kernel exp(generator(), tau).
   vpProjectiveDisplacement exp(double tau) const;
   //! \f$ \frac{d}{d\tau} \exp(\tau \hat H_T) = \hat H_T \f$ (4x4).
   Eigen::Matrix4d dexp(double tau) const;
 
   /*!
     \f$ \exp(\tau \hat H) = I + \tau \hat H \f$ (31) (4x4) for any \e Hhat with \f$ \hat H^2 = 0 \f$: the plugin's one
-    exponential of a prismatic joint, templated on the scalar (double, or a Ceres Jet).
+    exponential of a prismatic joint, templated on the scalar (double, or a Ceres Jet), unchecked. Same signature as
+    vpProjectiveDisplacement::exp(Hhat, q), whose general series it specialises.
   */
   template <typename T> static Eigen::Matrix<T, 4, 4> exp(const Eigen::Matrix<T, 4, 4> &Hhat, const T &tau)
   {
