@@ -28,7 +28,8 @@ namespace
   (To move into vpProjectiveArmModel with its next header change.)
 */
 void jointMotionsAndDisplacement(const vpProjectiveArmModel &model, const vpProjectiveArmModel::JointVector &q,
-                                 Eigen::Matrix4d *HhatKq, Eigen::Matrix4d &A, Eigen::Matrix4d &Ainv)
+                                 const Eigen::Matrix4d *Hhat2s, Eigen::Matrix4d *HhatKq, Eigen::Matrix4d &A,
+                                 Eigen::Matrix4d &Ainv)
 {
   const unsigned int n = model.getNumberOfJoints();
   const bool reversed =
@@ -48,8 +49,7 @@ void jointMotionsAndDisplacement(const vpProjectiveArmModel &model, const vpProj
     if (model.jointTypes()[i] == vpProjectiveJoint::REVOLUTE) {
       const double s = std::sin(dq);
       const double c = 1.0 - std::cos(dq);
-      Eigen::Matrix4d Hhat2;
-      Hhat2.noalias() = Hhat * Hhat;
+      const Eigen::Matrix4d &Hhat2 = Hhat2s[i]; // Hhat * Hhat, as jointMotions() computes it
       E = Eigen::Matrix4d::Identity() + s * Hhat + c * Hhat2;
       Einv = Eigen::Matrix4d::Identity() - s * Hhat + c * Hhat2;
     } else {
@@ -68,9 +68,9 @@ void jointMotionsAndDisplacement(const vpProjectiveArmModel &model, const vpProj
 } // namespace
 
 vpServoProjectiveData::vpServoProjectiveData()
-    : m_q(), m_H(Eigen::Matrix4d::Identity()), m_Hinv(Eigen::Matrix4d::Identity()), m_HhatKq(), m_displacementCount(0),
-      m_nbFeatures(0), m_s(), m_M(), m_M0(), m_hasPoint(), m_J(), m_e(), m_JtJ(), m_Jte(), m_errorNorm(0.0),
-      m_nbActive(0)
+    : m_q(), m_H(Eigen::Matrix4d::Identity()), m_Hinv(Eigen::Matrix4d::Identity()), m_HhatKq(), m_Hhat(), m_Hhat2(),
+      m_nbGenerators(0), m_displacementCount(0), m_nbFeatures(0), m_s(), m_M(), m_M0(), m_hasPoint(), m_J(), m_e(),
+      m_JtJ(), m_Jte(), m_errorNorm(0.0), m_nbActive(0)
 {
 }
 
@@ -79,7 +79,17 @@ void vpServoProjectiveData::computeKinematics(const vpProjectiveArmModel &model,
 {
   m_q = q;
   m_displacementCount = 0;
-  jointMotionsAndDisplacement(model, q, m_HhatKq, m_H, m_Hinv); // the iteration's only H(q), with the joint motions
+  // The squares of the generators (constants of the model, recomputed only when a generator differs from the one
+  // they were computed from: any model, any change of it).
+  const unsigned int n = model.getNumberOfJoints();
+  for (unsigned int i = 0; i < n; ++i) {
+    if (i >= m_nbGenerators || !(model.generator(i) == m_Hhat[i])) {
+      m_Hhat[i] = model.generator(i);
+      m_Hhat2[i].noalias() = m_Hhat[i] * m_Hhat[i];
+    }
+  }
+  m_nbGenerators = n;
+  jointMotionsAndDisplacement(model, q, m_Hhat2, m_HhatKq, m_H, m_Hinv); // the iteration's only H(q), and the motions
   ++m_displacementCount;
   if (m_s.size() != features) { // allocates only when the number of features changes
     m_s.resize(features);

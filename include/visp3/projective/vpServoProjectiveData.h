@@ -125,6 +125,9 @@ private:
   Eigen::Matrix4d m_H;
   Eigen::Matrix4d m_Hinv;
   Eigen::Matrix4d m_HhatKq[vpProjectiveArmModel::maxJoints];
+  Eigen::Matrix4d m_Hhat[vpProjectiveArmModel::maxJoints];  // the generators that m_Hhat2 was computed from
+  Eigen::Matrix4d m_Hhat2[vpProjectiveArmModel::maxJoints]; // their squares
+  unsigned int m_nbGenerators;
   unsigned int m_displacementCount;
   unsigned int m_nbFeatures;
   std::vector<Eigen::Vector4d> m_s, m_M, m_M0;
