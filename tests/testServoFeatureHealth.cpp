@@ -23,8 +23,8 @@
   - the memory exists only with outlier rejection on, and only from the second acceptance on;
   - an iteration interrupted before endIteration() changes neither the outcome nor the memories: a later iteration
     gives the same bits as in a twin that never saw it;
-  - classify() gives the linearly triangulated point of an active feature, nothing otherwise; endIteration() refuses
-    an iteration that left a feature unclassified;
+  - the iteration's data (vpServoProjectiveData) gives the linearly triangulated point of every feature;
+    endIteration() refuses an iteration that left a feature unclassified;
   - misuse throws a vpProjectiveException naming what was wrong; failed setters change nothing.
 */
 
@@ -40,6 +40,7 @@
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpServoFeatureHealth.h>
+#include <visp3/projective/vpServoProjectiveData.h>
 
 #include "vpProjectiveArmTestTools.h"
 
@@ -62,17 +63,30 @@ vpProjectiveRobot::JointVector toJoints(const vpColVector &q)
   return qe;
 }
 
-//! One iteration at q on the given images; checks the point given for every active feature.
+//! The data of one iteration at q on the given images (what vpServoProjective computes once per iteration).
+const vpServoProjectiveData &dataAt(const vpProjectiveRobot &robot, const vpColVector &q,
+                                    const std::vector<Eigen::Vector4d> &s)
+{
+  static vpServoProjectiveData data;
+  data.computeKinematics(robot.getModel(), toJoints(q), static_cast<unsigned int>(s.size()));
+  for (unsigned int i = 0; i < s.size(); ++i) {
+    data.computeFeature(robot.getModel(), i, s[i]);
+  }
+  return data;
+}
+
+//! One iteration at q on the given images; checks the point of every finite feature.
 void iterate(H &health, const vpProjectiveRobot &robot, const vpColVector &q, const std::vector<Eigen::Vector4d> &s,
              const std::vector<Eigen::Vector4d> &sStar)
 {
-  health.startIteration(robot, toJoints(q));
+  const vpServoProjectiveData &data = dataAt(robot, q, s);
+  health.startIteration(robot.getModel(), data);
   for (unsigned int i = 0; i < s.size(); ++i) {
-    Eigen::Vector4d M = Eigen::Vector4d::Zero();
-    if (health.classify(i, s[i], sStar[i], M) == H::FEATURE_ACTIVE) {
-      EXPECT_EQ(M, robot.getStereoRig().triangulateLinear(s[i].head<2>(), s[i].tail<2>())) << "feature " << i;
-    } else {
-      EXPECT_EQ(M, Eigen::Vector4d::Zero()) << "feature " << i;
+    health.classify(i, sStar[i]);
+    ASSERT_EQ(data.hasPoint(i), s[i].allFinite()) << "feature " << i;
+    if (data.hasPoint(i)) {
+      EXPECT_EQ(data.getPoint(i), robot.getStereoRig().triangulateLinear(s[i].head<2>(), s[i].tail<2>()))
+          << "feature " << i;
     }
   }
   health.endIteration();
@@ -283,10 +297,10 @@ TEST(ServoFeatureHealth, InterruptedIterationChangesNothing)
   // An iteration at q2 that classifies every feature (with the images of other markers: other memories) but never
   // ends.
   interrupted.setFeatureTracked(2, false);
-  interrupted.startIteration(robot, toJoints(q2));
+  const std::vector<Eigen::Vector4d> s2Swapped = {s2[3], s2[2], s2[1], s2[0]};
+  interrupted.startIteration(robot.getModel(), dataAt(robot, q2, s2Swapped));
   for (unsigned int k = 0; k < 4; ++k) {
-    Eigen::Vector4d M;
-    interrupted.classify(k, s2[3 - k], s1[k], M);
+    interrupted.classify(k, s1[k]);
   }
   EXPECT_EQ(interrupted.getFeatureState(2), H::FEATURE_ACTIVE); // still the outcome at q1
   interrupted.setFeatureTracked(2, true);
@@ -320,19 +334,18 @@ TEST(ServoFeatureHealth, MisuseThrowsAndChangesNothing)
   health.addFeature();
   health.addFeature();
   // Outside an iteration.
-  Eigen::Vector4d M;
-  EXPECT_TRUE(throwsProjective([&] { health.classify(0, s, s, M); }, notInit, "call startIteration() first"));
+  EXPECT_TRUE(throwsProjective([&] { health.classify(0, s); }, notInit, "call startIteration() first"));
   EXPECT_TRUE(throwsProjective([&] { health.endIteration(); }, notInit, "no iteration in progress"));
   // Indices.
-  health.startIteration(robot, toJoints(vpColVector(6, 0.0)));
-  EXPECT_TRUE(throwsProjective([&] { health.classify(2, s, s, M); }, dim, "feature index 2 is out of range"));
-  EXPECT_TRUE(throwsProjective([&] { health.classify(5, s, s, M); }, dim, "the task has 2 features"));
+  health.startIteration(robot.getModel(), dataAt(robot, vpColVector(6, 0.0), {s, s}));
+  EXPECT_TRUE(throwsProjective([&] { health.classify(2, s); }, dim, "feature index 2 is out of range"));
+  EXPECT_TRUE(throwsProjective([&] { health.classify(5, s); }, dim, "the task has 2 features"));
   // Every feature classified before the end: once one is missing, the iteration stays open.
   health.setFeatureTracked(1, false);
-  health.classify(1, s, s, M);
+  health.classify(1, s);
   EXPECT_TRUE(throwsProjective([&] { health.endIteration(); }, notInit, "only 1 of the 2 features were classified"));
-  health.classify(0, s, s, M);
-  health.classify(0, s, s, M); // twice: the second outcome counts once
+  health.classify(0, s);
+  health.classify(0, s); // twice: the second outcome counts once
   EXPECT_NO_THROW(health.endIteration());
   EXPECT_EQ(health.getNumberOfActiveFeatures(), 1u);
   EXPECT_EQ(health.getFeatureState(1), H::FEATURE_NOT_TRACKED);

@@ -13,6 +13,8 @@
 
 #include <visp3/projective/vpProjectiveRobot.h>
 
+#include <algorithm>
+
 #include <limits>
 #include <sstream>
 
@@ -33,8 +35,36 @@ const vpErrorSite at("vpProjectiveRobot");
 vpProjectiveRobot::vpProjectiveRobot()
     : m_acquisition(), m_model(), m_calibrated(false), m_residual(0.0), m_algebraicResidual(0.0), m_rigJoints(),
       m_rigImages(), m_rigMode(vpProjectiveRigRegistration::FIXED_INTRINSICS), m_rigResidual(0.0), m_rigGeneration(0),
-      m_modelGeneration(0)
+      m_modelGeneration(0), m_listeners()
 {
+}
+
+vpProjectiveRobot::vpListeners::~vpListeners()
+{
+  const std::vector<vpListener *> listeners = list; // a listener may detach itself
+  for (vpListener *l : listeners) {
+    l->robotDestroyed();
+  }
+}
+
+void vpProjectiveRobot::vpListeners::notify(bool rigOnly) const
+{
+  for (vpListener *l : list) {
+    l->robotModelChanged(rigOnly);
+  }
+}
+
+void vpProjectiveRobot::attach(vpListener &listener) const
+{
+  if (std::find(m_listeners.list.begin(), m_listeners.list.end(), &listener) == m_listeners.list.end()) {
+    m_listeners.list.push_back(&listener);
+  }
+}
+
+void vpProjectiveRobot::detach(vpListener &listener) const
+{
+  m_listeners.list.erase(std::remove(m_listeners.list.begin(), m_listeners.list.end(), &listener),
+                         m_listeners.list.end());
 }
 
 vpProjectiveRobot::vpProjectiveRobot(const std::vector<vpJointType> &joints) : vpProjectiveRobot()
@@ -122,6 +152,7 @@ void vpProjectiveRobot::adopt(const vpProjectiveArmAcquisition &acquisition, con
   m_rigImages.clear();
   m_rigGeneration = 0;
   ++m_modelGeneration;
+  m_listeners.notify(false); // the tasks on this robot take their desired features anew
 }
 
 void vpProjectiveRobot::setOutlierThreshold(double pixels)
@@ -461,4 +492,5 @@ void vpProjectiveRobot::updateRig()
   m_rigJoints.clear();
   m_rigImages.clear();
   ++m_rigGeneration;
+  m_listeners.notify(true); // the tasks on this robot re-express their desired features in the new rig
 }

@@ -57,7 +57,7 @@ double lineDistance(double residual, const Eigen::Vector3d &l)
 vpServoFeatureHealth::vpServoFeatureHealth()
     : m_tracked(), m_records(), m_work(), m_nbActive(0), m_width(0), m_height(0), m_border(0.0),
       m_outlierThreshold(0.0), m_iteration(0), m_classified(0), m_workActive(0), m_inIteration(false), m_predict(false),
-      m_rig(nullptr), m_H(Eigen::Matrix4d::Identity()), m_Hlu()
+      m_model(nullptr), m_data(nullptr)
 {
 }
 
@@ -135,18 +135,14 @@ void vpServoFeatureHealth::setOutlierThreshold(double pixels)
       nonNegative(pixels, at("setOutlierThreshold()"), "the outlier threshold", "pixels; 0 disables the rejection");
 }
 
-void vpServoFeatureHealth::startIteration(const vpProjectiveRobot &robot, const vpProjectiveRobot::JointVector &q)
+void vpServoFeatureHealth::startIteration(const vpProjectiveArmModel &model, const vpServoProjectiveData &data)
 {
   ++m_iteration;
   m_classified = 0;
   m_workActive = 0;
-  m_rig = &robot.getStereoRig();
-  // Outlier rejection predicts each feature from its last acceptance: H(q) and its LU, for M(0) = H(q)^-1 M.
+  m_model = &model;
+  m_data = &data; // H(q), its LU and the features' points: computed once for the whole servo
   m_predict = m_outlierThreshold > 0.0;
-  if (m_predict) {
-    m_H = robot.displacement(q);
-    m_Hlu.compute(m_H);
-  }
   m_inIteration = true;
 }
 
@@ -154,7 +150,8 @@ void vpServoFeatureHealth::startIteration(const vpProjectiveRobot &robot, const 
 inline vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::outlierTest(const Eigen::Vector4d &s,
                                                                               vpRecord &record) const
 {
-  const Eigen::Matrix3d &F = m_rig->fundamentalMatrix();
+  const vpProjectiveStereoRig &rig = m_model->getStereoRig();
+  const Eigen::Matrix3d &F = rig.fundamentalMatrix();
   const Eigen::Vector3d m(s(0), s(1), 1.0);
   const Eigen::Vector3d mp(s(2), s(3), 1.0);
   const Eigen::Vector3d lp = F * m;             // epipolar line of m in the right image
@@ -167,7 +164,7 @@ inline vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::outlierTest(co
   }
   if (m_predict && record.hasM0) {
     Eigen::Vector4d sHat;
-    if (m_rig->project(m_H * record.M0, sHat)) {
+    if (rig.project(m_data->getDisplacement() * record.M0, sHat)) {
       const double dP = std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm());
       record.predictionDistance = dP;
       if (!(dP <= m_outlierThreshold)) {
@@ -178,11 +175,11 @@ inline vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::outlierTest(co
   return FEATURE_ACTIVE;
 }
 
-vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::classify(unsigned int i, const Eigen::Vector4d &s,
-                                                                    const Eigen::Vector4d &sStar, Eigen::Vector4d &M)
+vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::classify(unsigned int i, const Eigen::Vector4d &sStar)
 {
   checkIteration("classify()");
   checkIndex(i, "classify()");
+  const Eigen::Vector4d &s = m_data->getFeature(i);
   vpRecord &record = m_work[i];
   if (record.iteration != m_iteration) {
     record.iteration = m_iteration;
@@ -214,9 +211,8 @@ vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::classify(unsigned int
   }
   if (record.state == FEATURE_ACTIVE) {
     ++m_workActive;
-    M = m_rig->triangulateLinear(s.head<2>(), s.tail<2>());
     if (m_predict) {
-      record.M0 = m_Hlu.solve(M).normalized(); // H(q_l)^-1 M_l, for the next predictions
+      record.M0 = m_data->getZeroPoint(i); // H(q_l)^-1 M_l, for the next predictions
       record.hasM0 = true;
     }
   }
@@ -235,7 +231,8 @@ void vpServoFeatureHealth::endIteration()
   m_records.swap(m_work); // no allocation
   m_nbActive = m_workActive;
   m_inIteration = false;
-  m_rig = nullptr;
+  m_model = nullptr;
+  m_data = nullptr;
 }
 
 vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::getFeatureState(unsigned int i) const

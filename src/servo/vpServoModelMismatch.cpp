@@ -26,7 +26,7 @@ using namespace vpProjectiveInternal;
 
 vpServoModelMismatch::vpServoModelMismatch()
     : m_records(), m_threshold(5.0), m_iterations(2), m_disagreeing(0), m_mismatch(false), m_model(nullptr),
-      m_H(Eigen::Matrix4d::Identity()), m_Hlu(Eigen::Matrix4d::Identity())
+      m_data(nullptr)
 {
 }
 
@@ -66,28 +66,33 @@ void vpServoModelMismatch::reset()
   m_mismatch = false;
 }
 
-void vpServoModelMismatch::startIteration(const vpProjectiveArmModel &model, const vpProjectiveArmModel::JointVector &q)
+void vpServoModelMismatch::startIteration(const vpProjectiveArmModel &model, const vpServoProjectiveData &data)
 {
   m_model = &model;
-  m_H = model.displacement(q);
-  m_Hlu.compute(m_H);
+  m_data = &data; // H(q) and the features' points at the zero reference: computed once for the whole servo
 }
 
-void vpServoModelMismatch::observe(unsigned int i, const Eigen::Vector4d &s, bool usable)
+void vpServoModelMismatch::observe(unsigned int i, bool usable)
 {
   vpRecord &r = m_records[i];
+  const Eigen::Vector4d &s = m_data->getFeature(i);
   r.s = s;
   r.usable = usable && s.allFinite();
   r.distance = -1.0;
   if (!r.usable || !r.hasMemory || m_model == nullptr) {
     return;
   }
-  // The smaller of the distances to the absolute and the recent predictions (each the larger over both images).
-  for (const Eigen::Vector4d &M : {Eigen::Vector4d(r.sum.normalized()), r.recent}) {
+  // The recent prediction first (it follows the model's drift): within the threshold the feature agrees, and the
+  // absolute prediction is not needed; otherwise the smaller of both distances (each the larger over both images).
+  const Eigen::Vector4d memories[2] = {r.recent, r.sum.normalized()};
+  for (const Eigen::Vector4d &M : memories) {
     Eigen::Vector4d sHat;
-    if (m_model->getStereoRig().project(m_H * M, sHat)) {
+    if (m_model->getStereoRig().project(m_data->getDisplacement() * M, sHat)) {
       const double d = std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm());
       r.distance = r.distance < 0.0 ? d : std::min(r.distance, d);
+    }
+    if (r.distance >= 0.0 && r.distance <= m_threshold) {
+      break;
     }
   }
 }
@@ -107,12 +112,12 @@ bool vpServoModelMismatch::endIteration()
   m_disagreeing = disagrees ? m_disagreeing + 1 : 0;
   m_mismatch = m_disagreeing >= m_iterations;
   if (!disagrees && m_model != nullptr) {
-    const vpProjectiveStereoRig &rig = m_model->getStereoRig();
-    for (vpRecord &r : m_records) {
+    for (size_t i = 0; i < m_records.size(); ++i) {
+      vpRecord &r = m_records[i];
       if (!r.usable || (r.hasMemory && (r.distance < 0.0 || r.distance > m_threshold))) {
         continue;
       }
-      const Eigen::Vector4d M = m_Hlu.solve(rig.triangulateLinear(r.s.head<2>(), r.s.tail<2>())).normalized();
+      const Eigen::Vector4d &M = m_data->getZeroPoint(static_cast<unsigned int>(i)); // H(q)^-1 M, unit norm
       if (!M.allFinite()) {
         continue;
       }
@@ -122,7 +127,7 @@ bool vpServoModelMismatch::endIteration()
       }
       // A feature that is an acquired marker is remembered as that marker's point: one stereo pair's depth error,
       // turned sideways by a large motion, would otherwise exceed the threshold for every feature of a 3-point task.
-      const int j = m_model->matchMarker(m_H, r.s);
+      const int j = m_model->matchMarker(m_data->getDisplacement(), r.s);
       if (j >= 0) {
         r.sum = m_model->markers()[static_cast<size_t>(j)].normalized();
         r.hasMemory = r.exact = true;
@@ -133,5 +138,6 @@ bool vpServoModelMismatch::endIteration()
     }
   }
   m_model = nullptr;
+  m_data = nullptr;
   return m_mismatch;
 }

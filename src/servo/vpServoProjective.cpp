@@ -93,209 +93,13 @@ double vpServoProjective::taskGain(const vpAdaptiveGain &lambda, vpGainInput inp
 }
 
 vpServoProjective::vpServoProjective()
-    : m_robot(nullptr), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(),
-      m_jointLimits(), m_mismatch(), m_targets(), m_mismatchRigGeneration(0), m_mismatchModelGeneration(0),
-      m_mismatchRobot(nullptr), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
+    : m_link(), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(), m_jointLimits(),
+      m_mismatch(), m_targets(), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
       m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
       m_replanFailed(false), m_followGain(1.0), m_period(1.0), m_qdotMax(0.0), m_gainInput(GAIN_INPUT_ERROR),
       m_errorUnit(ERROR_PIXELS), m_focalLength(0.0), m_errorScale(1.0), m_q(), m_qFresh(false), m_settling(),
       m_targetGeneration(0)
 {
-}
-
-namespace
-{
-//! The mean focal length sqrt(px py) (pixels) of the two cameras of the model's metric self-calibration.
-double estimatedFocalLength(const vpProjectiveRobot &robot, const std::string &where)
-{
-  vpMatrix Kl, Kr;
-  vpHomogeneousMatrix lMr;
-  try {
-    robot.getMetricStereoRig(Kl, Kr, lMr);
-  } catch (const vpException &e) {
-    fail(vpProjectiveException::estimationFailedError, where,
-         std::string("the model's metric self-calibration gives no focal length (") + e.getStringMessage() +
-             "); give it: setErrorUnit(ERROR_NORMALIZED, f) with f in pixels");
-  }
-  const double fl = std::sqrt(std::abs(Kl[0][0] * Kl[1][1])), fr = std::sqrt(std::abs(Kr[0][0] * Kr[1][1]));
-  const double f = 0.5 * (fl + fr);
-  if (!std::isfinite(f) || !(f > 0.0)) {
-    fail(vpProjectiveException::estimationFailedError, where,
-         "the model's metric self-calibration gives no finite focal length; give it: setErrorUnit(ERROR_NORMALIZED, "
-         "f) with f in pixels");
-  }
-  return f;
-}
-} // namespace
-
-void vpServoProjective::setAdaptiveGainInput(vpGainInput input)
-{
-  if (input != GAIN_INPUT_ERROR && input != GAIN_INPUT_JOINT_VELOCITY) {
-    fail(vpProjectiveException::invalidValueError, at("setAdaptiveGainInput()"),
-         "unknown input; use GAIN_INPUT_ERROR or GAIN_INPUT_JOINT_VELOCITY");
-  }
-  m_gainInput = input;
-}
-
-void vpServoProjective::setErrorUnit(vpErrorUnit unit, double focalLength)
-{
-  const std::string where = at("setErrorUnit()");
-  requireFinite(focalLength, where, "the focal length");
-  if (focalLength < 0.0) {
-    fail(vpProjectiveException::invalidValueError, where,
-         "the focal length must be positive (pixels), or 0 to estimate it from the model");
-  }
-  if (unit != ERROR_PIXELS && unit != ERROR_NORMALIZED) {
-    fail(vpProjectiveException::invalidValueError, where, "unknown unit; use ERROR_PIXELS or ERROR_NORMALIZED");
-  }
-  double scale = 1.0;
-  if (unit == ERROR_NORMALIZED) {
-    scale = focalLength;
-    if (focalLength == 0.0 && m_robot != nullptr) {
-      scale = estimatedFocalLength(*m_robot, where);
-    }
-  }
-  m_errorUnit = unit;
-  m_focalLength = focalLength;
-  m_errorScale = scale; // 0 until setRobot() estimates it
-}
-
-void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
-{
-  if (!robot.isCalibrated()) {
-    fail(vpProjectiveException::notInitializedError, at("setRobot()"),
-         "the robot model is not acquired; call calibrate() or loadModel() on it first");
-  }
-  if (m_errorUnit == ERROR_NORMALIZED && m_focalLength == 0.0) {
-    m_errorScale = estimatedFocalLength(robot, at("setRobot()")); // before anything changes
-  }
-  m_robot = &robot;
-  for (vpTarget &t : m_targets) {
-    t.valid = false; // another robot's frame: take the user's s* anew
-  }
-}
-
-void vpServoProjective::setLambda(double lambda)
-{
-  const std::string where = at("setLambda()");
-  requireFinite(lambda, where, "the gain");
-  if (!(lambda > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, where, "the gain must be positive");
-  }
-  m_lambda.initFromConstant(lambda);
-}
-
-void vpServoProjective::setLambda(const vpAdaptiveGain &lambda)
-{
-  m_lambda = lambda;
-}
-
-void vpServoProjective::setLambda(double gainAtZero, double gainAtInfinity, double slopeAtZero)
-{
-  const std::string where = at("setLambda()");
-  requireFinite(gainAtZero, where, "the gain at zero");
-  requireFinite(gainAtInfinity, where, "the gain at infinity");
-  requireFinite(slopeAtZero, where, "the slope at zero");
-  if (!(gainAtZero > 0.0) || !(gainAtInfinity > 0.0) || !(gainAtZero >= gainAtInfinity) || slopeAtZero < 0.0) {
-    fail(vpProjectiveException::invalidValueError, where,
-         "an adaptive gain needs gainAtZero >= gainAtInfinity > 0 and a non-negative slope");
-  }
-  m_lambda.initStandard(gainAtZero, gainAtInfinity, slopeAtZero);
-}
-
-void vpServoProjective::setDamping(double sigmaThreshold, double maxDamping)
-{
-  m_law.setDamping(sigmaThreshold, maxDamping);
-}
-
-void vpServoProjective::setMaxJointVelocity(double qdotMax)
-{
-  m_law.setMaxJointVelocity(qdotMax * m_period); // throws on a bad value, before anything changes
-  m_qdotMax = qdotMax;
-}
-
-void vpServoProjective::setControlPeriod(double seconds)
-{
-  if (!std::isfinite(seconds) || !(seconds > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, at("setControlPeriod()"),
-         "the control period is the time between two calls of computeControlLaw(), in seconds: positive and finite");
-  }
-  // Inside, the law works per call (a joint step, as the planner's paths and rehearsals do); the user's gain and
-  // saturation are per second.
-  m_law.setMaxJointVelocity(m_qdotMax * seconds);
-  m_period = seconds;
-}
-
-void vpServoProjective::setPseudoInverseThreshold(double threshold)
-{
-  m_law.setPseudoInverseThreshold(threshold);
-}
-
-void vpServoProjective::setRankTolerance(double tolerance)
-{
-  const std::string where = at("setRankTolerance()");
-  requireFinite(tolerance, where, "the rank tolerance");
-  if (!(tolerance > 0.0) || !(tolerance < 1.0)) {
-    fail(vpProjectiveException::invalidValueError, where,
-         "the rank tolerance is a ratio of singular values and must be in (0, 1), e.g. 1e-6");
-  }
-  m_rankTolerance = tolerance;
-}
-
-void vpServoProjective::setImageSize(unsigned int width, unsigned int height, double border)
-{
-  m_health.setImageSize(width, height, border);
-}
-
-void vpServoProjective::checkFeatureIndex(unsigned int i, const char *method) const
-{
-  if (i >= m_features.size()) {
-    std::ostringstream os;
-    os << "feature index " << i << " is out of range; the task has " << m_features.size()
-       << " features (indices in addFeature() order, from 0)";
-    fail(vpProjectiveException::dimensionError, at(method), os.str());
-  }
-}
-
-void vpServoProjective::setFeatureTracked(unsigned int i, bool tracked)
-{
-  checkFeatureIndex(i, "setFeatureTracked()");
-  m_health.setFeatureTracked(i, tracked);
-}
-
-bool vpServoProjective::isFeatureTracked(unsigned int i) const
-{
-  checkFeatureIndex(i, "isFeatureTracked()");
-  return m_health.isFeatureTracked(i);
-}
-
-void vpServoProjective::setOutlierThreshold(double pixels)
-{
-  m_health.setOutlierThreshold(pixels);
-}
-
-void vpServoProjective::setJointLimits(const vpColVector &qmin, const vpColVector &qmax, double rho, double rho1,
-                                       double lambdaTune)
-{
-  vpServoJointLimitAvoidance limits = m_jointLimits; // validated aside: a failed call changes nothing
-  limits.setJointLimits(qmin, qmax, rho, rho1, lambdaTune);
-  if (m_robot != nullptr && limits.getNumberOfJoints() != m_robot->getNumberOfJoints()) {
-    std::ostringstream os;
-    os << "qmin and qmax have " << limits.getNumberOfJoints() << " entries but the robot has "
-       << m_robot->getNumberOfJoints() << " joints";
-    fail(vpProjectiveException::dimensionError, at("setJointLimits()"), os.str());
-  }
-  m_jointLimits = limits;
-}
-
-void vpServoProjective::setLargeProjectionThresholds(double e0, double e1)
-{
-  m_jointLimits.setLargeProjectionThresholds(e0, e1);
-}
-
-void vpServoProjective::clearJointLimits()
-{
-  m_jointLimits.clearJointLimits();
 }
 
 void vpServoProjective::addFeature(vpFeatureStereoPoint &s, vpFeatureStereoPoint &s_star)
@@ -319,7 +123,7 @@ void vpServoProjective::clearFeatures()
   m_plannedFor.clear();
   m_following = false;
   m_iterations[m_lastIteration].status = SERVO_RUNNING;
-  m_iterations[m_lastIteration].nbActive = 0;
+  m_iterations[m_lastIteration].data.m_nbActive = 0;
 }
 
 vpServoProjective::vpFeatureState vpServoProjective::getFeatureState(unsigned int i) const
@@ -342,16 +146,16 @@ double vpServoProjective::getPredictionDistance(unsigned int i) const
 
 inline void vpServoProjective::check(const char *method) const
 {
-  if (m_robot == nullptr) {
+  if (m_link.robot == nullptr) {
     fail(vpProjectiveException::notInitializedError, at(method), "no robot model; call setRobot() first");
   }
   if (m_features.empty()) {
     fail(vpProjectiveException::notInitializedError, at(method), "no feature; call addFeature(s, s_star) first");
   }
-  if (4 * m_features.size() < m_robot->getNumberOfJoints()) {
+  if (4 * m_features.size() < m_link.robot->getNumberOfJoints()) {
     std::ostringstream os;
     os << m_features.size() << " stereo points give " << 4 * m_features.size() << " equations for "
-       << m_robot->getNumberOfJoints() << " joints; add features";
+       << m_link.robot->getNumberOfJoints() << " joints; add features";
     fail(vpProjectiveException::notEnoughPointsError, at(method), os.str());
   }
 }
@@ -361,7 +165,7 @@ inline void vpServoProjective::check(const char *method) const
 inline void vpServoProjective::checkJoints(const JointVector &q, const char *method) const
 {
   check(method);
-  const Eigen::Index n = static_cast<Eigen::Index>(m_robot->getNumberOfJoints());
+  const Eigen::Index n = static_cast<Eigen::Index>(m_link.robot->getNumberOfJoints());
   if (q.size() != n) {
     std::ostringstream os;
     os << "q must have " << n << " entries, got " << q.size();
@@ -378,43 +182,52 @@ inline void vpServoProjective::checkJoints(const JointVector &q, const char *met
   }
 }
 
+inline void vpServoProjective::computeData(const JointVector &q, vpServoProjectiveData &data) const
+{
+  // Once per iteration: H(q), its LU, the joint motions, each feature's point; every part reads them.
+  const vpProjectiveArmModel &model = m_link.robot->getModel();
+  const unsigned int N = static_cast<unsigned int>(m_features.size());
+  data.computeKinematics(model, q, N);
+  for (unsigned int i = 0; i < N; ++i) {
+    data.computeFeature(model, i, m_features[i]->getFeature());
+  }
+}
+
 inline void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, const char *method)
 {
   // Task Jacobian, eq. (46) stacked over the active points, at the current q and triangulated points; the rows of
   // the features set aside are zero.
+  vpServoProjectiveData &d = it.data;
+  const vpProjectiveArmModel &model = m_link.robot->getModel();
   const Eigen::Index n = q.size();
   const Eigen::Index rows = 4 * static_cast<Eigen::Index>(m_features.size());
-  if (it.J.rows() != rows || it.J.cols() != n) {
-    it.J.resize(rows, n);
-    it.e.resize(rows);
+  if (d.m_J.rows() != rows || d.m_J.cols() != n) {
+    d.m_J.resize(rows, n);
+    d.m_e.resize(rows);
   }
-  Eigen::Matrix4d HhatKq[vpProjectiveRobot::maxJoints];
-  m_robot->jointMotions(q, HhatKq);
-  m_health.startIteration(*m_robot, q);
+  m_health.startIteration(model, d);
   vpProjectiveRobot::PointJacobian Ji;
   unsigned int active = 0;
   for (unsigned int i = 0; i < m_features.size(); ++i) {
-    const Eigen::Vector4d s = m_features[i]->getFeature();
     const Eigen::Vector4d sStar = desired(i);
     const Eigen::Index r = 4 * static_cast<Eigen::Index>(i);
-    Eigen::Vector4d M;
-    if (m_health.classify(i, s, sStar, M) != FEATURE_ACTIVE) {
-      it.J.middleRows(r, 4).setZero();
-      it.e.segment<4>(r).setZero();
+    if (m_health.classify(i, sStar) != FEATURE_ACTIVE) {
+      d.m_J.middleRows(r, 4).setZero();
+      d.m_e.segment<4>(r).setZero();
       continue;
     }
-    if (!m_robot->imageJacobian(HhatKq, M, Ji)) {
+    if (!model.imageJacobian(d.getJointMotions(), d.getPoint(i), Ji)) {
       std::ostringstream os;
       os << "feature " << i << " triangulates onto a camera's focal plane; check that it is matched correctly";
       fail(vpProjectiveException::pointAtInfinityError, at(method), os.str());
     }
-    it.J.middleRows(r, 4) = Ji;
-    it.e.segment<4>(r) = s - sStar;
+    d.m_J.middleRows(r, 4) = Ji;
+    d.m_e.segment<4>(r) = d.getFeature(i) - sStar;
     ++active;
   }
-  it.nbActive = active;
-  vpServoDampedLeastSquares::computeNormalEquations(it.J, it.e, it.JtJ, it.Jte);
-  it.errorNorm = it.e.norm() / m_errorScale; // in the unit of setErrorUnit(), for the large projection thresholds
+  d.m_nbActive = active;
+  vpServoDampedLeastSquares::computeNormalEquations(d.m_J, d.m_e, d.m_JtJ, d.m_Jte);
+  d.m_errorNorm = d.m_e.norm() / m_errorScale; // in the unit of setErrorUnit(), for the large projection thresholds
 }
 
 inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vpIteration &it) const
@@ -422,19 +235,19 @@ inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vp
   // With every feature active the task is the user's: a rank loss is left to the damping. With features set aside,
   // the remaining ones must constrain every joint: a stereo point gives at most 3 independent equations, then the
   // scale-aware rank test on J D^-1.
-  if (it.nbActive == m_features.size()) {
+  if (it.data.m_nbActive == m_features.size()) {
     return SERVO_RUNNING;
   }
-  const bool stopped = 3 * static_cast<Eigen::Index>(it.nbActive) < it.JtJ.rows() ||
-                       !(equilibratedSingularValueRatio(it.JtJ, m_rankTolerance) >= m_rankTolerance);
+  const bool stopped = 3 * static_cast<Eigen::Index>(it.data.m_nbActive) < it.data.m_JtJ.rows() ||
+                       !(equilibratedSingularValueRatio(it.data.m_JtJ, m_rankTolerance) >= m_rankTolerance);
   return stopped ? SERVO_STOPPED : SERVO_REDUCED;
 }
 
 inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot)
 {
   m_settling.reset(); // stopped: converge anew before settling
-  qdot.setZero(it.JtJ.rows());
-  it.qdot2.setZero(it.JtJ.rows());
+  qdot.setZero(it.data.m_JtJ.rows());
+  it.qdot2.setZero(it.data.m_JtJ.rows());
   it.lambda = 0.0;
   it.damping = 0.0;
   it.saturated = false;
@@ -446,8 +259,8 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
   // the path's step to the next sample (feedforward) plus the law on the error to the current sample (feedback, with
   // the follower's gain), saturated as a whole.
   it.lambda = m_following ? m_followGain
-                          : m_period * taskGain(m_lambda, m_gainInput, m_errorScale, it.JtJ, it.Jte,
-                                                it.e.cwiseAbs().maxCoeff());
+                          : m_period * taskGain(m_lambda, m_gainInput, m_errorScale, it.data.m_JtJ, it.data.m_Jte,
+                                                it.data.m_e.cwiseAbs().maxCoeff());
   if (m_following) {
     m_settling.reset(); // a path is not a rest: settle on law (47) after it
   } else if (m_settling.isEnabled()) {
@@ -456,9 +269,10 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
     for (unsigned int i = 0; i < m_features.size(); ++i) {
       context = 31 * context + (m_health.getFeatureState(i) == FEATURE_ACTIVE ? i + 1 : 0);
     }
-    it.lambda = m_settling.gain(it.lambda, it.JtJ, it.Jte, it.e.squaredNorm(), 4 * it.nbActive, context);
+    it.lambda = m_settling.gain(it.lambda, it.data.m_JtJ, it.data.m_Jte, it.data.m_e.squaredNorm(),
+                                4 * it.data.m_nbActive, context);
   }
-  m_law.computeVelocity(it.JtJ, it.Jte, it.lambda, qdot);
+  m_law.computeVelocity(it.data.m_JtJ, it.data.m_Jte, it.lambda, qdot);
   if (m_following) {
     // The feedback corrects the model's error, a few pixels: bounded by half a path step, so that near a singular
     // configuration (where its least-squares step is large) it cannot throw the arm off its path.
@@ -469,7 +283,7 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
     qdot += m_planner.getPath()[m_pathSample] - m_planner.getPath()[m_pathSample - 1];
     m_law.saturate(qdot);
   } else if (m_planning) {
-    m_planner.guardStep(m_robot->getModel(), q, qdot); // law (47) toward a planned task: no overshoot
+    m_planner.guardStep(m_link.robot->getModel(), q, qdot); // law (47) toward a planned task: no overshoot
   }
   it.damping = m_law.getDamping();
   it.saturated = m_law.isSaturated();
@@ -489,7 +303,7 @@ inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIt
                        m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
   const JointVector *target =
       m_following ? &m_planner.getPath()[m_pathSample] : (planned ? &m_planner.getTarget() : nullptr);
-  m_jointLimits.computeVelocity(q, qdot, it.JtJ, it.Jte, it.errorNorm, m_law, it.qdot2, target);
+  m_jointLimits.computeVelocity(q, qdot, it.data.m_JtJ, it.data.m_Jte, it.data.m_errorNorm, m_law, it.qdot2, target);
   qdot += it.qdot2;
   if (m_law.saturate(qdot)) {
     it.saturated = true;
@@ -522,11 +336,12 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
   checkJoints(q, method);
   vpIteration &it = m_iterations[1 - m_lastIteration];
   refreshTargets();
-  const bool planned = !m_planning || planIfNeeded(q);
+  computeData(q, it.data);
+  const bool planned = !m_planning || planIfNeeded(q, it.data);
   m_following = m_planning && planned && m_pathSample < m_planner.getPath().size() &&
                 m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
   buildTask(q, it, method);
-  const bool mismatch = detectMismatch(q); // after the last step that may throw
+  const bool mismatch = detectMismatch(it.data); // after the last step that may throw
   it.status = mismatch ? SERVO_MODEL_MISMATCH : (planned ? decideStatus(it) : SERVO_NO_PLAN);
   if (it.status == SERVO_STOPPED || it.status == SERVO_NO_PLAN || it.status == SERVO_MODEL_MISMATCH) {
     stop(it, qdot);
@@ -541,9 +356,9 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
 vpColVector vpServoProjective::computeControlLaw(const vpColVector &q)
 {
   check("computeControlLaw()");
-  if (q.getRows() != m_robot->getNumberOfJoints()) {
+  if (q.getRows() != m_link.robot->getNumberOfJoints()) {
     std::ostringstream os;
-    os << "q must have " << m_robot->getNumberOfJoints() << " entries, got " << q.getRows();
+    os << "q must have " << m_link.robot->getNumberOfJoints() << " entries, got " << q.getRows();
     fail(vpProjectiveException::dimensionError, at("computeControlLaw()"), os.str());
   }
   JointVector qe(q.getRows()), qdot(q.getRows());
@@ -557,9 +372,9 @@ vpColVector vpServoProjective::computeControlLaw(const vpColVector &q)
 void vpServoProjective::setJointPositions(const vpColVector &q)
 {
   const std::string where = at("setJointPositions()");
-  if (m_robot != nullptr && q.getRows() != m_robot->getNumberOfJoints()) {
+  if (m_link.robot != nullptr && q.getRows() != m_link.robot->getNumberOfJoints()) {
     std::ostringstream os;
-    os << "q must have " << m_robot->getNumberOfJoints() << " entries, got " << q.getRows();
+    os << "q must have " << m_link.robot->getNumberOfJoints() << " entries, got " << q.getRows();
     fail(vpProjectiveException::dimensionError, where, os.str());
   }
   const unsigned int maxJoints = vpProjectiveRobot::maxJoints;
@@ -593,46 +408,41 @@ vpColVector vpServoProjective::computeControlLaw()
 
 vpColVector vpServoProjective::getError() const
 {
-  return toVispVector(last().e / m_errorScale);
+  return toVispVector(last().data.m_e / m_errorScale);
 }
 
 vpMatrix vpServoProjective::getTaskJacobian() const
 {
-  return toVisp(last().J / m_errorScale);
+  return toVisp(last().data.m_J / m_errorScale);
 }
 
 vpColVector vpServoProjective::getTaskSingularValues() const
 {
-  if (last().J.size() == 0) {
+  if (last().data.m_J.size() == 0) {
     return vpColVector();
   }
-  return toVispVector(Eigen::JacobiSVD<Eigen::MatrixXd>(last().J / m_errorScale).singularValues());
+  return toVispVector(Eigen::JacobiSVD<Eigen::MatrixXd>(last().data.m_J / m_errorScale).singularValues());
 }
 
 double vpServoProjective::getSingularValueRatio() const
 {
-  return equilibratedSingularValueRatio(last().JtJ, m_rankTolerance);
+  return equilibratedSingularValueRatio(last().data.m_JtJ, m_rankTolerance);
 }
 
 double vpServoProjective::getConditionNumber() const
 {
-  return conditionNumber(last().JtJ);
+  return conditionNumber(last().data.m_JtJ);
 }
 
 vpMatrix vpServoProjective::getLargeProjectionOperator() const
 {
-  if (last().JtJ.rows() == 0) {
+  if (last().data.m_JtJ.rows() == 0) {
     fail(vpProjectiveException::notInitializedError, at("getLargeProjectionOperator()"),
          "no task Jacobian yet; call computeControlLaw() first");
   }
   JointMatrix P;
-  m_jointLimits.computeLargeProjectionOperator(last().JtJ, last().Jte, last().errorNorm, m_law, P);
+  m_jointLimits.computeLargeProjectionOperator(last().data.m_JtJ, last().data.m_Jte, last().data.m_errorNorm, m_law, P);
   return toVisp(P);
-}
-
-void vpServoProjective::setSettling(bool settling)
-{
-  m_settling.setEnabled(settling, m_settling.getHorizon());
 }
 
 vpColVector vpServoProjective::getJointLimitVelocity() const

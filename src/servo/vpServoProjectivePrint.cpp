@@ -79,16 +79,17 @@ template <typename Vector> void printVector(std::ostream &os, const Vector &v)
 void vpServoProjective::print(std::ostream &os) const
 {
   // The sections of vpServo::print(vpServo::ALL), in its order and with its titles, then what only this task has.
-  const bool computed = last().J.rows() == static_cast<Eigen::Index>(getDimension()) && last().J.rows() > 0;
+  const bool computed =
+      last().data.m_J.rows() == static_cast<Eigen::Index>(getDimension()) && last().data.m_J.rows() > 0;
   const char *const unit = m_errorUnit == ERROR_PIXELS ? "pixels" : "normalised: pixels / f";
   os << "Visual servoing task: non-metric stereo (vpServoProjective)\n";
   os << "Type of control law\n";
-  if (m_robot == nullptr) {
+  if (m_link.robot == nullptr) {
     os << "Robot: none (setRobot())\n";
   } else {
-    os << (m_robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "Eye-in-hand" : "Eye-to-hand")
+    os << (m_link.robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "Eye-in-hand" : "Eye-to-hand")
        << " configuration\n";
-    os << "Control in the articular frame: qdot = -lambda J^+ (s - s*), " << m_robot->getNumberOfJoints()
+    os << "Control in the articular frame: qdot = -lambda J^+ (s - s*), " << m_link.robot->getNumberOfJoints()
        << " joints, J from the projective model\n";
   }
   os << "List of visual features : s (" << m_features.size() << " stereo points s = (u, v, u', v') (pixels), task "
@@ -120,14 +121,14 @@ void vpServoProjective::print(std::ostream &os) const
   }
   os << "Task Jacobian J (" << unit << " per joint unit; vpServo's interaction matrix Ls)\n";
   if (computed) {
-    os << toVisp(last().J / m_errorScale) << "\n";
+    os << toVisp(last().data.m_J / m_errorScale) << "\n";
   } else {
     os << "not yet computed\n";
   }
   os << "Error vector (s-s*) (" << unit << ", rows of the features set aside zero)\n";
   if (computed) {
-    os << toVispVector(last().e / m_errorScale).t() << "\n";
-    os << "|e| = " << last().errorNorm << "\n";
+    os << toVispVector(last().data.m_e / m_errorScale).t() << "\n";
+    os << "|e| = " << last().data.m_errorNorm << "\n";
   } else {
     os << "not yet computed (No computeControlLaw() yet)\n";
   }
@@ -140,10 +141,10 @@ void vpServoProjective::print(std::ostream &os) const
   os << "Status and settings\n";
   if (computed) {
     os << "  Status: " << statusName(last().status) << "\n";
-    if (last().status == SERVO_MODEL_MISMATCH && m_robot != nullptr && m_robot->getRigGeneration() == 0) {
+    if (last().status == SERVO_MODEL_MISMATCH && m_link.robot != nullptr && m_link.robot->getRigGeneration() == 0) {
       // No re-registration since the acquisition: the model may never have fit, whatever moved.
       os << "  Model never re-registered since its acquisition: if it never fit, check the rig mounting ("
-         << (m_robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "EYE_IN_HAND" : "EYE_TO_HAND")
+         << (m_link.robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "EYE_IN_HAND" : "EYE_TO_HAND")
          << " now; EYE_IN_HAND when the cameras ride on the arm, vpProjectiveAcquisitionProcedure tells it) and the "
             "markers' order; if the rig moved, re-register it\n";
     }

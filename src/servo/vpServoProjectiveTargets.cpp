@@ -42,64 +42,57 @@ Eigen::Vector4d vpServoProjective::desired(unsigned int i) const
 
 void vpServoProjective::refreshTargets()
 {
-  // The task's copy of s*: the user's value, triangulated once through the rig it was given with; after a
-  // re-registration of the rig (a new rig generation of the same model), that point's image in the new rig.
-  const unsigned long rigGeneration = m_robot->getRigGeneration();
-  const unsigned long modelGeneration = m_robot->getModelGeneration();
-  const vpProjectiveStereoRig &rig = m_robot->getModel().getStereoRig();
+  // The task's copy of s*: the user's value, triangulated once through the rig it was given with; after the robot
+  // told of a re-registered rig (vpRobotLink), that point's image in the new rig; after it told of a new model, the
+  // user's value anew. The features' point memories of the mismatch check belong to one rig of one model.
+  const bool modelChanged = m_link.modelChanged, rigChanged = m_link.rigChanged && !modelChanged;
+  if (modelChanged || rigChanged) {
+    m_mismatch.reset();
+  }
+  const vpProjectiveStereoRig &rig = m_link.robot->getModel().getStereoRig();
   for (size_t i = 0; i < m_targets.size(); ++i) {
     vpTarget &t = m_targets[i];
     const Eigen::Vector4d before = t.effective;
     const bool wasValid = t.valid;
     const Eigen::Vector4d user = m_desired[i]->getFeature();
-    if (!t.valid || t.modelGeneration != modelGeneration || !(user == t.user)) {
+    if (!t.valid || modelChanged || !(user == t.user)) {
       t.user = user;
       t.effective = user;
       t.hasPoint = user.allFinite();
       if (t.hasPoint) {
         t.point = rig.triangulate(user.head<2>(), user.tail<2>());
       }
-      t.rigGeneration = rigGeneration;
-      t.modelGeneration = modelGeneration;
       t.valid = true;
-    } else if (t.rigGeneration != rigGeneration) {
+    } else if (rigChanged) {
       Eigen::Vector4d s;
       if (t.hasPoint && rig.project(t.point, s)) {
         t.effective = s;
       } else {
         t.effective = user; // no point: the user's value, which the health then judges
       }
-      t.rigGeneration = rigGeneration;
     }
     if (!wasValid || !(t.effective == before)) {
       ++m_targetGeneration; // another target: the settling gain converges anew
     }
   }
+  m_link.modelChanged = m_link.rigChanged = false;
 }
 
-bool vpServoProjective::detectMismatch(const JointVector &q)
+bool vpServoProjective::detectMismatch(const vpServoProjectiveData &data)
 {
-  // Memories of the features' points belong to one rig of one model: start anew when either changed.
-  if (m_mismatchRobot != m_robot || m_mismatchRigGeneration != m_robot->getRigGeneration() ||
-      m_mismatchModelGeneration != m_robot->getModelGeneration()) {
-    m_mismatch.reset();
-    m_mismatchRobot = m_robot;
-    m_mismatchRigGeneration = m_robot->getRigGeneration();
-    m_mismatchModelGeneration = m_robot->getModelGeneration();
-  }
   if (m_mismatch.getThreshold() == 0.0) {
-    return false; // detection off: no prediction, no memory to keep (H(q), one triangulation per feature)
+    return false; // detection off: no memory to keep
   }
   const double w = m_health.getImageWidth(), h = m_health.getImageHeight(), b = m_health.getImageBorder();
-  m_mismatch.startIteration(m_robot->getModel(), q);
+  m_mismatch.startIteration(m_link.robot->getModel(), data);
   for (unsigned int i = 0; i < m_features.size(); ++i) {
-    const Eigen::Vector4d s = m_features[i]->getFeature();
-    bool usable = m_health.isFeatureTracked(i) && s.allFinite();
+    const Eigen::Vector4d &s = data.getFeature(i);
+    bool usable = m_health.isFeatureTracked(i) && data.hasPoint(i);
     if (usable && w > 0.0) {
       usable = s(0) >= b && s(0) <= w - 1.0 - b && s(1) >= b && s(1) <= h - 1.0 - b && s(2) >= b &&
                s(2) <= w - 1.0 - b && s(3) >= b && s(3) <= h - 1.0 - b;
     }
-    m_mismatch.observe(i, s, usable);
+    m_mismatch.observe(i, usable);
   }
   return m_mismatch.endIteration();
 }
@@ -121,7 +114,7 @@ namespace
 const unsigned int kMaxReplans = 2;
 } // namespace
 
-bool vpServoProjective::planIfNeeded(const JointVector &q)
+bool vpServoProjective::planIfNeeded(const JointVector &q, const vpServoProjectiveData &data)
 {
   // Plan once per target: again only when a desired feature changed.
   bool changed = m_plannedFor.size() != m_desired.size();
@@ -143,7 +136,8 @@ bool vpServoProjective::planIfNeeded(const JointVector &q)
     m_lawLeftRehearsal = false;
   } else if (m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND && m_replans <= kMaxReplans) {
     const vpIteration &it = last();
-    const double rms = it.e.size() > 0 ? it.errorNorm / std::sqrt(static_cast<double>(it.e.size())) : 0.0;
+    const double rms =
+        it.data.m_e.size() > 0 ? it.data.m_errorNorm / std::sqrt(static_cast<double>(it.data.m_e.size())) : 0.0;
     const bool off =
         lawPlan ? m_sincePlan > 2 * (path.size() - 1) + 10 && rms > 2.0 * m_planner.getRehearsalResidual() + 2.0
                 : m_pathSample > 0 && m_pathSample < path.size() &&
@@ -159,11 +153,11 @@ bool vpServoProjective::planIfNeeded(const JointVector &q)
   }
   if (changed || replan) {
     // The features' points, triangulated at q and carried to the zero reference by H(q)^-1.
-    const vpProjectiveArmModel &model = m_robot->getModel();
-    const Eigen::PartialPivLU<Eigen::Matrix4d> H(model.displacement(q));
+    const vpProjectiveArmModel &model = m_link.robot->getModel();
+    const Eigen::PartialPivLU<Eigen::Matrix4d> H(data.getDisplacement()); // this iteration's H(q), once per plan
     std::vector<Eigen::Vector4d> points, sStar;
-    for (size_t i = 0; i < m_features.size(); ++i) {
-      const Eigen::Vector4d s = m_features[i]->getFeature();
+    for (unsigned int i = 0; i < data.getNumberOfFeatures(); ++i) {
+      const Eigen::Vector4d &s = data.getFeature(i);
       if (!s.allFinite()) {
         return false; // a feature lost at planning time: plan at the next call
       }

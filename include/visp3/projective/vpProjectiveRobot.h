@@ -310,8 +310,8 @@ public:
   //! RMS reprojection error per coordinate (pixels) of the last successful updateRig() over its observations.
   double getRigRegistrationResidual() const { return m_rigResidual; }
   /*!
-    Counts the successful updateRig() calls since the model was computed or loaded: a task that saw another
-    generation re-expresses its desired features (see vpServoProjective).
+    Counts the successful updateRig() calls since the model was computed or loaded (the tasks on the robot are told
+    of each through vpListener, see vpServoProjective).
   */
   unsigned long getRigGeneration() const { return m_rigGeneration; }
   /*!
@@ -319,6 +319,28 @@ public:
     task's points of another model are meaningless.
   */
   unsigned long getModelGeneration() const { return m_modelGeneration; }
+
+  /*!
+    What is told to the tasks on this robot (vpServoProjective::setRobot() attaches its task): the model was replaced
+    (calibrate(), loadModel(), an assignment to the robot: \e rigOnly false) or its rig re-registered (updateRig():
+    \e rigOnly true), or the robot is destroyed. The robot calls them from the call that changed it; a listener must
+    not call back into the robot from them. A new model or rig thus reaches a task through this explicit call, not by
+    a task polling getModelGeneration() or getRigGeneration(). attach() and detach() (hence setRobot()) change the
+    robot's list of listeners: not from several threads at once.
+  */
+  class VISP_EXPORT vpListener
+  {
+  public:
+    virtual ~vpListener() = default;
+    //! The model (\e rigOnly false) or only its rig (\e rigOnly true) changed.
+    virtual void robotModelChanged(bool rigOnly) = 0;
+    //! The robot is being destroyed: forget it.
+    virtual void robotDestroyed() = 0;
+  };
+  //! Tells \e listener of every change of the model or rig until detach() (attaching twice attaches once).
+  void attach(vpListener &listener) const;
+  //! Stops telling \e listener (nothing if it was not attached).
+  void detach(vpListener &listener) const;
   //@}
 
   /*! \name Model file (see vpProjectiveModelFile) */
@@ -375,6 +397,22 @@ private:
   double m_rigResidual;
   unsigned long m_rigGeneration;
   unsigned long m_modelGeneration;
+
+  //! The listeners of attach(): a copy of the robot starts with none; an assignment to the robot tells them (it is
+  //! the last member, assigned after the model); the destructor tells them the robot is gone.
+  struct vpListeners {
+    std::vector<vpListener *> list;
+    vpListeners() = default;
+    vpListeners(const vpListeners &) : list() {}
+    vpListeners &operator=(const vpListeners &)
+    {
+      notify(false);
+      return *this;
+    }
+    ~vpListeners();
+    void notify(bool rigOnly) const;
+  };
+  mutable vpListeners m_listeners;
 };
 
 END_VISP_NAMESPACE

@@ -25,10 +25,9 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 
-#include <visp3/projective/vpProjectiveRobot.h>
-#include <visp3/projective/vpProjectiveStereoRig.h>
+#include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpServoProjectiveData.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -59,12 +58,12 @@ BEGIN_VISP_NAMESPACE
   coordinate), so that each iteration needs one \f$ H(q) \f$. The prediction is tested once the feature has been
   accepted at least once.
 
-  <b>One iteration.</b> startIteration() at joints \f$ q \f$, classify() for every feature (which also triangulates
-  the active ones), then endIteration(): only then do the states, distances and memories of the iteration become
-  those that the getters report and the next iteration predicts from. An iteration interrupted
-  between startIteration() and endIteration() (an exception of the caller) leaves the previous outcome as it was.
-  endIteration() sees every feature's state and distances before they become the outcome: a check over the whole
-  iteration or over consecutive ones (a model that no longer predicts any feature) belongs there.
+  <b>One iteration.</b> startIteration() on the iteration's data (vpServoProjectiveData: \f$ H(q) \f$ and the
+  triangulated points, computed once by the servo), classify() for every feature, then endIteration(): only then do the
+  states, distances and memories of the iteration become those that the getters report and the next iteration predicts
+  from. An iteration interrupted between startIteration() and endIteration() (an exception of the caller) leaves the
+  previous outcome as it was. endIteration() sees every feature's state and distances before they become the outcome: a
+  check over the whole iteration or over consecutive ones (a model that no longer predicts any feature) belongs there.
 
   vpServoProjective drives this class; its documentation tells what the servo does with each state.
 */
@@ -136,20 +135,20 @@ public:
   /*! \name One iteration (see the class documentation) */
   //@{
   /*!
-    Starts an iteration at joint values \e q (n x 1, the model's joint values) of \e robot, an acquired model
-    whose rig gives \f$ F \f$ and the projections: with outlier rejection on, computes \f$ H(q) \f$ once for the
-    predictions. No allocation. The robot must outlive the iteration. Sizes are not checked.
+    Starts an iteration on \e data (vpServoProjectiveData: \f$ H(q) \f$, its inverse, the features' values and points,
+    computed once by the caller) of \e model, an acquired model whose rig gives \f$ F \f$ and the projections. No
+    allocation. The model and the data must outlive the iteration. Sizes are not checked.
   */
-  void startIteration(const vpProjectiveRobot &robot, const vpProjectiveRobot::JointVector &q);
+  void startIteration(const vpProjectiveArmModel &model, const vpServoProjectiveData &data);
   /*!
-    State of feature \e i in this iteration, of current value \e s and desired value \e sStar (4x1 each, pixels
-    \f$ (u, v, u', v') \f$); records its distances. For an active feature, \e M (4x1, projective frame of the rig)
-    receives the point linearly triangulated from \e s (vpProjectiveStereoRig::triangulateLinear()), which the
-    iteration remembers as \f$ M_0 = H(q)^{-1} M \f$ (unit norm) for the next predictions; otherwise \e M is not
-    changed. Classifying a feature twice in an iteration keeps the second outcome.
+    State of feature \e i in this iteration, of current value \f$ s_i \f$ (vpServoProjectiveData::getFeature()) and
+    desired value \e sStar (4x1, pixels \f$ (u, v, u', v') \f$); records its distances. An active feature's point
+    (vpServoProjectiveData::getPoint(), linearly triangulated) is remembered as \f$ M_0 = H(q)^{-1} M \f$
+    (vpServoProjectiveData::getZeroPoint()) for the next predictions. Classifying a feature twice in an iteration
+    keeps the second outcome.
     \exception vpProjectiveException (dimensionError, notInitializedError) on a bad index or outside an iteration.
   */
-  vpFeatureState classify(unsigned int i, const Eigen::Vector4d &s, const Eigen::Vector4d &sStar, Eigen::Vector4d &M);
+  vpFeatureState classify(unsigned int i, const Eigen::Vector4d &sStar);
   /*!
     Ends the iteration: its states, distances and memories become the outcome reported by the getters.
     \exception vpProjectiveException (notInitializedError) outside an iteration, or if a feature was not classified
@@ -211,9 +210,8 @@ private:
   unsigned int m_workActive; // of which active
   bool m_inIteration;
   bool m_predict;
-  const vpProjectiveStereoRig *m_rig;
-  Eigen::Matrix4d m_H;
-  Eigen::PartialPivLU<Eigen::Matrix4d> m_Hlu;
+  const vpProjectiveArmModel *m_model;
+  const vpServoProjectiveData *m_data;
 };
 
 END_VISP_NAMESPACE

@@ -24,9 +24,9 @@
 #include <vector>
 
 #include <Eigen/Core>
-#include <Eigen/LU>
 
 #include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpServoProjectiveData.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -53,8 +53,9 @@ BEGIN_VISP_NAMESPACE
   alone would stop a healthy task. So each feature also has a recent memory \f$ \tilde M_i \f$, the sign-aligned
   unit mean of the last memory and the point triangulated at the last iteration where the feature agreed (weights
   1/2, 1/2: a few iterations' average, following the drift), predicted as the image of \f$ H(q) \tilde M_i \f$. A
-  feature disagrees only when both predictions are farther than the threshold: the distance reported is the smaller
-  of the two. A bump is sudden: both memories, frozen from the iteration before it, disagree at once and stay so.
+  feature disagrees only when both predictions are farther than the threshold: the distance reported is the recent
+  prediction's when it is within the threshold (the absolute one is then not computed), else the smaller of the two. A
+  bump is sudden: both memories, frozen from the iteration before it, disagree at once and stay so.
 
   <b>Decision.</b> An iteration disagrees when at least two features have a prediction and every one of them is
   farther than the threshold (setThreshold(), default 5 px: well above the noise of a tracked feature and the
@@ -94,14 +95,15 @@ public:
   unsigned int getNumberOfFeatures() const { return static_cast<unsigned int>(m_records.size()); }
 
   /*!
-    Starts an iteration at joints \e q (n x 1, the model's) of \e model, which must outlive the iteration.
+    Starts an iteration on \e data (vpServoProjectiveData: \f$ H(q) \f$, its inverse, the features' values and points,
+    computed once by the caller) of \e model; both must outlive the iteration.
   */
-  void startIteration(const vpProjectiveArmModel &model, const vpProjectiveArmModel::JointVector &q);
+  void startIteration(const vpProjectiveArmModel &model, const vpServoProjectiveData &data);
   /*!
-    Feature \e i (no index check) of current value \e s (4x1, pixels); \e usable false for a feature that is not
-    tracked, not finite or out of the image (it neither votes nor updates its memory).
+    Feature \e i (no index check) of current value vpServoProjectiveData::getFeature() (4x1, pixels); \e usable false
+    for a feature that is not tracked, not finite or out of the image (it neither votes nor updates its memory).
   */
-  void observe(unsigned int i, const Eigen::Vector4d &s, bool usable);
+  void observe(unsigned int i, bool usable);
   //! Ends the iteration: true if the model mismatches (see the class documentation).
   bool endIteration();
 
@@ -129,8 +131,7 @@ private:
   unsigned int m_disagreeing;
   bool m_mismatch;
   const vpProjectiveArmModel *m_model;
-  Eigen::Matrix4d m_H;
-  Eigen::PartialPivLU<Eigen::Matrix4d> m_Hlu;
+  const vpServoProjectiveData *m_data;
 };
 
 END_VISP_NAMESPACE

@@ -1,0 +1,145 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*!
+  \file vpServoProjectiveData.h
+  \brief What one control iteration of vpServoProjective computes at one configuration, computed once and read by
+  every part of the servo.
+*/
+
+#ifndef _vpServoProjectiveData_h_
+#define _vpServoProjectiveData_h_
+
+#include <visp3/projective/vpProjectiveConfig.h>
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include <visp3/projective/vpProjectiveArmModel.h>
+
+BEGIN_VISP_NAMESPACE
+
+/*!
+  \class vpServoProjectiveData
+  \ingroup group_projective
+  \brief The per-configuration data of a servo iteration, as Pinocchio separates a robot's data from its model: the
+  model (vpProjectiveArmModel, its rig included) is constant and shared, this object holds what one configuration
+  \f$ q \f$ and one set of measured features give, computed once per iteration and read by every part of the servo
+  (the control law, vpServoDampedLeastSquares, vpServoFeatureHealth, vpServoModelMismatch,
+  vpServoJointLimitAvoidance, vpServoSettling, the path following). No part computes \f$ H(q) \f$ or triangulates a
+  feature on its own.
+
+  - computeKinematics(): the joint motions \f$ \hat H_k(q) = A_{k-1} \hat H_k A_{k-1}^{-1} \f$ (4x4 each, eq. (39))
+    that the image Jacobian (46) needs and, from the same joint exponentials, \f$ H(q) \f$ (eq. (34), 4x4) and
+    \f$ H(q)^{-1} \f$, in one pass;
+  - computeFeature(): the feature's value \f$ s_i = (u, v, u', v') \f$ (pixels), and when it is finite its point
+    \f$ M_i \f$ (4x1, projective frame of the rig, linear triangulation) and that point at the zero reference
+    \f$ M_{0,i} = H(q)^{-1} M_i \f$ (4x1, unit norm);
+  - the task: \f$ J \f$ (4N x n, pixels per joint unit; zero rows for features set aside), \f$ e = s - s^* \f$
+    (4N, pixels), \f$ J^T J \f$, \f$ J^T e \f$, filled by vpServoProjective::computeControlLaw().
+
+  vpServoProjective::getData() gives the data of the last successful iteration. No allocation once the sizes are
+  known. getDisplacementCount() counts the \f$ H(q) \f$ computed since the last computeKinematics() (1 after an
+  iteration), so that a test can check that none is computed twice.
+*/
+class VISP_EXPORT vpServoProjectiveData
+{
+public:
+  typedef vpProjectiveArmModel::JointVector JointVector;
+  typedef vpProjectiveArmModel::JointMatrix JointMatrix;
+
+  vpServoProjectiveData();
+
+  /*! \name Computation (the servo's order: kinematics, then each feature) */
+  //@{
+  /*!
+    The joint motions, \f$ H(q) \f$ and \f$ H(q)^{-1} \f$ at \e q (n x 1, the model's joint values: radians or the
+    encoder's length unit) of \e model, for \e features features (their values are then unset until computeFeature()).
+    Sizes are not checked.
+  */
+  void computeKinematics(const vpProjectiveArmModel &model, const JointVector &q, unsigned int features);
+  /*!
+    Feature \e i of value \e s (4x1, pixels): its point \f$ M_i \f$ and \f$ M_{0,i} = H(q)^{-1} M_i \f$ when \e s is
+    finite (hasPoint()). Call after computeKinematics(); \e i is not checked.
+  */
+  void computeFeature(const vpProjectiveArmModel &model, unsigned int i, const Eigen::Vector4d &s);
+  //@}
+
+  /*! \name Kinematics */
+  //@{
+  //! The joint values (n x 1) of the last computeKinematics().
+  const JointVector &getJoints() const { return m_q; }
+  //! \f$ H(q) \f$ (4x4, eq. (34)).
+  const Eigen::Matrix4d &getDisplacement() const { return m_H; }
+  //! \f$ H(q)^{-1} \f$ (4x4), the product of the joint exponentials of \f$ -q \f$.
+  const Eigen::Matrix4d &getDisplacementInverse() const { return m_Hinv; }
+  //! The joint motions \f$ \hat H_k(q) \f$, n of them (see vpProjectiveArmModel::jointMotions()).
+  const Eigen::Matrix4d *getJointMotions() const { return m_HhatKq; }
+  //! Number of \f$ H(q) \f$ computed since the last computeKinematics() began (1 after it).
+  unsigned int getDisplacementCount() const { return m_displacementCount; }
+  //@}
+
+  /*! \name Features (index i in addFeature() order) */
+  //@{
+  //! Number of features of the last computeKinematics().
+  unsigned int getNumberOfFeatures() const { return m_nbFeatures; }
+  //! \f$ s_i \f$ (4x1, pixels).
+  const Eigen::Vector4d &getFeature(unsigned int i) const { return m_s[i]; }
+  //! True if \f$ s_i \f$ is finite: getPoint() and getZeroPoint() are set.
+  bool hasPoint(unsigned int i) const { return m_hasPoint[i] != 0; }
+  //! \f$ M_i \f$ (4x1, projective frame of the rig): vpProjectiveStereoRig::triangulateLinear() of \f$ s_i \f$.
+  const Eigen::Vector4d &getPoint(unsigned int i) const { return m_M[i]; }
+  //! \f$ M_{0,i} = H(q)^{-1} M_i \f$ (4x1, unit norm): the point at the zero reference.
+  const Eigen::Vector4d &getZeroPoint(unsigned int i) const { return m_M0[i]; }
+  //@}
+
+  /*! \name Task (filled by vpServoProjective) */
+  //@{
+  //! \f$ J \f$ (4N x n, pixels per joint unit), zero rows for the features set aside.
+  const Eigen::MatrixXd &getTaskJacobian() const { return m_J; }
+  //! \f$ e = s - s^* \f$ (4N, pixels), zero rows for the features set aside.
+  const Eigen::VectorXd &getError() const { return m_e; }
+  //! \f$ J^T J \f$ (n x n).
+  const JointMatrix &getJtJ() const { return m_JtJ; }
+  //! \f$ J^T e \f$ (n x 1).
+  const JointVector &getJte() const { return m_Jte; }
+  //! Number of features used by the task.
+  unsigned int getNumberOfActiveFeatures() const { return m_nbActive; }
+  //@}
+
+private:
+  friend class vpServoProjective; // fills the task part
+
+  JointVector m_q;
+  Eigen::Matrix4d m_H;
+  Eigen::Matrix4d m_Hinv;
+  Eigen::Matrix4d m_HhatKq[vpProjectiveArmModel::maxJoints];
+  Eigen::Matrix4d m_Hhat[vpProjectiveArmModel::maxJoints];  // the generators that m_Hhat2 was computed from
+  Eigen::Matrix4d m_Hhat2[vpProjectiveArmModel::maxJoints]; // their squares
+  unsigned int m_nbGenerators;
+  unsigned int m_displacementCount;
+  unsigned int m_nbFeatures;
+  std::vector<Eigen::Vector4d> m_s, m_M, m_M0;
+  std::vector<char> m_hasPoint;
+  Eigen::MatrixXd m_J;
+  Eigen::VectorXd m_e;
+  JointMatrix m_JtJ;
+  JointVector m_Jte;
+  double m_errorNorm; // ||e|| in the unit of vpServoProjective::setErrorUnit()
+  unsigned int m_nbActive;
+};
+
+END_VISP_NAMESPACE
+
+#endif
