@@ -21,7 +21,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "vpProjectiveInternal.h"
+#include "core/vpProjectiveErrors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
