@@ -41,6 +41,46 @@ namespace
 const unsigned int kWaypointDraws = 200;
 //! Weight of the joint-space line in the tracking of straight image lines (pixels per radian).
 const double kPriorWeight = 30.0;
+//! Largest pixel motion of a feature per step of the tracking of the inverse kinematics toward s*.
+const double kTrackingPixels = 25.0;
+//! Bounds of the number of steps of that tracking.
+const int kTrackingMinSteps = 4, kTrackingMaxSteps = 32;
+
+/*
+  The inverse kinematics tracked along straight image lines from the features at q to s* (each step warm-started at
+  the previous one): a configuration in the branch that the motion from q meets first, the natural target, which the
+  uniform starts of solveAll() in a wide joint box can all miss (the Viper850's sixth joint spans 720 deg). Jumps are
+  allowed here: only the end matters, as a start of the inverse kinematics. Returns false if the tracking failed.
+*/
+bool trackToDesired(const vpProjectiveArmModel &model, const vpProjectiveArmModel::JointVector &q,
+                    const std::vector<Eigen::Vector4d> &points, const std::vector<Eigen::Vector4d> &sStar,
+                    vpProjectiveArmModel::JointVector &end)
+{
+  const Eigen::Matrix4d H = model.displacement(q);
+  std::vector<Eigen::Vector4d> s0(points.size()), s(points.size());
+  double largest = 0.0;
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (!model.getStereoRig().project(Eigen::Vector4d(H * points[k]), s0[k])) {
+      return false;
+    }
+    largest = std::max(largest, (sStar[k] - s0[k]).cwiseAbs().maxCoeff());
+  }
+  const int steps =
+      std::min(kTrackingMaxSteps, std::max(kTrackingMinSteps, static_cast<int>(std::ceil(largest / kTrackingPixels))));
+  end = q;
+  try {
+    for (int j = 1; j <= steps; ++j) {
+      const double t = static_cast<double>(j) / steps;
+      for (size_t k = 0; k < points.size(); ++k) {
+        s[k] = (1.0 - t) * s0[k] + t * sStar[k];
+      }
+      end = vpProjectiveInverseKinematics::solve(model, s, points, end);
+    }
+  } catch (const vpProjectiveException &) {
+    return false;
+  }
+  return end.allFinite();
+}
 } // namespace
 
 vpProjectivePathPlanner::vpProjectivePathPlanner()
@@ -410,11 +450,10 @@ vpProjectivePathPlanner::targetCandidates(const vpProjectiveArmModel &model, con
                                           const std::vector<Eigen::Vector4d> &points, bool &anyInside) const
 {
   // Each branch's representative nearest to q (revolute joints modulo a turn; another turn if the nearest is outside
-  // the limits and that one inside); of those inside the limits with the features in view, the nearest with every
-  // joint out of the margins (c = 0), then the nearest (c = 1) if it is another.
-  double bestDistance[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  JointVector target[2];
-  unsigned int branch[2] = {0, 0};
+  // the limits and that one inside); those inside the limits with the features in view, the ones with every joint
+  // out of the margins first, each group by its distance to q. All of them: when no path leads to the nearest (a
+  // feature would leave the view on the way), another branch of the same pose may have one.
+  std::vector<std::pair<double, std::pair<JointVector, unsigned int>>> ranked;
   std::vector<Eigen::Vector4d> s;
   anyInside = false;
   for (size_t b = 0; b < m_branches.size(); ++b) {
@@ -434,31 +473,24 @@ vpProjectivePathPlanner::targetCandidates(const vpProjectiveArmModel &model, con
       continue;
     }
     anyInside = true;
-    const double d = (t - q).norm();
-    if (!(d < bestDistance[1]) && !(d < bestDistance[0])) {
-      continue;
-    }
     if (!visible(model, t, points, s)) {
       continue;
     }
-    int inMargin = 0;
+    bool inMargin = false;
     for (Eigen::Index i = 0; m_hasLimits && i < q.size(); ++i) {
       const double margin = m_limitMargin * (m_qmax(i) - m_qmin(i));
-      inMargin = (t(i) < m_qmin(i) + margin || t(i) > m_qmax(i) - margin) ? 1 : inMargin;
+      inMargin = inMargin || t(i) < m_qmin(i) + margin || t(i) > m_qmax(i) - margin;
     }
-    for (int c = inMargin; c < 2; ++c) {
-      if (d < bestDistance[c]) {
-        bestDistance[c] = d;
-        target[c] = t;
-        branch[c] = static_cast<unsigned int>(b);
-      }
-    }
+    // The margin ranks first: a branch in it comes after every branch out of it.
+    const double rank = (t - q).norm() + (inMargin ? 1e6 : 0.0);
+    ranked.emplace_back(rank, std::make_pair(t, static_cast<unsigned int>(b)));
   }
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const std::pair<double, std::pair<JointVector, unsigned int>> &a,
+                      const std::pair<double, std::pair<JointVector, unsigned int>> &b) { return a.first < b.first; });
   std::vector<std::pair<JointVector, unsigned int>> candidates;
-  for (int c = 0; c < 2; ++c) {
-    if (bestDistance[c] < std::numeric_limits<double>::infinity() && (candidates.empty() || branch[c] != branch[0])) {
-      candidates.emplace_back(target[c], branch[c]);
-    }
+  for (const auto &r : ranked) {
+    candidates.push_back(r.second);
   }
   return candidates;
 }
@@ -560,7 +592,12 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
       ++matched;
     }
   }
-  m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, X, q, qmin, qmax, m_starts, &m_residuals, &seen);
+  std::vector<JointVector> extraStarts(1);
+  if (!trackToDesired(model, q, X, sStar, extraStarts[0])) {
+    extraStarts.clear();
+  }
+  m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, X, q, qmin, qmax, m_starts, &m_residuals, &seen,
+                                                       &extraStarts);
   m_path.clear();
   m_features.clear();
   m_rehearsalOk = false;
@@ -625,8 +662,8 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
   const char *const kinds[] = {"straight image lines", "the straight joint-space line", "through a waypoint"};
   os << "; target: branch " << candidates[c].second << ", "
      << vpMath::deg((candidates[c].first - q).cwiseAbs().maxCoeff()) << " deg away at most per joint"
-     << (c > 0 ? " (no path to the one out of the joint-limit margins)" : "") << "; path: " << kinds[kind] << " in "
-     << path.size() - 1 << " steps";
+     << (c > 0 ? " (no path to a nearer branch)" : "") << "; path: " << kinds[kind] << " in " << path.size() - 1
+     << " steps";
   if (m_rehearsalOk && path.size() - 1 + 3 >= m_rehearsalIterations) {
     return adoptLaw(model, lawPath, lawFeatures, os);
   }

@@ -56,6 +56,7 @@ void vpServoModelMismatch::reset()
   for (vpRecord &r : m_records) {
     r.sum.setZero();
     r.recent.setZero();
+    r.offset.setZero();
     r.s.setZero();
     r.distance = -1.0;
     r.usable = false;
@@ -83,9 +84,12 @@ void vpServoModelMismatch::observe(unsigned int i, const Eigen::Vector4d &s, boo
     return;
   }
   // The smaller of the distances to the absolute and the recent predictions (each the larger over both images).
-  for (const Eigen::Vector4d &M : {Eigen::Vector4d(r.sum.normalized()), r.recent}) {
+  for (int recent = 0; recent < 2; ++recent) {
     Eigen::Vector4d sHat;
-    if (m_model->getStereoRig().project(m_H * M, sHat)) {
+    if (m_model->getStereoRig().project(m_H * (recent ? r.recent : Eigen::Vector4d(r.sum.normalized())), sHat)) {
+      if (recent) {
+        sHat += r.offset; // the model's motion from where the feature last agreed
+      }
       const double d = std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm());
       r.distance = r.distance < 0.0 ? d : std::min(r.distance, d);
     }
@@ -117,6 +121,8 @@ bool vpServoModelMismatch::endIteration()
         continue;
       }
       r.recent = r.hasMemory ? Eigen::Vector4d((r.recent + (r.recent.dot(M) < 0.0 ? -M : M)).normalized()) : M;
+      Eigen::Vector4d sHat;
+      r.offset = rig.project(m_H * r.recent, sHat) ? Eigen::Vector4d(r.s - sHat) : Eigen::Vector4d::Zero();
       if (r.exact) {
         continue;
       }

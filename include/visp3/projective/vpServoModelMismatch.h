@@ -52,7 +52,10 @@ BEGIN_VISP_NAMESPACE
   several pixels far from the acquisition's configurations (a Viper850 turned 90 deg from its zero reference), which
   alone would stop a healthy task. So each feature also has a recent memory \f$ \tilde M_i \f$, the sign-aligned
   unit mean of the last memory and the point triangulated at the last iteration where the feature agreed (weights
-  1/2, 1/2: a few iterations' average, following the drift), predicted as the image of \f$ H(q) \tilde M_i \f$. A
+  1/2, 1/2: a few iterations' average, following the drift), predicted as the image of \f$ H(q) \tilde M_i \f$ plus
+  the offset of the feature from that image where it last agreed (the model's motion from there, not its absolute
+  place: one stereo pair's depth error, turned by a 15 deg step of a 3-point task far from the acquisition, moved the
+  uncorrected image by more than the threshold and froze healthy tasks). A
   feature disagrees only when both predictions are farther than the threshold: the distance reported is the smaller
   of the two. A bump is sudden: both memories, frozen from the iteration before it, disagree at once and stay so.
 
@@ -121,6 +124,7 @@ private:
     bool hasMemory;         // sum is set
     bool exact;             // sum is an acquired marker's point (vpProjectiveArmModel::matchMarker())
     Eigen::Vector4d recent; // the recent memory (unit, zero reference), set with hasMemory
+    Eigen::Vector4d offset; // the feature's value minus the recent memory's image where it last agreed
   };
 
   std::vector<vpRecord> m_records;
