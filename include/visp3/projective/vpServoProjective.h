@@ -550,10 +550,11 @@ public:
     line (monotonic joints), else two lines through a waypoint. The task then follows the path, one sample (no joint
     more than vpProjectivePathPlanner::setMaxJointStep() away) per call, with image feedback: \f$ \dot q \f$ is the
     path's step \f$ q_{k+1} - q_k \f$ plus law (47) with the gain setPathFollowingGain() on the error to the model's
-    predicted images at sample \f$ k \f$ (getError() then returns that error), saturated as a whole; after the last
+    predicted images at sample \f$ k \f$ (getError() then returns that error), saturated as a whole, without the
+    joint-limit avoidance (the path is inside the limits; getJointLimitVelocity() is zero); after the last
     sample law (47) toward \f$ s^* \f$ with the task's gain finishes the motion, so the final accuracy is the law's.
     While following a path, a joint more than two path steps away from the sample it should be at (the arm does not
-    move as the model predicts: a velocity saturation, the joint-limit avoidance, a model error), or, running law
+    move as the model predicts: a velocity saturation, a model error), or, running law
     (47) as rehearsed, an RMS error still above twice the rehearsed one plus 2 px after twice the rehearsed
     iterations plus 10 (near a singular configuration the law's course depends on the noise), makes the task plan
     again from where it is, at most twice per target, without rehearsing law (47) again once it left its rehearsal;
