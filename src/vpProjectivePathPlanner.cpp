@@ -87,8 +87,9 @@ vpProjectivePathPlanner::vpProjectivePathPlanner()
     : m_hasLimits(false), m_qmin(), m_qmax(), m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0),
       m_maxExcursion(-1.0), m_starts(24), m_maxResidual(5.0), m_limitMargin(0.0), m_front(), m_points(), m_sStar(),
       m_hasLaw(false), m_gain(), m_errorScale(1.0), m_law(), m_avoidance(), m_rehearsalBudget(50), m_rehearsalOk(false),
-      m_rehearsalIterations(0), m_rehearsalResidual(-1.0), m_status(PLAN_NONE), m_branches(), m_residuals(),
-      m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
+      m_rehearsalIterations(0), m_rehearsalResidual(-1.0), m_rehearsalSlow(false), m_status(PLAN_NONE), m_branches(),
+      m_residuals(), m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE),
+      m_description("no plan yet")
 {
 }
 
@@ -384,6 +385,7 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
   features.clear();
   m_rehearsalIterations = 0;
   m_rehearsalResidual = -1.0;
+  m_rehearsalSlow = false;
   // Solved when it reaches the global minimum: the residual of the best branch with the same points (the law
   // minimises that residual, so in the branch's basin it comes down to it; a local minimum of three points leaves
   // pixels), within 1.5 times plus 0.05 px.
@@ -414,6 +416,7 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
       return true;
     }
     if (it == m_rehearsalBudget || (it > 0 && (path[it] - path[it - 1]).cwiseAbs().maxCoeff() < 1e-7)) {
+      m_rehearsalSlow = it == m_rehearsalBudget && it > 0 && (path[it] - path[it - 1]).cwiseAbs().maxCoeff() >= 1e-7;
       return false; // the budget, or a fixed point of the law that is not the solution
     }
     vpServoDampedLeastSquares::computeNormalEquations(J, e, JtJ, Jte);
@@ -496,8 +499,9 @@ vpProjectivePathPlanner::targetCandidates(const vpProjectiveArmModel &model, con
 }
 
 bool vpProjectivePathPlanner::planPath(const vpProjectiveArmModel &model, const JointVector &q,
-                                       const JointVector &target, const std::vector<Eigen::Vector4d> &points,
-                                       const JointVector &qmin, const JointVector &qmax, std::vector<JointVector> &path,
+                                       const JointVector &target, const std::vector<JointVector> &rehearsed,
+                                       const std::vector<Eigen::Vector4d> &points, const JointVector &qmin,
+                                       const JointVector &qmax, std::vector<JointVector> &path,
                                        std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind) const
 {
   if (imagePath(model, q, target, points, path) && feasible(model, path, points, features)) {
@@ -535,7 +539,32 @@ bool vpProjectivePathPlanner::planPath(const vpProjectiveArmModel &model, const 
     }
   }
   kind = PATH_WAYPOINT;
-  return shortest < std::numeric_limits<double>::infinity();
+  if (shortest < std::numeric_limits<double>::infinity()) {
+    return true;
+  }
+  // Law (47)'s rehearsal as the way there: its configurations are inside the limits with the features in view, and
+  // where the law stalls (a local minimum of three points, a slow law) or leaves the view, the target is often a
+  // straight joint-space line away. From its last configuration back, the first from which that line is feasible,
+  // the rehearsal's steps resampled to the path's step before it.
+  for (size_t j = rehearsed.size(); j-- > 1;) {
+    std::vector<std::vector<Eigen::Vector4d>> candidateFeatures;
+    std::vector<JointVector> candidate = jointLine(rehearsed[j], target);
+    if (!feasible(model, candidate, points, candidateFeatures)) {
+      continue;
+    }
+    std::vector<JointVector> prefix(1, q);
+    for (size_t m = 1; m <= j; ++m) {
+      const std::vector<JointVector> step = jointLine(rehearsed[m - 1], rehearsed[m]);
+      prefix.insert(prefix.end(), step.begin() + 1, step.end());
+    }
+    prefix.insert(prefix.end(), candidate.begin() + 1, candidate.end());
+    if (feasible(model, prefix, points, candidateFeatures)) {
+      path = prefix;
+      features = candidateFeatures;
+      return true;
+    }
+  }
+  return false;
 }
 
 vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProjectiveArmModel &model,
@@ -652,12 +681,19 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
   std::vector<std::vector<Eigen::Vector4d>> features;
   vpPathKind kind = PATH_JOINT_LINE;
   size_t c = 0;
-  while (c < candidates.size() && !planPath(model, q, candidates[c].first, X, qmin, qmax, path, features, kind)) {
+  while (c < candidates.size() &&
+         !planPath(model, q, candidates[c].first, lawPath, X, qmin, qmax, path, features, kind)) {
     ++c;
   }
   if (c == candidates.size()) {
     os << "; no path keeps the features in view within the joint limits";
-    return m_rehearsalOk ? adoptLaw(model, lawPath, lawFeatures, os) : failWith(PLAN_NO_VISIBLE_PATH, os);
+    // A law that its rehearsal found slow, not lost (inside the limits, in view, still moving at the budget), is
+    // better than no motion: law (47) it is (the task re-plans from where it stalls, if it does).
+    if (!m_rehearsalOk && m_rehearsalSlow) {
+      os << "; law (47) is slow but keeps the view";
+    }
+    return m_rehearsalOk || m_rehearsalSlow ? adoptLaw(model, lawPath, lawFeatures, os)
+                                            : failWith(PLAN_NO_VISIBLE_PATH, os);
   }
   const char *const kinds[] = {"straight image lines", "the straight joint-space line", "through a waypoint"};
   os << "; target: branch " << candidates[c].second << ", "

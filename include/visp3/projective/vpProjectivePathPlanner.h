@@ -258,7 +258,7 @@ private:
                                                                      const std::vector<Eigen::Vector4d> &points,
                                                                      bool &anyInside) const;
   bool planPath(const vpProjectiveArmModel &model, const JointVector &q, const JointVector &target,
-                const std::vector<Eigen::Vector4d> &points, const JointVector &qmin, const JointVector &qmax,
+                const std::vector<JointVector> &rehearsed, const std::vector<Eigen::Vector4d> &points, const JointVector &qmin, const JointVector &qmax,
                 std::vector<JointVector> &path, std::vector<std::vector<Eigen::Vector4d>> &features,
                 vpPathKind &kind) const;
   bool visible(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
@@ -302,6 +302,7 @@ private:
   bool m_rehearsalOk;
   unsigned int m_rehearsalIterations;
   double m_rehearsalResidual;
+  bool m_rehearsalSlow; // the last rehearsal ran out of budget inside the limits, in view, still moving
 
   vpPlanStatus m_status;
   std::vector<JointVector> m_branches;
