@@ -24,6 +24,12 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
+namespace
+{
+//! The relative error of the model's local motion that the recent prediction tolerates (a tenth of the motion).
+const double kMotionTolerance = 0.1;
+} // namespace
+
 vpServoModelMismatch::vpServoModelMismatch()
     : m_records(), m_threshold(5.0), m_iterations(2), m_disagreeing(0), m_mismatch(false), m_model(nullptr),
       m_H(Eigen::Matrix4d::Identity()), m_Hlu(Eigen::Matrix4d::Identity())
@@ -57,6 +63,7 @@ void vpServoModelMismatch::reset()
     r.sum.setZero();
     r.recent.setZero();
     r.offset.setZero();
+    r.last.setZero();
     r.s.setZero();
     r.distance = -1.0;
     r.usable = false;
@@ -87,10 +94,14 @@ void vpServoModelMismatch::observe(unsigned int i, const Eigen::Vector4d &s, boo
   for (int recent = 0; recent < 2; ++recent) {
     Eigen::Vector4d sHat;
     if (m_model->getStereoRig().project(m_H * (recent ? r.recent : Eigen::Vector4d(r.sum.normalized())), sHat)) {
+      double slack = 0.0;
       if (recent) {
         sHat += r.offset; // the model's motion from where the feature last agreed
+        slack = kMotionTolerance *
+                std::max((sHat.head<2>() - r.last.head<2>()).norm(), (sHat.tail<2>() - r.last.tail<2>()).norm());
       }
-      const double d = std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm());
+      const double d =
+          std::max(0.0, std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm()) - slack);
       r.distance = r.distance < 0.0 ? d : std::min(r.distance, d);
     }
   }
@@ -123,6 +134,7 @@ bool vpServoModelMismatch::endIteration()
       r.recent = r.hasMemory ? Eigen::Vector4d((r.recent + (r.recent.dot(M) < 0.0 ? -M : M)).normalized()) : M;
       Eigen::Vector4d sHat;
       r.offset = rig.project(m_H * r.recent, sHat) ? Eigen::Vector4d(r.s - sHat) : Eigen::Vector4d::Zero();
+      r.last = r.s;
       if (r.exact) {
         continue;
       }

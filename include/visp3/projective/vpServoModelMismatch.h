@@ -55,7 +55,9 @@ BEGIN_VISP_NAMESPACE
   1/2, 1/2: a few iterations' average, following the drift), predicted as the image of \f$ H(q) \tilde M_i \f$ plus
   the offset of the feature from that image where it last agreed (the model's motion from there, not its absolute
   place: one stereo pair's depth error, turned by a 15 deg step of a 3-point task far from the acquisition, moved the
-  uncorrected image by more than the threshold and froze healthy tasks). A
+  uncorrected image by more than the threshold and froze healthy tasks); that prediction disagrees beyond the
+  threshold plus a tenth of the image motion it predicts since then (a model a few percent off in its local motion,
+  times a path step of 10 deg that moves a feature by 100-200 px). A
   feature disagrees only when both predictions are farther than the threshold: the distance reported is the smaller
   of the two. A bump is sudden: both memories, frozen from the iteration before it, disagree at once and stay so.
 
@@ -125,6 +127,7 @@ private:
     bool exact;             // sum is an acquired marker's point (vpProjectiveArmModel::matchMarker())
     Eigen::Vector4d recent; // the recent memory (unit, zero reference), set with hasMemory
     Eigen::Vector4d offset; // the feature's value minus the recent memory's image where it last agreed
+    Eigen::Vector4d last;   // the feature's value where it last agreed
   };
 
   std::vector<vpRecord> m_records;
