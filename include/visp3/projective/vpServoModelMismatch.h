@@ -54,8 +54,9 @@ BEGIN_VISP_NAMESPACE
   unit mean of the last memory and the point triangulated at the last iteration where the feature agreed (weights
   1/2, 1/2: a few iterations' average, following the drift), predicted as the image of \f$ H(q) \tilde M_i \f$ plus
   the offset of the feature from that image where it last agreed (the model's motion from there, not its absolute
-  place: one stereo pair's depth error, turned by a 15 deg step of a 3-point task far from the acquisition, moved the
-  uncorrected image by more than the threshold and froze healthy tasks); that prediction disagrees beyond the
+  place: the half-weighted memory lags behind a feature that moves fast, and with the model's own offset far from
+  the acquisition, the uncorrected image was off by more than the threshold and froze healthy tasks of the
+  Viper850); that prediction disagrees beyond the
   threshold plus a tenth of the image motion it predicts since then (a model a few percent off in its local motion,
   times a path step of 10 deg that moves a feature by 100-200 px). A
   feature disagrees only when both predictions are farther than the threshold: the distance reported is the smaller
