@@ -233,6 +233,48 @@ TEST_P(PathPlannerArms, InverseKinematicsFindsEveryBranch)
   }
 }
 
+// The planner's extra start: the inverse kinematics tracked along straight image lines from q to s*. With a single
+// random start, the branch of a wide target is found from the tracked start and not without it (the random start and
+// q converge elsewhere); an extra start of the wrong size is refused.
+TEST(PathPlanner, TrackedStartFindsTheBranchTheMotionMeets)
+{
+  const ArmSetup s = viperEyeToHand();
+  const vpProjectiveRobot robot = acquireNoiseFree(s);
+  const vpProjectiveArmModel &model = robot.getModel();
+  const std::vector<unsigned int> tracked = {0, 1, 2};
+  const std::vector<Eigen::Vector4d> points = modelPoints(robot, tracked);
+  vpUniRand rng(23);
+  const std::vector<double> range(s.n(), vpMath::rad(15.0));
+  const JointVector qmin = JointVector::Constant(s.n(), -2.0 * M_PI), qmax = JointVector::Constant(s.n(), 2.0 * M_PI);
+  int withTracked = 0, without = 0;
+  const int tasks = 6;
+  for (int task = 0; task < tasks; ++task) {
+    const vpColVector qStart = s.randomVisibleJoints(rng, range), qTarget = s.randomVisibleJoints(rng, range);
+    ASSERT_EQ(qTarget.size(), s.n());
+    const std::vector<Eigen::Vector4d> sStar = trueImages(s, qTarget, tracked);
+    // The extra start: the target perturbed by 10 deg per joint, a configuration in its branch's basin.
+    std::vector<JointVector> extra(1, toJoints(qTarget) + JointVector::Constant(s.n(), vpMath::rad(10.0)));
+    const auto finds = [&](const std::vector<JointVector> *starts) {
+      const std::vector<JointVector> found = vpProjectiveInverseKinematics::solveAll(
+          model, sStar, points, toJoints(qStart), qmin, qmax, 1, nullptr, nullptr, starts);
+      double nearest = M_PI;
+      for (const JointVector &f : found) {
+        nearest = std::min(nearest, branchDistance(f, toJoints(qTarget)));
+      }
+      return nearest < 1e-4;
+    };
+    withTracked += finds(&extra);
+    without += finds(nullptr);
+  }
+  EXPECT_EQ(withTracked, tasks) << "an extra start in the target's basin finds its branch";
+  EXPECT_LE(without, withTracked);
+  std::vector<JointVector> wrong(1, JointVector::Zero(s.n() - 1));
+  EXPECT_THROW(vpProjectiveInverseKinematics::solveAll(model, trueImages(s, s.qRef, tracked), points,
+                                                       JointVector::Zero(s.n()), qmin, qmax, 1, nullptr, nullptr,
+                                                       &wrong),
+               vpException);
+}
+
 TEST_P(PathPlannerArms, TwoViewRefinementBringsTheResidualToTheNoise)
 {
   // A task's points triangulated at the start from noisy pixels, then the inverse kinematics of noisy desired pixels:
@@ -860,6 +902,9 @@ struct NoisyRun {
   bool reached = false;       //!< image RMS error below 2 sigma within the budget, markers in view, no limit crossed
   double largestStep = 0.0;   //!< largest |qdot_i| commanded (joint units per call)
   double largestSample = 0.0; //!< largest joint step between two samples of the plan
+  int followedInBand = 0;     //!< calls that followed the path with a joint in the avoidance's activation band
+  double avoidanceWhileFollowing = 0.0; //!< largest |qdot2_i| of the joint-limit avoidance while following
+  int mismatches = 0; //!< calls that reported SERVO_MODEL_MISMATCH (false alarms: no camera moves here)
 };
 
 //! A servo run as a user writes it (gain 0.5, no damping setting, the true limits, a 640 x 480 window with a 10 px
@@ -912,6 +957,19 @@ NoisyRun runNoisy(const ViperWorld &w, vpColVector q, const vpColVector &qTarget
         run.largestSample = std::max(run.largestSample, (path[j] - path[j - 1]).cwiseAbs().maxCoeff());
       }
     }
+    run.mismatches += task.getStatus() == vpServoProjective::SERVO_MODEL_MISMATCH;
+    if (task.isFollowingPath()) {
+      bool inBand = false;
+      for (unsigned int i = 0; i < q.size(); ++i) {
+        const double band = 0.1 * (w.qmax[i] - w.qmin[i]); // the avoidance's default activation band
+        inBand = inBand || q[i] < w.qmin[i] + band || q[i] > w.qmax[i] - band;
+      }
+      run.followedInBand += inBand;
+      const vpColVector qdot2 = task.getJointLimitVelocity();
+      for (unsigned int i = 0; i < qdot2.size(); ++i) {
+        run.avoidanceWhileFollowing = std::max(run.avoidanceWhileFollowing, std::abs(qdot2[i]));
+      }
+    }
     for (unsigned int i = 0; i < q.size(); ++i) {
       run.largestStep = std::max(run.largestStep, std::abs(qdot[i]));
       if (q[i] + qdot[i] < w.qmin[i] || q[i] + qdot[i] > w.qmax[i]) {
@@ -931,12 +989,20 @@ TEST(PathPlanner, PlannedServoOnViper850NeverLosesWhatLawSolves)
   const double sigma = 0.5;
   const ViperWorld w(sigma, 3);
   vpUniRand rng(11);
-  int law = 0, planned = 0, lawOnly = 0;
+  int law = 0, planned = 0, lawOnly = 0, followedInBand = 0;
   const int tasks = 16;
   for (int t = 0; t < tasks; ++t) {
     const vpColVector qStart = w.draw(rng, vpMath::rad(60.0)), qTarget = w.draw(rng, vpMath::rad(60.0));
     const bool byLaw = runNoisy(w, qStart, qTarget, false, sigma, vpMath::rad(15.0), 100 + t).reached;
-    const bool byPlan = runNoisy(w, qStart, qTarget, true, sigma, vpMath::rad(15.0), 100 + t).reached;
+    const NoisyRun run = runNoisy(w, qStart, qTarget, true, sigma, vpMath::rad(15.0), 100 + t);
+    const bool byPlan = run.reached;
+    // Following a path, the joint-limit avoidance stays out: the path is inside the limits, and its push on a joint
+    // that starts in the band, projected on the other joints, threw the arm off its path.
+    EXPECT_EQ(run.avoidanceWhileFollowing, 0.0) << "task " << t;
+    // No camera moves: the model-mismatch detection must not stop a healthy task (the model's local motion is a
+    // few percent off far from the acquisition, times path steps of 10 deg).
+    EXPECT_EQ(run.mismatches, 0) << "task " << t;
+    followedInBand += run.followedInBand;
     law += byLaw;
     planned += byPlan;
     lawOnly += byLaw && !byPlan;
@@ -945,6 +1011,7 @@ TEST(PathPlanner, PlannedServoOnViper850NeverLosesWhatLawSolves)
   EXPECT_EQ(lawOnly, 0);
   EXPECT_GE(planned, law + 4) << "wide tasks: planning must solve some that law (47) does not";
   EXPECT_GE(planned, tasks - 2);
+  EXPECT_GT(followedInBand, 0) << "some path starts or passes in the avoidance's band (the case the check is for)";
   if (std::getenv("VISP_PROJECTIVE_TEST_VERBOSE") != nullptr) {
     std::cout << "Viper850 +-60 deg: planned " << planned << "/" << tasks << ", law (47) " << law << "/" << tasks
               << std::endl;

@@ -282,7 +282,8 @@ std::vector<vpProjectiveArmModel::JointVector> vpProjectiveInverseKinematics::so
     const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
     const std::vector<Eigen::Vector4d> &points, const vpProjectiveArmModel::JointVector &q0,
     const vpProjectiveArmModel::JointVector &qmin, const vpProjectiveArmModel::JointVector &qmax, unsigned int starts,
-    std::vector<double> *residuals, const std::vector<Eigen::Vector4d> *seen)
+    std::vector<double> *residuals, const std::vector<Eigen::Vector4d> *seen,
+    const std::vector<vpProjectiveArmModel::JointVector> *extraStarts)
 {
   if (seen != nullptr && seen->size() != points.size()) {
     fail(vpProjectiveException::dimensionError, "vpProjectiveInverseKinematics::solveAll()",
@@ -290,6 +291,13 @@ std::vector<vpProjectiveArmModel::JointVector> vpProjectiveInverseKinematics::so
   }
   typedef vpProjectiveArmModel::JointVector JointVector;
   const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
+  const size_t extra = extraStarts != nullptr ? extraStarts->size() : 0;
+  for (size_t e = 0; e < extra; ++e) {
+    if ((*extraStarts)[e].size() != q0.size()) {
+      fail(vpProjectiveException::dimensionError, "vpProjectiveInverseKinematics::solveAll()",
+           "every extra start must have as many joint values as q0");
+    }
+  }
   // Two joint vectors are the same configuration when every joint agrees, revolute ones modulo a turn.
   const auto distance = [&](const JointVector &a, const JointVector &b) {
     double d = 0.0;
@@ -319,9 +327,10 @@ std::vector<vpProjectiveArmModel::JointVector> vpProjectiveInverseKinematics::so
   std::vector<JointVector> found;
   std::vector<double> cost;
   vpUniRand uniform(0x5eedULL);
-  for (unsigned int k = 0; k <= starts; ++k) {
-    JointVector start = q0;
-    for (Eigen::Index i = 0; k > 0 && i < n; ++i) {
+  for (size_t k = 0; k <= starts + extra; ++k) {
+    // q0, the extra starts, then the random ones (drawn as before: the same sequence with or without extra starts).
+    JointVector start = (k > 0 && k <= extra) ? (*extraStarts)[k - 1] : q0;
+    for (Eigen::Index i = 0; k > extra && i < n; ++i) {
       start(i) = uniform.uniform(qmin(i), qmax(i));
     }
     double rms = 0.0;

@@ -41,14 +41,55 @@ namespace
 const unsigned int kWaypointDraws = 200;
 //! Weight of the joint-space line in the tracking of straight image lines (pixels per radian).
 const double kPriorWeight = 30.0;
+//! Largest pixel motion of a feature per step of the tracking of the inverse kinematics toward s*.
+const double kTrackingPixels = 25.0;
+//! Bounds of the number of steps of that tracking.
+const int kTrackingMinSteps = 4, kTrackingMaxSteps = 32;
+
+/*
+  The inverse kinematics tracked along straight image lines from the features at q to s* (each step warm-started at
+  the previous one): a configuration in the branch that the motion from q meets first, the natural target, which the
+  uniform starts of solveAll() in a wide joint box can all miss (the Viper850's sixth joint spans 720 deg). Jumps are
+  allowed here: only the end matters, as a start of the inverse kinematics. Returns false if the tracking failed.
+*/
+bool trackToDesired(const vpProjectiveArmModel &model, const vpProjectiveArmModel::JointVector &q,
+                    const std::vector<Eigen::Vector4d> &points, const std::vector<Eigen::Vector4d> &sStar,
+                    vpProjectiveArmModel::JointVector &end)
+{
+  const Eigen::Matrix4d H = model.displacement(q);
+  std::vector<Eigen::Vector4d> s0(points.size()), s(points.size());
+  double largest = 0.0;
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (!model.getStereoRig().project(Eigen::Vector4d(H * points[k]), s0[k])) {
+      return false;
+    }
+    largest = std::max(largest, (sStar[k] - s0[k]).cwiseAbs().maxCoeff());
+  }
+  const int steps =
+      std::min(kTrackingMaxSteps, std::max(kTrackingMinSteps, static_cast<int>(std::ceil(largest / kTrackingPixels))));
+  end = q;
+  try {
+    for (int j = 1; j <= steps; ++j) {
+      const double t = static_cast<double>(j) / steps;
+      for (size_t k = 0; k < points.size(); ++k) {
+        s[k] = (1.0 - t) * s0[k] + t * sStar[k];
+      }
+      end = vpProjectiveInverseKinematics::solve(model, s, points, end);
+    }
+  } catch (const vpProjectiveException &) {
+    return false;
+  }
+  return end.allFinite();
+}
 } // namespace
 
 vpProjectivePathPlanner::vpProjectivePathPlanner()
     : m_hasLimits(false), m_qmin(), m_qmax(), m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0),
       m_maxExcursion(-1.0), m_starts(24), m_maxResidual(5.0), m_limitMargin(0.0), m_front(), m_points(), m_sStar(),
       m_hasLaw(false), m_gain(), m_errorScale(1.0), m_law(), m_avoidance(), m_rehearsalBudget(50), m_rehearsalOk(false),
-      m_rehearsalIterations(0), m_rehearsalResidual(-1.0), m_status(PLAN_NONE), m_branches(), m_residuals(),
-      m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
+      m_rehearsalIterations(0), m_rehearsalResidual(-1.0), m_rehearsalSlow(false), m_status(PLAN_NONE), m_branches(),
+      m_residuals(), m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE),
+      m_description("no plan yet")
 {
 }
 
@@ -344,6 +385,7 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
   features.clear();
   m_rehearsalIterations = 0;
   m_rehearsalResidual = -1.0;
+  m_rehearsalSlow = false;
   // Solved when it reaches the global minimum: the residual of the best branch with the same points (the law
   // minimises that residual, so in the branch's basin it comes down to it; a local minimum of three points leaves
   // pixels), within 1.5 times plus 0.05 px.
@@ -374,6 +416,7 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
       return true;
     }
     if (it == m_rehearsalBudget || (it > 0 && (path[it] - path[it - 1]).cwiseAbs().maxCoeff() < 1e-7)) {
+      m_rehearsalSlow = it == m_rehearsalBudget && it > 0 && (path[it] - path[it - 1]).cwiseAbs().maxCoeff() >= 1e-7;
       return false; // the budget, or a fixed point of the law that is not the solution
     }
     vpServoDampedLeastSquares::computeNormalEquations(J, e, JtJ, Jte);
@@ -410,11 +453,10 @@ vpProjectivePathPlanner::targetCandidates(const vpProjectiveArmModel &model, con
                                           const std::vector<Eigen::Vector4d> &points, bool &anyInside) const
 {
   // Each branch's representative nearest to q (revolute joints modulo a turn; another turn if the nearest is outside
-  // the limits and that one inside); of those inside the limits with the features in view, the nearest with every
-  // joint out of the margins (c = 0), then the nearest (c = 1) if it is another.
-  double bestDistance[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-  JointVector target[2];
-  unsigned int branch[2] = {0, 0};
+  // the limits and that one inside); those inside the limits with the features in view, the ones with every joint
+  // out of the margins first, each group by its distance to q. All of them: when no path leads to the nearest (a
+  // feature would leave the view on the way), another branch of the same pose may have one.
+  std::vector<std::pair<double, std::pair<JointVector, unsigned int>>> ranked;
   std::vector<Eigen::Vector4d> s;
   anyInside = false;
   for (size_t b = 0; b < m_branches.size(); ++b) {
@@ -434,38 +476,32 @@ vpProjectivePathPlanner::targetCandidates(const vpProjectiveArmModel &model, con
       continue;
     }
     anyInside = true;
-    const double d = (t - q).norm();
-    if (!(d < bestDistance[1]) && !(d < bestDistance[0])) {
-      continue;
-    }
     if (!visible(model, t, points, s)) {
       continue;
     }
-    int inMargin = 0;
+    bool inMargin = false;
     for (Eigen::Index i = 0; m_hasLimits && i < q.size(); ++i) {
       const double margin = m_limitMargin * (m_qmax(i) - m_qmin(i));
-      inMargin = (t(i) < m_qmin(i) + margin || t(i) > m_qmax(i) - margin) ? 1 : inMargin;
+      inMargin = inMargin || t(i) < m_qmin(i) + margin || t(i) > m_qmax(i) - margin;
     }
-    for (int c = inMargin; c < 2; ++c) {
-      if (d < bestDistance[c]) {
-        bestDistance[c] = d;
-        target[c] = t;
-        branch[c] = static_cast<unsigned int>(b);
-      }
-    }
+    // The margin ranks first: a branch in it comes after every branch out of it.
+    const double rank = (t - q).norm() + (inMargin ? 1e6 : 0.0);
+    ranked.emplace_back(rank, std::make_pair(t, static_cast<unsigned int>(b)));
   }
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const std::pair<double, std::pair<JointVector, unsigned int>> &a,
+                      const std::pair<double, std::pair<JointVector, unsigned int>> &b) { return a.first < b.first; });
   std::vector<std::pair<JointVector, unsigned int>> candidates;
-  for (int c = 0; c < 2; ++c) {
-    if (bestDistance[c] < std::numeric_limits<double>::infinity() && (candidates.empty() || branch[c] != branch[0])) {
-      candidates.emplace_back(target[c], branch[c]);
-    }
+  for (const auto &r : ranked) {
+    candidates.push_back(r.second);
   }
   return candidates;
 }
 
 bool vpProjectivePathPlanner::planPath(const vpProjectiveArmModel &model, const JointVector &q,
-                                       const JointVector &target, const std::vector<Eigen::Vector4d> &points,
-                                       const JointVector &qmin, const JointVector &qmax, std::vector<JointVector> &path,
+                                       const JointVector &target, const std::vector<JointVector> &rehearsed,
+                                       const std::vector<Eigen::Vector4d> &points, const JointVector &qmin,
+                                       const JointVector &qmax, std::vector<JointVector> &path,
                                        std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind) const
 {
   if (imagePath(model, q, target, points, path) && feasible(model, path, points, features)) {
@@ -503,7 +539,32 @@ bool vpProjectivePathPlanner::planPath(const vpProjectiveArmModel &model, const 
     }
   }
   kind = PATH_WAYPOINT;
-  return shortest < std::numeric_limits<double>::infinity();
+  if (shortest < std::numeric_limits<double>::infinity()) {
+    return true;
+  }
+  // Law (47)'s rehearsal as the way there: its configurations are inside the limits with the features in view, and
+  // where the law stalls (a local minimum of three points, a slow law) or leaves the view, the target is often a
+  // straight joint-space line away. From its last configuration back, the first from which that line is feasible,
+  // the rehearsal's steps resampled to the path's step before it.
+  for (size_t j = rehearsed.size(); j-- > 1;) {
+    std::vector<std::vector<Eigen::Vector4d>> candidateFeatures;
+    std::vector<JointVector> candidate = jointLine(rehearsed[j], target);
+    if (!feasible(model, candidate, points, candidateFeatures)) {
+      continue;
+    }
+    std::vector<JointVector> prefix(1, q);
+    for (size_t m = 1; m <= j; ++m) {
+      const std::vector<JointVector> step = jointLine(rehearsed[m - 1], rehearsed[m]);
+      prefix.insert(prefix.end(), step.begin() + 1, step.end());
+    }
+    prefix.insert(prefix.end(), candidate.begin() + 1, candidate.end());
+    if (feasible(model, prefix, points, candidateFeatures)) {
+      path = prefix;
+      features = candidateFeatures;
+      return true;
+    }
+  }
+  return false;
 }
 
 vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProjectiveArmModel &model,
@@ -560,7 +621,12 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
       ++matched;
     }
   }
-  m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, X, q, qmin, qmax, m_starts, &m_residuals, &seen);
+  std::vector<JointVector> extraStarts(1);
+  if (!trackToDesired(model, q, X, sStar, extraStarts[0])) {
+    extraStarts.clear();
+  }
+  m_branches = vpProjectiveInverseKinematics::solveAll(model, sStar, X, q, qmin, qmax, m_starts, &m_residuals, &seen,
+                                                       &extraStarts);
   m_path.clear();
   m_features.clear();
   m_rehearsalOk = false;
@@ -615,18 +681,25 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
   std::vector<std::vector<Eigen::Vector4d>> features;
   vpPathKind kind = PATH_JOINT_LINE;
   size_t c = 0;
-  while (c < candidates.size() && !planPath(model, q, candidates[c].first, X, qmin, qmax, path, features, kind)) {
+  while (c < candidates.size() &&
+         !planPath(model, q, candidates[c].first, lawPath, X, qmin, qmax, path, features, kind)) {
     ++c;
   }
   if (c == candidates.size()) {
     os << "; no path keeps the features in view within the joint limits";
-    return m_rehearsalOk ? adoptLaw(model, lawPath, lawFeatures, os) : failWith(PLAN_NO_VISIBLE_PATH, os);
+    // A law that its rehearsal found slow, not lost (inside the limits, in view, still moving at the budget), is
+    // better than no motion: law (47) it is (the task re-plans from where it stalls, if it does).
+    if (!m_rehearsalOk && m_rehearsalSlow) {
+      os << "; law (47) is slow but keeps the view";
+    }
+    return m_rehearsalOk || m_rehearsalSlow ? adoptLaw(model, lawPath, lawFeatures, os)
+                                            : failWith(PLAN_NO_VISIBLE_PATH, os);
   }
   const char *const kinds[] = {"straight image lines", "the straight joint-space line", "through a waypoint"};
   os << "; target: branch " << candidates[c].second << ", "
      << vpMath::deg((candidates[c].first - q).cwiseAbs().maxCoeff()) << " deg away at most per joint"
-     << (c > 0 ? " (no path to the one out of the joint-limit margins)" : "") << "; path: " << kinds[kind] << " in "
-     << path.size() - 1 << " steps";
+     << (c > 0 ? " (no path to a nearer branch)" : "") << "; path: " << kinds[kind] << " in " << path.size() - 1
+     << " steps";
   if (m_rehearsalOk && path.size() - 1 + 3 >= m_rehearsalIterations) {
     return adoptLaw(model, lawPath, lawFeatures, os);
   }

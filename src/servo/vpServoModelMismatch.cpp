@@ -24,6 +24,12 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
+namespace
+{
+//! The relative error of the model's local motion that the recent prediction tolerates (a tenth of the motion).
+const double kMotionTolerance = 0.1;
+} // namespace
+
 vpServoModelMismatch::vpServoModelMismatch()
     : m_records(), m_threshold(5.0), m_iterations(2), m_disagreeing(0), m_mismatch(false), m_model(nullptr),
       m_data(nullptr)
@@ -56,6 +62,8 @@ void vpServoModelMismatch::reset()
   for (vpRecord &r : m_records) {
     r.sum.setZero();
     r.recent.setZero();
+    r.offset.setZero();
+    r.last.setZero();
     r.s.setZero();
     r.distance = -1.0;
     r.usable = false;
@@ -82,13 +90,21 @@ void vpServoModelMismatch::observe(unsigned int i, bool usable)
   if (!r.usable || !r.hasMemory || m_model == nullptr) {
     return;
   }
-  // The recent prediction first (it follows the model's drift): within the threshold the feature agrees, and the
-  // absolute prediction is not needed; otherwise the smaller of both distances (each the larger over both images).
+  // The recent prediction first (it follows the model's drift, offset to where the feature last agreed): within the
+  // threshold plus a tenth of the motion it predicts since then, the feature agrees and the absolute prediction is not
+  // needed; otherwise the smaller of both distances (each the larger over both images).
   const Eigen::Vector4d memories[2] = {r.recent, r.sum.normalized()};
-  for (const Eigen::Vector4d &M : memories) {
+  for (int k = 0; k < 2; ++k) {
     Eigen::Vector4d sHat;
-    if (m_model->getStereoRig().project(m_data->getDisplacement() * M, sHat)) {
-      const double d = std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm());
+    if (m_model->getStereoRig().project(m_data->getDisplacement() * memories[k], sHat)) {
+      double slack = 0.0;
+      if (k == 0) {
+        sHat += r.offset; // the model's motion from where the feature last agreed
+        slack = kMotionTolerance *
+                std::max((sHat.head<2>() - r.last.head<2>()).norm(), (sHat.tail<2>() - r.last.tail<2>()).norm());
+      }
+      const double d =
+          std::max(0.0, std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm()) - slack);
       r.distance = r.distance < 0.0 ? d : std::min(r.distance, d);
     }
     if (r.distance >= 0.0 && r.distance <= m_threshold) {
@@ -122,6 +138,11 @@ bool vpServoModelMismatch::endIteration()
         continue;
       }
       r.recent = r.hasMemory ? Eigen::Vector4d((r.recent + (r.recent.dot(M) < 0.0 ? -M : M)).normalized()) : M;
+      Eigen::Vector4d sHat;
+      r.offset = m_model->getStereoRig().project(m_data->getDisplacement() * r.recent, sHat)
+                     ? Eigen::Vector4d(r.s - sHat)
+                     : Eigen::Vector4d::Zero();
+      r.last = r.s;
       if (r.exact) {
         continue;
       }

@@ -295,16 +295,19 @@ inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIt
   if (!m_jointLimits.hasJointLimits()) {
     return;
   }
-  // A planned path stays inside the limits and ends at a target inside them: the avoidance lets the arm go where the
-  // plan sends it, the next sample while following, the target after (law (47) alone, even planned, is left as is);
-  // and the step never crosses a limit (the planned servo's promise, which the avoidance alone cannot keep with a
-  // step of the path's size).
+  // A planned path stays inside the limits and ends at a target inside them. While following it, no avoidance: the
+  // path was checked inside the limits and no step crosses one, whereas the avoidance's push on a joint that starts
+  // in its band, projected through the large projection operator, moved the other joints by up to 18 deg beside the
+  // path's step and threw the features out of view. After the path, the avoidance lets the arm go to the planned
+  // target (law (47) alone, even planned, is left as is); and the step never crosses a limit (the planned servo's
+  // promise, which the avoidance alone cannot keep with a step of the path's size).
   const bool planned = m_planning && m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND &&
                        m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
-  const JointVector *target =
-      m_following ? &m_planner.getPath()[m_pathSample] : (planned ? &m_planner.getTarget() : nullptr);
-  m_jointLimits.computeVelocity(q, qdot, it.data.m_JtJ, it.data.m_Jte, it.data.m_errorNorm, m_law, it.qdot2, target);
-  qdot += it.qdot2;
+  if (!m_following) {
+    const JointVector *target = planned ? &m_planner.getTarget() : nullptr;
+    m_jointLimits.computeVelocity(q, qdot, it.data.m_JtJ, it.data.m_Jte, it.data.m_errorNorm, m_law, it.qdot2, target);
+    qdot += it.qdot2;
+  }
   if (m_law.saturate(qdot)) {
     it.saturated = true;
   }

@@ -80,15 +80,20 @@ public:
     times the best one plus 0.01 px (the branches of one pose tie; another pose that few points nearly explain leaves
     more). Without it the points are taken as exact, and a branch's residual is at most the larger of 1 px and twice
     the best one (a wrong local minimum leaves the pixels far off). Returns the branches sorted by residual (the best
-    first), their residuals in \e residuals if not null; none if no start converged.
-    \exception vpProjectiveException (dimensionError) if \e seen is not null and not of the size of \e points.
+    first), their residuals in \e residuals if not null; none if no start converged. \e extraStarts (if not null)
+    are more starts, tried after \e q0 and before the random ones: configurations the caller expects near a branch
+    (vpProjectivePathPlanner passes the end of the inverse kinematics tracked along straight image lines from
+    \e q0 to \e s, the branch that the motion from \e q0 meets first, which uniform starts in a wide box can miss).
+    \exception vpProjectiveException (dimensionError) if \e seen is not null and not of the size of \e points, or an
+    extra start not of the size of \e q0.
   */
   static std::vector<vpProjectiveArmModel::JointVector>
   solveAll(const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
            const std::vector<Eigen::Vector4d> &points, const vpProjectiveArmModel::JointVector &q0,
            const vpProjectiveArmModel::JointVector &qmin, const vpProjectiveArmModel::JointVector &qmax,
            unsigned int starts, std::vector<double> *residuals = nullptr,
-           const std::vector<Eigen::Vector4d> *seen = nullptr);
+           const std::vector<Eigen::Vector4d> *seen = nullptr,
+           const std::vector<vpProjectiveArmModel::JointVector> *extraStarts = nullptr);
   /*!
     The target's joint values and the points together, from two views: minimises
     \f[ \sum_k \| s_k - \pi(H(q) M_k) \|^2 + \sum_{k\ free} \| s^0_k - \pi(H(q_0) M_k) \|^2 \f]

@@ -46,7 +46,9 @@ BEGIN_VISP_NAMESPACE
   The task: points \f$ M_k(0) \f$ of the moving end (4x1 projective points at the zero reference, e.g. a servo
   task's features triangulated at the current joints \f$ q \f$ and carried there by \f$ H(q)^{-1} \f$, which needs no
   marker identity) and their desired pixels \f$ s^*_k = (u, v, u', v') \f$. plan()
-  -# solves the inverse kinematics of \f$ s^* \f$ from many starts (vpProjectiveInverseKinematics::solveAll()), each
+  -# solves the inverse kinematics of \f$ s^* \f$ from many starts (vpProjectiveInverseKinematics::solveAll(): \f$ q \f$,
+     the end of the inverse kinematics tracked along straight image lines from the features at \f$ q \f$ to
+     \f$ s^* \f$, the branch that the motion meets first, then random configurations within the limits), each
      minimum refined together with the points by their two views (the points' images at \f$ q \f$, where they were
      triangulated, and \f$ s^* \f$ at the target: vpProjectiveInverseKinematics::solveWithPoints()): every branch
      it finds whose residual is within 1.5 times the best one (the branches of one gripper pose tie; another pose
@@ -54,7 +56,8 @@ BEGIN_VISP_NAMESPACE
   -# chooses the target \f$ q^* \f$: among the branches, the representative (revolute joints modulo a turn) nearest
      to \f$ q \f$ in joint space that is inside the joint limits with the features in view (inside the image window,
      and in front of both cameras: their depths keep the signs they have at \f$ q \f$, where they are seen), out of
-     the margins of setJointLimitMargin() if one is;
+     the margins of setJointLimitMargin() if one is; the other branches inside the limits, nearest first, when no
+     path leads there;
   -# plans the joint path from \f$ q \f$ to \f$ q^* \f$, sampled so that no joint moves more than setMaxJointStep()
      between samples, and keeps it only if at every sample the joints are inside their limits and the features in
      view. Candidates, in this order:
@@ -255,7 +258,7 @@ private:
                                                                      const std::vector<Eigen::Vector4d> &points,
                                                                      bool &anyInside) const;
   bool planPath(const vpProjectiveArmModel &model, const JointVector &q, const JointVector &target,
-                const std::vector<Eigen::Vector4d> &points, const JointVector &qmin, const JointVector &qmax,
+                const std::vector<JointVector> &rehearsed, const std::vector<Eigen::Vector4d> &points, const JointVector &qmin, const JointVector &qmax,
                 std::vector<JointVector> &path, std::vector<std::vector<Eigen::Vector4d>> &features,
                 vpPathKind &kind) const;
   bool visible(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
@@ -299,6 +302,7 @@ private:
   bool m_rehearsalOk;
   unsigned int m_rehearsalIterations;
   double m_rehearsalResidual;
+  bool m_rehearsalSlow; // the last rehearsal ran out of budget inside the limits, in view, still moving
 
   vpPlanStatus m_status;
   std::vector<JointVector> m_branches;

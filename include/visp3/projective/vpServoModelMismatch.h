@@ -52,10 +52,14 @@ BEGIN_VISP_NAMESPACE
   several pixels far from the acquisition's configurations (a Viper850 turned 90 deg from its zero reference), which
   alone would stop a healthy task. So each feature also has a recent memory \f$ \tilde M_i \f$, the sign-aligned
   unit mean of the last memory and the point triangulated at the last iteration where the feature agreed (weights
-  1/2, 1/2: a few iterations' average, following the drift), predicted as the image of \f$ H(q) \tilde M_i \f$. A
-  feature disagrees only when both predictions are farther than the threshold: the distance reported is the recent
-  prediction's when it is within the threshold (the absolute one is then not computed), else the smaller of the two. A
-  bump is sudden: both memories, frozen from the iteration before it, disagree at once and stay so.
+  1/2, 1/2: a few iterations' average, following the drift), predicted as the image of \f$ H(q) \tilde M_i \f$ plus
+  the offset of the feature from that image where it last agreed (the model's motion from there, not its absolute
+  place: the half-weighted memory lags behind a feature that moves fast); that prediction disagrees beyond the
+  threshold plus a tenth of the image motion it predicts since then (a model a few percent off in its local motion,
+  times a path step that moves a feature by 100-200 px). A feature disagrees only when both predictions are farther
+  than the threshold: the distance reported is the recent prediction's when it is within the threshold (the absolute
+  one is then not computed), else the smaller of the two. A bump is sudden: both memories, frozen from the iteration
+  before it, disagree at once and stay so.
 
   <b>Decision.</b> An iteration disagrees when at least two features have a prediction and every one of them is
   farther than the threshold (setThreshold(), default 5 px: well above the noise of a tracked feature and the
@@ -123,6 +127,8 @@ private:
     bool hasMemory;         // sum is set
     bool exact;             // sum is an acquired marker's point (vpProjectiveArmModel::matchMarker())
     Eigen::Vector4d recent; // the recent memory (unit, zero reference), set with hasMemory
+    Eigen::Vector4d offset; // the feature's value minus the recent memory's image where it last agreed
+    Eigen::Vector4d last;   // the feature's value where it last agreed
   };
 
   std::vector<vpRecord> m_records;
