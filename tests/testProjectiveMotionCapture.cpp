@@ -307,7 +307,7 @@ TrackingStats trackRigidBody(const vpMatrix &G, unsigned int velocityWindow)
 
 /*
   Projective tracking (15 degrees of freedom per frame) of 7 markers on 10 cm: the displacement's relative error is
-  that of a single 7-marker homography at 0.5 px (a few percent, see testProjectiveDisplacement), every frame tracked
+  that of a single 7-marker homography at 0.5 px (a few percent, see testProjectiveDisplacementEstimate), every frame tracked
   through the lost marker and the jump; its velocity, a derivative of those errors, is noise. Rigid tracking with the
   metric upgrade (here H_PE itself; in practice an arm model's G) fits 6 degrees of freedom: its displacement error
   is several times smaller and its velocity (quadratic over 12 frames) within 15 % of the motion's.
