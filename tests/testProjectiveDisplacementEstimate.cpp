@@ -189,12 +189,12 @@ TEST(vpProjectiveDisplacement, EstimateNoisyWithinBounds)
     }
   }
   for (int k = 0; k < 2; ++k) {
-    std::cout << "[ stats    ] displacement, 7 markers, 30 deg, sigma " << kSigma << " px, " << seeds << " seeds, "
+    testLog() << "[ stats    ] displacement, 7 markers, 30 deg, sigma " << kSigma << " px, " << seeds << " seeds, "
               << (k == 0 ? "linear" : "ML") << ":";
     for (int m = 0; m < Measures; ++m) {
-      std::cout << " " << names[m] << " mean " << mean[k][m] << " max " << worst[k][m] << ";";
+      testLog() << " " << names[m] << " mean " << mean[k][m] << " max " << worst[k][m] << ";";
     }
-    std::cout << std::endl;
+    testLog() << std::endl;
   }
   const double sigmaZmm = 1000.0 * sigmaZ;
   // Linear estimate.

@@ -132,17 +132,17 @@ TEST(vpProjectiveDisplacement, RobustMatchesOutlierFreeAccuracy)
         }
       }
     }
-    std::cout << "[ stats    ] robust displacement, " << config.n << " points, " << config.nWrong
+    testLog() << "[ stats    ] robust displacement, " << config.n << " points, " << config.nWrong
               << " mismatched, sigma " << kSigma << " px, " << seeds << " seeds: mismatches flagged " << flagged << "/"
               << config.nWrong * seeds << ", correct points flagged " << lost << "/" << correct
               << " (on the correct data " << lostClean << "/" << config.n * seeds
               << "); robustClean vs clean H: max relative difference " << worstMLDifference << std::endl;
     for (int m = 0; m < RotationErrors::Count; ++m) {
-      std::cout << "[ stats    ]   " << measures[m] << " mean:";
+      testLog() << "[ stats    ]   " << measures[m] << " mean:";
       for (int e = 0; e < Estimates; ++e) {
-        std::cout << " " << names[e] << " " << mean[e][m];
+        testLog() << " " << names[e] << " " << mean[e][m];
       }
-      std::cout << "; robust / oracle " << mean[Robust][m] / mean[Oracle][m] << ", robust / clean "
+      testLog() << "; robust / oracle " << mean[Robust][m] / mean[Oracle][m] << ", robust / clean "
                 << mean[Robust][m] / mean[Clean][m] << " (sqrt(n / (n - k)) "
                 << std::sqrt(static_cast<double>(config.n) / static_cast<double>(config.n - config.nWrong)) << ")"
                 << std::endl;
@@ -225,7 +225,7 @@ TEST(vpProjectiveDisplacement, RobustTooManyMismatchesThrow)
       ++thrown;
     }
   }
-  std::cout << "[ stats    ] 6 points with 1 blob: " << thrown << " of 100 reported, " << absorbed << " absorbed"
+  testLog() << "[ stats    ] 6 points with 1 blob: " << thrown << " of 100 reported, " << absorbed << " absorbed"
             << std::endl;
   EXPECT_GE(thrown, 95);
 }

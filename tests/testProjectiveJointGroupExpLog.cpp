@@ -106,7 +106,7 @@ TYPED_TEST(JointGroup, LogRecoversTrueGenerator)
       EXPECT_NEAR(Hneg.getRotationAngle(), Traits::imageAngle(a), Traits::kAngleTol);
     }
   }
-  std::cout << "[ stats    ] " << Traits::name() << " log, noise free: worst relative generator error " << worst
+  testLog() << "[ stats    ] " << Traits::name() << " log, noise free: worst relative generator error " << worst
             << std::endl;
 }
 
@@ -217,7 +217,7 @@ TYPED_TEST(JointGroup, DexpIsTheDerivativeOfExp)
       EXPECT_LT(relativeError(Eigen::Matrix4d(G.exp(t).matrix() * G.generator()), D), 1e-9);
     }
   }
-  std::cout << "[ stats    ] " << Traits::name() << " dexp against numeric differentiation: worst relative error "
+  testLog() << "[ stats    ] " << Traits::name() << " dexp against numeric differentiation: worst relative error "
             << worst << std::endl;
 }
 

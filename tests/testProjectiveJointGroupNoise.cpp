@@ -73,7 +73,7 @@ TYPED_TEST(JointGroup, ProjectKeepsExactAndProjectsNoisyGenerators)
     }
     EXPECT_NEAR(meanRatio[1] / meanRatio[0], 1.0, 0.05);
   }
-  std::cout << "[ stats    ] " << Traits::name() << " project(): worst amplification / bound " << worstAmplification
+  testLog() << "[ stats    ] " << Traits::name() << " project(): worst amplification / bound " << worstAmplification
             << std::endl;
 }
 
@@ -133,7 +133,7 @@ TYPED_TEST(JointGroup, NoisyLogIsExactGeneratorWithBoundedError)
       EXPECT_NEAR(meanRatio[1] / meanRatio[0], 1.0, 0.05) << "joint " << k << ", amount " << a;
     }
   }
-  std::cout << "[ stats    ] " << Traits::name()
+  testLog() << "[ stats    ] " << Traits::name()
             << " log of a noisy H: worst algebraic error / (C eps) = " << worstAlgebraicOverC
             << ", worst projection amplification / bound = " << worstAmplification << std::endl;
 }

@@ -50,7 +50,7 @@ TEST(ProjectiveRobot, CalibrationAtHalfPixelNoise)
     EXPECT_LT(residual, robot.getAlgebraicResidual()) << "the refinement must improve on the algebraic generators";
     double worst = 0.0;
     const double rms = predictionRms(s, robot, std::vector<double>(6, vpMath::rad(30.0)), 100 + seed, worst);
-    std::cout << "[ measured ] seed " << seed << ": calibration residual " << residual << " px (algebraic "
+    testLog() << "[ measured ] seed " << seed << ": calibration residual " << residual << " px (algebraic "
               << robot.getAlgebraicResidual() << " px), prediction RMS " << rms << " px, worst " << worst << " px"
               << std::endl;
     EXPECT_LE(rms, 1.0) << "seed " << seed;
@@ -90,7 +90,7 @@ TEST(ProjectiveRobot, CalibrationAtOnePixelNoise)
       meanRms += rms / static_cast<double>(setup.second);
       worstRms = std::max(worstRms, rms);
     }
-    std::cout << "[ measured ] " << s.name << " at 1 px, " << setup.second << " seeds: prediction RMS " << meanRms
+    testLog() << "[ measured ] " << s.name << " at 1 px, " << setup.second << " seeds: prediction RMS " << meanRms
               << " px mean, " << worstRms << " px worst" << std::endl;
   }
 }
@@ -178,7 +178,7 @@ TEST(ProjectiveRobot, AcquisitionWithMismatchedMarkers)
   }
   const double recall = found / static_cast<double>(seeds * mismatched);
   const double falseRate = falseAlarms / static_cast<double>(seeds * (trials * K - mismatched));
-  std::cout << "[ measured ] 20 % mismatched trial observations at 0.5 px, " << seeds << " seeds: prediction RMS clean "
+  testLog() << "[ measured ] 20 % mismatched trial observations at 0.5 px, " << seeds << " seeds: prediction RMS clean "
             << clean << " px, with rejection " << robust << " px, without " << plain << " px; mismatches found "
             << 100.0 * recall << " %, correct observations rejected " << 100.0 * falseRate << " %" << std::endl;
   EXPECT_LE(robust, 1.25 * clean);

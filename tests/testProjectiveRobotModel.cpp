@@ -87,7 +87,7 @@ TEST_P(ProjectiveRobotSetup, NoiseFreeAcquisition)
   EXPECT_EQ(robot.getNumberOfJoints(), s.n());
   EXPECT_EQ(robot.getRigMounting(), s.mounting);
   // Measured 2e-12..5e-12 px (bundle adjustment) and 3e-10..9e-10 px (algebraic generators: linear estimates).
-  std::cout << "[ measured ] " << s.name << ": calibration residual " << robot.getCalibrationResidual()
+  testLog() << "[ measured ] " << s.name << ": calibration residual " << robot.getCalibrationResidual()
             << " px, algebraic " << robot.getAlgebraicResidual() << " px" << std::endl;
   EXPECT_LT(robot.getCalibrationResidual(), 1e-8);
   EXPECT_LT(robot.getAlgebraicResidual(), 1e-6);
@@ -123,7 +123,7 @@ TEST_P(ProjectiveRobotSetup, GeneratorsMatchGroundTruth)
     // The metric twists are those of a frame G = H_PE up to a similarity: Hhat_i = G^-1 That_i G.
     EXPECT_LT(relativeError(Eigen::Matrix4d(G * Hhat * G.inverse()), toEigen<4, 4>(robot.getTwist(i))), 1e-9);
   }
-  std::cout << "[ measured ] " << s.name << ": worst generator error " << worst << std::endl;
+  testLog() << "[ measured ] " << s.name << ": worst generator error " << worst << std::endl;
   // G H_PE^-1 is a similarity: its 3x3 block is a scaled rotation, its last row (0, 0, 0, s).
   Eigen::Matrix4d S = G * H.inverse();
   S /= S(3, 3);
@@ -164,7 +164,7 @@ TEST_P(ProjectiveRobotSetup, DisplacementMatchesTrueMotion)
       EXPECT_LT((Eigen::Vector4d(l.get_u(), l.get_v(), r.get_u(), r.get_v()) - sj).norm(), 1e-7);
     }
   }
-  std::cout << "[ measured ] " << s.name << ": worst displacement error " << worst << std::endl;
+  testLog() << "[ measured ] " << s.name << ": worst displacement error " << worst << std::endl;
 }
 
 TEST_P(ProjectiveRobotSetup, ImageJacobianMatchesSimulatedImages)
@@ -200,7 +200,7 @@ TEST_P(ProjectiveRobotSetup, ImageJacobianMatchesSimulatedImages)
       EXPECT_LT((toEigenX(robot.getImageJacobian(q, -3.0 * M)) - J).norm() / J.norm(), 1e-12);
     }
   }
-  std::cout << "[ measured ] " << s.name << ": worst image Jacobian error " << worst << " (prismatic column "
+  testLog() << "[ measured ] " << s.name << ": worst image Jacobian error " << worst << " (prismatic column "
             << worstPrismatic << ")" << std::endl;
 }
 
@@ -226,7 +226,7 @@ TEST_P(ProjectiveRobotSetup, PointJacobianIsDerivativeOfDisplacement)
       EXPECT_TRUE(jacobianMatches(JH, Jfd, 1e-7)) << s.name << " marker " << j;
     }
   }
-  std::cout << "[ measured ] " << s.name << ": worst point Jacobian error " << worst << std::endl;
+  testLog() << "[ measured ] " << s.name << ": worst point Jacobian error " << worst << std::endl;
 }
 
 TEST_P(ProjectiveRobotSetup, JointMotionsFollowEquation39)
@@ -272,7 +272,7 @@ TEST_P(ProjectiveRobotSetup, JointMotionsFollowEquation39)
       EXPECT_LT((JH.col(k) - HhatKq * M).norm(), 1e-12 * (HhatKq.norm() + 1.0));
     }
   }
-  std::cout << "[ measured ] " << s.name << ": eq. (39) worst error " << worst39 << ", against (dH/dq_k) H^-1 "
+  testLog() << "[ measured ] " << s.name << ": eq. (39) worst error " << worst39 << ", against (dH/dq_k) H^-1 "
             << worstFd << std::endl;
 }
 
@@ -307,7 +307,7 @@ TEST_P(ProjectiveRobotSetup, InverseKinematicsRecoversJoints)
     worstThree = std::max(worstThree, errThree);
     EXPECT_LT(errThree, 1e-8) << s.name << " three markers";
   }
-  std::cout << "[ measured ] " << s.name << ": inverse kinematics worst joint error " << worstAll << " (7 markers), "
+  testLog() << "[ measured ] " << s.name << ": inverse kinematics worst joint error " << worstAll << " (7 markers), "
             << worstThree << " (3 markers)" << std::endl;
 }
 
@@ -359,7 +359,7 @@ TEST_P(ProjectiveRobotSetup, ModelFileRoundTrip)
     worstJ = std::max(worstJ, errJ);
     EXPECT_LT(errJ, 1e-10);
   }
-  std::cout << "[ measured ] " << s.name << ": model file round trip: generators and displacements change by " << worst
+  testLog() << "[ measured ] " << s.name << ": model file round trip: generators and displacements change by " << worst
             << ", image Jacobians by " << worstJ << " (relative)" << std::endl;
   std::remove(path.c_str());
 }

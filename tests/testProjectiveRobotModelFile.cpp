@@ -93,7 +93,7 @@ TEST(ProjectiveRobot, ModelFileErrors)
   }
   EXPECT_EQ(caught + harmless, tried);
   EXPECT_GT(caught, 9 * tried / 10);
-  std::cout << "[ measured ] one byte changed: " << caught << " of " << tried << " caught, " << harmless
+  testLog() << "[ measured ] one byte changed: " << caught << " of " << tried << " caught, " << harmless
             << " left every value as it was" << std::endl;
 
   // A value edited without re-signing fails the checksum; another version is named.

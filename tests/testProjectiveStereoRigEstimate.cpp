@@ -77,7 +77,7 @@ TEST(vpProjectiveStereoRig, EstimateNoisyReachesNoiseFloor)
 {
   const Scene scene;
   const NoiseFloor f = estimateAtNoiseFloor(scene, 5.0);
-  std::cout << "[ stats    ] F, sigma " << kSigma << " px, n " << kNoisyMatches << ": residual mean " << f.meanResidual
+  testLog() << "[ stats    ] F, sigma " << kSigma << " px, n " << kNoisyMatches << ": residual mean " << f.meanResidual
             << " px (expected " << expectedResidual() << "), max relative deviation " << f.maxResidualDeviation
             << "; fresh RMS epipolar distance mean " << f.meanPrediction << " px, max " << f.maxPrediction
             << " (first order " << expectedPrediction() << ")" << std::endl;

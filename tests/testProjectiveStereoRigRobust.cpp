@@ -157,7 +157,7 @@ TEST(vpProjectiveStereoRig, EstimateWrongPairingsMatchOutlierFreeAccuracy)
     const size_t flagged = detectableFlagged + closeFlagged + correctFlagged;
     const double recall = static_cast<double>(detectableFlagged) / static_cast<double>(detectable);
     const double precision = static_cast<double>(detectableFlagged + closeFlagged) / static_cast<double>(flagged);
-    std::cout << "[ stats    ] F with " << nWrong << " of " << n << " matches wrongly paired, sigma " << kSigma
+    testLog() << "[ stats    ] F with " << nWrong << " of " << n << " matches wrongly paired, sigma " << kSigma
               << " px, " << seeds << " seeds: fresh RMS epipolar distance robust " << robust << " px, oracle " << oracle
               << " (ratio " << robust / oracle << "), clean " << clean << ", naive " << naive << "; flagged "
               << detectableFlagged << "/" << detectable << " wrong pairings beyond 4 px (recall " << recall << "), "
@@ -221,7 +221,7 @@ TEST(vpProjectiveStereoRig, EstimateSmallSetsAreNotRobust)
         ++reported;
       }
     }
-    std::cout << "[ stats    ] F from " << n << " matches with one wrong: reported in " << reported << " of " << seeds
+    testLog() << "[ stats    ] F from " << n << " matches with one wrong: reported in " << reported << " of " << seeds
               << " seeds, wrong match rejected in " << rejected << ", absorbed in " << seeds - reported - rejected
               << std::endl;
     EXPECT_GE(reported + rejected, static_cast<int>(0.75 * seeds));

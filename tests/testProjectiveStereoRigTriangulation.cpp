@@ -84,7 +84,7 @@ TEST(vpProjectiveStereoRig, TriangulateNoisyIsOptimal)
     sumRefined += refined;
   }
   const double meanSquare = sumSquares / left.size();
-  std::cout << "[ stats    ] triangulation, sigma " << kSigma << " px: mean squared refined error " << meanSquare
+  testLog() << "[ stats    ] triangulation, sigma " << kSigma << " px: mean squared refined error " << meanSquare
             << " px^2 (expected " << kSigma * kSigma << "), mean error linear " << sumLinear / left.size()
             << " px, refined " << sumRefined / left.size() << " px" << std::endl;
   EXPECT_NEAR(meanSquare / (kSigma * kSigma), 1.0, 0.4);

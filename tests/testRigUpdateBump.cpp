@@ -43,7 +43,7 @@ TEST(RigUpdate, BumpDetectedReRegisteredAndTaskFinished)
     EXPECT_LT(c.finalDeg, 2.0) << bumpName(kind);
     EXPECT_LT(c.finalMetres, 0.005) << bumpName(kind);
     EXPECT_TRUE(c.userStarUnchanged) << bumpName(kind);
-    std::cout << "[ measured ] " << bumpName(kind) << ": detected after " << c.detectedAfter << ", pre-bump error "
+    testLog() << "[ measured ] " << bumpName(kind) << ": detected after " << c.detectedAfter << ", pre-bump error "
               << c.preError << " px, ratios 3: " << c.ratio3 << " 10: " << c.ratio10
               << " (11-parameter from 3: " << c.ratio3General << "), final " << c.finalDeg << " deg "
               << 1000.0 * c.finalMetres << " mm (unbumped " << c.unbumpedDeg << " deg " << 1000.0 * c.unbumpedMetres
@@ -122,18 +122,18 @@ TEST(RigUpdate, TaskReExpressesItsDesiredFeatures)
   for (int it = 0; it < 100; ++it) {
     const vpServoProjective::vpServoStatus st = run.step(b, q, 0.0, t.noise);
     if (it % 10 == 0)
-      std::cout << it << " " << st << " " << run.task.getError().frobeniusNorm() << " " << run.task.getConditionNumber()
+      testLog() << it << " " << st << " " << run.task.getError().frobeniusNorm() << " " << run.task.getConditionNumber()
                 << std::endl;
   }
   double deg = 0.0, metres = 0.0;
   {
     vpColVector qq = t.qTarget;
     run.step(b, qq, 0.0, t.noise);
-    std::cout << "at target e " << run.task.getError().t() << std::endl;
+    testLog() << "at target e " << run.task.getError().t() << std::endl;
     std::vector<vpImagePoint> l, r;
     b.images(b.armJoints(t.qTarget), l, r, -1e9);
-    std::cout << "pred err at target " << t.robot.getPredictionError(t.qTarget, l, r) << std::endl;
-    std::cout << "q-qT " << (q - t.qTarget).t() << std::endl;
+    testLog() << "pred err at target " << t.robot.getPredictionError(t.qTarget, l, r) << std::endl;
+    testLog() << "q-qT " << (q - t.qTarget).t() << std::endl;
   }
   toolPoseError(s, q, t.qTarget, deg, metres);
   EXPECT_LT(deg, 1e-3);

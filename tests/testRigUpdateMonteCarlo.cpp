@@ -13,7 +13,7 @@
 
 /*
   A seeded Monte-Carlo of bumps at 0.5 px (issue 12; helpers in vpRigUpdateTestTools.h) whose figures are printed as
-  "[ measured ]" lines.
+  "[ measured ]" lines when VISP_PROJECTIVE_TEST_VERBOSE=1.
 */
 
 #include <gtest/gtest.h>
@@ -54,13 +54,13 @@ TEST(RigUpdate, MonteCarloOfBumps)
     unbumpedDeg.push_back(c.unbumpedDeg);
     unbumpedMm.push_back(1000.0 * c.unbumpedMetres);
     if (c.detectedAfter < 1 || c.detectedAfter > 2 || c.finalDeg > 2.0 || c.finalMetres > 0.002) {
-      std::cout << "[ measured ] case " << k << " (" << bumpName(kind) << "): detected after " << c.detectedAfter
+      testLog() << "[ measured ] case " << k << " (" << bumpName(kind) << "): detected after " << c.detectedAfter
                 << ", final " << c.finalDeg << " deg " << 1000.0 * c.finalMetres << " mm (unbumped " << c.unbumpedDeg
                 << " deg " << 1000.0 * c.unbumpedMetres << " mm), ratio from 3 " << c.ratio3 << std::endl;
     }
   }
   const double n = static_cast<double>(cases);
-  std::cout << "[ measured ] " << cases << " bumps at 0.5 px: detected within 2 iterations " << detected / n
+  testLog() << "[ measured ] " << cases << " bumps at 0.5 px: detected within 2 iterations " << detected / n
             << ", false alarms " << falseAlarms << " (unbumped runs at 0.5 and 1 px and before the bumps), median "
             << "ratio of the re-registered prediction error to the pre-bump one: " << median(ratio3)
             << " from 3 observations (90 % quantile " << quantile(ratio3, 0.9) << "), " << median(ratio10)

@@ -103,7 +103,7 @@ TEST(ServoProjective, JointLimitAvoidanceKeepsTheJointInside)
       } else {
         EXPECT_GT(depth, 0.0) << what.str() << ": neither converged nor held in the activation band";
       }
-      std::cout << "[ measured ] " << what.str() << ": unconstrained run " << vpMath::deg(freeBeyond)
+      testLog() << "[ measured ] " << what.str() << ": unconstrained run " << vpMath::deg(freeBeyond)
                 << " deg beyond the limit (" << free.iterations << " iterations); with avoidance its closest approach "
                 << vpMath::deg(closest) << " deg inside, "
                 << (ok ? "converged in " + std::to_string(limited.iterations) + " iterations"
@@ -200,7 +200,7 @@ TEST_F(ServoProjectivePuma, LargeProjectionOperatorAndJointLimitTaskMatchViSP)
       const Eigen::MatrixXd PViSP = toEigenX(servo.getLargeP());
       EXPECT_LT((P - PViSP).norm(), 1e-9) << what.str();
       EXPECT_LT((q2 - q2ViSP).norm(), 1e-9 * q2.norm()) << what.str();
-      std::cout << "[ measured ] " << what.str() << ": |P - P_ViSP| " << (P - PViSP).norm()
+      testLog() << "[ measured ] " << what.str() << ": |P - P_ViSP| " << (P - PViSP).norm()
                 << ", |q2 - q2_ViSP| / |q2| " << (q2 - q2ViSP).norm() / q2.norm() << ", |P J^T e| / |J^T e| "
                 << (P * b).norm() / b.norm() << std::endl;
       servo.kill();

@@ -103,7 +103,7 @@ TEST_F(ServoProjectivePuma, AdaptiveGain)
     task.task.setLambda(2.0, 0.2, 0.05);
     EXPECT_LT((toEigenV(task.task.computeControlLaw(q)) - qdot).norm(), 1e-12 * qdot.norm());
   }
-  std::cout << "[ measured ] adaptive gain " << lambdaFar << " far, " << lambdaNear << " near" << std::endl;
+  testLog() << "[ measured ] adaptive gain " << lambdaFar << " far, " << lambdaNear << " near" << std::endl;
   EXPECT_LT(lambdaFar, lambdaNear);
   EXPECT_GT(lambdaNear, 1.0);
   EXPECT_LT(lambdaFar, 1.0);
@@ -140,7 +140,7 @@ TEST(ServoProjective, DampingKeepsSingularTasksFinite)
     const Eigen::MatrixXd J = toEigenX(task.task.getTaskJacobian());
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
     const Eigen::VectorXd sv = svd.singularValues();
-    std::cout << "[ measured ] " << what << ": singular values " << sv.transpose() << ", damping "
+    testLog() << "[ measured ] " << what << ": singular values " << sv.transpose() << ", damping "
               << task.task.getDamping() << ", |qdot| " << qdot.norm() << std::endl;
     // Rank deficient: sigma_min ~ 0, so mu = mu_max.
     EXPECT_LT(sv(expectedRank) / sv(0), 1e-9) << what;
@@ -189,7 +189,7 @@ TEST(ServoProjective, DampingKeepsSingularTasksFinite)
   EXPECT_GT(nearTask.task.getDamping(), 0.9 * muMax);
   nearTask.task.setDamping(0.0, 0.0);
   const double undamped = toEigenV(nearTask.task.computeControlLaw(qNear)).norm();
-  std::cout << "[ measured ] 0.01 deg from the wrist singularity: |qdot| " << damped << " damped, " << undamped
+  testLog() << "[ measured ] 0.01 deg from the wrist singularity: |qdot| " << damped << " damped, " << undamped
             << " undamped" << std::endl;
   EXPECT_GT(undamped, 100.0 * damped);
 }

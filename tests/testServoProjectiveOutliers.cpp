@@ -153,7 +153,7 @@ TEST_F(ServoProjectivePuma, GrossOutliersAreRejected)
       }
       accuracy[run] = std::sqrt(sum / count);
     }
-    std::cout << "[ measured ] pair " << p << ": RMS joint error over the last " << tail << " iterations "
+    testLog() << "[ measured ] pair " << p << ": RMS joint error over the last " << tail << " iterations "
               << vpMath::deg(accuracy[0]) << " deg without outliers, " << vpMath::deg(accuracy[1])
               << " deg with outliers rejected, " << vpMath::deg(accuracy[2])
               << " deg with outliers not rejected; worst image RMS in that window " << worstRms[0] << ", "

@@ -87,7 +87,7 @@ TEST(ServoProjective, LostFeatureIsSetAsideThenUsedAgain)
           // The loss changed the path (another law: noise free, the Gauss-Newton steps of any full-rank subset of the
           // markers agree to first order, hence a small but far-above-rounding difference), not the end.
           EXPECT_GT(jointError(afterLoss[1], afterLoss[0]), 1e-7) << s.name << " pair " << p;
-          std::cout << "[ measured ] " << s.name << " pair " << p << ": marker 1 lost at iterations 5-9, converged in "
+          testLog() << "[ measured ] " << s.name << " pair " << p << ": marker 1 lost at iterations 5-9, converged in "
                     << converged << " iterations (" << reference << " without the loss), joint error "
                     << jointError(q, qTarget) << " rad; the path differed by " << jointError(afterLoss[1], afterLoss[0])
                     << " rad at iteration 10" << std::endl;
@@ -201,7 +201,7 @@ TEST(ServoProjective, StopsWhenTheActiveFeaturesNoLongerConstrainEveryJoint)
             const double ratio = equilibratedRatio(Ja);
             EXPECT_NEAR(t.task.getSingularValueRatio(), ratio, 1e-6 * ratio) << what.str();
           }
-          std::cout << "[ measured ] " << what.str() << ": singular values of the active rows " << sv.transpose()
+          testLog() << "[ measured ] " << what.str() << ": singular values of the active rows " << sv.transpose()
                     << ", ratio of J D^-1 " << t.task.getSingularValueRatio() << std::endl;
         }
         EXPECT_EQ(t.task.getStatus(), c.status) << what.str();
@@ -326,7 +326,7 @@ TEST_F(ServoProjectivePuma, FeatureOutsideTheImageIsDetectedNotExtrapolated)
     EXPECT_GE(converged, 0) << "run " << runs << ": no convergence in 200 iterations";
     EXPECT_EQ(loop.task.getStatus(), vpServoProjective::SERVO_RUNNING);
     EXPECT_LT(jointError(qv, qTarget), 1e-5);
-    std::cout << "[ measured ] start with one marker outside an image: set aside for " << iterationsOut
+    testLog() << "[ measured ] start with one marker outside an image: set aside for " << iterationsOut
               << " iterations, converged in " << converged << ", joint error " << jointError(qv, qTarget) << " rad"
               << std::endl;
   }

@@ -169,7 +169,7 @@ inline void expectConvergence(const ArmSetup &s, long seed, int pairs, double ta
     worst = std::max(worst, iterations);
     EXPECT_LE(iterations, 200) << s.name << " pair " << p << ": RMS " << rms << " px";
     EXPECT_LT((toEigenV(q) - toEigenV(qTarget)).cwiseAbs().maxCoeff(), 1e-5) << s.name << " pair " << p;
-    std::cout << "[ measured ] " << s.name << " pair " << p << ": " << iterations << " iterations, start error "
+    testLog() << "[ measured ] " << s.name << " pair " << p << ": " << iterations << " iterations, start error "
               << vpMath::deg((toEigenV(qStart) - toEigenV(qTarget)).cwiseAbs().maxCoeff()) << " deg, final RMS " << rms
               << " px, joint error " << (toEigenV(q) - toEigenV(qTarget)).cwiseAbs().maxCoeff() << " rad" << std::endl;
   }
