@@ -187,6 +187,6 @@ TEST(vpProjectiveDisplacement, MaximumLikelihoodEqualsCeres)
     worstCost = std::max(worstCost, dCost);
     worstH = std::max(worstH, dH);
   }
-  std::cout << "[ measured ] library ML vs Ceres on the same cost, 12 cases: cost difference " << worstCost
+  testLog() << "[ measured ] library ML vs Ceres on the same cost, 12 cases: cost difference " << worstCost
             << " (relative), H difference " << worstH << " (relative, whitened frame)" << std::endl;
 }

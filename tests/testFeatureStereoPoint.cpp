@@ -182,7 +182,7 @@ TEST(FeatureStereoPoint, InteractionIsDerivativeOfProjections)
     vpBasicFeature &base = s;
     EXPECT_EQ(toEigenX(base.interaction()), L);
   }
-  std::cout << "[ measured ] worst interaction error " << worst << std::endl;
+  testLog() << "[ measured ] worst interaction error " << worst << std::endl;
 }
 
 TEST(FeatureStereoPoint, InteractionTimesPointJacobianIsImageJacobian)

@@ -228,7 +228,7 @@ TEST_P(PathPlannerArms, InverseKinematicsFindsEveryBranch)
       nearestToTruth = std::min(nearestToTruth, branchDistance(f, toJoints(qTarget)));
     }
     EXPECT_LT(nearestToTruth, 1e-4) << s.name << " task " << task;
-    std::cout << s.name << " task " << task << ": " << exact << " exact branches by 1500 starts, " << found.size()
+    testLog() << s.name << " task " << task << ": " << exact << " exact branches by 1500 starts, " << found.size()
               << " found by the planner's default starts" << std::endl;
   }
 }
@@ -315,7 +315,7 @@ TEST_P(PathPlannerArms, TwoViewRefinementBringsTheResidualToTheNoise)
   const double fixedMedian = median(fixedError);
   const double refinedMedian = median(refinedError);
   const double fixedResidualMedian = median(fixedResidual), residualMedian = median(refinedResidual);
-  std::cout << s.name << ", medians over 30 tasks: residual " << fixedResidualMedian
+  testLog() << s.name << ", medians over 30 tasks: residual " << fixedResidualMedian
             << " px RMS with the points fixed, " << residualMedian << " px refined; target joint error " << fixedMedian
             << " deg fixed, " << refinedMedian << " deg refined" << std::endl;
   // 24 pixels for 6 joints and 9 point coordinates: sigma sqrt(9 / 24) = 0.61 sigma expected; with the points fixed
@@ -392,7 +392,7 @@ TEST(PathPlanner, UsesTheAcquiredMarkersItRecognises)
         vpProjectiveInverseKinematics::solveWithPoints(model, sStar, seen, toJoints(qStart), toJoints(qTarget), points);
     refinedError.push_back(vpMath::deg((refined - toJoints(qTarget)).norm()));
   }
-  std::cout << "target joint error, median over 20 tasks: " << median(plannedError) << " deg planned (markers), "
+  testLog() << "target joint error, median over 20 tasks: " << median(plannedError) << " deg planned (markers), "
             << median(refinedError) << " deg by the two-view refinement of triangulated points" << std::endl;
   EXPECT_LT(median(plannedError), 0.75 * median(refinedError));
 
@@ -456,7 +456,7 @@ TEST(PathPlanner, MatchMarkerRecognisesEachAcquiredMarker)
     EXPECT_EQ(model.matchMarker(H, 0.5 * (images[0] + images[1])), -1) << "pose " << pose;
   }
   EXPECT_LE(ambiguous, 7u) << "most markers stand apart in the images";
-  std::cout << ambiguous << " of 70 marker images within 6 px of another" << std::endl;
+  testLog() << ambiguous << " of 70 marker images within 6 px of another" << std::endl;
 }
 
 TEST(PathPlanner, KeepsTheTargetOutOfTheJointLimitMargins)
@@ -548,7 +548,7 @@ TEST(PathPlanner, PlansStayInsideLimitsAndView)
       EXPECT_LT((reached[k] - sStar[k]).cwiseAbs().maxCoeff(), 1e-3) << "task " << task;
     }
   }
-  std::cout << "path kinds: " << kinds[0] << " straight image lines, " << kinds[1] << " joint lines, " << kinds[2]
+  testLog() << "path kinds: " << kinds[0] << " straight image lines, " << kinds[1] << " joint lines, " << kinds[2]
             << " waypoints" << std::endl;
   EXPECT_GT(kinds[vpProjectivePathPlanner::PATH_IMAGE_LINE], 0u);
 }
@@ -627,7 +627,7 @@ TEST(PathPlanner, FollowsStraightImageLinesWithinTheExcursionBound)
     EXPECT_LE((path[j] - (j > 0 ? path[j - 1] : path[j])).cwiseAbs().maxCoeff(), step + 1e-12) << "sample " << j;
   }
   const double straight = lineDeviation(path), arc = lineDeviation(jointLine);
-  std::cout << "straight image lines: largest joint excursion " << vpMath::deg(e) << " deg, largest distance of a "
+  testLog() << "straight image lines: largest joint excursion " << vpMath::deg(e) << " deg, largest distance of a "
             << "feature to its line " << straight << " px (the joint-space line: " << arc << " px), " << path.size() - 1
             << " steps" << std::endl;
   EXPECT_LT(straight, 0.25 * arc);
@@ -796,7 +796,7 @@ TEST(PathPlanner, PlannedServoReachesWideTargets)
     law += runServo(s, robot, tracked, qStart, qTarget, false, qmin, qmax, unused) >= 0;
     EXPECT_GE(itPlanned, 0) << "task " << task;
   }
-  std::cout << "wide tasks reached: planned " << planned << "/" << tasks << ", law (47) " << law << "/" << tasks
+  testLog() << "wide tasks reached: planned " << planned << "/" << tasks << ", law (47) " << law << "/" << tasks
             << "; largest planned excursion beyond [start, target] " << vpMath::deg(worstExcursion) << " deg"
             << std::endl;
   EXPECT_LT(worstExcursion, vpMath::rad(20.0));
@@ -1012,8 +1012,8 @@ TEST(PathPlanner, PlannedServoOnViper850NeverLosesWhatLawSolves)
   EXPECT_GE(planned, law + 4) << "wide tasks: planning must solve some that law (47) does not";
   EXPECT_GE(planned, tasks - 2);
   EXPECT_GT(followedInBand, 0) << "some path starts or passes in the avoidance's band (the case the check is for)";
-  if (std::getenv("VISP_PROJECTIVE_TEST_VERBOSE") != nullptr) {
-    std::cout << "Viper850 +-60 deg: planned " << planned << "/" << tasks << ", law (47) " << law << "/" << tasks
+  if (verboseTests()) {
+    testLog() << "Viper850 +-60 deg: planned " << planned << "/" << tasks << ", law (47) " << law << "/" << tasks
               << std::endl;
   }
 }

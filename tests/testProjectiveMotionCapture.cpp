@@ -140,7 +140,7 @@ TEST(vpProjectiveMotionCapture, ArmAtTheNoiseFloor)
       naiveError += (naive - toEigenV(trajectoryVelocity(t, amplitude))).squaredNorm();
     }
   }
-  std::cout << "[ measured ] motion capture, 200 frames at 0.5 px, error / floor per joint (RMS, median |.|):";
+  testLog() << "[ measured ] motion capture, 200 frames at 0.5 px, error / floor per joint (RMS, median |.|):";
   for (int i = 0; i < 6; ++i) {
     double rms = 0.0;
     std::vector<double> magnitude;
@@ -149,13 +149,13 @@ TEST(vpProjectiveMotionCapture, ArmAtTheNoiseFloor)
       magnitude.push_back(std::abs(z));
     }
     rms = std::sqrt(rms);
-    std::cout << " j" << i << " " << rms << ", " << median(magnitude);
+    testLog() << " j" << i << " " << rms << ", " << median(magnitude);
     EXPECT_LT(rms, 1.25) << "joint " << i;
     EXPECT_LT(median(magnitude), 1.25 * 0.6745) << "joint " << i;
   }
   const double relativeVelocityError = std::sqrt(velocityError / velocityNorm);
   const double naiveRatio = std::sqrt(velocityError / naiveError);
-  std::cout << "; velocity error " << relativeVelocityError << " of the RMS velocity (window " << kVelocityWindow
+  testLog() << "; velocity error " << relativeVelocityError << " of the RMS velocity (window " << kVelocityWindow
             << " frames), " << naiveRatio << " times that of a two-frame difference" << std::endl;
   // At the floor, the frames' errors dominate the velocity (its lag on this trajectory is checked noise-free below):
   // the fit over the window averages them out. For independent frame errors of equal spread the ratio to a two-frame
@@ -191,7 +191,7 @@ TEST(vpProjectiveMotionCapture, NoiseFreeJointsAndVelocities)
   }
   EXPECT_LT(worst, 1e-9);
   EXPECT_LT(std::sqrt(velocityError / velocityNorm), 0.03);
-  std::cout << "[ measured ] noise-free capture: worst joint error " << worst << " rad, velocity error "
+  testLog() << "[ measured ] noise-free capture: worst joint error " << worst << " rad, velocity error "
             << std::sqrt(velocityError / velocityNorm) << " of the RMS velocity" << std::endl;
 }
 
@@ -307,17 +307,17 @@ TrackingStats trackRigidBody(const vpMatrix &G, unsigned int velocityWindow)
 
 /*
   Projective tracking (15 degrees of freedom per frame) of 7 markers on 10 cm: the displacement's relative error is
-  that of a single 7-marker homography at 0.5 px (a few percent, see testProjectiveDisplacement), every frame tracked
-  through the lost marker and the jump; its velocity, a derivative of those errors, is noise. Rigid tracking with the
-  metric upgrade (here H_PE itself; in practice an arm model's G) fits 6 degrees of freedom: its displacement error
-  is several times smaller and its velocity (quadratic over 12 frames) within 15 % of the motion's.
+  that of a single 7-marker homography at 0.5 px (a few percent, see testProjectiveDisplacementEstimate), every frame
+  tracked through the lost marker and the jump; its velocity, a derivative of those errors, is noise. Rigid tracking
+  with the metric upgrade (here H_PE itself; in practice an arm model's G) fits 6 degrees of freedom: its displacement
+  error is several times smaller and its velocity (quadratic over 12 frames) within 15 % of the motion's.
 */
 TEST(vpProjectiveRigidBodyTracker, FollowsARigidBody)
 {
   const TrackingStats projective = trackRigidBody(vpMatrix(), 12);
   const Scene scene;
   const TrackingStats rigid = trackRigidBody(toVisp(scene.Hpe), 12);
-  std::cout << "[ measured ] rigid-body tracking, 150 frames at 0.5 px, 7 markers: projective displacement error "
+  testLog() << "[ measured ] rigid-body tracking, 150 frames at 0.5 px, 7 markers: projective displacement error "
             << projective.medianError << " (median), " << projective.worstError << " (worst), velocity "
             << projective.medianVelocityError << "; rigid (metric G) " << rigid.medianError << ", " << rigid.worstError
             << ", velocity " << rigid.medianVelocityError << " (relative)" << std::endl;

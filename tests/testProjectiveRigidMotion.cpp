@@ -108,7 +108,7 @@ TEST(vpProjectiveDisplacement, LogarithmOfAnyDisplacement)
   const vpMatrix Hhat = vpProjectiveDisplacement(toVisp(Eigen::Matrix4d(scene.HpeInv * expm(That) * scene.Hpe))).log();
   ASSERT_EQ(Hhat.getRows(), 4u);
   EXPECT_LT((scene.Hpe * toEigen<4, 4>(Hhat) * scene.HpeInv - That).norm(), 1e-10);
-  std::cout << "[ measured ] log of p-displacements: worst relative error " << worstLog << ", exp(log H) " << worstExp
+  testLog() << "[ measured ] log of p-displacements: worst relative error " << worstLog << ", exp(log H) " << worstExp
             << std::endl;
 }
 
@@ -199,7 +199,7 @@ TEST(vpProjectiveBodyVelocity, SequenceSmoothsNoise)
   }
   EXPECT_LT(errExact, 1e-8); // a constant velocity is fitted exactly
   EXPECT_LT(errFit, errTwo / 5.0);
-  std::cout << "[ measured ] body velocity, 1 mrad / 1 mm noise per displacement: two samples " << errTwo
+  testLog() << "[ measured ] body velocity, 1 mrad / 1 mm noise per displacement: two samples " << errTwo
             << ", 21-sample fit " << errFit << " (relative)" << std::endl;
   // Bad inputs.
   std::vector<vpProjectiveDisplacement> H(3);

@@ -258,7 +258,7 @@ TEST(vpProjectiveSelfCalibration, AccuracyAtHalfAPixel)
       return 0.5 * (x[(x.size() - 1) / 2] + x[x.size() / 2]);
     };
     auto worst = [](const std::vector<double> &x) { return *std::max_element(x.begin(), x.end()); };
-    std::cout << "[ measured ] " << s.name << ", 0.5 px, 20 seeds (median / worst): focal " << 100 * median(focal)
+    testLog() << "[ measured ] " << s.name << ", 0.5 px, 20 seeds (median / worst): focal " << 100 * median(focal)
               << " / " << 100 * worst(focal) << " %, principal point " << median(principal) << " / " << worst(principal)
               << " px, rotation " << median(rotation) << " / " << worst(rotation) << " deg, baseline direction "
               << median(direction) << " / " << worst(direction) << " deg, length " << 100 * median(length) << " / "

@@ -154,7 +154,7 @@ TEST(ServoJointLimitAvoidance, MatchesViSPsLargeProjectionOperatorAndSecondaryTa
         EXPECT_LT((P * P - P).norm(), 1e-9) << what.str(); // I - J^+ J below e0, P_e above e1: projectors
       }
       EXPECT_GT(q2.norm(), 0.0) << what.str();
-      std::cout << "[ measured ] " << what.str() << ": |P - P_ViSP| " << (P - visp.P).norm() << ", |q2| " << q2.norm()
+      testLog() << "[ measured ] " << what.str() << ": |P - P_ViSP| " << (P - visp.P).norm() << ", |q2| " << q2.norm()
                 << ", |q2 - q2_ViSP| " << (q2 - visp.q2).norm() << std::endl;
     }
   }

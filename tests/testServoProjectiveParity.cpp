@@ -217,7 +217,7 @@ TEST_F(ServoProjectiveParity, AnAdaptiveGainGetsVpServosValueAtEveryIteration)
       }
       q = s.arm.integrate(s.armJoints(q), qdot, 0.1) - s.qRef; // a velocity (1/s) applied for 0.1 s
     }
-    std::cout << "[ measured ] adaptive gain of " << names[mode] << ": " << iterations
+    testLog() << "[ measured ] adaptive gain of " << names[mode] << ": " << iterations
               << " iterations to 1e-3 px, gains up to " << worst << " times vpServo's" << std::endl;
     if (mode == 1) {
       EXPECT_GT(worst, 2.0) << names[mode]; // pixels: a slope per normalised unit acts a thousand times too early
@@ -309,7 +309,7 @@ TEST_F(ServoProjectiveParity, TheUnitChangesNeitherAConstantGainsLawNorThePixelS
   // Estimated: the mean focal length of the model's metric self-calibration, the simulator's px = py here.
   task.setErrorUnit(vpServoProjective::ERROR_NORMALIZED);
   const double f = s.camLeft.get_px();
-  std::cout << "[ measured ] estimated focal length " << task.getErrorScale() << " px, true " << f << " px"
+  testLog() << "[ measured ] estimated focal length " << task.getErrorScale() << " px, true " << f << " px"
             << std::endl;
   EXPECT_NEAR(task.getErrorScale(), f, 0.01 * f);
   // Chosen before the robot: estimated by setRobot().

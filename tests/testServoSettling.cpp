@@ -227,8 +227,8 @@ TEST(ServoSettling, SixteenFramesAndSettlingEndBelowHalfTheSingleFrameFloor)
     // Settling, not the 16 frames alone: over all joints, at most 0.75 times the same runs without settling (8 seeds:
     // 0.53 times; per joint the target's remaining noise, 1/16 of a frame's, may dominate).
     EXPECT_LE(settled.sum(), 0.75 * unsettled.sum()) << "at " << sigma << " px: settling averaged nothing";
-    if (std::getenv("SETTLING_PRINT") != nullptr) { // SETTLING_PRINT=1: the table per joint
-      std::cout << sigma << " settled " << settled.transpose() << "\n  unsettled " << unsettled.transpose()
+    if (verboseTests()) { // VISP_PROJECTIVE_TEST_VERBOSE=1: the table per joint
+      testLog() << sigma << " settled " << settled.transpose() << "\n  unsettled " << unsettled.transpose()
                 << "\n  law " << law.transpose() << "\n";
     }
   }

@@ -44,6 +44,7 @@ using namespace VISP_NAMESPACE_NAME;
 namespace
 {
 using vpProjectiveTest::point3;
+using vpProjectiveTest::testLog;
 using vpProjectiveTest::throwsProjective;
 
 //! The paper's world: rig, PUMA-like arm with 7 gripper markers, a renderer, and the rig of the true F.
@@ -172,7 +173,7 @@ TEST(StereoDotTracker, TracksRenderedMarkersAccurately)
   vpSimulatorMarkerRenderer renderer(w.rig, 1); // 6 mm balls, blur 0.8 px, noise 4 grey levels
   double largest = 0.0;
   const double rms = trackPath(renderer, largest);
-  std::cout << "tracking accuracy, default rendering: " << rms << " px RMS, largest " << largest << " px\n";
+  testLog() << "tracking accuracy, default rendering: " << rms << " px RMS, largest " << largest << " px\n";
   EXPECT_LT(rms, 0.12);
   EXPECT_LT(largest, 0.5);
 }
@@ -185,7 +186,7 @@ TEST(StereoDotTracker, ToleratesStrongNoiseAndBlur)
   renderer.setBlur(1.5);
   double largest = 0.0;
   const double rms = trackPath(renderer, largest);
-  std::cout << "tracking accuracy, noise 12 grey levels and blur 1.5 px: " << rms << " px RMS, largest " << largest
+  testLog() << "tracking accuracy, noise 12 grey levels and blur 1.5 px: " << rms << " px RMS, largest " << largest
             << " px\n";
   EXPECT_LT(rms, 0.3);
   EXPECT_LT(largest, 1.2);
@@ -265,7 +266,7 @@ TEST(StereoDotTracker, CrossingBlobsKeepTheirIdentity)
   EXPECT_LT(vpImagePoint::distance(tracker.getLeftPoint(0), left[0]), 0.3);
   EXPECT_LT(vpImagePoint::distance(tracker.getRightPoint(1), right[1]), 0.3);
   EXPECT_LT(largest, 0.5);
-  std::cout << "crossing: lost for " << lostFrames << " frames, accuracy " << std::sqrt(sum2 / count)
+  testLog() << "crossing: lost for " << lostFrames << " frames, accuracy " << std::sqrt(sum2 / count)
             << " px RMS when found\n";
 }
 

@@ -23,9 +23,9 @@
   Ground truth, independent of the plugin's models: the metric twist of joint i at qRef in the world frame is read off
   the Denavit-Hartenberg frame reached after rows 0..i-1 at qRef (axis z, through the origin of that frame; written
   again in dhTransform(), not taken from the simulator), its 4x4 matrix made by vpMetricTwist's hats, which
-  GroundTruthIsConsistent (testProjectiveRobot) checks against the simulated motions with the independent expm(); in the
-  left camera frame it is lMw Tw wMl (eye-to-hand) or -lMw(qRef) Tw wMl(qRef) (eye-in-hand: the camera moves, the scene
-  moves the other way). The true motion of the scene in the left camera frame from qRef to qRef + q is
+  GroundTruthIsConsistent (testProjectiveRobotModel) checks against the simulated motions with the independent
+  expm(); in the left camera frame it is lMw Tw wMl (eye-to-hand) or -lMw(qRef) Tw wMl(qRef) (eye-in-hand: the camera
+  moves, the scene moves the other way). The true motion of the scene in the left camera frame from qRef to qRef + q is
   lMw wMt(qArm) wMt(qRef)^-1 wMl (eye-to-hand) or wMl(qArm)^-1 wMl(qRef) (eye-in-hand). In both cases the
   projective displacement is H_PE^-1 T H_PE, the generator H_PE^-1 That H_PE.
 */

@@ -23,6 +23,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <iostream>
 #include <limits>
 #include <string>
 #include <type_traits>
@@ -65,6 +67,27 @@ namespace conversion = VISP_NAMESPACE_NAME;
 #else
 namespace conversion = vp;
 #endif
+
+/*!
+  Whether the tests were asked to print their diagnostics: the environment variable VISP_PROJECTIVE_TEST_VERBOSE set
+  to anything but "" or "0" (tests print nothing unless asked).
+*/
+inline bool verboseTests()
+{
+  const char *value = std::getenv("VISP_PROJECTIVE_TEST_VERBOSE");
+  return value != nullptr && std::string(value) != "" && std::string(value) != "0";
+}
+
+/*!
+  The stream of the tests' diagnostics ("[ measured ]" and "[ stats    ]" lines, tables): std::cout when
+  verboseTests(), otherwise a stream that writes nothing. What is written is still computed, so a diagnostic cannot
+  hide a failure that only shows when it is printed.
+*/
+inline std::ostream &testLog()
+{
+  static std::ostream quiet(nullptr); // no buffer: every insertion is dropped
+  return verboseTests() ? std::cout : quiet;
+}
 
 //! A vpMatrix as a dynamic Eigen matrix (test comparisons).
 inline Eigen::MatrixXd toEigenX(const vpMatrix &A)

@@ -1,0 +1,39 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*
+  Linked into every test program (tests/CMakeLists.txt), not a test itself: Ceres' own glog warnings are not printed
+  unless the tests are asked to print (VISP_PROJECTIVE_TEST_VERBOSE, vpProjectiveTest::verboseTests()). The library
+  already runs Ceres with logging_type SILENT; what remains are Ceres' internal warnings such as "Linear solver
+  failure. Failed to compute a step" when a Levenberg-Marquardt step fails and is retried with more damping (seen in
+  the noisy calibration and robust rig estimation suites), which the tests assert the outcome of anyway.
+*/
+
+#include <glog/logging.h>
+
+#include "vpProjectiveTestTools.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+namespace
+{
+//! Set once, before main(): glog's flags are defined (and read from GLOG_* variables) by the shared library first.
+const bool kQuietCeresLogging = [] {
+  if (!vpProjectiveTest::verboseTests()) {
+    FLAGS_minloglevel = google::GLOG_ERROR;
+  }
+  return true;
+}();
+} // namespace
