@@ -56,8 +56,8 @@ BEGIN_VISP_NAMESPACE
 class VISP_EXPORT vpServoProjectiveData
 {
 public:
-  typedef vpProjectiveArmModel::JointVector JointVector;
-  typedef vpProjectiveArmModel::JointMatrix JointMatrix;
+  typedef vpProjectiveArmModel::JointVector JointVector; //!< Joint values (n x 1: rad or m per joint).
+  typedef vpProjectiveArmModel::JointMatrix JointMatrix; //!< Matrices over the joints (n x n at most).
 
   vpServoProjectiveData();
 
