@@ -18,6 +18,7 @@
 #include <limits>
 #include <sstream>
 
+#include "core/vpImageWindow.h"
 #include "core/vpProjectiveErrors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -198,13 +199,8 @@ vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::classify(unsigned int
     record.state = FEATURE_NOT_TRACKED;
   } else if (!s.allFinite() || !sStar.allFinite()) {
     record.state = FEATURE_NOT_FINITE;
-  } else if (m_width > 0) {
-    const double uMax = m_width - 1.0 - m_border;
-    const double vMax = m_height - 1.0 - m_border;
-    if (s(0) < m_border || s(0) > uMax || s(1) < m_border || s(1) > vMax || s(2) < m_border || s(2) > uMax ||
-        s(3) < m_border || s(3) > vMax) {
-      record.state = FEATURE_OUT_OF_IMAGE;
-    }
+  } else if (!vpImageWindow(m_width, m_height, m_border).containsStereo(s)) {
+    record.state = FEATURE_OUT_OF_IMAGE;
   }
   if (record.state == FEATURE_ACTIVE && m_outlierThreshold > 0.0) {
     record.state = outlierTest(s, record);

@@ -23,6 +23,7 @@
 
 #include <Eigen/Dense>
 
+#include "core/vpImageWindow.h"
 #include "core/vpProjectiveConversions.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -83,15 +84,12 @@ bool vpServoProjective::detectMismatch(const vpServoProjectiveData &data)
   if (m_mismatch.getThreshold() == 0.0) {
     return false; // detection off: no memory to keep
   }
-  const double w = m_health.getImageWidth(), h = m_health.getImageHeight(), b = m_health.getImageBorder();
+  const vpImageWindow window(m_health.getImageWidth(), m_health.getImageHeight(), m_health.getImageBorder());
   m_mismatch.startIteration(m_link.robot->getModel(), data);
   for (unsigned int i = 0; i < m_features.size(); ++i) {
     const Eigen::Vector4d &s = data.getFeature(i);
     bool usable = m_health.isFeatureTracked(i) && data.hasPoint(i);
-    if (usable && w > 0.0) {
-      usable = s(0) >= b && s(0) <= w - 1.0 - b && s(1) >= b && s(1) <= h - 1.0 - b && s(2) >= b &&
-               s(2) <= w - 1.0 - b && s(3) >= b && s(3) <= h - 1.0 - b;
-    }
+    usable = usable && window.containsStereo(s);
     m_mismatch.observe(i, usable);
   }
   return m_mismatch.endIteration();

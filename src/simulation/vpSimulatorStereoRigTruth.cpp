@@ -29,6 +29,7 @@
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
+#include "core/vpImageWindow.h"
 #include "core/vpProjectiveConversions.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -88,7 +89,7 @@ std::vector<Eigen::Vector4d> vpSimulatorStereoRig::samplePoints() const
         const Eigen::Vector3d mp = Kp * rX / rX(2);
         const Eigen::Vector4d N(lX(0), lX(1), lX(2), 1.0);
         inFront.push_back(N);
-        if (mp(0) >= 0.0 && mp(0) <= m_width - 1.0 && mp(1) >= 0.0 && mp(1) <= m_height - 1.0) {
+        if (vpImageWindow(m_width, m_height, 0.0).contains(mp(0), mp(1))) {
           inView.push_back(N);
         }
       }
