@@ -46,9 +46,9 @@ BEGIN_VISP_NAMESPACE
   The task: points \f$ M_k(0) \f$ of the moving end (4x1 projective points at the zero reference, e.g. a servo
   task's features triangulated at the current joints \f$ q \f$ and carried there by \f$ H(q)^{-1} \f$, which needs no
   marker identity) and their desired pixels \f$ s^*_k = (u, v, u', v') \f$. plan()
-  -# solves the inverse kinematics of \f$ s^* \f$ from many starts (vpProjectiveInverseKinematics::solveAll(): \f$ q \f$,
-     the end of the inverse kinematics tracked along straight image lines from the features at \f$ q \f$ to
-     \f$ s^* \f$, the branch that the motion meets first, then random configurations within the limits), each
+  -# solves the inverse kinematics of \f$ s^* \f$ from many starts (vpProjectiveInverseKinematics::solveAll():
+     \f$ q \f$, the end of the inverse kinematics tracked along straight image lines from the features at \f$ q \f$
+     to \f$ s^* \f$, the branch that the motion meets first, then random configurations within the limits), each
      minimum refined together with the points by their two views (the points' images at \f$ q \f$, where they were
      triangulated, and \f$ s^* \f$ at the target: vpProjectiveInverseKinematics::solveWithPoints()): every branch
      it finds whose residual is within 1.5 times the best one (the branches of one gripper pose tie; another pose
@@ -258,9 +258,9 @@ private:
                                                                      const std::vector<Eigen::Vector4d> &points,
                                                                      bool &anyInside) const;
   bool planPath(const vpProjectiveArmModel &model, const JointVector &q, const JointVector &target,
-                const std::vector<JointVector> &rehearsed, const std::vector<Eigen::Vector4d> &points, const JointVector &qmin, const JointVector &qmax,
-                std::vector<JointVector> &path, std::vector<std::vector<Eigen::Vector4d>> &features,
-                vpPathKind &kind) const;
+                const std::vector<JointVector> &rehearsed, const std::vector<Eigen::Vector4d> &points,
+                const JointVector &qmin, const JointVector &qmax, std::vector<JointVector> &path,
+                std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind) const;
   bool visible(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
                std::vector<Eigen::Vector4d> &s) const;
   bool feasible(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
