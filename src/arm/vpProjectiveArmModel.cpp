@@ -19,6 +19,7 @@
 
 #include <Eigen/Dense>
 
+#include "arm/vpJointExponentialPair.h"
 #include "core/vpProjectiveErrors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -155,17 +156,11 @@ void vpProjectiveArmModel::jointMotions(const JointVector &q, Eigen::Matrix4d *H
       break;
     }
     const double dq = q(i) - m_qRef(i);
+    Eigen::Matrix4d Hhat2 = Eigen::Matrix4d::Zero();
     if (m_types[i] == vpProjectiveJoint::REVOLUTE) {
-      const double s = std::sin(dq);
-      const double c = 1.0 - std::cos(dq);
-      Eigen::Matrix4d Hhat2;
       Hhat2.noalias() = Hhat * Hhat;
-      E = Eigen::Matrix4d::Identity() + s * Hhat + c * Hhat2;
-      Einv = Eigen::Matrix4d::Identity() - s * Hhat + c * Hhat2;
-    } else {
-      E = Eigen::Matrix4d::Identity() + dq * Hhat;
-      Einv = Eigen::Matrix4d::Identity() - dq * Hhat;
     }
+    vpProjectiveInternal::jointExponentialPair(m_types[i], dq, Hhat, Hhat2, E, Einv);
     if (k == 0) {
       A = E;
       Ainv = Einv;

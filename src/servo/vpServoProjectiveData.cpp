@@ -15,6 +15,8 @@
 
 #include <cmath>
 
+#include "arm/vpJointExponentialPair.h"
+
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
@@ -46,16 +48,8 @@ void jointMotionsAndDisplacement(const vpProjectiveArmModel &model, const vpProj
       HhatKq[i].noalias() = AH * Ainv;
     }
     const double dq = q(i) - qRef(i);
-    if (model.jointTypes()[i] == vpProjectiveJoint::REVOLUTE) {
-      const double s = std::sin(dq);
-      const double c = 1.0 - std::cos(dq);
-      const Eigen::Matrix4d &Hhat2 = Hhat2s[i]; // Hhat * Hhat, as jointMotions() computes it
-      E = Eigen::Matrix4d::Identity() + s * Hhat + c * Hhat2;
-      Einv = Eigen::Matrix4d::Identity() - s * Hhat + c * Hhat2;
-    } else {
-      E = Eigen::Matrix4d::Identity() + dq * Hhat;
-      Einv = Eigen::Matrix4d::Identity() - dq * Hhat;
-    }
+    // Hhat2s[i] is Hhat * Hhat, as jointMotions() computes it: the same motions to the bit.
+    vpProjectiveInternal::jointExponentialPair(model.jointTypes()[i], dq, Hhat, Hhat2s[i], E, Einv);
     if (k == 0) {
       A = E;
       Ainv = Einv;
