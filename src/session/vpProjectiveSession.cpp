@@ -341,7 +341,7 @@ vpProjectiveSession vpProjectiveSession::read(const std::string &folder, bool ch
       const std::string &relative = side == 0 ? session.m_frames[k].left : session.m_frames[k].right;
       const std::string image = folder + "/" + relative;
       unsigned int w = 0, h = 0;
-      const std::string problem = vpProjectiveSessionInternal::checkPngHeader(image, w, h);
+      const std::string problem = vpProjectiveSessionInternal::checkPngFile(image, w, h);
       if (!problem.empty()) {
         fail(vpProjectiveException::fileError, at("read()"),
              "cannot read the session '" + path + "': " + frameName(k, session.m_frames[k].left) + ": the " +

@@ -46,7 +46,7 @@ namespace vpProjectiveSessionInternal
 {
 using json = nlohmann::json;
 
-std::string checkPngHeader(const std::string &path, unsigned int &width, unsigned int &height)
+std::string checkPngFile(const std::string &path, unsigned int &width, unsigned int &height)
 {
   std::ifstream file(path.c_str(), std::ios::binary);
   if (!file) {
@@ -80,7 +80,29 @@ std::string checkPngHeader(const std::string &path, unsigned int &width, unsigne
     return "is a PNG image of bit depth " + std::to_string(depth) + " and colour type " + std::to_string(colour) +
            ", not 8-bit grey or RGB; save it as an 8-bit grey or RGB PNG";
   }
-  return std::string();
+  // The chunks up to IEND fit in the file: a truncated image is named here, before the PNG decoder meets its end
+  // (libpng would print its own "Read Error" on the standard error).
+  file.clear();
+  file.seekg(0, std::ios::end);
+  const std::streamoff size = file.tellg();
+  std::streamoff chunk = 8; // after the signature
+  while (true) {
+    unsigned char c[8];
+    file.seekg(chunk);
+    file.read(reinterpret_cast<char *>(c), sizeof(c));
+    if (file.gcount() != static_cast<std::streamsize>(sizeof(c))) {
+      return "is a truncated PNG image (it ends before its end marker IEND); record or copy it again";
+    }
+    const std::streamoff length = (static_cast<std::streamoff>(c[0]) << 24) | (static_cast<std::streamoff>(c[1]) << 16) |
+                                  (static_cast<std::streamoff>(c[2]) << 8) | static_cast<std::streamoff>(c[3]);
+    chunk += 12 + length; // length, type, data, CRC
+    if (chunk > size) {
+      return "is a truncated PNG image (a chunk runs past the end of the file); record or copy it again";
+    }
+    if (c[4] == 'I' && c[5] == 'E' && c[6] == 'N' && c[7] == 'D') {
+      return std::string();
+    }
+  }
 }
 
 void appendFrame(std::string &frames, const vpProjectiveSession::vpFrame &frame)

@@ -38,10 +38,11 @@ using namespace VISP_NAMESPACE_NAME;
 namespace vpProjectiveSessionInternal
 {
 /*!
-  Checks that \e path is an 8-bit grey or RGB PNG by its header (signature, IHDR) and gives its size; returns what is
-  wrong ("is missing or cannot be opened", ...), empty if nothing.
+  Checks that \e path is an 8-bit grey or RGB PNG by its header (signature, IHDR) and that its chunks are complete up
+  to IEND (a truncated file), and gives its size; returns what is wrong ("is missing or cannot be opened", ...), empty
+  if nothing. The pixels are not decoded.
 */
-std::string checkPngHeader(const std::string &path, unsigned int &width, unsigned int &height);
+std::string checkPngFile(const std::string &path, unsigned int &width, unsigned int &height);
 
 /*!
   The joint that readings \e q moved from the zero frame's \e q0 (same sizes), or -1 with \e why saying what is wrong:

@@ -19,6 +19,11 @@
 #include <visp3/core/vpException.h>
 
 #if defined(VISP_HAVE_MODULE_SENSOR) && defined(VISP_HAVE_V4L2)
+#include <fcntl.h>
+#include <linux/videodev2.h>
+#include <sys/ioctl.h>
+#include <unistd.h>
+
 #include <visp3/sensor/vpV4l2Grabber.h>
 #endif
 
@@ -47,6 +52,23 @@ std::unique_ptr<vpFrameGrabber> openV4l2(const std::string &device, unsigned int
     fail(vpProjectiveException::fileError, at("vpStereoGrabberSource()"),
          std::string("cannot open the ") + side + " camera '" + device +
              "': no such device; check that the camera is plugged in and its name (ls /dev/video*)");
+  }
+  // A path that is no video capture device (a file, /dev/null) is named here: vpV4l2Grabber and libv4l2 would print
+  // their own messages on the standard output and error before failing.
+  bool capture = false;
+  const int fd = ::open(device.c_str(), O_RDWR | O_NONBLOCK);
+  if (fd >= 0) {
+    v4l2_capability cap{};
+    capture = ::ioctl(fd, VIDIOC_QUERYCAP, &cap) == 0 &&
+              (((cap.capabilities & V4L2_CAP_DEVICE_CAPS) ? cap.device_caps : cap.capabilities) &
+               (V4L2_CAP_VIDEO_CAPTURE | V4L2_CAP_VIDEO_CAPTURE_MPLANE)) != 0;
+    ::close(fd);
+  }
+  if (!capture) {
+    fail(vpProjectiveException::fileError, at("vpStereoGrabberSource()"),
+         std::string("cannot open the ") + side + " camera '" + device + "' (" +
+             (fd < 0 ? std::string("cannot open it for reading and writing") : "not a video capture device") +
+             "); check the device's name (v4l2-ctl --list-devices) and that you may read it (group video)");
   }
   std::unique_ptr<vpV4l2Grabber> g(new vpV4l2Grabber());
   g->setDevice(device);
