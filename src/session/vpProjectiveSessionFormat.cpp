@@ -93,8 +93,9 @@ std::string checkPngFile(const std::string &path, unsigned int &width, unsigned 
     if (file.gcount() != static_cast<std::streamsize>(sizeof(c))) {
       return "is a truncated PNG image (it ends before its end marker IEND); record or copy it again";
     }
-    const std::streamoff length = (static_cast<std::streamoff>(c[0]) << 24) | (static_cast<std::streamoff>(c[1]) << 16) |
-                                  (static_cast<std::streamoff>(c[2]) << 8) | static_cast<std::streamoff>(c[3]);
+    const std::streamoff length = (static_cast<std::streamoff>(c[0]) << 24) |
+                                  (static_cast<std::streamoff>(c[1]) << 16) | (static_cast<std::streamoff>(c[2]) << 8) |
+                                  static_cast<std::streamoff>(c[3]);
     chunk += 12 + length; // length, type, data, CRC
     if (chunk > size) {
       return "is a truncated PNG image (a chunk runs past the end of the file); record or copy it again";
