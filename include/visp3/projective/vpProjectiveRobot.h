@@ -355,28 +355,6 @@ public:
   void loadModel(const std::string &filename);
   //@}
 
-  /*! \name Eigen access for hot paths (no allocation, no check; see vpProjectiveArmModel) */
-  //@{
-  //! Generator \f$ \hat H_i \f$ of joint \e i.
-  const Eigen::Matrix4d &generator(unsigned int i) const { return m_model.generator(i); }
-  //! \f$ \exp(\delta \hat H_i) \f$, joint \e i moved by \e delta, by Rodrigues' form (26) or (31).
-  Eigen::Matrix4d jointExp(unsigned int i, double delta) const { return m_model.jointExp(i, delta); }
-  //! \f$ H(q) \f$, eq. (34).
-  Eigen::Matrix4d displacement(const JointVector &q) const { return m_model.displacement(q); }
-  //! \f$ \hat H_{k,q} \f$ for every joint k (in joint numbering), eq. (39).
-  void jointMotions(const JointVector &q, Eigen::Matrix4d *HhatKq) const { m_model.jointMotions(q, HhatKq); }
-  //! \f$ J_H(q, M) \f$ from precomputed jointMotions().
-  void pointJacobian(const Eigen::Matrix4d *HhatKq, const Eigen::Vector4d &M, PointJacobian &JH) const
-  {
-    m_model.pointJacobian(HhatKq, M, JH);
-  }
-  //! Stereo image Jacobian (4 x n) from precomputed jointMotions(); false if M is on a camera's focal plane.
-  bool imageJacobian(const Eigen::Matrix4d *HhatKq, const Eigen::Vector4d &M, PointJacobian &J) const
-  {
-    return m_model.imageJacobian(HhatKq, M, J);
-  }
-  //@}
-
 private:
   friend class vpProjectiveAcquisitionProcedure; // run(vpRobot &, vpProjectiveRobot &) calibrates through adopt()
 
