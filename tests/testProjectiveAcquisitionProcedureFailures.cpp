@@ -75,25 +75,38 @@ TEST(ProjectiveAcquisitionProcedure, BadSettingsThrow)
   EXPECT_EQ(acq.getNumberOfTrials(), 0u);
 }
 
-//! ViSP's 4-point target: fails at second 0 (before any motion), saying "markers", how many, and the fix.
-TEST(ProjectiveAcquisitionProcedure, FourMarkersFailBeforeTheArmMoves)
+namespace
+{
+/*
+  The acquisition with these tool markers, with and without a rig: fails with \e code and a message containing every
+  one of \e phrases, before the arm moves.
+*/
+void expectFailureBeforeTheArmMoves(const std::vector<vpColVector> &markers, int code,
+                                    const std::vector<std::string> &phrases)
 {
   AcquisitionSetup s;
-  vpProjectiveAcquisitionProcedure procedure(toolMarkersSource(s, planarMarkers(4)), s.sim.getWidth(),
-                                             s.sim.getHeight());
+  vpProjectiveAcquisitionProcedure procedure(toolMarkersSource(s, markers), s.sim.getWidth(), s.sim.getHeight());
   for (bool withRig : {true, false}) {
     vpProjectiveArmAcquisition acq =
         withRig
             ? s.acquisition()
             : vpProjectiveArmAcquisition(std::vector<vpProjectiveJoint::vpJointType>(6, vpProjectiveJoint::REVOLUTE));
-    int code = 0;
-    const std::string message = messageOf([&]() { procedure.run(s.robot, acq); }, code);
-    EXPECT_EQ(code, vpProjectiveException::notEnoughPointsError);
-    EXPECT_TRUE(contains(message, "4 markers")) << message;
-    EXPECT_TRUE(contains(message, "at least 5 markers")) << message;
-    EXPECT_TRUE(contains(message, "Nothing moved")) << message;
+    int thrown = 0;
+    const std::string message = messageOf([&]() { procedure.run(s.robot, acq); }, thrown);
+    EXPECT_EQ(thrown, code) << message;
+    for (const std::string &phrase : phrases) {
+      EXPECT_TRUE(contains(message, phrase)) << "'" << phrase << "' not in: " << message;
+    }
     EXPECT_EQ(s.robot.velocityCalls + s.robot.positionCalls, 0u);
   }
+}
+} // namespace
+
+//! ViSP's 4-point target: fails at second 0 (before any motion), saying "markers", how many, and the fix.
+TEST(ProjectiveAcquisitionProcedure, FourMarkersFailBeforeTheArmMoves)
+{
+  expectFailureBeforeTheArmMoves(planarMarkers(4), vpProjectiveException::notEnoughPointsError,
+                                 {"4 markers", "at least 5 markers", "Nothing moved"});
 }
 
 /*
@@ -102,21 +115,9 @@ TEST(ProjectiveAcquisitionProcedure, FourMarkersFailBeforeTheArmMoves)
 */
 TEST(ProjectiveAcquisitionProcedure, CoplanarMarkersFailBeforeTheArmMoves)
 {
-  AcquisitionSetup s;
-  vpProjectiveAcquisitionProcedure procedure(toolMarkersSource(s, planarMarkers(6)), s.sim.getWidth(),
-                                             s.sim.getHeight());
-  for (bool withRig : {true, false}) {
-    vpProjectiveArmAcquisition acq =
-        withRig
-            ? s.acquisition()
-            : vpProjectiveArmAcquisition(std::vector<vpProjectiveJoint::vpJointType>(6, vpProjectiveJoint::REVOLUTE));
-    int code = 0;
-    const std::string message = messageOf([&]() { procedure.run(s.robot, acq); }, code);
-    EXPECT_EQ(code, vpProjectiveException::degenerateConfigurationError);
-    EXPECT_TRUE(contains(message, "markers are coplanar")) << message;
-    EXPECT_TRUE(contains(message, "add markers off the plane")) << message;
-    EXPECT_EQ(s.robot.velocityCalls + s.robot.positionCalls, 0u);
-  }
+  expectFailureBeforeTheArmMoves(planarMarkers(6), vpProjectiveException::degenerateConfigurationError,
+                                 {"markers are coplanar", "add markers off the plane"});
+}
 }
 
 /*

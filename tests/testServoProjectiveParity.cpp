@@ -160,6 +160,21 @@ protected:
   const ArmSetup s = pumaEyeToHand(); // the paper's cameras: square pixels, px = py = f in both
   const vpProjectiveRobot robot = calibratedRobot(s);
   const std::vector<unsigned int> tracked = {0, 1, 2, 3};
+  std::vector<vpFeatureStereoPoint> sv, svStar;
+  vpServoProjective task;
+
+  //! The task on the tracked markers, s seen at joints \e q and s* at \e qStar.
+  void makeTask(const vpColVector &q, const vpColVector &qStar)
+  {
+    sv.resize(tracked.size());
+    svStar.resize(tracked.size());
+    setFeatures(s, qStar, tracked, svStar);
+    setFeatures(s, q, tracked, sv);
+    task.setRobot(robot);
+    for (size_t k = 0; k < tracked.size(); ++k) {
+      task.addFeature(sv[k], svStar[k]);
+    }
+  }
 };
 
 TEST_F(ServoProjectiveParity, AnAdaptiveGainGetsVpServosValueAtEveryIteration)
@@ -176,17 +191,17 @@ TEST_F(ServoProjectiveParity, AnAdaptiveGainGetsVpServosValueAtEveryIteration)
     q[2] = vpMath::rad(10.0);
     q[4] = vpMath::rad(15.0);
     qStar[3] = vpMath::rad(5.0);
-    std::vector<vpFeatureStereoPoint> sv(nb), svStar(nb);
-    setFeatures(s, qStar, tracked, svStar);
-    vpServoProjective task;
-    task.setRobot(robot);
+    std::vector<vpFeatureStereoPoint> modeFeatures(nb), modeStar(nb);
+    setFeatures(s, qStar, tracked, modeStar);
+    vpServoProjective modeTask;
+    modeTask.setRobot(robot);
     for (unsigned int k = 0; k < nb; ++k) {
-      task.addFeature(sv[k], svStar[k]);
+      modeTask.addFeature(modeFeatures[k], modeStar[k]);
     }
-    task.setLambda(gain);
-    task.setAdaptiveGainInput(mode == 0 ? vpServoProjective::GAIN_INPUT_JOINT_VELOCITY
-                                        : vpServoProjective::GAIN_INPUT_ERROR);
-    task.setErrorUnit(mode == 2 ? vpServoProjective::ERROR_NORMALIZED : vpServoProjective::ERROR_PIXELS, f);
+    modeTask.setLambda(gain);
+    modeTask.setAdaptiveGainInput(mode == 0 ? vpServoProjective::GAIN_INPUT_JOINT_VELOCITY
+                                            : vpServoProjective::GAIN_INPUT_ERROR);
+    modeTask.setErrorUnit(mode == 2 ? vpServoProjective::ERROR_NORMALIZED : vpServoProjective::ERROR_PIXELS, f);
 
     // The vpServo program: the same stereo error with the true Jacobian of the arm, through ViSP's own
     // computeControlLaw() (a vpGenericFeature with L = J, s = e and s* = 0; EYEINHAND_CAMERA makes J1 = L).
@@ -201,18 +216,18 @@ TEST_F(ServoProjectiveParity, AnAdaptiveGainGetsVpServosValueAtEveryIteration)
     double worst = 1.0;
     int iterations = 0;
     for (int it = 0; it < 200; ++it, ++iterations) {
-      setFeatures(s, q, tracked, sv);
-      const vpColVector qdot = task.computeControlLaw(q);
+      setFeatures(s, q, tracked, modeFeatures);
+      const vpColVector qdot = modeTask.computeControlLaw(q);
       feature.setInteractionMatrix(trueJacobian(s, q, tracked));
-      feature.set_s(task.getError());
+      feature.set_s(modeTask.getError());
       const vpColVector qdotViSP = vs.computeControlLaw();
-      const double ratio = task.getLambda() / vs.lambda.getLastValue();
+      const double ratio = modeTask.getLambda() / vs.lambda.getLastValue();
       worst = std::max(worst, std::max(ratio, 1.0 / ratio));
       if (mode == 0) {
         EXPECT_NEAR(ratio, 1.0, 1e-5) << "iteration " << it;
         EXPECT_LT((qdot - qdotViSP).frobeniusNorm(), 1e-4 * qdotViSP.frobeniusNorm()) << "iteration " << it;
       }
-      if (std::sqrt(task.getError().sumSquare() / (4 * nb)) * task.getErrorScale() < 1e-3) {
+      if (std::sqrt(modeTask.getError().sumSquare() / (4 * nb)) * modeTask.getErrorScale() < 1e-3) {
         break; // converged: 1e-3 px RMS
       }
       q = s.arm.integrate(s.armJoints(q), qdot, 0.1) - s.qRef; // a velocity (1/s) applied for 0.1 s
@@ -239,14 +254,7 @@ TEST_F(ServoProjectiveParity, NormalisedErrorIsVpServosErrorOnTheSamePoints)
   vpColVector q(6, 0.0), qStar(6, 0.0);
   q[0] = vpMath::rad(12.0);
   q[4] = vpMath::rad(-6.0);
-  std::vector<vpFeatureStereoPoint> sv(nb), svStar(nb);
-  setFeatures(s, qStar, tracked, svStar);
-  setFeatures(s, q, tracked, sv);
-  vpServoProjective task;
-  task.setRobot(robot);
-  for (unsigned int k = 0; k < nb; ++k) {
-    task.addFeature(sv[k], svStar[k]);
-  }
+  makeTask(q, qStar);
   task.setErrorUnit(vpServoProjective::ERROR_NORMALIZED, f);
   task.computeControlLaw(q);
 
@@ -270,18 +278,10 @@ TEST_F(ServoProjectiveParity, NormalisedErrorIsVpServosErrorOnTheSamePoints)
 
 TEST_F(ServoProjectiveParity, TheUnitChangesNeitherAConstantGainsLawNorThePixelSettings)
 {
-  const unsigned int nb = static_cast<unsigned int>(tracked.size());
   vpColVector q(6, 0.0), qStar(6, 0.0);
   q[1] = vpMath::rad(6.0);
   q[5] = vpMath::rad(-9.0);
-  std::vector<vpFeatureStereoPoint> sv(nb), svStar(nb);
-  setFeatures(s, qStar, tracked, svStar);
-  setFeatures(s, q, tracked, sv);
-  vpServoProjective task;
-  task.setRobot(robot);
-  for (unsigned int k = 0; k < nb; ++k) {
-    task.addFeature(sv[k], svStar[k]);
-  }
+  makeTask(q, qStar);
   task.setLambda(0.7);
   const vpColVector qdotPixels = task.computeControlLaw(q);
   const vpColVector ePixels = task.getError();
@@ -321,17 +321,9 @@ TEST_F(ServoProjectiveParity, TheUnitChangesNeitherAConstantGainsLawNorThePixelS
 
 TEST_F(ServoProjectiveParity, ComputeControlLawWithoutArgumentUsesTheJointsSetForIt)
 {
-  const unsigned int nb = static_cast<unsigned int>(tracked.size());
   vpColVector q(6, 0.0), qStar(6, 0.0);
   q[2] = vpMath::rad(-7.0);
-  std::vector<vpFeatureStereoPoint> sv(nb), svStar(nb);
-  setFeatures(s, qStar, tracked, svStar);
-  setFeatures(s, q, tracked, sv);
-  vpServoProjective task;
-  task.setRobot(robot);
-  for (unsigned int k = 0; k < nb; ++k) {
-    task.addFeature(sv[k], svStar[k]);
-  }
+  makeTask(q, qStar);
   EXPECT_THROW(task.computeControlLaw(), vpProjectiveException); // no joints yet
   const vpColVector expected = task.computeControlLaw(q);
   task.setJointPositions(q);
@@ -355,17 +347,9 @@ TEST_F(ServoProjectiveParity, ComputeControlLawWithoutArgumentUsesTheJointsSetFo
 
 TEST_F(ServoProjectiveParity, PrintHasVpServosSectionsInItsOrder)
 {
-  const unsigned int nb = static_cast<unsigned int>(tracked.size());
   vpColVector q(6, 0.0), qStar(6, 0.0);
   q[0] = vpMath::rad(4.0);
-  std::vector<vpFeatureStereoPoint> sv(nb), svStar(nb);
-  setFeatures(s, qStar, tracked, svStar);
-  setFeatures(s, q, tracked, sv);
-  vpServoProjective task;
-  task.setRobot(robot);
-  for (unsigned int k = 0; k < nb; ++k) {
-    task.addFeature(sv[k], svStar[k]);
-  }
+  makeTask(q, qStar);
   for (int computed = 0; computed < 2; ++computed) {
     if (computed == 1) {
       task.computeControlLaw(q);
