@@ -54,10 +54,11 @@ BEGIN_VISP_NAMESPACE
   parameters). A camera that did not move keeps its acquired projection exactly: the disparities, hence the depths,
   keep the acquisition's accuracy instead of that of a few noisy observations.
 
-  <b>Refining with the servo's frames.</b> The frames of a running task are observations too. Calling updateRig()
-  again with the first observation poses and the frames seen where the task ends makes the new cameras predict the
-  markers best where the re-expressed \f$ s^* \f$ matters; the task then ends where the model's inverse kinematics
-  puts the taught \f$ s^* \f$ (measured: \ref servo_meas_mismatch).
+  <b>Refining with the servo's frames.</b> The frames of a running task are observations too: a vpServoProjective
+  task refines the rig itself after updateRig() (vpServoProjective::setRigRefinement(), on by default), through
+  vpProjectiveRobot::refineRig() and the overload of registerRig() from given points. With the first observation
+  poses and the frames seen where the task ends, the new cameras predict the features best where the re-expressed
+  \f$ s^* \f$ matters (measured: \ref servo_meas_mismatch).
 
   <b>General (11 parameters).</b> DLT, then Ceres on the reprojection error over \f$ P \f$ (unit Frobenius norm).
   Needs more observations to reach the same accuracy; kept for a camera whose intrinsics changed (zoom, refocus).
