@@ -126,6 +126,10 @@ TEST(RigRefinement, RefinesOnlyWhenOnAndAllowed)
       b.run.step(b.t.b, b.q, 0.0, b.t.noise);
     }
     EXPECT_EQ(b.run.task.isRefiningRig(), on && modifiable) << variant;
+    std::ostringstream printed;
+    b.run.task.print(printed);
+    const char *expected = !on ? "Rig refinement: off" : (modifiable ? "refining: 0 done" : "not with this robot");
+    EXPECT_NE(printed.str().find(expected), std::string::npos) << printed.str();
     EXPECT_EQ(b.run.task.getNumberOfRigRefinementPoints(), on && modifiable ? 39u * kTracked.size() : 0u) << variant;
     EXPECT_EQ(b.t.robot.getRigGeneration(), 1u);
     for (int it = 39; it < 200; ++it) {
