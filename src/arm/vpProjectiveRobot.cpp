@@ -34,7 +34,8 @@ const vpErrorSite at("vpProjectiveRobot");
 
 vpProjectiveRobot::vpProjectiveRobot()
     : m_acquisition(), m_model(), m_calibrated(false), m_residual(0.0), m_algebraicResidual(0.0), m_rigJoints(),
-      m_rigImages(), m_rigMode(vpProjectiveRigRegistration::FIXED_INTRINSICS), m_rigResidual(0.0), m_rigGeneration(0),
+      m_rigImages(), m_registration(), m_rigMode(vpProjectiveRigRegistration::FIXED_INTRINSICS), m_rigResidual(0.0),
+      m_rigGeneration(0), m_rigUpdates(0),
       m_modelGeneration(0), m_listeners()
 {
 }
@@ -150,7 +151,9 @@ void vpProjectiveRobot::adopt(const vpProjectiveArmAcquisition &acquisition, con
   m_calibrated = true;
   m_rigJoints.clear(); // rig observations belong to the previous model
   m_rigImages.clear();
+  m_registration = vpRegistration(); // so does the last re-registration
   m_rigGeneration = 0;
+  m_rigUpdates = 0;
   ++m_modelGeneration;
   m_listeners.notify(false); // the tasks on this robot take their desired features anew
 }
@@ -480,6 +483,22 @@ void vpProjectiveRobot::updateRig()
   double rms = 0.0;
   const vpProjectiveStereoRig rig = vpProjectiveRigRegistration::registerRig(model, m_rigJoints, m_rigImages, m_rigMode,
                                                                              &rms); // throws before anything changes
+  vpRegistration registration; // what refineRig() starts from: this update's observations and the rig before it
+  registration.rigBefore = model.getStereoRig();
+  registration.joints = m_rigJoints;
+  registration.images = m_rigImages;
+  registration.valid = true;
+  adoptRig(rig, rms);
+  m_registration = std::move(registration);
+  ++m_rigUpdates;
+  m_rigJoints.clear();
+  m_rigImages.clear();
+  m_listeners.notify(true); // the tasks on this robot re-express their desired features in the new rig
+}
+
+void vpProjectiveRobot::adoptRig(const vpProjectiveStereoRig &rig, double rms)
+{
+  const vpProjectiveArmModel &model = m_model;
   std::vector<Eigen::Vector3d> axis, point;
   for (unsigned int i = 0; i < model.getNumberOfJoints(); ++i) {
     axis.push_back(model.axis(i));
@@ -487,10 +506,41 @@ void vpProjectiveRobot::updateRig()
   }
   vpProjectiveArmModel updated(model.jointTypes(), model.getRigMounting(), rig, model.projectiveToMetric(), axis, point,
                                model.markers(), model.zeroReferenceJoints());
-  m_model = updated;
+  m_model = std::move(updated);
   m_rigResidual = rms;
-  m_rigJoints.clear();
-  m_rigImages.clear();
   ++m_rigGeneration;
-  m_listeners.notify(true); // the tasks on this robot re-express their desired features in the new rig
+}
+
+void vpProjectiveRobot::refineRig(const std::vector<Eigen::Vector4d> &points, const std::vector<Eigen::Vector4d> &images)
+{
+  const std::string where = at("refineRig()");
+  const vpProjectiveArmModel &model = getModel();
+  if (!m_registration.valid) {
+    fail(vpProjectiveException::notInitializedError, where,
+         "there is no re-registration to refine (none since the model was computed or loaded); call updateRig() "
+         "first: the refinement starts from its observations");
+  }
+  if (points.size() != images.size()) {
+    std::ostringstream os;
+    os << "got " << points.size() << " points but " << images.size() << " stereo images; pass one per point";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  const size_t K = model.markers().size();
+  std::vector<Eigen::Vector4d> X, s;
+  X.reserve(m_registration.joints.size() * K + points.size());
+  s.reserve(X.capacity());
+  for (size_t k = 0; k < m_registration.joints.size(); ++k) {
+    const Eigen::Matrix4d H = model.displacement(m_registration.joints[k]);
+    for (size_t j = 0; j < K; ++j) {
+      X.push_back(H * model.markers()[j]);
+      s.push_back(m_registration.images[k][j]);
+    }
+  }
+  X.insert(X.end(), points.begin(), points.end());
+  s.insert(s.end(), images.begin(), images.end());
+  double rms = 0.0;
+  const vpProjectiveStereoRig rig = vpProjectiveRigRegistration::registerRig(
+      m_registration.rigBefore, model.projectiveToMetric(), X, s, m_rigMode, &rms); // throws before anything changes
+  adoptRig(rig, rms);
+  m_listeners.notify(true); // the tasks re-express their desired features in the refined rig
 }

@@ -111,6 +111,11 @@ void vpServoProjective::addFeature(vpFeatureStereoPoint &s, vpFeatureStereoPoint
   m_targets.push_back(vpTarget());
   m_plannedFor.clear(); // another task: plan anew
   m_following = false;
+  m_refinement.active = false;
+  m_refinement.zero.clear();
+  m_refinement.hasZero.clear(); // another set of features: its frames and points would not match
+  m_refinement.zero.clear();
+  m_refinement.hasZero.clear();
 }
 
 void vpServoProjective::clearFeatures()
@@ -122,6 +127,9 @@ void vpServoProjective::clearFeatures()
   m_targets.clear();
   m_plannedFor.clear();
   m_following = false;
+  m_refinement.active = false;
+  m_refinement.zero.clear();
+  m_refinement.hasZero.clear();
   m_iterations[m_lastIteration].status = SERVO_RUNNING;
   m_iterations[m_lastIteration].data.m_nbActive = 0;
 }
@@ -354,6 +362,9 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
     qdot /= m_period; // the step of this call, as a velocity held for one period
   }
   commit();
+  if (m_refinement.active) {
+    refineRigIfDue(); // never throws: a failed refinement leaves everything as it was
+  }
 }
 
 vpColVector vpServoProjective::computeControlLaw(const vpColVector &q)

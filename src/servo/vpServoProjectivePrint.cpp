@@ -189,6 +189,19 @@ void vpServoProjective::print(std::ostream &os) const
     os << "off";
   }
   os << "\n";
+  os << "  Rig refinement: ";
+  if (!m_refinement.enabled) {
+    os << "off\n";
+  } else {
+    os << "on, every " << m_refinement.period << " calls, " << m_refinement.count << " times after a re-registration";
+    if (m_link.modifiable == nullptr) {
+      os << " (not with this robot: give it to setRobot() as modifiable)";
+    } else if (m_refinement.active) {
+      os << "; refining: " << m_refinement.done << " done, " << m_refinement.failed << " failed, "
+         << m_refinement.X.size() << " points recorded";
+    }
+    os << "\n";
+  }
   double e0 = 0.0, e1 = 0.0;
   m_jointLimits.getLargeProjectionThresholds(e0, e1);
   os << "  Joint limits: ";

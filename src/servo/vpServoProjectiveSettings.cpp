@@ -101,21 +101,33 @@ void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
     m_mismatch.reset(); // memories of another robot's model
   }
   m_link.set(&robot); // the robot now tells this task of a new model or rig
+  m_link.modifiable = nullptr;
   for (vpTarget &t : m_targets) {
     t.valid = false; // another robot's frame: take the user's s* anew
   }
+  m_refinement.active = false; // only a re-registration from now on starts a refinement
+  m_refinement.seenUpdates = robot.getRigUpdateCount();
+}
+
+void vpServoProjective::setRobot(vpProjectiveRobot &robot)
+{
+  setRobot(static_cast<const vpProjectiveRobot &>(robot));
+  m_link.modifiable = &robot;
 }
 
 vpServoProjective::vpRobotLink::vpRobotLink(const vpRobotLink &other)
-    : vpProjectiveRobot::vpListener(), robot(nullptr), modelChanged(other.modelChanged), rigChanged(other.rigChanged)
+    : vpProjectiveRobot::vpListener(), robot(nullptr), modifiable(nullptr), modelChanged(other.modelChanged),
+      rigChanged(other.rigChanged)
 {
   set(other.robot); // a copied task is attached too
+  modifiable = other.modifiable;
 }
 
 vpServoProjective::vpRobotLink &vpServoProjective::vpRobotLink::operator=(const vpRobotLink &other)
 {
   if (this != &other) {
     set(other.robot);
+    modifiable = other.modifiable;
     modelChanged = other.modelChanged;
     rigChanged = other.rigChanged;
   }

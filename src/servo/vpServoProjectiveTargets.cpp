@@ -47,6 +47,13 @@ void vpServoProjective::refreshTargets()
   // told of a re-registered rig (vpRobotLink), that point's image in the new rig; after it told of a new model, the
   // user's value anew. The features' point memories of the mismatch check belong to one rig of one model.
   const bool modelChanged = m_link.modelChanged, rigChanged = m_link.rigChanged && !modelChanged;
+  if (modelChanged) {
+    m_refinement.active = false; // the frames belong to the old model
+    m_refinement.seenUpdates = m_link.robot->getRigUpdateCount();
+  } else if (rigChanged && m_link.robot->getRigUpdateCount() != m_refinement.seenUpdates) {
+    m_refinement.seenUpdates = m_link.robot->getRigUpdateCount();
+    startRigRefinement(); // a re-registration (not a refinement): from the memories of before it
+  }
   if (modelChanged || rigChanged) {
     m_mismatch.reset();
   }

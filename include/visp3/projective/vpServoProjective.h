@@ -128,6 +128,12 @@ public:
     \exception vpProjectiveException (notInitializedError) if the model is not acquired.
   */
   void setRobot(const vpProjectiveRobot &robot);
+  /*!
+    The same, with leave to refine the robot's re-registered rig with the task's own frames (setRigRefinement()): a
+    task given a robot it may not change never refines.
+    \exception vpProjectiveException (notInitializedError) if the model is not acquired.
+  */
+  void setRobot(vpProjectiveRobot &robot);
   //! Constant gain \f$ \lambda > 0 \f$ (per second; per call with the default period of 1 s).
   //! \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if not positive and finite.
   void setLambda(double lambda);
@@ -246,6 +252,43 @@ public:
     showed (the user's feature is not rewritten): the same joint target. \exception vpProjectiveException on a bad i.
   */
   vpColVector getDesiredFeature(unsigned int i) const;
+  /*!
+    Refinement of a re-registered rig with the task's own frames (default on, every 40 calls, 3 times): after the
+    robot's rig was re-registered (vpProjectiveRobot::updateRig(), from as few as 3 observation poses), the task
+    records, at each call that moves the arm (SERVO_RUNNING, SERVO_REDUCED), its joints and the images of its active
+    features (FEATURE_ACTIVE: no outlier, no feature set aside) with their points at the zero reference as the
+    model-mismatch check remembered them before the re-registration (an acquired marker's point once recognised,
+    else the mean of their triangulations; setModelMismatchThreshold() must not be 0). Every \e period such calls it
+    re-registers the rig from the update's observations and all the frames recorded so far
+    (vpProjectiveRobot::refineRig()), \e refinements times, then stops recording; the desired features are
+    re-expressed in each refined rig as after updateRig(). The frames near the target pin the new cameras where the
+    re-expressed \f$ s^* \f$ matters (\ref servo_meas_mismatch). Nothing is recorded and nothing allocated until a
+    re-registration; the recording uses memory reserved then; the call that refines takes the time of a
+    re-registration (Ceres on every recorded point). A refinement that fails (vpProjectiveRobot::refineRig() throws)
+    leaves the robot, its rig and the task's targets as they were, and counts as one of the \e refinements
+    (getNumberOfFailedRigRefinements()). It needs the robot given to setRobot() as modifiable. false: the rig stays
+    as updateRig() left it.
+    \param refine : true to refine (default), false never.
+    \param period : calls that move the arm between two refinements (> 0).
+    \param refinements : refinements per re-registration (> 0).
+    \exception vpProjectiveException (invalidValueError) if \e period or \e refinements is 0 or their product above
+    100000 (frames to keep); the settings are then unchanged. A refinement under way stops when \e refine is false.
+  */
+  void setRigRefinement(bool refine, unsigned int period = 40, unsigned int refinements = 3);
+  //! True if the rig refinement of setRigRefinement() is on.
+  bool getRigRefinement() const { return m_refinement.enabled; }
+  //! Calls that move the arm between two refinements (setRigRefinement()).
+  unsigned int getRigRefinementPeriod() const { return m_refinement.period; }
+  //! Refinements per re-registration (setRigRefinement()).
+  unsigned int getRigRefinementCount() const { return m_refinement.count; }
+  //! True while the task records frames to refine a re-registered rig.
+  bool isRefiningRig() const { return m_refinement.active; }
+  //! Successful refinements since the last re-registration.
+  unsigned int getNumberOfRigRefinements() const { return m_refinement.done; }
+  //! Refinements that failed since the last re-registration (the rig was left as it was).
+  unsigned int getNumberOfFailedRigRefinements() const { return m_refinement.failed; }
+  //! Frames' points (a feature seen at a call) recorded since the last re-registration for the refinement.
+  unsigned int getNumberOfRigRefinementPoints() const { return static_cast<unsigned int>(m_refinement.X.size()); }
   //@}
 
   /*! \name Joint limits (forwarded to vpServoJointLimitAvoidance) */
@@ -417,6 +460,7 @@ private:
   //! The robot of setRobot(), attached: it tells the task of a new model or rig (vpProjectiveRobot::vpListener).
   struct vpRobotLink : public vpProjectiveRobot::vpListener {
     const vpProjectiveRobot *robot = nullptr;
+    vpProjectiveRobot *modifiable = nullptr; // the same robot, if given modifiable (the rig refinement)
     bool modelChanged = false; // told since the task last took it into account
     bool rigChanged = false;
     vpRobotLink() = default;
@@ -425,7 +469,7 @@ private:
     ~vpRobotLink() override;
     void set(const vpProjectiveRobot *r);
     void robotModelChanged(bool rigOnly) override;
-    void robotDestroyed() override { robot = nullptr; }
+    void robotDestroyed() override { robot = nullptr, modifiable = nullptr; }
   };
 
   void check(const char *method) const;
@@ -445,6 +489,8 @@ private:
   void refreshTargets();
   void computeData(const JointVector &q, vpServoProjectiveData &data) const;
   bool detectMismatch(const vpServoProjectiveData &data);
+  void startRigRefinement();
+  void refineRigIfDue();
 
   //! The task's copy of a desired feature.
   struct vpTarget {
@@ -493,6 +539,20 @@ private:
   // setSettling(): the settling gain, and the generation of the task's targets (refreshTargets()) it settles on.
   vpServoSettling m_settling;
   unsigned long m_targetGeneration;
+  //! setRigRefinement(): the settings, and the frames recorded since the last re-registration.
+  struct vpRefinement {
+    bool enabled = true;
+    unsigned int period = 40;
+    unsigned int count = 3;
+    unsigned long seenUpdates = 0;         // the robot's getRigUpdateCount() the task has taken into account
+    bool active = false;                   // recording since a re-registration
+    unsigned int calls = 0;                // calls recorded since then
+    unsigned int done = 0, failed = 0;     // refinements since then
+    std::vector<Eigen::Vector4d> zero;     // per feature: its point at the zero reference
+    std::vector<char> hasZero;             // per feature: zero is set
+    std::vector<Eigen::Vector4d> X, s;     // the frames' points H(q) M(0) and their images, reserved at the start
+  };
+  vpRefinement m_refinement;
 };
 
 END_VISP_NAMESPACE
