@@ -116,13 +116,13 @@ TEST(RigUpdate, MonteCarloOfBumps)
   EXPECT_LE(median(ratio3), 2.0);
   EXPECT_LE(median(ratio10), 1.2);
   // Issue 18, point 5: from 3 observation poses, the task refining the rig itself, at its target as often as from 10
-  // (a margin of 2.5 % of the cases: the runs see other noise), and in 95 % of these 120 cases (measured 117; the
-  // unbumped runs themselves rest up to 1.4 mm from the target, 90 % quantile, at 0.5 px). Not a margin to spare:
-  // over seeds 1000-1239 the rate is 95.0 %, over 5000-5119 90.8 %, where a rig fitted on 30 noise-free poses gives
-  // the same 90.8 % in the same cases: what remains is the re-expressed target, not the rig (docs/servo.dox,
-  // servo_meas_mismatch).
+  // (a margin of 2.5 % of the cases: the runs see other noise), and in at least 90 % of the cases. Measured over four
+  // sets of 120 seeds: 97.5 % on these (1000-1119), 95.0 % over 1000-1239, 96.7 % over 2000-2119, 90.8 % over
+  // 5000-5119 (94.4 % of all 480, from 10 poses 93.8 %): the bound is the worst set's, not this one's. There a rig
+  // fitted on 30 noise-free poses gives the same 90.8 % in the same cases: what remains is the re-expressed target,
+  // not the rig (docs/servo.dox, servo_meas_mismatch).
   EXPECT_GE(reached3 + static_cast<int>(std::ceil(0.025 * n)), reached10);
-  EXPECT_GE(reached3, static_cast<int>(std::ceil(0.95 * n)));
+  EXPECT_GE(reached3, static_cast<int>(std::ceil(0.90 * n)));
   EXPECT_GE(reached3OfThose, static_cast<int>(std::ceil(0.93 * unbumpedReached)));
   EXPECT_EQ(userUnchanged, cases);
 }
