@@ -118,7 +118,6 @@ TEST(ProjectiveAcquisitionProcedure, CoplanarMarkersFailBeforeTheArmMoves)
   expectFailureBeforeTheArmMoves(planarMarkers(6), vpProjectiveException::degenerateConfigurationError,
                                  {"markers are coplanar", "add markers off the plane"});
 }
-}
 
 /*
   Four of five markers coplanar: no 5 markers with no 4 coplanar, so no unique displacement. With the rig known the
