@@ -261,6 +261,9 @@ private:
                 const std::vector<JointVector> &rehearsed, const std::vector<Eigen::Vector4d> &points,
                 const JointVector &qmin, const JointVector &qmax, std::vector<JointVector> &path,
                 std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind) const;
+  bool connectPath(const vpProjectiveArmModel &model, const JointVector &q, const JointVector &target,
+                   const std::vector<Eigen::Vector4d> &points, const JointVector &qmin, const JointVector &qmax,
+                   std::vector<JointVector> &path, std::vector<std::vector<Eigen::Vector4d>> &features) const;
   bool visible(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
                std::vector<Eigen::Vector4d> &s) const;
   bool feasible(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
