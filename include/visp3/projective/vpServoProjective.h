@@ -437,6 +437,7 @@ private:
   static double taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale, const JointMatrix &JtJ,
                          const JointVector &Jte, double errorInf);
   void addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const;
+  void keepInside(const JointVector &q, const vpIteration &it, JointVector &qdot) const;
   void stop(vpIteration &it, JointVector &qdot);
   void commit();
   const vpIteration &last() const { return m_iterations[m_lastIteration]; }
