@@ -110,7 +110,20 @@ vpProjectivePathPlanner::targetCandidates(const vpProjectiveArmModel &model, con
   std::vector<std::pair<double, std::pair<JointVector, unsigned int>>> ranked;
   std::vector<Eigen::Vector4d> s;
   anyInside = false;
+  // The branch the images refused (setRefusedTarget()): the one nearest to where the law stalled, if near.
+  size_t refused = m_branches.size();
+  double nearest = m_refusedRadius;
+  for (size_t b = 0; m_refused.size() == q.size() && b < m_branches.size(); ++b) {
+    const double d = (nearestRepresentative(model, m_branches[b], m_refused) - m_refused).cwiseAbs().maxCoeff();
+    if (d < nearest) {
+      nearest = d;
+      refused = b;
+    }
+  }
   for (size_t b = 0; b < m_branches.size(); ++b) {
+    if (b == refused) {
+      continue;
+    }
     JointVector t = nearestRepresentative(model, m_branches[b], q);
     for (Eigen::Index i = 0; i < q.size(); ++i) {
       if (model.jointType(static_cast<unsigned int>(i)) != vpProjectiveJoint::REVOLUTE) {
@@ -153,8 +166,15 @@ bool vpProjectivePathPlanner::planPath(const vpProjectiveArmModel &model, const 
                                        const JointVector &target, const std::vector<JointVector> &rehearsed,
                                        const std::vector<Eigen::Vector4d> &points, const JointVector &qmin,
                                        const JointVector &qmax, std::vector<JointVector> &path,
-                                       std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind) const
+                                       std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind,
+                                       bool corners) const
 {
+  if (corners) {
+    // A path of several corners: where no single corner turns the joint-space line around the view's and the limits'
+    // obstacles (a wide task whose three close markers leave the window on every one-corner detour).
+    kind = PATH_WAYPOINT;
+    return connectPath(model, q, target, points, qmin, qmax, path, features);
+  }
   if (imagePath(model, q, target, points, path) && feasible(model, path, points, features)) {
     kind = PATH_IMAGE_LINE;
     return true;
@@ -215,9 +235,7 @@ bool vpProjectivePathPlanner::planPath(const vpProjectiveArmModel &model, const 
       return true;
     }
   }
-  // A path of several corners: where no single corner turns the joint-space line around the view's and the limits'
-  // obstacles (a wide task whose three close markers leave the window on every one-corner detour).
-  return connectPath(model, q, target, points, qmin, qmax, path, features);
+  return false;
 }
 
 bool vpProjectivePathPlanner::connectPath(const vpProjectiveArmModel &model, const JointVector &q,
@@ -413,7 +431,7 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
   // branch that a path reaches (a prismatic joint's, a wrist's), and the branches already tried are not tried again.
   bool anyInside = false, found = false;
   std::vector<std::pair<JointVector, unsigned int>> candidates;
-  std::vector<JointVector> tried, path;
+  std::vector<JointVector> tried[2], path;
   std::vector<std::vector<Eigen::Vector4d>> features;
   vpPathKind kind = PATH_JOINT_LINE;
   size_t c = 0;
@@ -434,18 +452,22 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
       continue;
     }
     candidates = targetCandidates(model, q, X, anyInside);
-    for (c = 0; c < candidates.size(); ++c) {
-      bool before = false;
-      for (const JointVector &t : tried) {
-        before = before || (t - candidates[c].first).cwiseAbs().maxCoeff() < 1e-3;
-      }
-      if (before) {
-        continue;
-      }
-      tried.push_back(candidates[c].first);
-      if (planPath(model, q, candidates[c].first, lawPath, X, qmin, qmax, path, features, kind)) {
-        found = true;
-        break;
+    // The short paths (lines, one corner, the law's course) to every branch before the costly paths of several
+    // corners to any: planning stays a few milliseconds whenever a short path leads to some branch.
+    for (int corners = 0; corners < 2 && !found; ++corners) {
+      for (c = 0; c < candidates.size(); ++c) {
+        bool before = false;
+        for (const JointVector &t : tried[corners]) {
+          before = before || (t - candidates[c].first).cwiseAbs().maxCoeff() < 1e-3;
+        }
+        if (before) {
+          continue;
+        }
+        tried[corners].push_back(candidates[c].first);
+        if (planPath(model, q, candidates[c].first, lawPath, X, qmin, qmax, path, features, kind, corners == 1)) {
+          found = true;
+          break;
+        }
       }
     }
   }

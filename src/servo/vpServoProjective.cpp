@@ -96,9 +96,9 @@ vpServoProjective::vpServoProjective()
     : m_link(), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(), m_jointLimits(),
       m_mismatch(), m_targets(), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
       m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
-      m_replanFailed(false), m_followGain(1.0), m_period(1.0), m_qdotMax(0.0), m_gainInput(GAIN_INPUT_ERROR),
-      m_errorUnit(ERROR_PIXELS), m_focalLength(0.0), m_errorScale(1.0), m_q(), m_qFresh(false), m_settling(),
-      m_targetGeneration(0)
+      m_replanFailed(false), m_stallSum(), m_stallSumSq(), m_stallHalves{0.0, 0.0}, m_stallCount(0), m_followGain(1.0),
+      m_period(1.0), m_qdotMax(0.0), m_gainInput(GAIN_INPUT_ERROR), m_errorUnit(ERROR_PIXELS), m_focalLength(0.0),
+      m_errorScale(1.0), m_q(), m_qFresh(false), m_settling(), m_targetGeneration(0)
 {
 }
 
