@@ -39,6 +39,11 @@ const vpErrorSite at("vpProjectivePathPlanner");
 
 //! Number of configurations drawn in the search of a waypoint.
 const unsigned int kWaypointDraws = 200;
+//! Configurations drawn in the search of a path of several corners, and the longest edge in path steps.
+const unsigned int kConnectDraws = 1000;
+const double kConnectEdgeSteps = 4.0;
+//! Factor of the inverse kinematics' starts in its second round, when no path leads to a branch of the first.
+const unsigned int kMoreStarts = 8;
 //! Largest pixel motion of a feature per step of the tracking of the inverse kinematics toward s*.
 const double kTrackingPixels = 25.0;
 //! Bounds of the number of steps of that tracking.
@@ -105,7 +110,20 @@ vpProjectivePathPlanner::targetCandidates(const vpProjectiveArmModel &model, con
   std::vector<std::pair<double, std::pair<JointVector, unsigned int>>> ranked;
   std::vector<Eigen::Vector4d> s;
   anyInside = false;
+  // The branch the images refused (setRefusedTarget()): the one nearest to where the law stalled, if near.
+  size_t refused = m_branches.size();
+  double nearest = m_refusedRadius;
+  for (size_t b = 0; m_refused.size() == q.size() && b < m_branches.size(); ++b) {
+    const double d = (nearestRepresentative(model, m_branches[b], m_refused) - m_refused).cwiseAbs().maxCoeff();
+    if (d < nearest) {
+      nearest = d;
+      refused = b;
+    }
+  }
   for (size_t b = 0; b < m_branches.size(); ++b) {
+    if (b == refused) {
+      continue;
+    }
     JointVector t = nearestRepresentative(model, m_branches[b], q);
     for (Eigen::Index i = 0; i < q.size(); ++i) {
       if (model.jointType(static_cast<unsigned int>(i)) != vpProjectiveJoint::REVOLUTE) {
@@ -148,8 +166,15 @@ bool vpProjectivePathPlanner::planPath(const vpProjectiveArmModel &model, const 
                                        const JointVector &target, const std::vector<JointVector> &rehearsed,
                                        const std::vector<Eigen::Vector4d> &points, const JointVector &qmin,
                                        const JointVector &qmax, std::vector<JointVector> &path,
-                                       std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind) const
+                                       std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind,
+                                       bool corners) const
 {
+  if (corners) {
+    // A path of several corners: where no single corner turns the joint-space line around the view's and the limits'
+    // obstacles (a wide task whose three close markers leave the window on every one-corner detour).
+    kind = PATH_WAYPOINT;
+    return connectPath(model, q, target, points, qmin, qmax, path, features);
+  }
   if (imagePath(model, q, target, points, path) && feasible(model, path, points, features)) {
     kind = PATH_IMAGE_LINE;
     return true;
@@ -209,6 +234,95 @@ bool vpProjectivePathPlanner::planPath(const vpProjectiveArmModel &model, const 
       features = candidateFeatures;
       return true;
     }
+  }
+  return false;
+}
+
+bool vpProjectivePathPlanner::connectPath(const vpProjectiveArmModel &model, const JointVector &q,
+                                          const JointVector &target, const std::vector<Eigen::Vector4d> &points,
+                                          const JointVector &qmin, const JointVector &qmax,
+                                          std::vector<JointVector> &path,
+                                          std::vector<std::vector<Eigen::Vector4d>> &features) const
+{
+  // Two trees of feasible joint-space lines (RRT-Connect), one grown from q and one from the target, each toward
+  // configurations drawn over the joint limits in turn, the other tree trying to reach each new node by as many
+  // feasible edges as it takes; the joined branches, then shortened where a straight feasible line skips nodes. The
+  // configurations where the markers stay in view are a thin set of the joint space that draws over the whole box
+  // rarely hit, whereas edges grown from feasible nodes stay near it.
+  struct Node {
+    JointVector q;
+    int parent;
+  };
+  std::vector<Node> trees[2] = {{{q, -1}}, {{target, -1}}};
+  const double edge = kConnectEdgeSteps * getMaxJointStep();
+  vpUniRand uniform(0xc0ec7ULL);
+  std::vector<std::vector<Eigen::Vector4d>> lineFeatures;
+  auto nearest = [](const std::vector<Node> &tree, const JointVector &r) {
+    size_t best = 0;
+    double distance = std::numeric_limits<double>::infinity();
+    for (size_t k = 0; k < tree.size(); ++k) {
+      const double d = (tree[k].q - r).cwiseAbs().maxCoeff();
+      if (d < distance) {
+        distance = d;
+        best = k;
+      }
+    }
+    return best;
+  };
+  // One edge from the tree's node nearest to r toward r (at most edge rad per joint): its index, or -1 if blocked.
+  auto extend = [&](std::vector<Node> &tree, const JointVector &r) {
+    const size_t from = nearest(tree, r);
+    const JointVector d = r - tree[from].q;
+    const double largest = d.cwiseAbs().maxCoeff();
+    const JointVector to = largest > edge ? JointVector(tree[from].q + (edge / largest) * d) : r;
+    if (!feasible(model, jointLine(tree[from].q, to), points, lineFeatures)) {
+      return -1;
+    }
+    tree.push_back(Node{to, static_cast<int>(from)});
+    return static_cast<int>(tree.size() - 1);
+  };
+  int a = 0;
+  for (unsigned int draw = 0; draw < kConnectDraws; ++draw, a = 1 - a) {
+    JointVector r(q.size());
+    for (Eigen::Index i = 0; i < q.size(); ++i) {
+      r(i) = uniform.uniform(qmin(i), qmax(i));
+    }
+    const int added = extend(trees[a], r);
+    if (added < 0) {
+      continue;
+    }
+    const JointVector goal = trees[a][static_cast<size_t>(added)].q;
+    int reached = -1;
+    for (int grown = 0; (reached = extend(trees[1 - a], goal)) >= 0; ++grown) {
+      if ((trees[1 - a][static_cast<size_t>(reached)].q - goal).cwiseAbs().maxCoeff() < 1e-12) {
+        break;
+      }
+    }
+    if (reached < 0) {
+      continue;
+    }
+    // Joined: q's branch to the meeting node, then the target's branch back to the target.
+    std::vector<JointVector> nodes;
+    const int meet[2] = {a == 0 ? added : reached, a == 0 ? reached : added};
+    for (int k = meet[0]; k >= 0; k = trees[0][static_cast<size_t>(k)].parent) {
+      nodes.push_back(trees[0][static_cast<size_t>(k)].q);
+    }
+    std::reverse(nodes.begin(), nodes.end());
+    for (int k = trees[1][static_cast<size_t>(meet[1])].parent; k >= 0; k = trees[1][static_cast<size_t>(k)].parent) {
+      nodes.push_back(trees[1][static_cast<size_t>(k)].q);
+    }
+    // Shortcuts: from each kept node, the farthest node a feasible straight line reaches.
+    std::vector<JointVector> candidate(1, q);
+    for (size_t k = 0; k + 1 < nodes.size();) {
+      size_t far = nodes.size() - 1;
+      while (far > k + 1 && !feasible(model, jointLine(nodes[k], nodes[far]), points, lineFeatures)) {
+        --far;
+      }
+      const std::vector<JointVector> line = jointLine(nodes[k], nodes[far]);
+      candidate.insert(candidate.end(), line.begin() + 1, line.end());
+      k = far;
+    }
+    return feasible(model, path = candidate, points, features);
   }
   return false;
 }
@@ -286,7 +400,7 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
     m_front[k] << model.getStereoRig().leftProjection().row(2).dot(M),
         model.getStereoRig().rightProjection().row(2).dot(M);
   }
-  const bool explained = !m_branches.empty() && m_residuals.front() <= m_maxResidual;
+  bool explained = !m_branches.empty() && m_residuals.front() <= m_maxResidual;
   if (!explained) {
     os << "no joint values explain the desired features (";
     if (m_branches.empty()) {
@@ -312,26 +426,61 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
   // target first, the nearest if no path leads to the preferred one. 5. Of the law and the path, both predicted to
   // solve the task, the faster: the path's samples and 3 iterations of the law after them, against the law's
   // rehearsed iterations.
+  // If no path leads to any branch found (or none explains s*), the inverse kinematics again from kMoreStarts times
+  // as many starts (the first ones among them): the uniform starts in a wide joint box can all miss the basin of the
+  // branch that a path reaches (a prismatic joint's, a wrist's), and the branches already tried are not tried again.
+  bool anyInside = false, found = false;
+  std::vector<std::pair<JointVector, unsigned int>> candidates;
+  std::vector<JointVector> tried[2], path;
+  std::vector<std::vector<Eigen::Vector4d>> features;
+  vpPathKind kind = PATH_JOINT_LINE;
+  size_t c = 0;
+  for (int round = 0; round < 2 && !found; ++round) {
+    if (round == 1) {
+      std::vector<double> residuals;
+      std::vector<JointVector> more = vpProjectiveInverseKinematics::solveAll(
+          model, sStar, X, q, qmin, qmax, kMoreStarts * m_starts, &residuals, &seen, &extraStarts);
+      if (more.empty() || !(residuals.front() <= m_maxResidual)) {
+        break;
+      }
+      os << (explained ? "; " : "; then ") << more.size() << " branches from " << kMoreStarts * m_starts << " starts";
+      m_branches = more;
+      m_residuals = residuals;
+      explained = true;
+    }
+    if (!explained) {
+      continue;
+    }
+    candidates = targetCandidates(model, q, X, anyInside);
+    // The short paths (lines, one corner, the law's course) to every branch before the costly paths of several
+    // corners to any: planning stays a few milliseconds whenever a short path leads to some branch.
+    for (int corners = 0; corners < 2 && !found; ++corners) {
+      for (c = 0; c < candidates.size(); ++c) {
+        bool before = false;
+        for (const JointVector &t : tried[corners]) {
+          before = before || (t - candidates[c].first).cwiseAbs().maxCoeff() < 1e-3;
+        }
+        if (before) {
+          continue;
+        }
+        tried[corners].push_back(candidates[c].first);
+        if (planPath(model, q, candidates[c].first, lawPath, X, qmin, qmax, path, features, kind, corners == 1)) {
+          found = true;
+          break;
+        }
+      }
+    }
+  }
   if (!explained) {
     return m_rehearsalOk ? adoptLaw(model, lawPath, lawFeatures, os) : failWith(PLAN_NO_INVERSE_KINEMATICS, os);
   }
-  bool anyInside = false;
-  const std::vector<std::pair<JointVector, unsigned int>> candidates = targetCandidates(model, q, X, anyInside);
   if (candidates.empty()) {
     os << (anyInside ? "; at every one inside the joint limits a feature is out of the image window or behind a camera"
                      : ", none inside the joint limits");
     return m_rehearsalOk ? adoptLaw(model, lawPath, lawFeatures, os)
                          : failWith(anyInside ? PLAN_NO_VISIBLE_PATH : PLAN_OUTSIDE_JOINT_LIMITS, os);
   }
-  std::vector<JointVector> path;
-  std::vector<std::vector<Eigen::Vector4d>> features;
-  vpPathKind kind = PATH_JOINT_LINE;
-  size_t c = 0;
-  while (c < candidates.size() &&
-         !planPath(model, q, candidates[c].first, lawPath, X, qmin, qmax, path, features, kind)) {
-    ++c;
-  }
-  if (c == candidates.size()) {
+  if (!found) {
     os << "; no path keeps the features in view within the joint limits";
     // A law that its rehearsal found slow, not lost (inside the limits, in view, still moving at the budget), is
     // better than no motion: law (47) it is (the task re-plans from where it stalls, if it does).

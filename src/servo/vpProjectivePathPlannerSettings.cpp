@@ -44,11 +44,11 @@ const vpErrorSite at("vpProjectivePathPlanner");
 
 vpProjectivePathPlanner::vpProjectivePathPlanner()
     : m_hasLimits(false), m_qmin(), m_qmax(), m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0),
-      m_maxExcursion(-1.0), m_starts(24), m_maxResidual(5.0), m_limitMargin(0.0), m_front(), m_points(), m_sStar(),
-      m_hasLaw(false), m_gain(), m_errorScale(1.0), m_law(), m_avoidance(), m_rehearsalBudget(50), m_rehearsalOk(false),
-      m_rehearsalIterations(0), m_rehearsalResidual(-1.0), m_rehearsalSlow(false), m_status(PLAN_NONE), m_branches(),
-      m_residuals(), m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE),
-      m_description("no plan yet")
+      m_maxExcursion(-1.0), m_starts(24), m_maxResidual(5.0), m_refused(), m_refusedRadius(0.0), m_limitMargin(0.0),
+      m_front(), m_points(), m_sStar(), m_hasLaw(false), m_gain(), m_errorScale(1.0), m_law(), m_avoidance(),
+      m_rehearsalBudget(50), m_rehearsalOk(false), m_rehearsalIterations(0), m_rehearsalResidual(-1.0),
+      m_rehearsalSlow(false), m_status(PLAN_NONE), m_branches(), m_residuals(), m_branch(0), m_target(), m_path(),
+      m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
 {
 }
 

@@ -96,9 +96,9 @@ vpServoProjective::vpServoProjective()
     : m_link(), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(), m_jointLimits(),
       m_mismatch(), m_targets(), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
       m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
-      m_replanFailed(false), m_followGain(1.0), m_period(1.0), m_qdotMax(0.0), m_gainInput(GAIN_INPUT_ERROR),
-      m_errorUnit(ERROR_PIXELS), m_focalLength(0.0), m_errorScale(1.0), m_q(), m_qFresh(false), m_settling(),
-      m_targetGeneration(0)
+      m_replanFailed(false), m_stallSum(), m_stallSumSq(), m_stallHalves{0.0, 0.0}, m_stallCount(0), m_followGain(1.0),
+      m_period(1.0), m_qdotMax(0.0), m_gainInput(GAIN_INPUT_ERROR), m_errorUnit(ERROR_PIXELS), m_focalLength(0.0),
+      m_errorScale(1.0), m_q(), m_qFresh(false), m_settling(), m_targetGeneration(0)
 {
 }
 
@@ -320,12 +320,46 @@ inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIt
     it.saturated = true;
   }
   if (planned) {
-    qdot *= m_jointLimits.stepInside(q, qdot);
+    keepInside(q, it, qdot);
   }
   if (!qdot.allFinite()) {
     fail(vpProjectiveException::estimationFailedError, at("computeControlLaw()"),
          "the control law gave a non-finite velocity (singular task Jacobian); increase the damping");
   }
+}
+
+inline void vpServoProjective::keepInside(const JointVector &q, const vpIteration &it, JointVector &qdot) const
+{
+  // A planned task never crosses a limit. Scaling the whole step down to land a joint on its limit stops every joint
+  // once one is there and the law still pushes it outward (a target near a limit, the law's course bending to it): the
+  // task stalls, pixels from its goal, with every other joint free. Instead, each joint that would cross is held (its
+  // column out of the task: the law solved again with the others), until no joint crosses; the scaling is left for
+  // the rest (a joint already beyond its limit).
+  JointMatrix JtJ = it.data.m_JtJ;
+  JointVector Jte = it.data.m_Jte, alone;
+  vpServoDampedLeastSquares law = m_law; // computeVelocity() writes its report: the iteration's stays the first law's
+  const Eigen::Index n = q.size();
+  for (Eigen::Index pass = 0; pass < n && m_jointLimits.stepInside(q, qdot) < 1.0; ++pass) {
+    const double scale = JtJ.diagonal().cwiseAbs().maxCoeff();
+    bool held = false;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      alone.setZero(n);
+      alone(i) = qdot(i);
+      if (m_jointLimits.stepInside(q, alone) < 1.0) {
+        JtJ.row(i).setZero();
+        JtJ.col(i).setZero();
+        JtJ(i, i) = scale > 0.0 ? scale : 1.0;
+        Jte(i) = 0.0;
+        held = true;
+      }
+    }
+    if (!held) {
+      break;
+    }
+    law.computeVelocity(JtJ, Jte, it.lambda, qdot);
+    law.saturate(qdot);
+  }
+  qdot *= m_jointLimits.stepInside(q, qdot);
 }
 
 inline void vpServoProjective::commit()

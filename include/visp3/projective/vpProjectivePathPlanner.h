@@ -28,6 +28,8 @@
 #include <utility>
 #include <vector>
 
+#include <visp3/core/vpMath.h>
+
 #include <Eigen/Core>
 
 #include <visp3/projective/vpProjectiveArmModel.h>
@@ -182,6 +184,17 @@ public:
   //! No control law: plan() rehearses nothing and always plans a path (its step no longer capped by a saturation).
   void clearControlLaw() { m_hasLaw = false; }
   /*!
+    Joint values \e q where law (47) was seen to stall, pixels from s*, in the images (not in the model, which is off by
+    a few pixels and cannot tell that minimum from the solution): the next plan() leaves out the inverse-kinematic
+    branch nearest to \e q if it is within \e radius (rad or m per joint), as a target that the images refuse. An empty
+    \e q (the default) leaves none out. vpServoProjective sets it when it re-plans from such a stall.
+  */
+  void setRefusedTarget(const JointVector &q, double radius = vpMath::rad(20.0))
+  {
+    m_refused = q;
+    m_refusedRadius = radius;
+  }
+  /*!
     The largest number of iterations of the rehearsal of law (47) (default 50; 0: no rehearsal). A law that needs
     more in the model is slow in the loop too, where the noise slows it further: a path is planned instead.
   */
@@ -260,7 +273,10 @@ private:
   bool planPath(const vpProjectiveArmModel &model, const JointVector &q, const JointVector &target,
                 const std::vector<JointVector> &rehearsed, const std::vector<Eigen::Vector4d> &points,
                 const JointVector &qmin, const JointVector &qmax, std::vector<JointVector> &path,
-                std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind) const;
+                std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind, bool corners) const;
+  bool connectPath(const vpProjectiveArmModel &model, const JointVector &q, const JointVector &target,
+                   const std::vector<Eigen::Vector4d> &points, const JointVector &qmin, const JointVector &qmax,
+                   std::vector<JointVector> &path, std::vector<std::vector<Eigen::Vector4d>> &features) const;
   bool visible(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
                std::vector<Eigen::Vector4d> &s) const;
   bool feasible(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
@@ -289,6 +305,8 @@ private:
   double m_maxExcursion; // negative: twice m_maxStep
   unsigned int m_starts;
   double m_maxResidual;
+  JointVector m_refused;  // setRefusedTarget(): empty, or where the law stalled in the images
+  double m_refusedRadius; // how near a branch must be to m_refused to be left out
   double m_limitMargin;
   std::vector<Eigen::Vector2d> m_front;  // per point: its depths in both cameras at the planning q
   std::vector<Eigen::Vector4d> m_points; // the planned points (zero reference) and their desired pixels

@@ -481,10 +481,12 @@ private:
   static double taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale, const JointMatrix &JtJ,
                          const JointVector &Jte, double errorInf);
   void addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const;
+  void keepInside(const JointVector &q, const vpIteration &it, JointVector &qdot) const;
   void stop(vpIteration &it, JointVector &qdot);
   void commit();
   const vpIteration &last() const { return m_iterations[m_lastIteration]; }
   bool planIfNeeded(const JointVector &q, const vpServoProjectiveData &data);
+  bool lawStalled(const Eigen::VectorXd &e);
   Eigen::Vector4d desired(unsigned int i) const;
   void refreshTargets();
   void computeData(const JointVector &q, vpServoProjectiveData &data) const;
@@ -525,6 +527,11 @@ private:
   bool m_lawLeftRehearsal; // law (47) left its rehearsal since the target was set: plan paths only
   size_t m_sincePlan;      // calls since the last plan
   bool m_replanFailed;     // the last plan was a re-plan that found nothing: law (47) runs
+  // Law (47) as planned, after its rehearsed iterations: the error's sum and sum of squares over a window of calls,
+  // and its squared norms over the window's halves (sized at each plan: no allocation per call).
+  Eigen::VectorXd m_stallSum, m_stallSumSq;
+  double m_stallHalves[2];
+  unsigned int m_stallCount;
   double m_followGain;
   double m_period;  // seconds per computeControlLaw() call (setControlPeriod())
   double m_qdotMax; // the user's saturation, per second (the law's is per call: m_qdotMax * m_period)
