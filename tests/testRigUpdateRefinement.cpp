@@ -77,24 +77,24 @@ struct BumpedTask {
 TEST(RigRefinement, SettingsAndTheirErrors)
 {
   vpServoProjective task;
-  EXPECT_TRUE(task.getRigRefinement());
-  EXPECT_EQ(task.getRigRefinementPeriod(), 40u);
-  EXPECT_EQ(task.getRigRefinementCount(), 3u);
-  EXPECT_FALSE(task.isRefiningRig());
+  EXPECT_TRUE(task.getRigRefinementState().isEnabled());
+  EXPECT_EQ(task.getRigRefinementState().getPeriod(), 40u);
+  EXPECT_EQ(task.getRigRefinementState().getCount(), 3u);
+  EXPECT_FALSE(task.getRigRefinementState().isActive());
   task.setRigRefinement(true, 25, 2);
-  EXPECT_EQ(task.getRigRefinementPeriod(), 25u);
-  EXPECT_EQ(task.getRigRefinementCount(), 2u);
+  EXPECT_EQ(task.getRigRefinementState().getPeriod(), 25u);
+  EXPECT_EQ(task.getRigRefinementState().getCount(), 2u);
   EXPECT_TRUE(throwsWith([&] { task.setRigRefinement(true, 0, 3); }, vpProjectiveException::invalidValueError,
                          "must be positive"));
   EXPECT_TRUE(throwsWith([&] { task.setRigRefinement(false, 40, 0); }, vpProjectiveException::invalidValueError,
                          "must be positive"));
   EXPECT_TRUE(throwsWith([&] { task.setRigRefinement(true, 1000, 1000); }, vpProjectiveException::invalidValueError,
                          "exceeds 100000"));
-  EXPECT_TRUE(task.getRigRefinement());
-  EXPECT_EQ(task.getRigRefinementPeriod(), 25u);
-  EXPECT_EQ(task.getRigRefinementCount(), 2u);
+  EXPECT_TRUE(task.getRigRefinementState().isEnabled());
+  EXPECT_EQ(task.getRigRefinementState().getPeriod(), 25u);
+  EXPECT_EQ(task.getRigRefinementState().getCount(), 2u);
   task.setRigRefinement(false);
-  EXPECT_FALSE(task.getRigRefinement());
+  EXPECT_FALSE(task.getRigRefinementState().isEnabled());
 }
 
 // Without a re-registration nothing is recorded nor refined, even on a modifiable robot.
@@ -104,9 +104,9 @@ TEST(RigRefinement, NothingWithoutReRegistration)
   for (int it = 0; it < 100; ++it) {
     b.run.step(b.t.s, b.q, 0.0, b.t.noise);
   }
-  EXPECT_FALSE(b.run.task.isRefiningRig());
-  EXPECT_EQ(b.run.task.getNumberOfRigRefinementPoints(), 0u);
-  EXPECT_EQ(b.run.task.getNumberOfRigRefinements(), 0u);
+  EXPECT_FALSE(b.run.task.getRigRefinementState().isActive());
+  EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfPoints(), 0u);
+  EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfRefinements(), 0u);
   EXPECT_EQ(b.t.robot.getRigGeneration(), 0u);
 }
 
@@ -125,12 +125,13 @@ TEST(RigRefinement, RefinesOnlyWhenOnAndAllowed)
     for (int it = 0; it < 39; ++it) {
       b.run.step(b.t.b, b.q, 0.0, b.t.noise);
     }
-    EXPECT_EQ(b.run.task.isRefiningRig(), on && modifiable) << variant;
+    EXPECT_EQ(b.run.task.getRigRefinementState().isActive(), on && modifiable) << variant;
     std::ostringstream printed;
     b.run.task.print(printed);
     const char *expected = !on ? "Rig refinement: off" : (modifiable ? "refining: 0 done" : "not with this robot");
     EXPECT_NE(printed.str().find(expected), std::string::npos) << printed.str();
-    EXPECT_EQ(b.run.task.getNumberOfRigRefinementPoints(), on && modifiable ? 39u * kTracked.size() : 0u) << variant;
+    EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfPoints(), on && modifiable ? 39u * kTracked.size() : 0u)
+        << variant;
     EXPECT_EQ(b.t.robot.getRigGeneration(), 1u);
     for (int it = 39; it < 200; ++it) {
       b.run.step(b.t.b, b.q, 0.0, b.t.noise);
@@ -139,9 +140,9 @@ TEST(RigRefinement, RefinesOnlyWhenOnAndAllowed)
         EXPECT_GT((cameras(b.t.robot) - registered).norm(), 0.0);
       }
     }
-    EXPECT_FALSE(b.run.task.isRefiningRig());
-    EXPECT_EQ(b.run.task.getNumberOfRigRefinements(), on && modifiable ? 3u : 0u) << variant;
-    EXPECT_EQ(b.run.task.getNumberOfFailedRigRefinements(), 0u) << variant;
+    EXPECT_FALSE(b.run.task.getRigRefinementState().isActive());
+    EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfRefinements(), on && modifiable ? 3u : 0u) << variant;
+    EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfFailures(), 0u) << variant;
     EXPECT_EQ(b.t.robot.getRigGeneration(), on && modifiable ? 4u : 1u) << variant;
     EXPECT_EQ(b.t.robot.getRigUpdateCount(), 1u) << variant;
     if (!(on && modifiable)) {
@@ -165,7 +166,7 @@ TEST(RigRefinement, FeaturesSetAsideNeverEnter)
     b.run.step(b.t.b, b.q, 0.0, b.t.noise);
   }
   const unsigned int N = static_cast<unsigned int>(kTracked.size());
-  unsigned int before = b.run.task.getNumberOfRigRefinementPoints();
+  unsigned int before = b.run.task.getRigRefinementState().getNumberOfPoints();
   EXPECT_EQ(before, 5 * N);
   // Feature 2 jumps by 20 px: an outlier, left out of this call's frame.
   ServoRun::measure(b.t.b, b.q, 0.0, b.t.noise, b.run.s);
@@ -173,12 +174,12 @@ TEST(RigRefinement, FeaturesSetAsideNeverEnter)
   b.run.s[2].buildFrom(s2(0) + 20.0, s2(1), s2(2), s2(3));
   b.run.task.computeControlLaw(b.q);
   ASSERT_EQ(b.run.task.getFeatureState(2), vpServoProjective::FEATURE_OUTLIER);
-  EXPECT_EQ(b.run.task.getNumberOfRigRefinementPoints(), before + N - 1);
+  EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfPoints(), before + N - 1);
   // Feature 4 not tracked: left out too.
-  before = b.run.task.getNumberOfRigRefinementPoints();
+  before = b.run.task.getRigRefinementState().getNumberOfPoints();
   b.run.task.setFeatureTracked(4, false);
   b.run.step(b.t.b, b.q, 0.0, b.t.noise);
-  EXPECT_EQ(b.run.task.getNumberOfRigRefinementPoints(), before + N - 1);
+  EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfPoints(), before + N - 1);
 }
 
 // A refinement that fails (frames no camera explains) leaves the robot, its rig and the task's targets as they were;
@@ -206,9 +207,9 @@ TEST(RigRefinement, FailureLeavesEverythingAsItWas)
     }
     b.run.task.computeControlLaw(q);
   }
-  EXPECT_EQ(b.run.task.getNumberOfFailedRigRefinements(), 1u);
-  EXPECT_EQ(b.run.task.getNumberOfRigRefinements(), 0u);
-  EXPECT_FALSE(b.run.task.isRefiningRig());
+  EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfFailures(), 1u);
+  EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfRefinements(), 0u);
+  EXPECT_FALSE(b.run.task.getRigRefinementState().isActive());
   EXPECT_EQ(cameras(b.t.robot), registered);
   EXPECT_EQ(b.t.robot.getRigGeneration(), 1u);
   b.run.step(b.t.b, b.q, 0.0, b.t.noise);

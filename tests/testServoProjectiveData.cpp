@@ -160,7 +160,7 @@ TEST(ServoProjectiveData, OneDisplacementPerIterationWithEveryCheckOn)
     checked.task.setFeatureTracked(3, k < 4); // lost from the 5th iteration on
     checked.step();
     expectModelData(checked.task, model, checked.s, checked.seen);
-    EXPECT_GE(checked.task.getPredictionDistance(0), k > 0 ? 0.0 : -1.0); // the prediction test ran
+    EXPECT_GE(checked.task.getFeatureHealth().getPredictionDistance(0), k > 0 ? 0.0 : -1.0); // the prediction test ran
   }
   EXPECT_EQ(checked.task.getStatus(), vpServoProjective::SERVO_REDUCED);
   EXPECT_EQ(checked.task.getFeatureState(3), vpServoProjective::FEATURE_NOT_TRACKED);

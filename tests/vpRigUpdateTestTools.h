@@ -305,8 +305,8 @@ inline BumpedRun runBumped(const ArmSetup &s, const ArmSetup &b, const vpProject
     }
   }
   toolPoseError(s, qRest, qTarget, r.deg, r.metres);
-  r.refinements = run.task.getNumberOfRigRefinements();
-  r.failedRefinements = run.task.getNumberOfFailedRigRefinements();
+  r.refinements = run.task.getRigRefinementState().getNumberOfRefinements();
+  r.failedRefinements = run.task.getRigRefinementState().getNumberOfFailures();
   for (size_t k = 0; k < userStar.size(); ++k) {
     r.userStarUnchanged = r.userStarUnchanged && userStar[k].get_s() == run.sStar[k].get_s();
   }

@@ -285,7 +285,7 @@ int main(int argc, char **argv)
               << " px\n"
               << "Final joint error: largest " << worstDeg << " deg; tool pose error " << poseDeg << " deg, " << poseMm
               << " mm (ground truth, for the report only); refinements of the rig with the task's own frames: "
-              << task.getNumberOfRigRefinements() << "\n";
+              << task.getRigRefinementState().getNumberOfRefinements() << "\n";
     // Re-registered once (updateRig()); the task's own refinements of the rig (setRigRefinement()) do not count.
     const bool ok = detectedAt >= 0 && robot.getRigUpdateCount() == 1 && poseDeg <= 2.0 && poseMm <= 2.0;
     std::cout << (ok ? "Bump detected, rig re-registered, task ended at its original target"

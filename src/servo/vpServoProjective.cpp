@@ -98,7 +98,8 @@ vpServoProjective::vpServoProjective()
       m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
       m_replanFailed(false), m_stallSum(), m_stallSumSq(), m_stallHalves{0.0, 0.0}, m_stallCount(0), m_followGain(1.0),
       m_period(1.0), m_qdotMax(0.0), m_gainInput(GAIN_INPUT_ERROR), m_errorUnit(ERROR_PIXELS), m_focalLength(0.0),
-      m_errorScale(1.0), m_q(), m_qFresh(false), m_settling(), m_targetGeneration(0)
+      m_errorScale(1.0), m_q(), m_qFresh(false), m_settling(), m_targetGeneration(0), m_refinement(),
+      m_rigUpdatesSeen(0)
 {
 }
 
@@ -111,11 +112,7 @@ void vpServoProjective::addFeature(vpFeatureStereoPoint &s, vpFeatureStereoPoint
   m_targets.push_back(vpTarget());
   m_plannedFor.clear(); // another task: plan anew
   m_following = false;
-  m_refinement.active = false;
-  m_refinement.zero.clear();
-  m_refinement.hasZero.clear(); // another set of features: its frames and points would not match
-  m_refinement.zero.clear();
-  m_refinement.hasZero.clear();
+  m_refinement.stop(); // another set of features: its frames and points would not match
 }
 
 void vpServoProjective::clearFeatures()
@@ -127,9 +124,7 @@ void vpServoProjective::clearFeatures()
   m_targets.clear();
   m_plannedFor.clear();
   m_following = false;
-  m_refinement.active = false;
-  m_refinement.zero.clear();
-  m_refinement.hasZero.clear();
+  m_refinement.stop();
   m_iterations[m_lastIteration].status = SERVO_RUNNING;
   m_iterations[m_lastIteration].data.m_nbActive = 0;
 }
@@ -138,18 +133,6 @@ vpServoProjective::vpFeatureState vpServoProjective::getFeatureState(unsigned in
 {
   checkFeatureIndex(i, "getFeatureState()");
   return m_health.getFeatureState(i);
-}
-
-double vpServoProjective::getEpipolarDistance(unsigned int i) const
-{
-  checkFeatureIndex(i, "getEpipolarDistance()");
-  return m_health.getEpipolarDistance(i);
-}
-
-double vpServoProjective::getPredictionDistance(unsigned int i) const
-{
-  checkFeatureIndex(i, "getPredictionDistance()");
-  return m_health.getPredictionDistance(i);
 }
 
 inline void vpServoProjective::check(const char *method) const
@@ -396,8 +379,15 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
     qdot /= m_period; // the step of this call, as a velocity held for one period
   }
   commit();
-  if (m_refinement.active) {
-    refineRigIfDue(); // never throws: a failed refinement leaves everything as it was
+  // The rig refinement records the calls that move the arm, with the robot given modifiable; refine() never throws: a
+  // failed refinement leaves everything as it was.
+  const vpServoStatus status = last().status;
+  if (m_refinement.isActive() && (status == SERVO_RUNNING || status == SERVO_REDUCED)) {
+    if (m_link.modifiable == nullptr || m_link.modifiable != m_link.robot) {
+      m_refinement.stop();
+    } else if (m_refinement.record(last().data, m_health)) {
+      m_refinement.refine(*m_link.modifiable);
+    }
   }
 }
 

@@ -190,15 +190,16 @@ void vpServoProjective::print(std::ostream &os) const
   }
   os << "\n";
   os << "  Rig refinement: ";
-  if (!m_refinement.enabled) {
+  if (!m_refinement.isEnabled()) {
     os << "off\n";
   } else {
-    os << "on, every " << m_refinement.period << " calls, " << m_refinement.count << " times after a re-registration";
+    os << "on, every " << m_refinement.getPeriod() << " calls, " << m_refinement.getCount()
+       << " times after a re-registration";
     if (m_link.modifiable == nullptr) {
       os << " (not with this robot: give it to setRobot() as modifiable)";
-    } else if (m_refinement.active) {
-      os << "; refining: " << m_refinement.done << " done, " << m_refinement.failed << " failed, "
-         << m_refinement.X.size() << " points recorded";
+    } else if (m_refinement.isActive()) {
+      os << "; refining: " << m_refinement.getNumberOfRefinements() << " done, " << m_refinement.getNumberOfFailures()
+         << " failed, " << m_refinement.getNumberOfPoints() << " points recorded";
     }
     os << "\n";
   }

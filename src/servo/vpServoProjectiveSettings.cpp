@@ -105,8 +105,8 @@ void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
   for (vpTarget &t : m_targets) {
     t.valid = false; // another robot's frame: take the user's s* anew
   }
-  m_refinement.active = false; // only a re-registration from now on starts a refinement
-  m_refinement.seenUpdates = robot.getRigUpdateCount();
+  m_refinement.stop(); // only a re-registration from now on starts a refinement
+  m_rigUpdatesSeen = robot.getRigUpdateCount();
 }
 
 void vpServoProjective::setRobot(vpProjectiveRobot &robot)
@@ -281,4 +281,9 @@ void vpServoProjective::clearJointLimits()
 void vpServoProjective::setSettling(bool settling)
 {
   m_settling.setEnabled(settling, m_settling.getHorizon());
+}
+
+void vpServoProjective::setRigRefinement(bool refine, unsigned int period, unsigned int refinements)
+{
+  m_refinement.setRefinement(refine, period, refinements);
 }

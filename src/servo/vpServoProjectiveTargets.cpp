@@ -48,11 +48,15 @@ void vpServoProjective::refreshTargets()
   // user's value anew. The features' point memories of the mismatch check belong to one rig of one model.
   const bool modelChanged = m_link.modelChanged, rigChanged = m_link.rigChanged && !modelChanged;
   if (modelChanged) {
-    m_refinement.active = false; // the frames belong to the old model
-    m_refinement.seenUpdates = m_link.robot->getRigUpdateCount();
-  } else if (rigChanged && m_link.robot->getRigUpdateCount() != m_refinement.seenUpdates) {
-    m_refinement.seenUpdates = m_link.robot->getRigUpdateCount();
-    startRigRefinement(); // a re-registration (not a refinement): from the memories of before it
+    m_refinement.stop(); // the frames and points belong to the old model
+    m_rigUpdatesSeen = m_link.robot->getRigUpdateCount();
+  } else if (rigChanged && m_link.robot->getRigUpdateCount() != m_rigUpdatesSeen) {
+    m_rigUpdatesSeen = m_link.robot->getRigUpdateCount();
+    if (m_link.modifiable != nullptr && m_link.modifiable == m_link.robot) {
+      m_refinement.start(m_mismatch, static_cast<unsigned int>(m_features.size())); // from the memories before it
+    } else {
+      m_refinement.stop();
+    }
   }
   if (modelChanged || rigChanged) {
     m_mismatch.reset();

@@ -11,13 +11,7 @@
  * more details.
  */
 
-/*
-  The refinement of a re-registered rig with a vpServoProjective task's own frames (setRigRefinement()): the features'
-  zero-reference points taken from the model-mismatch memories at the re-registration, the frames recorded at the
-  calls that move the arm, and vpProjectiveRobot::refineRig() every period.
-*/
-
-#include <visp3/projective/vpServoProjective.h>
+#include <visp3/projective/vpServoRigRefinement.h>
 
 #include <Eigen/Dense>
 
@@ -31,98 +25,113 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-//! Most frames (calls times refinements) that setRigRefinement() accepts: the memory reserved per feature.
+//! Most frames (calls times refinements) that setRefinement() accepts: the memory reserved per feature.
 const unsigned long kMaxRefinementCalls = 100000;
 } // namespace
 
-void vpServoProjective::setRigRefinement(bool refine, unsigned int period, unsigned int refinements)
+vpServoRigRefinement::vpServoRigRefinement()
+    : m_enabled(true), m_period(40), m_count(3), m_active(false), m_calls(0), m_done(0), m_failed(0), m_zero(),
+      m_hasZero(), m_X(), m_s()
+{
+}
+
+void vpServoRigRefinement::setRefinement(bool refine, unsigned int period, unsigned int count)
 {
   const char *const where = "vpServoProjective::setRigRefinement()";
-  if (period == 0 || refinements == 0) {
+  if (period == 0 || count == 0) {
     fail(vpProjectiveException::invalidValueError, where,
          "the period (calls between two refinements) and the number of refinements must be positive, e.g. 40 and 3; "
          "pass refine = false to turn the refinement off");
   }
-  if (static_cast<unsigned long>(period) * refinements > kMaxRefinementCalls) {
+  if (static_cast<unsigned long>(period) * count > kMaxRefinementCalls) {
     fail(vpProjectiveException::invalidValueError, where,
          "period times refinements exceeds 100000 recorded calls, whose frames the task keeps in memory; refine "
          "less often or fewer times (e.g. 40 and 3)");
   }
-  m_refinement.enabled = refine;
-  m_refinement.period = period;
-  m_refinement.count = refinements;
+  m_enabled = refine;
+  m_period = period;
+  m_count = count;
   if (!refine) {
-    m_refinement.active = false;
+    m_active = false;
   }
 }
 
-void vpServoProjective::startRigRefinement()
+void vpServoRigRefinement::stop()
 {
-  // Called by refreshTargets() when the robot's rig was re-registered, before the mismatch memories are forgotten:
-  // they are the features' points at the zero reference as seen through the rig of before the move.
-  vpRefinement &r = m_refinement;
-  r.active = false;
-  r.calls = r.done = r.failed = 0;
-  r.X.clear();
-  r.s.clear();
-  if (!r.enabled || m_link.modifiable == nullptr || m_link.modifiable != m_link.robot) {
+  m_active = false;
+  m_calls = m_done = m_failed = 0;
+  m_zero.clear();
+  m_hasZero.clear();
+  m_X.clear();
+  m_s.clear();
+}
+
+void vpServoRigRefinement::start(const vpServoModelMismatch &mismatch, unsigned int nbFeatures)
+{
+  // The mismatch memories are the features' points at the zero reference as seen through the rig of before the move;
+  // a feature without one keeps its point of an earlier re-registration, if any (the same model and features: stop()
+  // forgets them otherwise).
+  m_active = false;
+  m_calls = m_done = m_failed = 0;
+  m_X.clear();
+  m_s.clear();
+  if (!m_enabled) {
     return;
   }
-  const unsigned int N = static_cast<unsigned int>(m_features.size());
-  r.zero.resize(N, Eigen::Vector4d::Zero());
-  r.hasZero.resize(N, 0);
+  m_zero.resize(nbFeatures, Eigen::Vector4d::Zero());
+  m_hasZero.resize(nbFeatures, 0);
   unsigned int known = 0;
-  for (unsigned int i = 0; i < N && i < m_mismatch.getNumberOfFeatures(); ++i) {
+  for (unsigned int i = 0; i < nbFeatures; ++i) {
     Eigen::Vector4d M;
-    if (m_mismatch.getMemory(i, M)) { // else the point of an earlier re-registration, if any (same model)
-      r.zero[i] = M;
-      r.hasZero[i] = 1;
+    if (i < mismatch.getNumberOfFeatures() && mismatch.getMemory(i, M)) {
+      m_zero[i] = M;
+      m_hasZero[i] = 1;
     }
-    known += r.hasZero[i] != 0 ? 1 : 0;
+    known += m_hasZero[i] != 0 ? 1 : 0;
   }
   if (known == 0) {
     return; // nothing to refine with (the mismatch check off, or no feature ever agreed)
   }
-  const size_t capacity = static_cast<size_t>(r.period) * r.count * known;
-  r.X.reserve(capacity); // the recording then allocates nothing
-  r.s.reserve(capacity);
-  r.active = true;
+  const size_t capacity = static_cast<size_t>(m_period) * m_count * known;
+  m_X.reserve(capacity); // the recording then allocates nothing
+  m_s.reserve(capacity);
+  m_active = true;
 }
 
-void vpServoProjective::refineRigIfDue()
+bool vpServoRigRefinement::record(const vpServoProjectiveData &data, const vpServoFeatureHealth &health)
 {
-  vpRefinement &r = m_refinement;
-  const vpIteration &it = last();
-  if (m_link.modifiable == nullptr || m_link.modifiable != m_link.robot || r.hasZero.size() != m_features.size()) {
-    r.active = false;
-    return;
+  if (!m_active) {
+    return false;
   }
-  if (it.status != SERVO_RUNNING && it.status != SERVO_REDUCED) {
-    return; // a call that does not move the arm: neither a frame nor a step of the schedule
+  if (m_hasZero.size() != data.getNumberOfFeatures()) {
+    stop(); // another set of features
+    return false;
   }
-  const vpServoProjectiveData &d = it.data;
-  for (unsigned int i = 0; i < m_features.size(); ++i) {
-    if (r.hasZero[i] == 0 || m_health.getFeatureState(i) != FEATURE_ACTIVE || !d.getFeature(i).allFinite()) {
+  for (unsigned int i = 0; i < data.getNumberOfFeatures(); ++i) {
+    if (m_hasZero[i] == 0 || health.getFeatureState(i) != vpServoFeatureHealth::FEATURE_ACTIVE ||
+        !data.getFeature(i).allFinite()) {
       continue; // outliers and features set aside never enter the refinement
     }
-    if (r.X.size() < r.X.capacity()) {
-      r.X.push_back((d.getDisplacement() * r.zero[i]).normalized());
-      r.s.push_back(d.getFeature(i));
+    if (m_X.size() < m_X.capacity()) {
+      m_X.push_back((data.getDisplacement() * m_zero[i]).normalized());
+      m_s.push_back(data.getFeature(i));
     }
   }
-  ++r.calls;
-  if (r.calls % r.period != 0) {
-    return;
-  }
+  ++m_calls;
+  return m_calls % m_period == 0;
+}
+
+void vpServoRigRefinement::refine(vpProjectiveRobot &robot)
+{
   try {
-    m_link.modifiable->refineRig(r.X, r.s); // tells the task: the next call re-expresses s* in the refined rig
-    ++r.done;
+    robot.refineRig(m_X, m_s); // tells the tasks: their next call re-expresses s* in the refined rig
+    ++m_done;
   } catch (const vpException &) {
-    ++r.failed; // the robot, its rig and the targets are as they were
+    ++m_failed; // the robot, its rig and the targets are as they were
   }
-  if (r.done + r.failed >= r.count) {
-    r.active = false; // done: no more frames
-    r.X.clear();
-    r.s.clear();
+  if (m_done + m_failed >= m_count) {
+    m_active = false; // done: no more frames
+    m_X.clear();
+    m_s.clear();
   }
 }

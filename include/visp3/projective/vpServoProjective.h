@@ -36,6 +36,7 @@
 #include <visp3/projective/vpServoJointLimitAvoidance.h>
 #include <visp3/projective/vpServoModelMismatch.h>
 #include <visp3/projective/vpServoProjectiveData.h>
+#include <visp3/projective/vpServoRigRefinement.h>
 #include <visp3/projective/vpServoSettling.h>
 #include <visp3/vs/vpAdaptiveGain.h>
 
@@ -174,9 +175,8 @@ public:
     full gain returns when an F-test at \f$ 10^{-4} \f$ sees a real error (\ref servo_task_settling).
   */
   void setSettling(bool settling);
-  bool getSettling() const { return m_settling.isEnabled(); } //!< True if settling is on (setSettling()).
-  bool isSettled() const { return m_settling.isSettled(); }   //!< True if the last call used the settling gain.
-  //! The settling gain's state: settled calls, noise estimate, last test statistic.
+  //! The settling gain: on or off (setSettling()), settled at the last call, settled calls, noise estimate, last
+  //! test statistic.
   const vpServoSettling &getSettlingState() const { return m_settling; }
   //@}
 
@@ -242,9 +242,7 @@ public:
     \exception vpProjectiveException if \e pixels is negative or not finite.
   */
   void setModelMismatchThreshold(double pixels);
-  //! The threshold of setModelMismatchThreshold() (pixels; 0: off).
-  double getModelMismatchThreshold() const { return m_mismatch.getThreshold(); }
-  //! The detector, its settings and its last distances.
+  //! The detector, its threshold (getThreshold()) and its last distances.
   const vpServoModelMismatch &getModelMismatch() const { return m_mismatch; }
   /*!
     The desired value (4x1, pixels) the task uses for feature \e i: the user's \f$ s^*_i \f$, or after the robot
@@ -253,42 +251,19 @@ public:
   */
   vpColVector getDesiredFeature(unsigned int i) const;
   /*!
-    Refinement of a re-registered rig with the task's own frames (default on, every 40 calls, 3 times): after the
-    robot's rig was re-registered (vpProjectiveRobot::updateRig(), from as few as 3 observation poses), the task
-    records, at each call that moves the arm (SERVO_RUNNING, SERVO_REDUCED), its joints and the images of its active
-    features (FEATURE_ACTIVE: no outlier, no feature set aside) with their points at the zero reference as the
-    model-mismatch check remembered them before the re-registration (an acquired marker's point once recognised,
-    else the mean of their triangulations; setModelMismatchThreshold() must not be 0). Every \e period such calls it
-    re-registers the rig from the update's observations and all the frames recorded so far
-    (vpProjectiveRobot::refineRig()), \e refinements times, then stops recording; the desired features are
-    re-expressed in each refined rig as after updateRig(). The frames near the target pin the new cameras where the
-    re-expressed \f$ s^* \f$ matters (\ref servo_meas_mismatch). Nothing is recorded and nothing allocated until a
-    re-registration; the recording uses memory reserved then; the call that refines takes the time of a
-    re-registration (Ceres on every recorded point). A refinement that fails (vpProjectiveRobot::refineRig() throws)
-    leaves the robot, its rig and the task's targets as they were, and counts as one of the \e refinements
-    (getNumberOfFailedRigRefinements()). It needs the robot given to setRobot() as modifiable. false: the rig stays
-    as updateRig() left it.
-    \param refine : true to refine (default), false never.
-    \param period : calls that move the arm between two refinements (> 0).
-    \param refinements : refinements per re-registration (> 0).
+    Refinement of a re-registered rig with the task's own frames (default on, every 40 calls, 3 times;
+    vpServoRigRefinement, getRigRefinementState()): after vpProjectiveRobot::updateRig(), the task records its active
+    features at the calls that move the arm and re-registers the rig with them every \e period calls, \e refinements
+    times (vpProjectiveRobot::refineRig()); the desired features are re-expressed in each refined rig as after
+    updateRig(). It needs the robot given to setRobot() as modifiable and the model-mismatch check on (its memories
+    are the features' points). A failed refinement leaves the robot, its rig and the task's targets as they were.
+    false: the rig stays as updateRig() left it.
     \exception vpProjectiveException (invalidValueError) if \e period or \e refinements is 0 or their product above
-    100000 (frames to keep); the settings are then unchanged. A refinement under way stops when \e refine is false.
+    100000 (frames to keep); the settings are then unchanged.
   */
   void setRigRefinement(bool refine, unsigned int period = 40, unsigned int refinements = 3);
-  //! True if the rig refinement of setRigRefinement() is on.
-  bool getRigRefinement() const { return m_refinement.enabled; }
-  //! Calls that move the arm between two refinements (setRigRefinement()).
-  unsigned int getRigRefinementPeriod() const { return m_refinement.period; }
-  //! Refinements per re-registration (setRigRefinement()).
-  unsigned int getRigRefinementCount() const { return m_refinement.count; }
-  //! True while the task records frames to refine a re-registered rig.
-  bool isRefiningRig() const { return m_refinement.active; }
-  //! Successful refinements since the last re-registration.
-  unsigned int getNumberOfRigRefinements() const { return m_refinement.done; }
-  //! Refinements that failed since the last re-registration (the rig was left as it was).
-  unsigned int getNumberOfFailedRigRefinements() const { return m_refinement.failed; }
-  //! Frames' points (a feature seen at a call) recorded since the last re-registration for the refinement.
-  unsigned int getNumberOfRigRefinementPoints() const { return static_cast<unsigned int>(m_refinement.X.size()); }
+  //! The rig refinement's settings and its state since the last re-registration (setRigRefinement()).
+  const vpServoRigRefinement &getRigRefinementState() const { return m_refinement; }
   //@}
 
   /*! \name Joint limits (forwarded to vpServoJointLimitAvoidance) */
@@ -376,14 +351,6 @@ public:
   //! State of feature \e i at the last computeControlLaw() (FEATURE_ACTIVE before).
   //! \exception vpProjectiveException (dimensionError) on a bad index.
   vpFeatureState getFeatureState(unsigned int i) const;
-  //! Number of features used by the last computeControlLaw().
-  unsigned int getNumberOfActiveFeatures() const { return m_health.getNumberOfActiveFeatures(); }
-  //! Epipolar distance \f$ d_F \f$ (pixels, vpServoFeatureHealth) of feature \e i at the last call; -1 if not
-  //! evaluated. \exception vpProjectiveException on a bad index.
-  double getEpipolarDistance(unsigned int i) const;
-  //! Prediction distance (pixels, vpServoFeatureHealth) of feature \e i at the last call; -1 if not evaluated.
-  //! \exception vpProjectiveException on a bad index.
-  double getPredictionDistance(unsigned int i) const;
   //! \f$ \sigma_{min}(J D^{-1}) / \sigma_{max}(J D^{-1}) \f$ of the last reduced \f$ J \f$, \f$ D \f$ its column norms:
   //! what setRankTolerance() is compared with (0 if a column is below it). On demand.
   double getSingularValueRatio() const;
@@ -433,7 +400,8 @@ public:
   //@{
   //! The control law and its settings (setDamping(), setMaxJointVelocity(), setPseudoInverseThreshold()).
   const vpServoDampedLeastSquares &getDampedLeastSquares() const { return m_law; }
-  //! The feature checks and their settings (setImageSize(), setOutlierThreshold(), setFeatureTracked()).
+  //! The feature checks, their settings (setImageSize(), setOutlierThreshold(), setFeatureTracked()) and their last
+  //! verdicts: active features, each feature's epipolar and prediction distances.
   const vpServoFeatureHealth &getFeatureHealth() const { return m_health; }
   //! The joint-limit avoidance and its settings (setJointLimits(), setLargeProjectionThresholds()).
   const vpServoJointLimitAvoidance &getJointLimitAvoidance() const { return m_jointLimits; }
@@ -461,7 +429,7 @@ private:
   struct vpRobotLink : public vpProjectiveRobot::vpListener {
     const vpProjectiveRobot *robot = nullptr;
     vpProjectiveRobot *modifiable = nullptr; // the same robot, if given modifiable (the rig refinement)
-    bool modelChanged = false; // told since the task last took it into account
+    bool modelChanged = false;               // told since the task last took it into account
     bool rigChanged = false;
     vpRobotLink() = default;
     vpRobotLink(const vpRobotLink &other);
@@ -491,8 +459,6 @@ private:
   void refreshTargets();
   void computeData(const JointVector &q, vpServoProjectiveData &data) const;
   bool detectMismatch(const vpServoProjectiveData &data);
-  void startRigRefinement();
-  void refineRigIfDue();
 
   //! The task's copy of a desired feature.
   struct vpTarget {
@@ -546,20 +512,9 @@ private:
   // setSettling(): the settling gain, and the generation of the task's targets (refreshTargets()) it settles on.
   vpServoSettling m_settling;
   unsigned long m_targetGeneration;
-  //! setRigRefinement(): the settings, and the frames recorded since the last re-registration.
-  struct vpRefinement {
-    bool enabled = true;
-    unsigned int period = 40;
-    unsigned int count = 3;
-    unsigned long seenUpdates = 0;         // the robot's getRigUpdateCount() the task has taken into account
-    bool active = false;                   // recording since a re-registration
-    unsigned int calls = 0;                // calls recorded since then
-    unsigned int done = 0, failed = 0;     // refinements since then
-    std::vector<Eigen::Vector4d> zero;     // per feature: its point at the zero reference
-    std::vector<char> hasZero;             // per feature: zero is set
-    std::vector<Eigen::Vector4d> X, s;     // the frames' points H(q) M(0) and their images, reserved at the start
-  };
-  vpRefinement m_refinement;
+  // setRigRefinement(): the refinement, and the robot's re-registrations (getRigUpdateCount()) taken into account.
+  vpServoRigRefinement m_refinement;
+  unsigned long m_rigUpdatesSeen;
 };
 
 END_VISP_NAMESPACE
