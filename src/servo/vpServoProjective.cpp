@@ -286,11 +286,22 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
     return false;
   }
   vpServoDampedLeastSquares::computeNormalEquations(d.m_J, d.m_e, d.m_JtJ, d.m_Jte);
-  d.m_errorNorm = d.m_e.norm() / m_errorScale;
   const unsigned int active = d.m_nbActive;
   d.m_nbActive = used; // the rank test of decideStatus() on the measured and predicted features together
   const bool constrained = decideStatus(it) != SERVO_STOPPED || used == m_features.size();
   d.m_nbActive = active; // the features the images gave (getNumberOfActiveFeatures() is the health's)
+  if (!constrained) {
+    // Stopped after all: the task as the images gave it (the rows of the features set aside zero).
+    for (unsigned int i = 0; i < m_features.size(); ++i) {
+      if (!m_activeNow[i]) {
+        d.computeFeature(model, i, m_features[i]->getFeature());
+        d.m_J.middleRows(4 * static_cast<Eigen::Index>(i), 4).setZero();
+        d.m_e.segment<4>(4 * static_cast<Eigen::Index>(i)).setZero();
+      }
+    }
+    vpServoDampedLeastSquares::computeNormalEquations(d.m_J, d.m_e, d.m_JtJ, d.m_Jte);
+  }
+  d.m_errorNorm = d.m_e.norm() / m_errorScale;
   return constrained;
 }
 
