@@ -332,6 +332,42 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
                                                                     const std::vector<Eigen::Vector4d> &points,
                                                                     const std::vector<Eigen::Vector4d> &sStar)
 {
+  for (size_t g = 0; g < m_groups.size(); ++g) {
+    for (unsigned int k : m_groups[g]) {
+      if (k >= points.size()) {
+        std::ostringstream os;
+        os << "planar group " << g << " names point " << k << " but plan() was given " << points.size()
+           << " points; setPlanarGroups() takes indices in the order of plan()'s points";
+        fail(vpProjectiveException::dimensionError, at("plan()"), os.str());
+      }
+    }
+  }
+  // With the planar groups facing the cameras; if no plan does, without (the task's open loop then carries the arm
+  // past where a marker is lost).
+  m_groupsOn = true;
+  const vpPlanStatus status = planOnce(model, q, points, sStar);
+  if (status == PLAN_FOUND || m_groups.empty()) {
+    return status;
+  }
+  m_groupsOn = false;
+  const std::string why = m_description;
+  planOnce(model, q, points, sStar);
+  m_groupsOn = true;
+  if (m_status == PLAN_FOUND) {
+    m_description =
+        "no plan keeps every planar group facing the cameras (" + why + "); without that check: " + m_description;
+  } else {
+    m_description = why;
+    m_status = status;
+  }
+  return m_status;
+}
+
+vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::planOnce(const vpProjectiveArmModel &model,
+                                                                        const JointVector &q,
+                                                                        const std::vector<Eigen::Vector4d> &points,
+                                                                        const std::vector<Eigen::Vector4d> &sStar)
+{
   const std::string where = at("plan()");
   const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
   if (q.size() != n || (m_hasLimits && m_qmin.size() != n) || points.size() != sStar.size()) {
@@ -370,6 +406,7 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
       fail(vpProjectiveException::invalidValueError, where, "a point lies on a camera's focal plane at q");
     }
   }
+  computeGroupAreas(seen, sStar); // the planar groups' image areas at q and at s*: the references of facing
   unsigned int matched = 0;
   std::vector<bool> taken(model.markers().size(), false);
   for (size_t k = 0; k < X.size(); ++k) {

@@ -62,6 +62,9 @@ const char *statusName(vpServoProjective::vpServoStatus status)
   case vpServoProjective::SERVO_MODEL_MISMATCH:
     return "SERVO_MODEL_MISMATCH (every feature disagrees with the model: re-register a moved rig, or check the rig "
            "mounting; qdot = 0)";
+  case vpServoProjective::SERVO_OPEN_LOOP:
+    return "SERVO_OPEN_LOOP (too few features seen: the missing ones predicted by the model, the plan followed for at "
+           "most setMaxOpenLoopTime())";
   }
   return "?";
 }

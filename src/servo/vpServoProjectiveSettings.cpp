@@ -206,6 +206,12 @@ void vpServoProjective::setControlPeriod(double seconds)
   m_period = seconds;
 }
 
+void vpServoProjective::setMaxOpenLoopTime(double seconds)
+{
+  m_maxOpenLoopTime = nonNegative(seconds, at("setMaxOpenLoopTime()"), "the longest open loop on the model",
+                                  "seconds of consecutive calls; 0 stops the task as soon as the features are too few");
+}
+
 void vpServoProjective::setPseudoInverseThreshold(double threshold)
 {
   m_law.setPseudoInverseThreshold(threshold);

@@ -19,6 +19,7 @@
 
 #include <visp3/projective/vpServoProjective.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Dense>
@@ -60,6 +61,7 @@ void vpServoProjective::refreshTargets()
   }
   if (modelChanged || rigChanged) {
     m_mismatch.reset();
+    std::fill(m_hasSeenPoint.begin(), m_hasSeenPoint.end(), 0); // the open loop's points: of the old frame
   }
   const vpProjectiveStereoRig &rig = m_link.robot->getModel().getStereoRig();
   for (size_t i = 0; i < m_targets.size(); ++i) {
@@ -173,7 +175,8 @@ bool vpServoProjective::planIfNeeded(const JointVector &q, const vpServoProjecti
     m_replans = 0;
     m_lawLeftRehearsal = false;
     m_planner.setRefusedTarget(JointVector());
-  } else if (m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND && m_replans <= kMaxReplans) {
+  } else if (m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND && m_replans <= kMaxReplans &&
+             m_openLoopCalls == 0) { // in open loop the features are not all seen: no plan from them
     const vpIteration &it = last();
     const double rms =
         it.data.m_e.size() > 0 ? it.data.m_errorNorm / std::sqrt(static_cast<double>(it.data.m_e.size())) : 0.0;

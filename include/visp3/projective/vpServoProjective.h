@@ -97,13 +97,17 @@ public:
 
   //! Outcome of the last computeControlLaw() (\ref servo_task_features).
   enum vpServoStatus {
-    SERVO_RUNNING,       //!< Every feature used.
-    SERVO_REDUCED,       //!< Some features set aside, the remaining ones keep rank n: the task continues on them.
-    SERVO_STOPPED,       //!< The active features no longer constrain every joint (rank < n): \f$ \dot q = 0 \f$.
-    SERVO_NO_PLAN,       //!< Path planning is on and no plan exists for the target (getPathPlanner() says why):
-                         //!< \f$ \dot q = 0 \f$.
-    SERVO_MODEL_MISMATCH //!< Every usable feature disagrees with the model's prediction on consecutive calls (a
-                         //!< moved camera; setModelMismatchThreshold()): \f$ \dot q = 0 \f$; re-register the rig.
+    SERVO_RUNNING,        //!< Every feature used.
+    SERVO_REDUCED,        //!< Some features set aside, the remaining ones keep rank n: the task continues on them.
+    SERVO_STOPPED,        //!< The active features no longer constrain every joint (rank < n): \f$ \dot q = 0 \f$.
+    SERVO_NO_PLAN,        //!< Path planning is on and no plan exists for the target (getPathPlanner() says why):
+                          //!< \f$ \dot q = 0 \f$.
+    SERVO_MODEL_MISMATCH, //!< Every usable feature disagrees with the model's prediction on consecutive calls (a
+                          //!< moved camera; setModelMismatchThreshold()): \f$ \dot q = 0 \f$; re-register the rig.
+    SERVO_OPEN_LOOP       //!< Planned task: the active features no longer constrain every joint (a tag seen edge-on,
+                          //!< occluded), and the features set aside are replaced by the model's predictions at the
+                          //!< measured joints, for at most setMaxOpenLoopTime(): the arm keeps to its plan, the images
+                          //!< take over again when the features return.
   };
 
   //! The unit of the task error \f$ e \f$ that the gain sees (see setErrorUnit()).
@@ -390,6 +394,26 @@ public:
   void setPathFollowingGain(double gain);
   //! True while the last computeControlLaw() followed the planned path (before the final law (47)).
   bool isFollowingPath() const { return m_following; }
+  /*!
+    Open loop on the model (default 2 s; 0: off). With path planning on and a plan under way (a path followed, or
+    law (47) within the iterations of its rehearsal: vpProjectivePathPlanner::PATH_LAW), when the active features
+    no longer constrain every joint (the 4 corners of a tag that turns edge-on to a camera along the path, or that
+    something occludes), the task does not stop at once: each feature set aside that was active before is replaced by
+    its prediction by the model at the measured joints, \f$ \hat s_i = (P, P')\, H(q)\, H(q_l)^{-1} M_l \f$ (its
+    point \f$ M_l \f$ at the last call \f$ q_l \f$ where it was active), and the task goes on with them, following
+    its plan (SERVO_OPEN_LOOP), for at most \e seconds of consecutive calls (counted with setControlPeriod()). The
+    images take over as soon as enough features are active again (SERVO_RUNNING or SERVO_REDUCED, which restarts the
+    count); once the time is spent, SERVO_STOPPED (\f$ \dot q = 0 \f$) until they are. The arm then moves on the
+    model alone: along a path planned inside the joint limits with the features predicted in view, as exact as the
+    model (\ref servo_task_open_loop). Without planning, or once the plan is done, the task stops at once, as before.
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if \e seconds is negative or not finite;
+    the setting is then unchanged.
+  */
+  void setMaxOpenLoopTime(double seconds);
+  //! The bound of setMaxOpenLoopTime() (seconds; 0: off).
+  double getMaxOpenLoopTime() const { return m_maxOpenLoopTime; }
+  //! Consecutive calls that ended in SERVO_OPEN_LOOP, up to the last one (0 when it did not).
+  unsigned int getOpenLoopCalls() const { return m_openLoopCalls; }
   //! The planner, its settings and its last plan (target, branches, path, description).
   const vpProjectivePathPlanner &getPathPlanner() const { return m_planner; }
   //! The planner, to change its settings (setMaxJointStep(), setMaxExcursion(), setNumberOfStarts()).
@@ -459,6 +483,7 @@ private:
   void refreshTargets();
   void computeData(const JointVector &q, vpServoProjectiveData &data) const;
   bool detectMismatch(const vpServoProjectiveData &data);
+  bool openLoop(vpIteration &it);
 
   //! The task's copy of a desired feature.
   struct vpTarget {
@@ -499,8 +524,15 @@ private:
   double m_stallHalves[2];
   unsigned int m_stallCount;
   double m_followGain;
-  double m_period;  // seconds per computeControlLaw() call (setControlPeriod())
-  double m_qdotMax; // the user's saturation, per second (the law's is per call: m_qdotMax * m_period)
+  // setMaxOpenLoopTime(): the bound, the consecutive open-loop calls, each feature's point (zero reference) at the last
+  // call where it was active and whether it has one.
+  double m_maxOpenLoopTime;
+  unsigned int m_openLoopCalls;
+  std::vector<Eigen::Vector4d> m_seenPoints;
+  std::vector<char> m_hasSeenPoint;
+  std::vector<char> m_activeNow; // per feature: active in the iteration in progress (buildTask())
+  double m_period;               // seconds per computeControlLaw() call (setControlPeriod())
+  double m_qdotMax;              // the user's saturation, per second (the law's is per call: m_qdotMax * m_period)
 
   // setErrorUnit(): the unit, the focal length given (0: estimated), pixels per unit of error; setJointPositions().
   vpGainInput m_gainInput;
