@@ -63,34 +63,7 @@ double equilibratedSingularValueRatio(const vpProjectiveArmModel::JointMatrix &J
   return 0.0;
 }
 
-//! \f$ \sigma_{max} / \sigma_{min} \f$ from the eigenvalues of \f$ J^T J \f$; infinite if singular, 0 without column.
-double conditionNumber(const vpProjectiveArmModel::JointMatrix &JtJ)
-{
-  const Eigen::Index n = JtJ.rows();
-  if (n == 0) {
-    return 0.0;
-  }
-  Eigen::SelfAdjointEigenSolver<vpProjectiveArmModel::JointMatrix> eig(JtJ, Eigen::EigenvaluesOnly);
-  const double sigmaMin = std::sqrt(std::max(0.0, eig.eigenvalues()(0)));
-  const double sigmaMax = std::sqrt(std::max(0.0, eig.eigenvalues()(n - 1)));
-  return sigmaMin > 0.0 ? sigmaMax / sigmaMin : std::numeric_limits<double>::infinity();
-}
 } // namespace
-
-double vpServoProjective::taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale,
-                                   const JointMatrix &JtJ, const JointVector &Jte, double errorInf)
-{
-  if (input == GAIN_INPUT_ERROR) {
-    return lambda.value_const(errorInf / errorScale);
-  }
-  // vpServo's e1 = J^+ e (full column rank here: J^T J is invertible unless the task is singular, then the gain at
-  // infinity); fixed-size storage, no allocation.
-  const Eigen::LDLT<JointMatrix> ldlt(JtJ);
-  const JointVector e1 = ldlt.solve(Jte);
-  const double x = e1.allFinite() && ldlt.info() == Eigen::Success ? e1.cwiseAbs().maxCoeff()
-                                                                   : std::numeric_limits<double>::infinity();
-  return lambda.value_const(x);
-}
 
 vpServoProjective::vpServoProjective()
     : m_link(), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(), m_jointLimits(),
@@ -134,12 +107,6 @@ void vpServoProjective::clearFeatures()
   m_refinement.stop();
   m_iterations[m_lastIteration].status = SERVO_RUNNING;
   m_iterations[m_lastIteration].data.m_nbActive = 0;
-}
-
-vpServoProjective::vpFeatureState vpServoProjective::getFeatureState(unsigned int i) const
-{
-  checkFeatureIndex(i, "getFeatureState()");
-  return m_health.getFeatureState(i);
 }
 
 inline void vpServoProjective::check(const char *method) const
@@ -523,46 +490,7 @@ vpColVector vpServoProjective::computeControlLaw()
   return toVispVector(qdot);
 }
 
-vpColVector vpServoProjective::getError() const
-{
-  return toVispVector(last().data.m_e / m_errorScale);
-}
-
-vpMatrix vpServoProjective::getTaskJacobian() const
-{
-  return toVisp(last().data.m_J / m_errorScale);
-}
-
-vpColVector vpServoProjective::getTaskSingularValues() const
-{
-  if (last().data.m_J.size() == 0) {
-    return vpColVector();
-  }
-  return toVispVector(Eigen::JacobiSVD<Eigen::MatrixXd>(last().data.m_J / m_errorScale).singularValues());
-}
-
 double vpServoProjective::getSingularValueRatio() const
 {
   return equilibratedSingularValueRatio(last().data.m_JtJ, m_rankTolerance);
-}
-
-double vpServoProjective::getConditionNumber() const
-{
-  return conditionNumber(last().data.m_JtJ);
-}
-
-vpMatrix vpServoProjective::getLargeProjectionOperator() const
-{
-  if (last().data.m_JtJ.rows() == 0) {
-    fail(vpProjectiveException::notInitializedError, at("getLargeProjectionOperator()"),
-         "no task Jacobian yet; call computeControlLaw() first");
-  }
-  JointMatrix P;
-  m_jointLimits.computeLargeProjectionOperator(last().data.m_JtJ, last().data.m_Jte, last().data.m_errorNorm, m_law, P);
-  return toVisp(P);
-}
-
-vpColVector vpServoProjective::getJointLimitVelocity() const
-{
-  return toVispVector(last().qdot2);
 }

@@ -19,7 +19,10 @@
 #include <visp3/projective/vpServoProjective.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
+
+#include <Eigen/Dense>
 
 #include "core/vpProjectiveErrors.h"
 
@@ -292,4 +295,19 @@ void vpServoProjective::setSettling(bool settling)
 void vpServoProjective::setRigRefinement(bool refine, unsigned int period, unsigned int refinements)
 {
   m_refinement.setRefinement(refine, period, refinements);
+}
+
+double vpServoProjective::taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale,
+                                   const JointMatrix &JtJ, const JointVector &Jte, double errorInf)
+{
+  if (input == GAIN_INPUT_ERROR) {
+    return lambda.value_const(errorInf / errorScale);
+  }
+  // vpServo's e1 = J^+ e (full column rank here: J^T J is invertible unless the task is singular, then the gain at
+  // infinity); fixed-size storage, no allocation.
+  const Eigen::LDLT<JointMatrix> ldlt(JtJ);
+  const JointVector e1 = ldlt.solve(Jte);
+  const double x = e1.allFinite() && ldlt.info() == Eigen::Success ? e1.cwiseAbs().maxCoeff()
+                                                                   : std::numeric_limits<double>::infinity();
+  return lambda.value_const(x);
 }

@@ -63,13 +63,9 @@ BEGIN_VISP_NAMESPACE
   (\ref page_porting maps vpServo's calls to this task's). Each iteration computes its data once
   (vpServoProjectiveData, getData()), which every part of the task reads (\ref servo_task_data).
 
-  Each feature gets a state (getFeatureState(), vpServoFeatureHealth); the features set aside have their 4 rows of
-  \f$ e \f$ and \f$ J \f$ set to zero, and getStatus() tells whether the active ones still constrain every joint:
-  SERVO_STOPPED (\f$ \dot q = 0 \f$) when \f$ \sigma_{min}(J D^{-1}) < \tau\, \sigma_{max}(J D^{-1}) \f$,
-  \f$ D = \mathrm{diag}(\|J_{:,k}\|) \f$ (\f$ \tau \f$: setRankTolerance()), or fewer than \f$ n/3 \f$ points are
-  active (\ref servo_task_features). setJointLimits() adds ViSP's joint-limit avoidance with the large projection
-  operator (vpServoJointLimitAvoidance). Every getter is const and writes nothing: several threads may read one task
-  while none computes.
+  Each feature gets a state (getFeatureState(), vpServoFeatureHealth); the rows of the features set aside are zero,
+  and getStatus() tells whether the active ones still constrain every joint (\ref servo_task_features). Every getter
+  is const and writes nothing: several threads may read one task while none computes.
 
   \code
   task.setRobot(robot); task.setLambda(0.5);
@@ -255,15 +251,12 @@ public:
   */
   vpColVector getDesiredFeature(unsigned int i) const;
   /*!
-    Refinement of a re-registered rig with the task's own frames (default on, every 40 calls, 3 times;
-    vpServoRigRefinement, getRigRefinementState()): after vpProjectiveRobot::updateRig(), the task records its active
-    features at the calls that move the arm and re-registers the rig with them every \e period calls, \e refinements
-    times (vpProjectiveRobot::refineRig()); the desired features are re-expressed in each refined rig as after
-    updateRig(). It needs the robot given to setRobot() as modifiable and the model-mismatch check on (its memories
-    are the features' points). A failed refinement leaves the robot, its rig and the task's targets as they were.
-    false: the rig stays as updateRig() left it.
+    Refinement of a re-registered rig with the task's own frames (default on, every 40 calls, 3 times): after
+    vpProjectiveRobot::updateRig() the task refines the rig with its active features every \e period calls that move
+    the arm, \e refinements times (vpServoRigRefinement, \ref servo_meas_mismatch). Needs the robot given to
+    setRobot() as modifiable and the model-mismatch check on. false: the rig stays as updateRig() left it.
     \exception vpProjectiveException (invalidValueError) if \e period or \e refinements is 0 or their product above
-    100000 (frames to keep); the settings are then unchanged.
+    100000; the settings are then unchanged.
   */
   void setRigRefinement(bool refine, unsigned int period = 40, unsigned int refinements = 3);
   //! The rig refinement's settings and its state since the last re-registration (setRigRefinement()).
@@ -395,17 +388,11 @@ public:
   //! True while the last computeControlLaw() followed the planned path (before the final law (47)).
   bool isFollowingPath() const { return m_following; }
   /*!
-    Open loop on the model (default 2 s; 0: off). With path planning on and a plan under way (a path followed, or
-    law (47) within the iterations of its rehearsal: vpProjectivePathPlanner::PATH_LAW), when the active features
-    no longer constrain every joint (the 4 corners of a tag that turns edge-on to a camera along the path, or that
-    something occludes), the task does not stop at once: each feature set aside that was active before is replaced by
-    its prediction by the model at the measured joints, \f$ \hat s_i = (P, P')\, H(q)\, H(q_l)^{-1} M_l \f$ (its
-    point \f$ M_l \f$ at the last call \f$ q_l \f$ where it was active), and the task goes on with them, following
-    its plan (SERVO_OPEN_LOOP), for at most \e seconds of consecutive calls (counted with setControlPeriod()). The
-    images take over as soon as enough features are active again (SERVO_RUNNING or SERVO_REDUCED, which restarts the
-    count); once the time is spent, SERVO_STOPPED (\f$ \dot q = 0 \f$) until they are. The arm then moves on the
-    model alone: along a path planned inside the joint limits with the features predicted in view, as exact as the
-    model (\ref servo_task_open_loop). Without planning, or once the plan is done, the task stops at once, as before.
+    Open loop on the model (default 2 s; 0: off): while a plan is under way and the active features no longer
+    constrain every joint (a tag turned edge-on, an occlusion), each feature set aside that was active before is
+    replaced by its prediction \f$ \hat s_i = (P, P')\, H(q)\, H(q_l)^{-1} M_l \f$ at the measured joints (\f$ M_l \f$
+    its point at the last call \f$ q_l \f$ where it was active): SERVO_OPEN_LOOP for at most \e seconds of consecutive
+    calls (setControlPeriod()), then SERVO_STOPPED until the features return (\ref servo_task_open_loop).
     \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if \e seconds is negative or not finite;
     the setting is then unchanged.
   */
