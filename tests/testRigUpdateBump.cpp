@@ -40,13 +40,13 @@ TEST(RigUpdate, BumpDetectedReRegisteredAndTaskFinished)
     EXPECT_LT(c.ratio3, 3.0) << bumpName(kind);
     EXPECT_LT(c.ratio10, 2.0) << bumpName(kind);
     // Loose: the unbumped runs of the Monte-Carlo rest up to 1.4 mm from the target (90 % quantile) at 0.5 px.
-    EXPECT_LT(c.finalDeg, 2.0) << bumpName(kind);
-    EXPECT_LT(c.finalMetres, 0.005) << bumpName(kind);
-    EXPECT_TRUE(c.userStarUnchanged) << bumpName(kind);
+    EXPECT_LT(c.from3.deg, 2.0) << bumpName(kind);
+    EXPECT_LT(c.from3.metres, 0.005) << bumpName(kind);
+    EXPECT_TRUE(c.from3.userStarUnchanged) << bumpName(kind);
     testLog() << "[ measured ] " << bumpName(kind) << ": detected after " << c.detectedAfter << ", pre-bump error "
               << c.preError << " px, ratios 3: " << c.ratio3 << " 10: " << c.ratio10
-              << " (11-parameter from 3: " << c.ratio3General << "), final " << c.finalDeg << " deg "
-              << 1000.0 * c.finalMetres << " mm (unbumped " << c.unbumpedDeg << " deg " << 1000.0 * c.unbumpedMetres
+              << " (11-parameter from 3: " << c.ratio3General << "), final " << c.from3.deg << " deg "
+              << 1000.0 * c.from3.metres << " mm (unbumped " << c.unbumpedDeg << " deg " << 1000.0 * c.unbumpedMetres
               << " mm)" << std::endl;
   }
 }

@@ -253,7 +253,7 @@ TEST(RigUpdate, BadInputsThrowAndChangeNothing)
       throwsWith([&] { task.setModelMismatchThreshold(-1.0); }, vpProjectiveException::invalidValueError, "pixels"));
   EXPECT_TRUE(throwsWith([&] { task.setModelMismatchThreshold(std::numeric_limits<double>::quiet_NaN()); },
                          vpProjectiveException::nonFiniteValueError, "threshold"));
-  EXPECT_EQ(task.getModelMismatchThreshold(), 5.0);
+  EXPECT_EQ(task.getModelMismatch().getThreshold(), 5.0);
   task.setModelMismatchThreshold(8.0);
-  EXPECT_EQ(task.getModelMismatchThreshold(), 8.0);
+  EXPECT_EQ(task.getModelMismatch().getThreshold(), 8.0);
 }

@@ -16,7 +16,8 @@
   - one computeControlLaw() computes H(q) exactly once (vpServoProjectiveData::getDisplacementCount()), whatever
     part of the servo runs: law (47) with the default model-mismatch check, feature health with the image window
     and outlier rejection (epipolar and prediction tests), a feature set aside, joint limits, settling, path planning
-    and its following; the data's H(q), joint motions and points are the model's, to the bit;
+    and its following; the data's H(q), joint motions and points are the model's, to the bit, and its prediction
+    (predict()) is the rig's projection of H(q) M0, to the bit;
   - the robot tells its tasks of a new model (calibrate(), loadModel(), an assignment): a task forgets its
     model-mismatch memories at its next call, a copy of the task too, and a task on a destroyed robot throws instead
     of reading freed memory.
@@ -126,6 +127,16 @@ void expectModelData(const vpServoProjective &task, const vpProjectiveArmModel &
                     .dot(d.getPoint(i).normalized().cwiseAbs()),
                 1.0, 1e-9)
         << "feature " << i << ": M0 = H(q)^-1 M";
+    // The checks' prediction is the rig's projection of H(q) M0, to the bit, and the rig's projection without its
+    // Jacobian (the checks' path) gives the bits of the one with it.
+    Eigen::Vector4d predicted, projected, withJacobian;
+    Eigen::Matrix4d L;
+    ASSERT_TRUE(d.predict(d.getZeroPoint(i), predicted)) << "feature " << i;
+    ASSERT_TRUE(model.getStereoRig().project(Eigen::Vector4d(d.getDisplacement() * d.getZeroPoint(i)), projected));
+    ASSERT_TRUE(
+        model.getStereoRig().project(Eigen::Vector4d(d.getDisplacement() * d.getZeroPoint(i)), withJacobian, &L));
+    EXPECT_EQ(predicted, projected) << "feature " << i;
+    EXPECT_EQ(projected, withJacobian) << "feature " << i;
   }
 }
 } // namespace
@@ -160,7 +171,7 @@ TEST(ServoProjectiveData, OneDisplacementPerIterationWithEveryCheckOn)
     checked.task.setFeatureTracked(3, k < 4); // lost from the 5th iteration on
     checked.step();
     expectModelData(checked.task, model, checked.s, checked.seen);
-    EXPECT_GE(checked.task.getPredictionDistance(0), k > 0 ? 0.0 : -1.0); // the prediction test ran
+    EXPECT_GE(checked.task.getFeatureHealth().getPredictionDistance(0), k > 0 ? 0.0 : -1.0); // the prediction test ran
   }
   EXPECT_EQ(checked.task.getStatus(), vpServoProjective::SERVO_REDUCED);
   EXPECT_EQ(checked.task.getFeatureState(3), vpServoProjective::FEATURE_NOT_TRACKED);

@@ -117,8 +117,8 @@ TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
   EXPECT_TRUE(throwsProjective([&] { task.setFeatureTracked(3, false); }, dim, "feature index 3 is out of range"));
   EXPECT_TRUE(throwsProjective([&] { task.isFeatureTracked(3); }, dim, "the task has 3 features"));
   EXPECT_TRUE(throwsProjective([&] { task.getFeatureState(7); }, dim, "feature index 7"));
-  EXPECT_TRUE(throwsProjective([&] { task.getEpipolarDistance(3); }, dim, "out of range"));
-  EXPECT_TRUE(throwsProjective([&] { task.getPredictionDistance(3); }, dim, "out of range"));
+  EXPECT_TRUE(throwsProjective([&] { task.getFeatureHealth().getEpipolarDistance(3); }, dim, "out of range"));
+  EXPECT_TRUE(throwsProjective([&] { task.getFeatureHealth().getPredictionDistance(3); }, dim, "out of range"));
   // Image size.
   EXPECT_TRUE(throwsProjective([&] { task.setImageSize(640, 0); }, invalid, "one zero side"));
   EXPECT_TRUE(throwsProjective([&] { task.setImageSize(0, 480); }, invalid, "one zero side"));
@@ -270,14 +270,16 @@ TEST_F(ServoProjectivePuma, AFailedCallLeavesTheTaskAsItWas)
   EXPECT_EQ(toEigenX(failing.task.getTaskJacobian()), J);
   EXPECT_EQ(failing.task.getStatus(), vpServoProjective::SERVO_REDUCED);
   EXPECT_EQ(failing.task.getFeatureState(2), vpServoProjective::FEATURE_NOT_TRACKED);
-  EXPECT_EQ(failing.task.getNumberOfActiveFeatures(), 3u);
+  EXPECT_EQ(failing.task.getFeatureHealth().getNumberOfActiveFeatures(), 3u);
   EXPECT_EQ(failing.task.getConditionNumber(), condition);
   EXPECT_EQ(failing.task.getSingularValueRatio(), ratio);
   EXPECT_EQ(failing.task.getDamping(), damping);
   EXPECT_EQ(failing.task.getLambda(), lambda);
   for (unsigned int k = 0; k < 4; ++k) {
-    EXPECT_EQ(failing.task.getEpipolarDistance(k), twin.task.getEpipolarDistance(k));
-    EXPECT_EQ(failing.task.getPredictionDistance(k), twin.task.getPredictionDistance(k));
+    EXPECT_EQ(failing.task.getFeatureHealth().getEpipolarDistance(k),
+              twin.task.getFeatureHealth().getEpipolarDistance(k));
+    EXPECT_EQ(failing.task.getFeatureHealth().getPredictionDistance(k),
+              twin.task.getFeatureHealth().getPredictionDistance(k));
   }
 
   // The next call, from the true images one step further.
@@ -290,8 +292,10 @@ TEST_F(ServoProjectivePuma, AFailedCallLeavesTheTaskAsItWas)
   EXPECT_EQ(toEigenV(failing.task.computeControlLaw(qNext)), toEigenV(twin.task.computeControlLaw(qNext)));
   for (unsigned int k = 0; k < 4; ++k) {
     EXPECT_EQ(failing.task.getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
-    EXPECT_GE(failing.task.getPredictionDistance(k), 0.0);
-    EXPECT_EQ(failing.task.getPredictionDistance(k), twin.task.getPredictionDistance(k)) << "feature " << k;
+    EXPECT_GE(failing.task.getFeatureHealth().getPredictionDistance(k), 0.0);
+    EXPECT_EQ(failing.task.getFeatureHealth().getPredictionDistance(k),
+              twin.task.getFeatureHealth().getPredictionDistance(k))
+        << "feature " << k;
   }
 }
 

@@ -39,8 +39,8 @@ TEST_F(ServoProjectivePuma, OutlierDistancesAreTheDocumentedOnes)
   configure(t.task);
   t.task.computeControlLaw(q);
   for (unsigned int k = 0; k < 4; ++k) {
-    EXPECT_EQ(t.task.getEpipolarDistance(k), -1.0); // rejection off: not evaluated
-    EXPECT_EQ(t.task.getPredictionDistance(k), -1.0);
+    EXPECT_EQ(t.task.getFeatureHealth().getEpipolarDistance(k), -1.0); // rejection off: not evaluated
+    EXPECT_EQ(t.task.getFeatureHealth().getPredictionDistance(k), -1.0);
   }
   t.task.setOutlierThreshold(2.0);
   vpColVector qNext = q;
@@ -48,13 +48,13 @@ TEST_F(ServoProjectivePuma, OutlierDistancesAreTheDocumentedOnes)
     const vpColVector qdot = t.task.computeControlLaw(qNext);
     for (unsigned int k = 0; k < 4; ++k) {
       const double expected = epipolarDistances(F, t.s[k].getLeft(), t.s[k].getRight()).maxCoeff();
-      EXPECT_NEAR(t.task.getEpipolarDistance(k), expected, 1e-9);
-      EXPECT_LT(t.task.getEpipolarDistance(k), 1e-6);
+      EXPECT_NEAR(t.task.getFeatureHealth().getEpipolarDistance(k), expected, 1e-9);
+      EXPECT_LT(t.task.getFeatureHealth().getEpipolarDistance(k), 1e-6);
       if (it == 0) {
-        EXPECT_EQ(t.task.getPredictionDistance(k), -1.0); // never accepted before
+        EXPECT_EQ(t.task.getFeatureHealth().getPredictionDistance(k), -1.0); // never accepted before
       } else {
-        EXPECT_GE(t.task.getPredictionDistance(k), 0.0);
-        EXPECT_LT(t.task.getPredictionDistance(k), 1e-5) << "iteration " << it << " marker " << k;
+        EXPECT_GE(t.task.getFeatureHealth().getPredictionDistance(k), 0.0);
+        EXPECT_LT(t.task.getFeatureHealth().getPredictionDistance(k), 1e-5) << "iteration " << it << " marker " << k;
       }
       EXPECT_EQ(t.task.getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
     }
@@ -67,22 +67,22 @@ TEST_F(ServoProjectivePuma, OutlierDistancesAreTheDocumentedOnes)
   const Eigen::Vector2d along = Eigen::Vector2d(lp(1), -lp(0)).normalized();
   t.s[1].setRaw(m(0), m(1), m(2) + 20.0 * along(0), m(3) + 20.0 * along(1));
   t.task.computeControlLaw(qNext);
-  EXPECT_LT(t.task.getEpipolarDistance(1), 1e-6);
-  EXPECT_NEAR(t.task.getPredictionDistance(1), 20.0, 1e-4);
+  EXPECT_LT(t.task.getFeatureHealth().getEpipolarDistance(1), 1e-6);
+  EXPECT_NEAR(t.task.getFeatureHealth().getPredictionDistance(1), 20.0, 1e-4);
   EXPECT_EQ(t.task.getFeatureState(1), vpServoProjective::FEATURE_OUTLIER);
   EXPECT_EQ(t.task.getStatus(), vpServoProjective::SERVO_REDUCED);
   // 20 px across the line: caught by the epipolar test first (the prediction is then not evaluated).
   const Eigen::Vector2d across = lp.head<2>().normalized();
   t.s[1].setRaw(m(0), m(1), m(2) + 20.0 * across(0), m(3) + 20.0 * across(1));
   t.task.computeControlLaw(qNext);
-  EXPECT_GT(t.task.getEpipolarDistance(1), 19.0);
-  EXPECT_EQ(t.task.getPredictionDistance(1), -1.0);
+  EXPECT_GT(t.task.getFeatureHealth().getEpipolarDistance(1), 19.0);
+  EXPECT_EQ(t.task.getFeatureHealth().getPredictionDistance(1), -1.0);
   EXPECT_EQ(t.task.getFeatureState(1), vpServoProjective::FEATURE_OUTLIER);
   // Back on its true image: accepted again, predicted from its last acceptance two iterations ago.
   t.s[1].setRaw(m(0), m(1), m(2), m(3));
   t.task.computeControlLaw(qNext);
   EXPECT_EQ(t.task.getFeatureState(1), vpServoProjective::FEATURE_ACTIVE);
-  EXPECT_LT(t.task.getPredictionDistance(1), 1e-5);
+  EXPECT_LT(t.task.getFeatureHealth().getPredictionDistance(1), 1e-5);
 }
 
 TEST_F(ServoProjectivePuma, GrossOutliersAreRejected)
@@ -194,7 +194,7 @@ TEST_F(ServoProjectivePuma, NewChecksChangeNothingWhenThereIsNothingToCatch)
     const vpColVector b = checked.task.computeControlLaw(q);
     ASSERT_EQ(toEigenV(a), toEigenV(b)) << "iteration " << it;
     EXPECT_EQ(checked.task.getStatus(), vpServoProjective::SERVO_RUNNING);
-    EXPECT_EQ(checked.task.getNumberOfActiveFeatures(), 3u);
+    EXPECT_EQ(checked.task.getFeatureHealth().getNumberOfActiveFeatures(), 3u);
     EXPECT_TRUE(allZero(toEigenV(checked.task.getJointLimitVelocity())));
     EXPECT_TRUE(allZero(toEigenV(plain.task.getJointLimitVelocity())));
     q = s.arm.integrate(s.armJoints(q), a, 1.0) - s.qRef;

@@ -62,13 +62,13 @@ TEST(ServoProjective, LostFeatureIsSetAsideThenUsedAgain)
           if (lost) {
             EXPECT_EQ(t.task.getStatus(), vpServoProjective::SERVO_REDUCED) << s.name << " iteration " << it;
             EXPECT_EQ(t.task.getFeatureState(1), vpServoProjective::FEATURE_NOT_TRACKED);
-            EXPECT_EQ(t.task.getNumberOfActiveFeatures(), 3u);
+            EXPECT_EQ(t.task.getFeatureHealth().getNumberOfActiveFeatures(), 3u);
             EXPECT_TRUE(allZero(e.segment<4>(4)));
             EXPECT_TRUE(allZero(Eigen::Map<const Eigen::VectorXd>(J.middleRows(4, 4).eval().data(), 24)));
             EXPECT_GT(qdot.frobeniusNorm(), 0.0);
           } else {
             EXPECT_EQ(t.task.getStatus(), vpServoProjective::SERVO_RUNNING) << s.name << " iteration " << it;
-            EXPECT_EQ(t.task.getNumberOfActiveFeatures(), 4u);
+            EXPECT_EQ(t.task.getFeatureHealth().getNumberOfActiveFeatures(), 4u);
             for (unsigned int k = 0; k < 4; ++k) {
               EXPECT_EQ(t.task.getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
             }
@@ -187,7 +187,7 @@ TEST(ServoProjective, StopsWhenTheActiveFeaturesNoLongerConstrainEveryJoint)
           EXPECT_EQ(t.task.getFeatureState(k),
                     c.tracked[k] ? vpServoProjective::FEATURE_ACTIVE : vpServoProjective::FEATURE_NOT_TRACKED);
         }
-        ASSERT_EQ(t.task.getNumberOfActiveFeatures(), active);
+        ASSERT_EQ(t.task.getFeatureHealth().getNumberOfActiveFeatures(), active);
         std::ostringstream what;
         what << s.name << " pair " << p << ", " << active << " active markers";
         if (active > 0) {

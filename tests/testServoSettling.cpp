@@ -261,15 +261,15 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
   };
   // Settles within 15 calls, then follows lambda / (1 + lambda k) with no false alarm over 25 calls.
   unsigned int calls = 0;
-  while (!task.isSettled() && calls < 15) {
+  while (!task.getSettlingState().isSettled() && calls < 15) {
     step();
     ++calls;
   }
-  ASSERT_TRUE(task.isSettled()) << "not settled after " << calls << " calls";
+  ASSERT_TRUE(task.getSettlingState().isSettled()) << "not settled after " << calls << " calls";
   EXPECT_FALSE(task.isFollowingPath());
   for (unsigned int c = 0; c < 25; ++c) {
     step();
-    ASSERT_TRUE(task.isSettled()) << "a false alarm " << c << " calls after settling";
+    ASSERT_TRUE(task.getSettlingState().isSettled()) << "a false alarm " << c << " calls after settling";
     const double k = task.getSettlingState().getSettledIterations();
     EXPECT_NEAR(task.getLambda(), 0.5 / (1.0 + 0.5 * k), 1e-12);
     EXPECT_GE(k, c + 1.0);
@@ -280,14 +280,14 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
   const Eigen::VectorXd floor = w.floor(sigma);
   q[0] += vpMath::rad(1.0);
   step();
-  EXPECT_FALSE(task.isSettled()) << "the bump went unnoticed";
+  EXPECT_FALSE(task.getSettlingState().isSettled()) << "the bump went unnoticed";
   EXPECT_EQ(task.getLambda(), 0.5);
   calls = 0;
-  while (!task.isSettled() && calls < 15) {
+  while (!task.getSettlingState().isSettled() && calls < 15) {
     step();
     ++calls;
   }
-  EXPECT_TRUE(task.isSettled()) << "not settled again after the bump";
+  EXPECT_TRUE(task.getSettlingState().isSettled()) << "not settled again after the bump";
   for (unsigned int c = 0; c < 20; ++c) {
     step();
   }
@@ -301,12 +301,12 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
   }
   teach(sStar, qTarget2, 16, sigma, noise);
   step();
-  EXPECT_FALSE(task.isSettled()) << "the new target went unnoticed";
+  EXPECT_FALSE(task.getSettlingState().isSettled()) << "the new target went unnoticed";
   EXPECT_TRUE(task.isFollowingPath() || task.getLambda() == 0.5) << "neither the plan nor the full gain";
   for (unsigned int c = 0; c < 40; ++c) {
     step();
   }
-  EXPECT_TRUE(task.isSettled()) << "not settled on the new target";
+  EXPECT_TRUE(task.getSettlingState().isSettled()) << "not settled on the new target";
   for (unsigned int i = 0; i < 6; ++i) {
     EXPECT_LT(std::abs(q[i] - qTarget2[i]), 2.0 * floor(i)) << "joint " << i << " after the target step";
   }
@@ -315,10 +315,10 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
   task.setFeatureTracked(2, false);
   step();
   EXPECT_EQ(task.getStatus(), vpServoProjective::SERVO_STOPPED);
-  EXPECT_FALSE(task.isSettled());
+  EXPECT_FALSE(task.getSettlingState().isSettled());
   task.setFeatureTracked(2, true);
   step();
-  EXPECT_FALSE(task.isSettled()) << "settling must converge anew after a stop";
+  EXPECT_FALSE(task.getSettlingState().isSettled()) << "settling must converge anew after a stop";
   EXPECT_EQ(task.getLambda(), 0.5);
 }
 
@@ -331,7 +331,7 @@ TEST(ServoSettling, OffIsLawFortySevenAsIs)
   vpGaussRand noise(1.0, 0.0, 3);
   std::vector<vpFeatureStereoPoint> s(3), sStar(3);
   vpServoProjective plain, off, toggled;
-  EXPECT_FALSE(plain.getSettling());
+  EXPECT_FALSE(plain.getSettlingState().isEnabled());
   configure(off, robot, false);
   configure(toggled, robot, true);
   configure(plain, robot, false);
@@ -349,16 +349,16 @@ TEST(ServoSettling, OffIsLawFortySevenAsIs)
       s[k].buildFrom(l[k], r[k]);
     }
     if (it == 20) {
-      EXPECT_TRUE(toggled.isSettled());
+      EXPECT_TRUE(toggled.getSettlingState().isSettled());
       toggled.setSettling(false);
     }
     const vpColVector qdot = plain.computeControlLaw(q);
     const vpColVector qdotOff = off.computeControlLaw(q);
     EXPECT_EQ((qdot - qdotOff).frobeniusNorm(), 0.0) << "iteration " << it;
-    EXPECT_FALSE(off.isSettled());
+    EXPECT_FALSE(off.getSettlingState().isSettled());
     const vpColVector qdotToggled = toggled.computeControlLaw(q);
     if (it >= 20) {
-      EXPECT_FALSE(toggled.isSettled());
+      EXPECT_FALSE(toggled.getSettlingState().isSettled());
       EXPECT_EQ(toggled.getLambda(), plain.getLambda());
     }
     q = w.setup.arm.integrate(q, qdot, 1.0);

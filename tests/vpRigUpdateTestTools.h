@@ -255,6 +255,64 @@ struct ServoRun {
   }
 };
 
+//! The end of one bumped run: where the task rests and how its rig was refined.
+struct BumpedRun {
+  int detectedAfter = -1;         // iterations after the bump until SERVO_MODEL_MISMATCH (-1: never)
+  int falseAlarms = 0;            // SERVO_MODEL_MISMATCH before the bump
+  double deg = 0.0, metres = 0.0; // tool pose error where the arm rests: its mean joints over the last 30 of 150
+                                  // iterations after updateRig() (the law jittering with the noise)
+  unsigned int refinements = 0;   // the task's own refinements of the rig (setRigRefinement())
+  unsigned int failedRefinements = 0;
+  bool userStarUnchanged = true;
+  bool reached() const { return deg <= 2.0 && metres <= 0.002; } // the target reached: within 2 deg / 2 mm
+};
+
+/*!
+  The bumped run of a task from qStart to qTarget through \e s: 6 iterations, the bump to \e b, detection, \e poses
+  observation poses within 20 deg of where the arm stopped (spreading the markers), updateRig(), then 150 iterations
+  back to the target, the task refining the rig with its own frames if \e refine (setRigRefinement(), its defaults:
+  every 40 calls, 3 times). Seeded apart (\e seed), so that the variants of a case see the same poses and noise.
+*/
+inline BumpedRun runBumped(const ArmSetup &s, const ArmSetup &b, const vpProjectiveRobot &acquired,
+                           const vpColVector &qTarget, const vpColVector &qStart, unsigned int poses, bool refine,
+                           long seed)
+{
+  BumpedRun r;
+  vpUniRand rng(seed);
+  vpGaussRand noise(1.0, 0.0, seed);
+  vpProjectiveRobot robot = acquired;
+  ServoRun run(s, robot, qTarget, kSigma, noise);
+  run.task.setRobot(robot); // modifiable: the task may refine the robot's rig
+  run.task.setRigRefinement(refine);
+  const std::vector<vpFeatureStereoPoint> userStar = run.sStar;
+  vpColVector q = qStart;
+  for (int it = 0; it < 6; ++it) {
+    if (run.step(s, q, kSigma, noise) == vpServoProjective::SERVO_MODEL_MISMATCH) {
+      ++r.falseAlarms;
+    }
+  }
+  for (int it = 1; it <= 4 && r.detectedAfter < 0; ++it) {
+    if (run.step(b, q, kSigma, noise) == vpServoProjective::SERVO_MODEL_MISMATCH) {
+      r.detectedAfter = it;
+    }
+  }
+  reRegister(robot, b, poses, rng, noise, q, vpMath::rad(20.0));
+  vpColVector qRest(s.n(), 0.0);
+  for (int it = 0; it < 150; ++it) {
+    run.step(b, q, kSigma, noise);
+    if (it >= 120) {
+      qRest += q / 30.0;
+    }
+  }
+  toolPoseError(s, qRest, qTarget, r.deg, r.metres);
+  r.refinements = run.task.getRigRefinementState().getNumberOfRefinements();
+  r.failedRefinements = run.task.getRigRefinementState().getNumberOfFailures();
+  for (size_t k = 0; k < userStar.size(); ++k) {
+    r.userStarUnchanged = r.userStarUnchanged && userStar[k].get_s() == run.sStar[k].get_s();
+  }
+  return r;
+}
+
 //! The figures of one bump case.
 struct BumpCase {
   int detectedAfter = -1;     // iterations after the bump until SERVO_MODEL_MISMATCH (1 or 2 wanted; -1: never)
@@ -263,14 +321,14 @@ struct BumpCase {
   double ratio3 = 0.0;        // after updateRig() from 3 observations, over preError
   double ratio10 = 0.0;       // from 10
   double ratio3General = 0.0; // from 3, plain 11-parameter resection
-  double finalDeg = 0.0;      // tool pose error at the end of the task after updateRig() (where the arm rests:
-  double finalMetres = 0.0;   // its mean joints over the last 30 of 150 iterations, the law jittering with the noise)
+  BumpedRun from3;            // the task after updateRig() from 3 observation poses, refining the rig itself
+  BumpedRun from10;           // from 10 poses, refining
+  BumpedRun from3Alone;       // from 3 poses, no refinement (setRigRefinement(false)); only if asked
   double unbumpedDeg = 0.0;   // the same for the unbumped run at 0.5 px
   double unbumpedMetres = 0.0;
-  bool userStarUnchanged = true;
 };
 
-inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind)
+inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind, bool withoutRefinement = false)
 {
   BumpCase c;
   vpUniRand rng(seed);
@@ -322,48 +380,15 @@ inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind)
     }
   }
 
-  // The bumped run: 6 iterations, the bump, detection, 3 observations, updateRig(), the task finished.
-  vpProjectiveRobot robot = acquired;
-  ServoRun run(s, robot, qTarget, kSigma, noise);
-  const std::vector<vpFeatureStereoPoint> userStar = run.sStar;
-  vpColVector q = qStart;
-  for (int it = 0; it < 6; ++it) {
-    if (run.step(s, q, kSigma, noise) == vpServoProjective::SERVO_MODEL_MISMATCH) {
-      ++c.falseAlarms;
-    }
+  // The bumped runs, their poses and noise seeded by the case: from 3 poses (with and, if asked, without the task's
+  // refinement, the same poses) and from 10.
+  c.from3 = runBumped(s, b, acquired, qTarget, qStart, 3, true, 7 * seed + 1);
+  c.from10 = runBumped(s, b, acquired, qTarget, qStart, 10, true, 7 * seed + 2);
+  if (withoutRefinement) {
+    c.from3Alone = runBumped(s, b, acquired, qTarget, qStart, 3, false, 7 * seed + 1);
   }
-  for (int it = 1; it <= 4 && c.detectedAfter < 0; ++it) {
-    if (run.step(b, q, kSigma, noise) == vpServoProjective::SERVO_MODEL_MISMATCH) {
-      c.detectedAfter = it;
-    }
-  }
-  // Three observation poses within 20 deg of where the arm stopped (spreading the markers), then back there. The
-  // servo's own frames keep refining the rig: every 40 iterations, updateRig() again from the three poses and the
-  // frames seen so far (20 of every 40). Frames where the task ends pin the new cameras where the re-expressed s*
-  // matters: the task then ends where the model's inverse kinematics puts the taught s*.
-  const std::vector<Observation> poses = reRegister(robot, b, 3, rng, noise, q, vpMath::rad(20.0));
-  std::vector<Observation> observed = poses;
-  vpColVector qRest(s.n(), 0.0);
-  for (int it = 0; it < 150; ++it) {
-    Observation frame;
-    run.step(b, q, kSigma, noise, &frame);
-    if (it % 40 >= 20 && it < 120) {
-      observed.push_back(frame);
-    }
-    if (it % 40 == 39 && it < 120) {
-      for (const Observation &o : observed) {
-        robot.addRigObservation(o.q, o.left, o.right);
-      }
-      robot.updateRig();
-    }
-    if (it >= 120) {
-      qRest += q / 30.0;
-    }
-  }
-  toolPoseError(s, qRest, qTarget, c.finalDeg, c.finalMetres);
-  for (size_t k = 0; k < userStar.size(); ++k) {
-    c.userStarUnchanged = c.userStarUnchanged && userStar[k].get_s() == run.sStar[k].get_s();
-  }
+  c.detectedAfter = c.from3.detectedAfter;
+  c.falseAlarms += c.from3.falseAlarms + c.from10.falseAlarms;
   return c;
 }
 

@@ -197,7 +197,7 @@ inline void configure(vpServoProjective &task)
 //! RMS (px) of the error of the active features.
 inline double activeRms(const vpServoProjective &task)
 {
-  const unsigned int active = task.getNumberOfActiveFeatures();
+  const unsigned int active = task.getFeatureHealth().getNumberOfActiveFeatures();
   return active == 0 ? 0.0 : task.getError().frobeniusNorm() / std::sqrt(4.0 * active);
 }
 
@@ -210,7 +210,7 @@ inline double jointError(const vpColVector &q, const vpColVector &qTarget)
 inline Eigen::MatrixXd activeRows(const vpServoProjective &task)
 {
   const Eigen::MatrixXd J = toEigenX(task.getTaskJacobian());
-  Eigen::MatrixXd Ja(4 * task.getNumberOfActiveFeatures(), J.cols());
+  Eigen::MatrixXd Ja(4 * task.getFeatureHealth().getNumberOfActiveFeatures(), J.cols());
   Eigen::Index r = 0;
   for (unsigned int i = 0; i < task.getNumberOfFeatures(); ++i) {
     if (task.getFeatureState(i) == vpServoProjective::FEATURE_ACTIVE) {

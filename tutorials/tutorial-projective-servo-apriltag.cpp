@@ -22,8 +22,7 @@
   3. s* taught by showing: the arm at the target, 16 frames of the middle tag's 4 corners averaged.
   4. The planned servo from a start 25-40 deg away per joint, detection near the last corners, until the image error
      settles; the first and last left images are written with the corners' paths.
-  --record DIR writes every stereo frame used with its encoder readings to a session (visp-projective calibrate and
-  check read it; the figures can be made again from it offline). Recording changes nothing in the run.
+  --record DIR writes each stereo frame used and its encoders to a session (visp-projective calibrate, check read it).
   Usage: tutorial-projective-servo-apriltag [--blur SIGMA] [--output DIR] [--record DIR] [--help]
   The exit code is 0 if the task converged (image error within 1 px RMS).
 */
@@ -157,7 +156,8 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
     task.setJointLimits(robot.getJointMin(), robot.getJointMax());
     task.setImageSize(cell.getWidth(), cell.getHeight(), 10.0);
     task.setPathPlanning(true); // rehearse law (47) on the model, plan a path if it would fail
-    task.setSettling(true);     // once converged, average rather than chase each frame's noise
+    task.getPathPlanner().setPlanarGroups({{0, 1, 2, 3}}); // one tag's corners: a path keeps it facing the cameras
+    task.setSettling(true); // once converged, average rather than chase each frame's noise
     for (unsigned int k = 0; k < 4; ++k) {
       s_star[k].buildFrom(starLeft[k], starRight[k]); // s*: the mean of the frames where corner k was seen
       task.addFeature(s[k], s_star[k]);

@@ -284,8 +284,10 @@ int main(int argc, char **argv)
               << " px, at the detection " << prediction[detectedAt] << " px, after re-registration " << median(after)
               << " px\n"
               << "Final joint error: largest " << worstDeg << " deg; tool pose error " << poseDeg << " deg, " << poseMm
-              << " mm (ground truth, for the report only)\n";
-    const bool ok = detectedAt >= 0 && robot.getRigGeneration() == 1 && poseDeg <= 2.0 && poseMm <= 2.0;
+              << " mm (ground truth, for the report only); refinements of the rig with the task's own frames: "
+              << task.getRigRefinementState().getNumberOfRefinements() << "\n";
+    // Re-registered once (updateRig()); the task's own refinements of the rig (setRigRefinement()) do not count.
+    const bool ok = detectedAt >= 0 && robot.getRigUpdateCount() == 1 && poseDeg <= 2.0 && poseMm <= 2.0;
     std::cout << (ok ? "Bump detected, rig re-registered, task ended at its original target"
                      : "FAILED: the task did not end within 2 deg / 2 mm of its target")
               << std::endl;

@@ -200,6 +200,7 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
     task.setImageSize(cell.getWidth(), cell.getHeight(), 10.0);
     task.setPathPlanning(true);
     task.setSettling(true);
+    task.getPathPlanner().setPlanarGroups({{0, 1, 2, 3}}); // the servo tag's corners, in order around it
     bool taught = !starLeft[0].empty();
     for (unsigned int k = 0; taught && k < 4; ++k) {
       s_star[k].buildFrom(starLeft[k], starRight[k]);
@@ -233,7 +234,8 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
       robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
       const vpColVector qdot = task.computeControlLaw(q);
       status = task.getStatus();
-      // The tag missing from a frame stops the task for that frame (qdot = 0); a second without it ends the task.
+      // The tag missing from frames: the plan followed on the model for up to 2 s (SERVO_OPEN_LOOP), then the task
+      // stops (qdot = 0); a second stopped without it ends the task.
       stopped = status == vpServoProjective::SERVO_STOPPED ? stopped + 1 : 0;
       if (stopped > 25 || status == vpServoProjective::SERVO_NO_PLAN ||
           status == vpServoProjective::SERVO_MODEL_MISMATCH) {

@@ -34,8 +34,8 @@ const vpErrorSite at("vpProjectiveRobot");
 
 vpProjectiveRobot::vpProjectiveRobot()
     : m_acquisition(), m_model(), m_calibrated(false), m_residual(0.0), m_algebraicResidual(0.0), m_rigJoints(),
-      m_rigImages(), m_rigMode(vpProjectiveRigRegistration::FIXED_INTRINSICS), m_rigResidual(0.0), m_rigGeneration(0),
-      m_modelGeneration(0), m_listeners()
+      m_rigImages(), m_registration(), m_rigMode(vpProjectiveRigRegistration::FIXED_INTRINSICS), m_rigResidual(0.0),
+      m_rigGeneration(0), m_rigUpdates(0), m_modelGeneration(0), m_listeners()
 {
 }
 
@@ -150,7 +150,9 @@ void vpProjectiveRobot::adopt(const vpProjectiveArmAcquisition &acquisition, con
   m_calibrated = true;
   m_rigJoints.clear(); // rig observations belong to the previous model
   m_rigImages.clear();
+  m_registration = vpRegistration(); // so does the last re-registration
   m_rigGeneration = 0;
+  m_rigUpdates = 0;
   ++m_modelGeneration;
   m_listeners.notify(false); // the tasks on this robot take their desired features anew
 }
@@ -404,93 +406,4 @@ void vpProjectiveRobot::loadModel(const std::string &filename)
   acquisition.setStereoRig(model.getStereoRig());
   acquisition.setOutlierThreshold(m_acquisition.getOutlierThreshold());
   adopt(acquisition, model, residual, algebraicResidual);
-}
-
-namespace
-{
-//! The marker images of every model marker, checked.
-std::vector<Eigen::Vector4d> allMarkerImages(const vpProjectiveArmModel &model, const std::vector<vpImagePoint> &left,
-                                             const std::vector<vpImagePoint> &right, const std::string &where)
-{
-  const std::vector<Eigen::Vector4d> s = stackStereoImages(left, right, where);
-  if (s.size() != model.markers().size()) {
-    std::ostringstream os;
-    os << "got the images of " << s.size() << " markers but the model has " << model.markers().size()
-       << "; pass the images of every zero-reference marker, in the zero reference's order";
-    fail(vpProjectiveException::dimensionError, where, os.str());
-  }
-  return s;
-}
-} // namespace
-
-double vpProjectiveRobot::getPredictionError(const vpColVector &q, const std::vector<vpImagePoint> &left,
-                                             const std::vector<vpImagePoint> &right) const
-{
-  const std::string where = at("getPredictionError()");
-  const vpProjectiveArmModel &model = getModel();
-  const JointVector qe = toJointVector(q, "getPredictionError()");
-  const std::vector<Eigen::Vector4d> s = allMarkerImages(model, left, right, where);
-  const Eigen::Matrix4d H = model.displacement(qe);
-  double sum = 0.0;
-  for (unsigned int j = 0; j < s.size(); ++j) {
-    Eigen::Vector4d sHat;
-    if (!model.predictMarker(j, H, sHat)) {
-      fail(vpProjectiveException::pointAtInfinityError, where,
-           "a marker's prediction lies on a camera's focal plane at this q; check q");
-    }
-    sum += (sHat - s[j]).squaredNorm();
-  }
-  return std::sqrt(sum / (4.0 * static_cast<double>(s.size())));
-}
-
-void vpProjectiveRobot::addRigObservation(const vpColVector &q, const std::vector<vpImagePoint> &left,
-                                          const std::vector<vpImagePoint> &right)
-{
-  const std::string where = at("addRigObservation()");
-  const vpProjectiveArmModel &model = getModel();
-  const JointVector qe = toJointVector(q, "addRigObservation()");
-  std::vector<Eigen::Vector4d> s = allMarkerImages(model, left, right, where);
-  for (const JointVector &qk : m_rigJoints) {
-    if ((qk - qe).cwiseAbs().maxCoeff() <= 1e-6) {
-      fail(vpProjectiveException::degenerateConfigurationError, where,
-           "these joints equal those of an observation already recorded, which adds nothing; move the arm to "
-           "another configuration (spread the markers over the images) before the next observation");
-    }
-  }
-  m_rigJoints.push_back(qe);
-  m_rigImages.push_back(std::move(s));
-}
-
-void vpProjectiveRobot::clearRigObservations()
-{
-  m_rigJoints.clear();
-  m_rigImages.clear();
-}
-
-void vpProjectiveRobot::updateRig()
-{
-  const std::string where = at("updateRig()");
-  const vpProjectiveArmModel &model = getModel();
-  if (m_rigJoints.size() < 3) {
-    std::ostringstream os;
-    os << "needs at least 3 observations (addRigObservation()) since the last update, got " << m_rigJoints.size()
-       << "; observe the markers at more joint configurations";
-    fail(vpProjectiveException::notEnoughPointsError, where, os.str());
-  }
-  double rms = 0.0;
-  const vpProjectiveStereoRig rig = vpProjectiveRigRegistration::registerRig(model, m_rigJoints, m_rigImages, m_rigMode,
-                                                                             &rms); // throws before anything changes
-  std::vector<Eigen::Vector3d> axis, point;
-  for (unsigned int i = 0; i < model.getNumberOfJoints(); ++i) {
-    axis.push_back(model.axis(i));
-    point.push_back(model.point(i));
-  }
-  vpProjectiveArmModel updated(model.jointTypes(), model.getRigMounting(), rig, model.projectiveToMetric(), axis, point,
-                               model.markers(), model.zeroReferenceJoints());
-  m_model = updated;
-  m_rigResidual = rms;
-  m_rigJoints.clear();
-  m_rigImages.clear();
-  ++m_rigGeneration;
-  m_listeners.notify(true); // the tasks on this robot re-express their desired features in the new rig
 }

@@ -44,10 +44,26 @@ constexpr double kFocalPlaneTolerance = 1e-12;
 */
 template <typename T, typename DerivedP>
 bool projectPoint(const Eigen::MatrixBase<DerivedP> &P, const Eigen::Matrix<T, 4, 1> &M, Eigen::Matrix<T, 2, 1> &uv,
-                  Eigen::Matrix<T, 2, 4> *J = nullptr)
+                  Eigen::Matrix<T, 2, 4> *J = nullptr);
+
+/*!
+  The focal-plane bound of \e P squared, \f$ (10^{-12} \|P\|_F)^2 \f$: a constant of the camera, which a loop that
+  projects many points computes once (projectPointBounded()).
+*/
+template <typename DerivedP> double focalPlaneBound2(const Eigen::MatrixBase<DerivedP> &P)
+{
+  return (kFocalPlaneTolerance * kFocalPlaneTolerance) * double(P.squaredNorm());
+}
+
+/*!
+  projectPoint() with the focal-plane bound of \e P given (\e tolerance2: focalPlaneBound2(P)): the same arithmetic,
+  hence the same bits, without recomputing \f$ \|P\|_F^2 \f$ at every point.
+*/
+template <typename T, typename DerivedP>
+bool projectPointBounded(const Eigen::MatrixBase<DerivedP> &P, const T &tolerance2, const Eigen::Matrix<T, 4, 1> &M,
+                         Eigen::Matrix<T, 2, 1> &uv, Eigen::Matrix<T, 2, 4> *J = nullptr)
 {
   const Eigen::Matrix<T, 3, 1> m = P.template cast<T>() * M;
-  const T tolerance2 = T(kFocalPlaneTolerance * kFocalPlaneTolerance) * T(P.squaredNorm());
   if (!(m(2) * m(2) > tolerance2 * M.squaredNorm())) {
     return false;
   }
@@ -61,6 +77,14 @@ bool projectPoint(const Eigen::MatrixBase<DerivedP> &P, const Eigen::Matrix<T, 4
     }
   }
   return true;
+}
+
+template <typename T, typename DerivedP>
+bool projectPoint(const Eigen::MatrixBase<DerivedP> &P, const Eigen::Matrix<T, 4, 1> &M, Eigen::Matrix<T, 2, 1> &uv,
+                  Eigen::Matrix<T, 2, 4> *J)
+{
+  const T tolerance2 = T(kFocalPlaneTolerance * kFocalPlaneTolerance) * T(P.squaredNorm());
+  return projectPointBounded(P, tolerance2, M, uv, J);
 }
 
 /*!

@@ -350,8 +350,9 @@ vpProjectiveStereoRig vpProjectiveRigRegistration::registerRig(const vpProjectiv
     fail(vpProjectiveException::notEnoughPointsError, kRegister, os.str());
   }
   const size_t K = model.markers().size();
-  std::vector<Eigen::Vector4d> X;
-  std::vector<Eigen::Vector2d> left, right;
+  std::vector<Eigen::Vector4d> X, s;
+  X.reserve(q.size() * K);
+  s.reserve(q.size() * K);
   for (size_t k = 0; k < q.size(); ++k) {
     if (q[k].size() != static_cast<Eigen::Index>(model.getNumberOfJoints()) || images[k].size() != K) {
       fail(vpProjectiveException::dimensionError, kRegister,
@@ -360,16 +361,46 @@ vpProjectiveStereoRig vpProjectiveRigRegistration::registerRig(const vpProjectiv
     const Eigen::Matrix4d H = model.displacement(q[k]);
     for (size_t j = 0; j < K; ++j) {
       X.push_back((H * model.markers()[j]).normalized());
-      left.push_back(images[k][j].head<2>());
-      right.push_back(images[k][j].tail<2>());
+      s.push_back(images[k][j]);
     }
   }
-  const vpProjectiveStereoRig &old = model.getStereoRig();
+  return registerRig(model.getStereoRig(), model.projectiveToMetric(), X, s, mode, rms);
+}
+
+vpProjectiveStereoRig vpProjectiveRigRegistration::registerRig(const vpProjectiveStereoRig &old,
+                                                               const Eigen::Matrix4d &G,
+                                                               const std::vector<Eigen::Vector4d> &points,
+                                                               const std::vector<Eigen::Vector4d> &images,
+                                                               vpRegistrationMode mode, double *rms)
+{
+  if (points.size() != images.size()) {
+    std::ostringstream os;
+    os << "got " << points.size() << " points but " << images.size() << " stereo images; pass one per point";
+    fail(vpProjectiveException::dimensionError, kRegister, os.str());
+  }
+  if (!G.allFinite()) {
+    fail(vpProjectiveException::nonFiniteValueError, kRegister,
+         "the projective-to-metric matrix is not finite; pass the model's projectiveToMetric()");
+  }
+  std::vector<Eigen::Vector4d> X;
+  std::vector<Eigen::Vector2d> left, right;
+  X.reserve(points.size());
+  left.reserve(points.size());
+  right.reserve(points.size());
+  for (size_t k = 0; k < points.size(); ++k) {
+    if (!points[k].allFinite() || !images[k].allFinite() || !(points[k].norm() > 0.0)) {
+      fail(vpProjectiveException::nonFiniteValueError, kRegister,
+           "a point or a pixel is not finite (or a point is zero); pass the images of tracked points only");
+    }
+    X.push_back(points[k].normalized());
+    left.push_back(images[k].head<2>());
+    right.push_back(images[k].tail<2>());
+  }
   double rmsLeft = 0.0, rmsRight = 0.0;
-  Projection P = resect(old.leftProjection(), model.projectiveToMetric(), X, left, mode, &rmsLeft);
-  Projection Pp = resect(old.rightProjection(), model.projectiveToMetric(), X, right, mode, &rmsRight);
+  Projection P = resect(old.leftProjection(), G, X, left, mode, &rmsLeft);
+  Projection Pp = resect(old.rightProjection(), G, X, right, mode, &rmsRight);
   if (mode == FIXED_INTRINSICS) {
-    selectRigMotion(old.leftProjection(), old.rightProjection(), model.projectiveToMetric(), X, left, right, P, Pp);
+    selectRigMotion(old.leftProjection(), old.rightProjection(), G, X, left, right, P, Pp);
     rmsLeft = rmsError(P, X, left);
     rmsRight = rmsError(Pp, X, right);
   }

@@ -117,9 +117,16 @@ Eigen::Vector4d linearTriangulation(const vpProjectiveStereoRig::Projection &P,
 } // namespace vpProjectiveInternal
 
 vpProjectiveStereoRig::vpProjectiveStereoRig()
-    : m_F(Eigen::Matrix3d::Zero()), m_P(Projection::Zero()), m_Pp(Projection::Zero()), m_e(Eigen::Vector3d::Zero()),
-      m_ep(Eigen::Vector3d::Zero()), m_inliers(), m_residual(0.0), m_initialized(false), m_canonical(true)
+    : m_F(Eigen::Matrix3d::Zero()), m_P(Projection::Zero()), m_Pp(Projection::Zero()), m_bound2P(0.0), m_bound2Pp(0.0),
+      m_e(Eigen::Vector3d::Zero()), m_ep(Eigen::Vector3d::Zero()), m_inliers(), m_residual(0.0), m_initialized(false),
+      m_canonical(true)
 {
+}
+
+void vpProjectiveStereoRig::updateFocalPlaneBounds()
+{
+  m_bound2P = focalPlaneBound2(m_P);
+  m_bound2Pp = focalPlaneBound2(m_Pp);
 }
 
 void vpProjectiveStereoRig::checkInitialized(const char *where) const
@@ -159,6 +166,7 @@ void vpProjectiveStereoRig::setFundamentalMatrix(const vpMatrix &F)
   m_P.setZero();
   m_P.leftCols<3>().setIdentity();
   m_Pp = canonicalRightProjection(m_F, m_ep);
+  updateFocalPlaneBounds();
   m_initialized = true;
   m_canonical = true;
 }
@@ -211,6 +219,7 @@ void vpProjectiveStereoRig::setProjections(const Projection &P, const Projection
   m_ep = ep;
   m_P = Pn;
   m_Pp = Ppn;
+  updateFocalPlaneBounds();
   m_initialized = true;
   m_canonical = false;
 }
@@ -302,7 +311,36 @@ vpColVector vpProjectiveStereoRig::triangulate(const vpImagePoint &ipLeft, const
 
 bool vpProjectiveStereoRig::project(const Eigen::Vector4d &M, Eigen::Vector4d &s, Eigen::Matrix4d *L) const
 {
-  return projectStereo(m_P, m_Pp, M, s, L) && s.allFinite();
+  // projectStereo(m_P, m_Pp, M, s, L) (the same arithmetic, hence the same bits) on the bounds computed with P, P'.
+  if (L == nullptr) { // the predictions of the servo's checks: written out, no Jacobian
+    const double M2 = M.squaredNorm();
+    const Eigen::Vector3d m = m_P * M;
+    if (!(m(2) * m(2) > m_bound2P * M2)) {
+      return false;
+    }
+    const Eigen::Vector3d mp = m_Pp * M;
+    if (!(mp(2) * mp(2) > m_bound2Pp * M2)) {
+      return false;
+    }
+    const double iw = 1.0 / m(2), iwp = 1.0 / mp(2);
+    s(0) = m(0) * iw;
+    s(1) = m(1) * iw;
+    s(2) = mp(0) * iwp;
+    s(3) = mp(1) * iwp;
+    return s.allFinite();
+  }
+  Eigen::Vector2d uv, uvp;
+  Eigen::Matrix<double, 2, 4> J, Jp;
+  if (!projectPointBounded(m_P, m_bound2P, M, uv, L != nullptr ? &J : nullptr) ||
+      !projectPointBounded(m_Pp, m_bound2Pp, M, uvp, L != nullptr ? &Jp : nullptr)) {
+    return false;
+  }
+  s << uv, uvp;
+  if (L != nullptr) {
+    L->topRows<2>() = J;
+    L->bottomRows<2>() = Jp;
+  }
+  return s.allFinite();
 }
 
 void vpProjectiveStereoRig::project(const vpColVector &M, vpImagePoint &ipLeft, vpImagePoint &ipRight) const

@@ -39,6 +39,8 @@ const vpErrorSite at("vpProjectivePathPlanner");
 
 //! Number of configurations drawn in the search of a waypoint.
 const unsigned int kWaypointDraws = 200;
+//! Factor of the inverse kinematics' starts in its second round, when no path leads to a branch of the first.
+const unsigned int kMoreStarts = 8;
 //! Largest pixel motion of a feature per step of the tracking of the inverse kinematics toward s*.
 const double kTrackingPixels = 25.0;
 //! Bounds of the number of steps of that tracking.
@@ -105,7 +107,20 @@ vpProjectivePathPlanner::targetCandidates(const vpProjectiveArmModel &model, con
   std::vector<std::pair<double, std::pair<JointVector, unsigned int>>> ranked;
   std::vector<Eigen::Vector4d> s;
   anyInside = false;
+  // The branch the images refused (setRefusedTarget()): the one nearest to where the law stalled, if near.
+  size_t refused = m_branches.size();
+  double nearest = m_refusedRadius;
+  for (size_t b = 0; m_refused.size() == q.size() && b < m_branches.size(); ++b) {
+    const double d = (nearestRepresentative(model, m_branches[b], m_refused) - m_refused).cwiseAbs().maxCoeff();
+    if (d < nearest) {
+      nearest = d;
+      refused = b;
+    }
+  }
   for (size_t b = 0; b < m_branches.size(); ++b) {
+    if (b == refused) {
+      continue;
+    }
     JointVector t = nearestRepresentative(model, m_branches[b], q);
     for (Eigen::Index i = 0; i < q.size(); ++i) {
       if (model.jointType(static_cast<unsigned int>(i)) != vpProjectiveJoint::REVOLUTE) {
@@ -148,8 +163,15 @@ bool vpProjectivePathPlanner::planPath(const vpProjectiveArmModel &model, const 
                                        const JointVector &target, const std::vector<JointVector> &rehearsed,
                                        const std::vector<Eigen::Vector4d> &points, const JointVector &qmin,
                                        const JointVector &qmax, std::vector<JointVector> &path,
-                                       std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind) const
+                                       std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind,
+                                       bool corners) const
 {
+  if (corners) {
+    // A path of several corners: where no single corner turns the joint-space line around the view's and the limits'
+    // obstacles (a wide task whose three close markers leave the window on every one-corner detour).
+    kind = PATH_WAYPOINT;
+    return connectPath(model, q, target, points, qmin, qmax, path, features);
+  }
   if (imagePath(model, q, target, points, path) && feasible(model, path, points, features)) {
     kind = PATH_IMAGE_LINE;
     return true;
@@ -218,6 +240,42 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
                                                                     const std::vector<Eigen::Vector4d> &points,
                                                                     const std::vector<Eigen::Vector4d> &sStar)
 {
+  for (size_t g = 0; g < m_groups.size(); ++g) {
+    for (unsigned int k : m_groups[g]) {
+      if (k >= points.size()) {
+        std::ostringstream os;
+        os << "planar group " << g << " names point " << k << " but plan() was given " << points.size()
+           << " points; setPlanarGroups() takes indices in the order of plan()'s points";
+        fail(vpProjectiveException::dimensionError, at("plan()"), os.str());
+      }
+    }
+  }
+  // With the planar groups facing the cameras; if no plan does, without (the task's open loop then carries the arm
+  // past where a marker is lost).
+  m_groupsOn = true;
+  const vpPlanStatus status = planOnce(model, q, points, sStar);
+  if (status == PLAN_FOUND || m_groups.empty()) {
+    return status;
+  }
+  m_groupsOn = false;
+  const std::string why = m_description;
+  planOnce(model, q, points, sStar);
+  m_groupsOn = true;
+  if (m_status == PLAN_FOUND) {
+    m_description =
+        "no plan keeps every planar group facing the cameras (" + why + "); without that check: " + m_description;
+  } else {
+    m_description = why;
+    m_status = status;
+  }
+  return m_status;
+}
+
+vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::planOnce(const vpProjectiveArmModel &model,
+                                                                        const JointVector &q,
+                                                                        const std::vector<Eigen::Vector4d> &points,
+                                                                        const std::vector<Eigen::Vector4d> &sStar)
+{
   const std::string where = at("plan()");
   const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
   if (q.size() != n || (m_hasLimits && m_qmin.size() != n) || points.size() != sStar.size()) {
@@ -256,6 +314,7 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
       fail(vpProjectiveException::invalidValueError, where, "a point lies on a camera's focal plane at q");
     }
   }
+  computeGroupAreas(seen, sStar); // the planar groups' image areas at q and at s*: the references of facing
   unsigned int matched = 0;
   std::vector<bool> taken(model.markers().size(), false);
   for (size_t k = 0; k < X.size(); ++k) {
@@ -286,7 +345,7 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
     m_front[k] << model.getStereoRig().leftProjection().row(2).dot(M),
         model.getStereoRig().rightProjection().row(2).dot(M);
   }
-  const bool explained = !m_branches.empty() && m_residuals.front() <= m_maxResidual;
+  bool explained = !m_branches.empty() && m_residuals.front() <= m_maxResidual;
   if (!explained) {
     os << "no joint values explain the desired features (";
     if (m_branches.empty()) {
@@ -312,26 +371,61 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
   // target first, the nearest if no path leads to the preferred one. 5. Of the law and the path, both predicted to
   // solve the task, the faster: the path's samples and 3 iterations of the law after them, against the law's
   // rehearsed iterations.
+  // If no path leads to any branch found (or none explains s*), the inverse kinematics again from kMoreStarts times
+  // as many starts (the first ones among them): the uniform starts in a wide joint box can all miss the basin of the
+  // branch that a path reaches (a prismatic joint's, a wrist's), and the branches already tried are not tried again.
+  bool anyInside = false, found = false;
+  std::vector<std::pair<JointVector, unsigned int>> candidates;
+  std::vector<JointVector> tried[2], path;
+  std::vector<std::vector<Eigen::Vector4d>> features;
+  vpPathKind kind = PATH_JOINT_LINE;
+  size_t c = 0;
+  for (int round = 0; round < 2 && !found; ++round) {
+    if (round == 1) {
+      std::vector<double> residuals;
+      std::vector<JointVector> more = vpProjectiveInverseKinematics::solveAll(
+          model, sStar, X, q, qmin, qmax, kMoreStarts * m_starts, &residuals, &seen, &extraStarts);
+      if (more.empty() || !(residuals.front() <= m_maxResidual)) {
+        break;
+      }
+      os << (explained ? "; " : "; then ") << more.size() << " branches from " << kMoreStarts * m_starts << " starts";
+      m_branches = more;
+      m_residuals = residuals;
+      explained = true;
+    }
+    if (!explained) {
+      continue;
+    }
+    candidates = targetCandidates(model, q, X, anyInside);
+    // The short paths (lines, one corner, the law's course) to every branch before the costly paths of several
+    // corners to any: planning stays a few milliseconds whenever a short path leads to some branch.
+    for (int corners = 0; corners < 2 && !found; ++corners) {
+      for (c = 0; c < candidates.size(); ++c) {
+        bool before = false;
+        for (const JointVector &t : tried[corners]) {
+          before = before || (t - candidates[c].first).cwiseAbs().maxCoeff() < 1e-3;
+        }
+        if (before) {
+          continue;
+        }
+        tried[corners].push_back(candidates[c].first);
+        if (planPath(model, q, candidates[c].first, lawPath, X, qmin, qmax, path, features, kind, corners == 1)) {
+          found = true;
+          break;
+        }
+      }
+    }
+  }
   if (!explained) {
     return m_rehearsalOk ? adoptLaw(model, lawPath, lawFeatures, os) : failWith(PLAN_NO_INVERSE_KINEMATICS, os);
   }
-  bool anyInside = false;
-  const std::vector<std::pair<JointVector, unsigned int>> candidates = targetCandidates(model, q, X, anyInside);
   if (candidates.empty()) {
     os << (anyInside ? "; at every one inside the joint limits a feature is out of the image window or behind a camera"
                      : ", none inside the joint limits");
     return m_rehearsalOk ? adoptLaw(model, lawPath, lawFeatures, os)
                          : failWith(anyInside ? PLAN_NO_VISIBLE_PATH : PLAN_OUTSIDE_JOINT_LIMITS, os);
   }
-  std::vector<JointVector> path;
-  std::vector<std::vector<Eigen::Vector4d>> features;
-  vpPathKind kind = PATH_JOINT_LINE;
-  size_t c = 0;
-  while (c < candidates.size() &&
-         !planPath(model, q, candidates[c].first, lawPath, X, qmin, qmax, path, features, kind)) {
-    ++c;
-  }
-  if (c == candidates.size()) {
+  if (!found) {
     os << "; no path keeps the features in view within the joint limits";
     // A law that its rehearsal found slow, not lost (inside the limits, in view, still moving at the budget), is
     // better than no motion: law (47) it is (the task re-plans from where it stalls, if it does).

@@ -70,7 +70,49 @@ bool vpProjectivePathPlanner::visible(const vpProjectiveArmModel &model, const J
       return false;
     }
   }
+  return groupsFacing(s);
+}
+
+namespace
+{
+//! Twice the signed area of the polygon of the points \e group of \e s, in the left (offset 0) or right (2) image.
+double polygonArea(const std::vector<Eigen::Vector4d> &s, const std::vector<unsigned int> &group, int offset)
+{
+  double area = 0.0;
+  for (size_t k = 0; k < group.size(); ++k) {
+    const Eigen::Vector4d &a = s[group[k]], &b = s[group[(k + 1) % group.size()]];
+    area += a(offset) * b(offset + 1) - b(offset) * a(offset + 1);
+  }
+  return area;
+}
+} // namespace
+
+bool vpProjectivePathPlanner::groupsFacing(const std::vector<Eigen::Vector4d> &s) const
+{
+  // Each planar group faces both cameras: its image area keeps the sign and a fraction of the size it has at the ends.
+  for (size_t g = 0; m_groupsOn && g < m_groupArea.size(); ++g) {
+    for (int c = 0; c < 2; ++c) {
+      const double reference = m_groupArea[g](c);
+      if (reference != 0.0 &&
+          !(polygonArea(s, m_groups[g], 2 * c) * reference >= m_minGroupArea * reference * reference)) {
+        return false;
+      }
+    }
+  }
   return true;
+}
+
+void vpProjectivePathPlanner::computeGroupAreas(const std::vector<Eigen::Vector4d> &atStart,
+                                                const std::vector<Eigen::Vector4d> &sStar)
+{
+  m_groupArea.assign(m_groups.size(), Eigen::Vector2d::Zero());
+  for (size_t g = 0; g < m_groups.size(); ++g) {
+    for (int c = 0; c < 2; ++c) {
+      const double a = polygonArea(atStart, m_groups[g], 2 * c), b = polygonArea(sStar, m_groups[g], 2 * c);
+      // The sign where the marker is seen at both ends (a polygon seen from behind at one end is not checked).
+      m_groupArea[g](c) = a * b > 0.0 ? (a > 0.0 ? 1.0 : -1.0) * std::min(std::abs(a), std::abs(b)) : 0.0;
+    }
+  }
 }
 
 bool vpProjectivePathPlanner::feasible(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,

@@ -43,8 +43,9 @@ const vpErrorSite at("vpProjectivePathPlanner");
 } // namespace
 
 vpProjectivePathPlanner::vpProjectivePathPlanner()
-    : m_hasLimits(false), m_qmin(), m_qmax(), m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0),
-      m_maxExcursion(-1.0), m_starts(24), m_maxResidual(5.0), m_limitMargin(0.0), m_front(), m_points(), m_sStar(),
+    : m_groups(), m_minGroupArea(0.3), m_groupArea(), m_groupsOn(true), m_hasLimits(false), m_qmin(), m_qmax(),
+      m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0), m_maxExcursion(-1.0), m_starts(24),
+      m_maxResidual(5.0), m_refused(), m_refusedRadius(0.0), m_limitMargin(0.0), m_front(), m_points(), m_sStar(),
       m_hasLaw(false), m_gain(), m_errorScale(1.0), m_law(), m_avoidance(), m_rehearsalBudget(50), m_rehearsalOk(false),
       m_rehearsalIterations(0), m_rehearsalResidual(-1.0), m_rehearsalSlow(false), m_status(PLAN_NONE), m_branches(),
       m_residuals(), m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE),
@@ -125,6 +126,33 @@ void vpProjectivePathPlanner::setMaxResidual(double pixels)
          "the largest RMS pixel residual of a target must be positive and finite");
   }
   m_maxResidual = pixels;
+}
+
+void vpProjectivePathPlanner::setPlanarGroups(const std::vector<std::vector<unsigned int>> &groups)
+{
+  for (size_t g = 0; g < groups.size(); ++g) {
+    std::vector<unsigned int> sorted = groups[g];
+    std::sort(sorted.begin(), sorted.end());
+    if (sorted.size() < 3 || std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) {
+      std::ostringstream os;
+      os << "planar group " << g << " has " << groups[g].size() << " points"
+         << (sorted.size() < 3 ? "" : ", one of them twice")
+         << "; a group lists 3 or more distinct point indices in order around its marker (a tag's 4 corners)";
+      fail(vpProjectiveException::invalidValueError, at("setPlanarGroups()"), os.str());
+    }
+  }
+  m_groups = groups;
+}
+
+void vpProjectivePathPlanner::setMinGroupArea(double fraction)
+{
+  const std::string where = at("setMinGroupArea()");
+  requireFinite(fraction, where, "the smallest group area");
+  if (fraction < 0.0 || fraction > 1.0) {
+    fail(vpProjectiveException::invalidValueError, where,
+         "the smallest group area is a fraction of the group's image area at the ends of the motion: in [0, 1]");
+  }
+  m_minGroupArea = fraction;
 }
 
 void vpProjectivePathPlanner::setJointLimitMargin(double fraction)

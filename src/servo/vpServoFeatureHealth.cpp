@@ -53,6 +53,20 @@ double lineDistance(double residual, const Eigen::Vector3d &l)
   }
   return residual == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
 }
+
+/*!
+  The larger distance of a point to the lines \e l and \e lp: max(lineDistance(residual, l), lineDistance(residual,
+  lp)), to the bit. With both normals non-null it is \f$ r / \sqrt{\min(\|n\|^2, \|n'\|^2)} \f$: the square root and
+  the division are correctly rounded, hence monotone, so that one of each gives the larger of both quotients.
+*/
+double largerLineDistance(double residual, const Eigen::Vector3d &l, const Eigen::Vector3d &lp)
+{
+  const double n2 = l.head<2>().squaredNorm(), np2 = lp.head<2>().squaredNorm();
+  if (n2 > 0.0 && np2 > 0.0) {
+    return residual / std::sqrt(std::min(n2, np2));
+  }
+  return std::max(lineDistance(residual, l), lineDistance(residual, lp));
+}
 } // namespace
 
 vpServoFeatureHealth::vpServoFeatureHealth()
@@ -151,22 +165,23 @@ void vpServoFeatureHealth::startIteration(const vpProjectiveArmModel &model, con
 inline vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::outlierTest(const Eigen::Vector4d &s,
                                                                               vpRecord &record) const
 {
-  const vpProjectiveStereoRig &rig = m_model->getStereoRig();
-  const Eigen::Matrix3d &F = rig.fundamentalMatrix();
+  const Eigen::Matrix3d &F = m_model->getStereoRig().fundamentalMatrix();
   const Eigen::Vector3d m(s(0), s(1), 1.0);
   const Eigen::Vector3d mp(s(2), s(3), 1.0);
   const Eigen::Vector3d lp = F * m;             // epipolar line of m in the right image
   const Eigen::Vector3d l = F.transpose() * mp; // epipolar line of m' in the left image
   const double residual = std::abs(mp.dot(lp));
-  const double dF = std::max(lineDistance(residual, l), lineDistance(residual, lp));
+  const double dF = largerLineDistance(residual, l, lp);
   record.epipolarDistance = dF;
   if (!(dF <= m_outlierThreshold)) {
     return FEATURE_OUTLIER;
   }
   if (m_predict && record.hasM0) {
     Eigen::Vector4d sHat;
-    if (rig.project(m_data->getDisplacement() * record.M0, sHat)) {
-      const double dP = std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm());
+    if (m_data->predict(record.M0, sHat)) {
+      // The larger of both images' distances, one square root: sqrt is monotone, max(sqrt a, sqrt b) = sqrt(max(a, b)).
+      const double dP = std::sqrt(
+          std::max((sHat.head<2>() - s.head<2>()).squaredNorm(), (sHat.tail<2>() - s.tail<2>()).squaredNorm()));
       record.predictionDistance = dP;
       if (!(dP <= m_outlierThreshold)) {
         return FEATURE_OUTLIER;

@@ -93,18 +93,20 @@ void vpServoModelMismatch::observe(unsigned int i, bool usable)
   // The recent prediction first (it follows the model's drift, offset to where the feature last agreed): within the
   // threshold plus a tenth of the motion it predicts since then, the feature agrees and the absolute prediction is not
   // needed; otherwise the smaller of both distances (each the larger over both images).
-  const Eigen::Vector4d memories[2] = {r.recent, r.sum.normalized()};
+  // Each distance is the larger over both images with one square root: max(sqrt a, sqrt b) = sqrt(max(a, b)), sqrt
+  // being monotone. The absolute memory is normalised only when the recent prediction does not settle it.
   for (int k = 0; k < 2; ++k) {
     Eigen::Vector4d sHat;
-    if (m_model->getStereoRig().project(m_data->getDisplacement() * memories[k], sHat)) {
+    if (m_data->predict(k == 0 ? r.recent : Eigen::Vector4d(r.sum.normalized()), sHat)) {
       double slack = 0.0;
       if (k == 0) {
         sHat += r.offset; // the model's motion from where the feature last agreed
-        slack = kMotionTolerance *
-                std::max((sHat.head<2>() - r.last.head<2>()).norm(), (sHat.tail<2>() - r.last.tail<2>()).norm());
+        slack = kMotionTolerance * std::sqrt(std::max((sHat.head<2>() - r.last.head<2>()).squaredNorm(),
+                                                      (sHat.tail<2>() - r.last.tail<2>()).squaredNorm()));
       }
-      const double d =
-          std::max(0.0, std::max((sHat.head<2>() - s.head<2>()).norm(), (sHat.tail<2>() - s.tail<2>()).norm()) - slack);
+      const double d = std::max(0.0, std::sqrt(std::max((sHat.head<2>() - s.head<2>()).squaredNorm(),
+                                                        (sHat.tail<2>() - s.tail<2>()).squaredNorm())) -
+                                         slack);
       r.distance = r.distance < 0.0 ? d : std::min(r.distance, d);
     }
     if (r.distance >= 0.0 && r.distance <= m_threshold) {
@@ -139,9 +141,7 @@ bool vpServoModelMismatch::endIteration()
       }
       r.recent = r.hasMemory ? Eigen::Vector4d((r.recent + (r.recent.dot(M) < 0.0 ? -M : M)).normalized()) : M;
       Eigen::Vector4d sHat;
-      r.offset = m_model->getStereoRig().project(m_data->getDisplacement() * r.recent, sHat)
-                     ? Eigen::Vector4d(r.s - sHat)
-                     : Eigen::Vector4d::Zero();
+      r.offset = m_data->predict(r.recent, sHat) ? Eigen::Vector4d(r.s - sHat) : Eigen::Vector4d::Zero();
       r.last = r.s;
       if (r.exact) {
         continue;

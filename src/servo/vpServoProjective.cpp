@@ -63,42 +63,16 @@ double equilibratedSingularValueRatio(const vpProjectiveArmModel::JointMatrix &J
   return 0.0;
 }
 
-//! \f$ \sigma_{max} / \sigma_{min} \f$ from the eigenvalues of \f$ J^T J \f$; infinite if singular, 0 without column.
-double conditionNumber(const vpProjectiveArmModel::JointMatrix &JtJ)
-{
-  const Eigen::Index n = JtJ.rows();
-  if (n == 0) {
-    return 0.0;
-  }
-  Eigen::SelfAdjointEigenSolver<vpProjectiveArmModel::JointMatrix> eig(JtJ, Eigen::EigenvaluesOnly);
-  const double sigmaMin = std::sqrt(std::max(0.0, eig.eigenvalues()(0)));
-  const double sigmaMax = std::sqrt(std::max(0.0, eig.eigenvalues()(n - 1)));
-  return sigmaMin > 0.0 ? sigmaMax / sigmaMin : std::numeric_limits<double>::infinity();
-}
 } // namespace
-
-double vpServoProjective::taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale,
-                                   const JointMatrix &JtJ, const JointVector &Jte, double errorInf)
-{
-  if (input == GAIN_INPUT_ERROR) {
-    return lambda.value_const(errorInf / errorScale);
-  }
-  // vpServo's e1 = J^+ e (full column rank here: J^T J is invertible unless the task is singular, then the gain at
-  // infinity); fixed-size storage, no allocation.
-  const Eigen::LDLT<JointMatrix> ldlt(JtJ);
-  const JointVector e1 = ldlt.solve(Jte);
-  const double x = e1.allFinite() && ldlt.info() == Eigen::Success ? e1.cwiseAbs().maxCoeff()
-                                                                   : std::numeric_limits<double>::infinity();
-  return lambda.value_const(x);
-}
 
 vpServoProjective::vpServoProjective()
     : m_link(), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(), m_jointLimits(),
       m_mismatch(), m_targets(), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
       m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
-      m_replanFailed(false), m_followGain(1.0), m_period(1.0), m_qdotMax(0.0), m_gainInput(GAIN_INPUT_ERROR),
-      m_errorUnit(ERROR_PIXELS), m_focalLength(0.0), m_errorScale(1.0), m_q(), m_qFresh(false), m_settling(),
-      m_targetGeneration(0)
+      m_replanFailed(false), m_stallSum(), m_stallSumSq(), m_stallHalves{0.0, 0.0}, m_stallCount(0), m_followGain(1.0),
+      m_maxOpenLoopTime(2.0), m_openLoopCalls(0), m_seenPoints(), m_hasSeenPoint(), m_activeNow(), m_period(1.0),
+      m_qdotMax(0.0), m_gainInput(GAIN_INPUT_ERROR), m_errorUnit(ERROR_PIXELS), m_focalLength(0.0), m_errorScale(1.0),
+      m_q(), m_qFresh(false), m_settling(), m_targetGeneration(0), m_refinement(), m_rigUpdatesSeen(0)
 {
 }
 
@@ -109,8 +83,12 @@ void vpServoProjective::addFeature(vpFeatureStereoPoint &s, vpFeatureStereoPoint
   m_health.addFeature();
   m_mismatch.resize(static_cast<unsigned int>(m_features.size()));
   m_targets.push_back(vpTarget());
+  m_seenPoints.push_back(Eigen::Vector4d::Zero());
+  m_hasSeenPoint.push_back(0);
+  m_activeNow.push_back(0);
   m_plannedFor.clear(); // another task: plan anew
   m_following = false;
+  m_refinement.stop(); // another set of features: its frames and points would not match
 }
 
 void vpServoProjective::clearFeatures()
@@ -120,28 +98,15 @@ void vpServoProjective::clearFeatures()
   m_health.clearFeatures();
   m_mismatch.resize(0);
   m_targets.clear();
+  m_seenPoints.clear();
+  m_hasSeenPoint.clear();
+  m_activeNow.clear();
+  m_openLoopCalls = 0;
   m_plannedFor.clear();
   m_following = false;
+  m_refinement.stop();
   m_iterations[m_lastIteration].status = SERVO_RUNNING;
   m_iterations[m_lastIteration].data.m_nbActive = 0;
-}
-
-vpServoProjective::vpFeatureState vpServoProjective::getFeatureState(unsigned int i) const
-{
-  checkFeatureIndex(i, "getFeatureState()");
-  return m_health.getFeatureState(i);
-}
-
-double vpServoProjective::getEpipolarDistance(unsigned int i) const
-{
-  checkFeatureIndex(i, "getEpipolarDistance()");
-  return m_health.getEpipolarDistance(i);
-}
-
-double vpServoProjective::getPredictionDistance(unsigned int i) const
-{
-  checkFeatureIndex(i, "getPredictionDistance()");
-  return m_health.getPredictionDistance(i);
 }
 
 inline void vpServoProjective::check(const char *method) const
@@ -211,7 +176,8 @@ inline void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, 
   for (unsigned int i = 0; i < m_features.size(); ++i) {
     const Eigen::Vector4d sStar = desired(i);
     const Eigen::Index r = 4 * static_cast<Eigen::Index>(i);
-    if (m_health.classify(i, sStar) != FEATURE_ACTIVE) {
+    m_activeNow[i] = m_health.classify(i, sStar) == FEATURE_ACTIVE ? 1 : 0;
+    if (!m_activeNow[i]) {
       d.m_J.middleRows(r, 4).setZero();
       d.m_e.segment<4>(r).setZero();
       continue;
@@ -243,6 +209,59 @@ inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vp
   return stopped ? SERVO_STOPPED : SERVO_REDUCED;
 }
 
+inline bool vpServoProjective::openLoop(vpIteration &it)
+{
+  // Only while a plan is under way (a path followed, or law (47) within its rehearsed iterations: checked inside the
+  // limits with the features in view), within the time allowed, with each set-aside feature that was active before
+  // predicted: its remembered point moved by this iteration's H(q). At rest, a lost feature stops the task as before.
+  const bool planned = m_planning && m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND &&
+                       m_pathSample < m_planner.getPath().size();
+  if (!planned || !(m_maxOpenLoopTime > 0.0) || (m_openLoopCalls + 1) * m_period > m_maxOpenLoopTime * (1.0 + 1e-9)) {
+    return false;
+  }
+  vpServoProjectiveData &d = it.data;
+  const vpProjectiveArmModel &model = m_link.robot->getModel();
+  vpProjectiveRobot::PointJacobian Ji;
+  unsigned int used = d.m_nbActive;
+  for (unsigned int i = 0; i < m_features.size(); ++i) {
+    const Eigen::Index r = 4 * static_cast<Eigen::Index>(i);
+    Eigen::Vector4d sHat;
+    if (m_activeNow[i] || !m_hasSeenPoint[i] ||
+        !model.getStereoRig().project(d.getDisplacement() * m_seenPoints[i], sHat)) {
+      continue;
+    }
+    d.computeFeature(model, i, sHat); // the feature the model predicts here, in place of the one not seen
+    if (!d.hasPoint(i) || !model.imageJacobian(d.getJointMotions(), d.getPoint(i), Ji)) {
+      d.computeFeature(model, i, m_features[i]->getFeature()); // as it was: a prediction the model cannot use
+      continue;
+    }
+    d.m_J.middleRows(r, 4) = Ji;
+    d.m_e.segment<4>(r) = sHat - desired(i);
+    ++used;
+  }
+  if (used == d.m_nbActive) {
+    return false;
+  }
+  vpServoDampedLeastSquares::computeNormalEquations(d.m_J, d.m_e, d.m_JtJ, d.m_Jte);
+  const unsigned int active = d.m_nbActive;
+  d.m_nbActive = used; // the rank test of decideStatus() on the measured and predicted features together
+  const bool constrained = decideStatus(it) != SERVO_STOPPED || used == m_features.size();
+  d.m_nbActive = active; // the features the images gave (getNumberOfActiveFeatures() is the health's)
+  if (!constrained) {
+    // Stopped after all: the task as the images gave it (the rows of the features set aside zero).
+    for (unsigned int i = 0; i < m_features.size(); ++i) {
+      if (!m_activeNow[i]) {
+        d.computeFeature(model, i, m_features[i]->getFeature());
+        d.m_J.middleRows(4 * static_cast<Eigen::Index>(i), 4).setZero();
+        d.m_e.segment<4>(4 * static_cast<Eigen::Index>(i)).setZero();
+      }
+    }
+    vpServoDampedLeastSquares::computeNormalEquations(d.m_J, d.m_e, d.m_JtJ, d.m_Jte);
+  }
+  d.m_errorNorm = d.m_e.norm() / m_errorScale;
+  return constrained;
+}
+
 inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot)
 {
   m_settling.reset(); // stopped: converge anew before settling
@@ -261,8 +280,8 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
   it.lambda = m_following ? m_followGain
                           : m_period * taskGain(m_lambda, m_gainInput, m_errorScale, it.data.m_JtJ, it.data.m_Jte,
                                                 it.data.m_e.cwiseAbs().maxCoeff());
-  if (m_following) {
-    m_settling.reset(); // a path is not a rest: settle on law (47) after it
+  if (m_following || it.status == SERVO_OPEN_LOOP) {
+    m_settling.reset(); // a path (or a prediction) is not a rest: settle on law (47), on the images, after it
   } else if (m_settling.isEnabled()) {
     // Settling restarts with another set of active features or another target (their signature).
     unsigned long context = m_targetGeneration;
@@ -312,7 +331,7 @@ inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIt
     it.saturated = true;
   }
   if (planned) {
-    qdot *= m_jointLimits.stepInside(q, qdot);
+    keepInside(q, it, qdot);
   }
   if (!qdot.allFinite()) {
     fail(vpProjectiveException::estimationFailedError, at("computeControlLaw()"),
@@ -320,13 +339,62 @@ inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIt
   }
 }
 
+inline void vpServoProjective::keepInside(const JointVector &q, const vpIteration &it, JointVector &qdot) const
+{
+  // A planned task never crosses a limit. Scaling the whole step down to land a joint on its limit stops every joint
+  // once one is there and the law still pushes it outward (a target near a limit, the law's course bending to it): the
+  // task stalls, pixels from its goal, with every other joint free. Instead, each joint that would cross is held (its
+  // column out of the task: the law solved again with the others), until no joint crosses; the scaling is left for
+  // the rest (a joint already beyond its limit).
+  JointMatrix JtJ = it.data.m_JtJ;
+  JointVector Jte = it.data.m_Jte, alone;
+  vpServoDampedLeastSquares law = m_law; // computeVelocity() writes its report: the iteration's stays the first law's
+  const Eigen::Index n = q.size();
+  for (Eigen::Index pass = 0; pass < n && m_jointLimits.stepInside(q, qdot) < 1.0; ++pass) {
+    const double scale = JtJ.diagonal().cwiseAbs().maxCoeff();
+    bool held = false;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      alone.setZero(n);
+      alone(i) = qdot(i);
+      if (m_jointLimits.stepInside(q, alone) < 1.0) {
+        JtJ.row(i).setZero();
+        JtJ.col(i).setZero();
+        JtJ(i, i) = scale > 0.0 ? scale : 1.0;
+        Jte(i) = 0.0;
+        held = true;
+      }
+    }
+    if (!held) {
+      break;
+    }
+    law.computeVelocity(JtJ, Jte, it.lambda, qdot);
+    law.saturate(qdot);
+  }
+  qdot *= m_jointLimits.stepInside(q, qdot);
+}
+
 inline void vpServoProjective::commit()
 {
   m_lastIteration = 1 - m_lastIteration;
   m_health.endIteration();
   m_settling.commit();
-  const vpServoStatus status = m_iterations[m_lastIteration].status;
-  if (m_planning && m_pathSample < m_planner.getPath().size() && (status == SERVO_RUNNING || status == SERVO_REDUCED)) {
+  const vpIteration &it = m_iterations[m_lastIteration];
+  const vpServoStatus status = it.status;
+  // The open loop's memory: each active feature's point at the zero reference (no allocation), and the count of
+  // consecutive open-loop calls, which only the features seen again (a running task) restart.
+  for (unsigned int i = 0; i < m_features.size(); ++i) {
+    if (m_health.getFeatureState(i) == FEATURE_ACTIVE && it.data.hasPoint(i)) {
+      m_seenPoints[i] = it.data.getZeroPoint(i);
+      m_hasSeenPoint[i] = 1;
+    }
+  }
+  if (status == SERVO_OPEN_LOOP) {
+    ++m_openLoopCalls;
+  } else if (status == SERVO_RUNNING || status == SERVO_REDUCED) {
+    m_openLoopCalls = 0;
+  }
+  if (m_planning && m_pathSample < m_planner.getPath().size() &&
+      (status == SERVO_RUNNING || status == SERVO_REDUCED || status == SERVO_OPEN_LOOP)) {
     ++m_pathSample; // the next call aims at the next sample (of the path, or of law (47)'s rehearsal)
   }
 }
@@ -346,6 +414,9 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
   buildTask(q, it, method);
   const bool mismatch = detectMismatch(it.data); // after the last step that may throw
   it.status = mismatch ? SERVO_MODEL_MISMATCH : (planned ? decideStatus(it) : SERVO_NO_PLAN);
+  if (it.status == SERVO_STOPPED && openLoop(it)) {
+    it.status = SERVO_OPEN_LOOP;
+  }
   if (it.status == SERVO_STOPPED || it.status == SERVO_NO_PLAN || it.status == SERVO_MODEL_MISMATCH) {
     stop(it, qdot);
   } else {
@@ -354,6 +425,16 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
     qdot /= m_period; // the step of this call, as a velocity held for one period
   }
   commit();
+  // The rig refinement records the calls that move the arm, with the robot given modifiable; refine() never throws: a
+  // failed refinement leaves everything as it was.
+  const vpServoStatus status = last().status;
+  if (m_refinement.isActive() && (status == SERVO_RUNNING || status == SERVO_REDUCED)) {
+    if (m_link.modifiable == nullptr || m_link.modifiable != m_link.robot) {
+      m_refinement.stop();
+    } else if (m_refinement.record(last().data, m_health)) {
+      m_refinement.refine(*m_link.modifiable);
+    }
+  }
 }
 
 vpColVector vpServoProjective::computeControlLaw(const vpColVector &q)
@@ -409,46 +490,7 @@ vpColVector vpServoProjective::computeControlLaw()
   return toVispVector(qdot);
 }
 
-vpColVector vpServoProjective::getError() const
-{
-  return toVispVector(last().data.m_e / m_errorScale);
-}
-
-vpMatrix vpServoProjective::getTaskJacobian() const
-{
-  return toVisp(last().data.m_J / m_errorScale);
-}
-
-vpColVector vpServoProjective::getTaskSingularValues() const
-{
-  if (last().data.m_J.size() == 0) {
-    return vpColVector();
-  }
-  return toVispVector(Eigen::JacobiSVD<Eigen::MatrixXd>(last().data.m_J / m_errorScale).singularValues());
-}
-
 double vpServoProjective::getSingularValueRatio() const
 {
   return equilibratedSingularValueRatio(last().data.m_JtJ, m_rankTolerance);
-}
-
-double vpServoProjective::getConditionNumber() const
-{
-  return conditionNumber(last().data.m_JtJ);
-}
-
-vpMatrix vpServoProjective::getLargeProjectionOperator() const
-{
-  if (last().data.m_JtJ.rows() == 0) {
-    fail(vpProjectiveException::notInitializedError, at("getLargeProjectionOperator()"),
-         "no task Jacobian yet; call computeControlLaw() first");
-  }
-  JointMatrix P;
-  m_jointLimits.computeLargeProjectionOperator(last().data.m_JtJ, last().data.m_Jte, last().data.m_errorNorm, m_law, P);
-  return toVisp(P);
-}
-
-vpColVector vpServoProjective::getJointLimitVelocity() const
-{
-  return toVispVector(last().qdot2);
 }

@@ -62,9 +62,9 @@ void jointMotionsAndDisplacement(const vpProjectiveArmModel &model, const vpProj
 } // namespace
 
 vpServoProjectiveData::vpServoProjectiveData()
-    : m_q(), m_H(Eigen::Matrix4d::Identity()), m_Hinv(Eigen::Matrix4d::Identity()), m_HhatKq(), m_Hhat(), m_Hhat2(),
-      m_nbGenerators(0), m_displacementCount(0), m_nbFeatures(0), m_s(), m_M(), m_M0(), m_hasPoint(), m_J(), m_e(),
-      m_JtJ(), m_Jte(), m_errorNorm(0.0), m_nbActive(0)
+    : m_q(), m_H(Eigen::Matrix4d::Identity()), m_Hinv(Eigen::Matrix4d::Identity()), m_rig(nullptr), m_HhatKq(),
+      m_Hhat(), m_Hhat2(), m_nbGenerators(0), m_displacementCount(0), m_nbFeatures(0), m_s(), m_M(), m_M0(),
+      m_hasPoint(), m_J(), m_e(), m_JtJ(), m_Jte(), m_errorNorm(0.0), m_nbActive(0)
 {
 }
 
@@ -83,6 +83,7 @@ void vpServoProjectiveData::computeKinematics(const vpProjectiveArmModel &model,
     }
   }
   m_nbGenerators = n;
+  m_rig = &model.getStereoRig();
   jointMotionsAndDisplacement(model, q, m_Hhat2, m_HhatKq, m_H, m_Hinv); // the iteration's only H(q), and the motions
   ++m_displacementCount;
   if (m_s.size() != features) { // allocates only when the number of features changes
@@ -105,4 +106,9 @@ void vpServoProjectiveData::computeFeature(const vpProjectiveArmModel &model, un
     m_M[i].setZero();
     m_M0[i].setZero();
   }
+}
+
+bool vpServoProjectiveData::predict(const Eigen::Vector4d &X, Eigen::Vector4d &s) const
+{
+  return m_rig != nullptr && m_rig->project(Eigen::Vector4d(m_H * X), s);
 }

@@ -62,6 +62,9 @@ const char *statusName(vpServoProjective::vpServoStatus status)
   case vpServoProjective::SERVO_MODEL_MISMATCH:
     return "SERVO_MODEL_MISMATCH (every feature disagrees with the model: re-register a moved rig, or check the rig "
            "mounting; qdot = 0)";
+  case vpServoProjective::SERVO_OPEN_LOOP:
+    return "SERVO_OPEN_LOOP (too few features seen: the missing ones predicted by the model, the plan followed for at "
+           "most setMaxOpenLoopTime())";
   }
   return "?";
 }
@@ -189,6 +192,20 @@ void vpServoProjective::print(std::ostream &os) const
     os << "off";
   }
   os << "\n";
+  os << "  Rig refinement: ";
+  if (!m_refinement.isEnabled()) {
+    os << "off\n";
+  } else {
+    os << "on, every " << m_refinement.getPeriod() << " calls, " << m_refinement.getCount()
+       << " times after a re-registration";
+    if (m_link.modifiable == nullptr) {
+      os << " (not with this robot: give it to setRobot() as modifiable)";
+    } else if (m_refinement.isActive()) {
+      os << "; refining: " << m_refinement.getNumberOfRefinements() << " done, " << m_refinement.getNumberOfFailures()
+         << " failed, " << m_refinement.getNumberOfPoints() << " points recorded";
+    }
+    os << "\n";
+  }
   double e0 = 0.0, e1 = 0.0;
   m_jointLimits.getLargeProjectionThresholds(e0, e1);
   os << "  Joint limits: ";

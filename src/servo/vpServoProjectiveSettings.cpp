@@ -19,7 +19,10 @@
 #include <visp3/projective/vpServoProjective.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
+
+#include <Eigen/Dense>
 
 #include "core/vpProjectiveErrors.h"
 
@@ -101,21 +104,33 @@ void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
     m_mismatch.reset(); // memories of another robot's model
   }
   m_link.set(&robot); // the robot now tells this task of a new model or rig
+  m_link.modifiable = nullptr;
   for (vpTarget &t : m_targets) {
     t.valid = false; // another robot's frame: take the user's s* anew
   }
+  m_refinement.stop(); // only a re-registration from now on starts a refinement
+  m_rigUpdatesSeen = robot.getRigUpdateCount();
+}
+
+void vpServoProjective::setRobot(vpProjectiveRobot &robot)
+{
+  setRobot(static_cast<const vpProjectiveRobot &>(robot));
+  m_link.modifiable = &robot;
 }
 
 vpServoProjective::vpRobotLink::vpRobotLink(const vpRobotLink &other)
-    : vpProjectiveRobot::vpListener(), robot(nullptr), modelChanged(other.modelChanged), rigChanged(other.rigChanged)
+    : vpProjectiveRobot::vpListener(), robot(nullptr), modifiable(nullptr), modelChanged(other.modelChanged),
+      rigChanged(other.rigChanged)
 {
   set(other.robot); // a copied task is attached too
+  modifiable = other.modifiable;
 }
 
 vpServoProjective::vpRobotLink &vpServoProjective::vpRobotLink::operator=(const vpRobotLink &other)
 {
   if (this != &other) {
     set(other.robot);
+    modifiable = other.modifiable;
     modelChanged = other.modelChanged;
     rigChanged = other.rigChanged;
   }
@@ -194,6 +209,12 @@ void vpServoProjective::setControlPeriod(double seconds)
   m_period = seconds;
 }
 
+void vpServoProjective::setMaxOpenLoopTime(double seconds)
+{
+  m_maxOpenLoopTime = nonNegative(seconds, at("setMaxOpenLoopTime()"), "the longest open loop on the model",
+                                  "seconds of consecutive calls; 0 stops the task as soon as the features are too few");
+}
+
 void vpServoProjective::setPseudoInverseThreshold(double threshold)
 {
   m_law.setPseudoInverseThreshold(threshold);
@@ -269,4 +290,24 @@ void vpServoProjective::clearJointLimits()
 void vpServoProjective::setSettling(bool settling)
 {
   m_settling.setEnabled(settling, m_settling.getHorizon());
+}
+
+void vpServoProjective::setRigRefinement(bool refine, unsigned int period, unsigned int refinements)
+{
+  m_refinement.setRefinement(refine, period, refinements);
+}
+
+double vpServoProjective::taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale,
+                                   const JointMatrix &JtJ, const JointVector &Jte, double errorInf)
+{
+  if (input == GAIN_INPUT_ERROR) {
+    return lambda.value_const(errorInf / errorScale);
+  }
+  // vpServo's e1 = J^+ e (full column rank here: J^T J is invertible unless the task is singular, then the gain at
+  // infinity); fixed-size storage, no allocation.
+  const Eigen::LDLT<JointMatrix> ldlt(JtJ);
+  const JointVector e1 = ldlt.solve(Jte);
+  const double x = e1.allFinite() && ldlt.info() == Eigen::Success ? e1.cwiseAbs().maxCoeff()
+                                                                   : std::numeric_limits<double>::infinity();
+  return lambda.value_const(x);
 }

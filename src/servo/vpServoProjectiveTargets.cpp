@@ -19,6 +19,7 @@
 
 #include <visp3/projective/vpServoProjective.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Dense>
@@ -47,8 +48,20 @@ void vpServoProjective::refreshTargets()
   // told of a re-registered rig (vpRobotLink), that point's image in the new rig; after it told of a new model, the
   // user's value anew. The features' point memories of the mismatch check belong to one rig of one model.
   const bool modelChanged = m_link.modelChanged, rigChanged = m_link.rigChanged && !modelChanged;
+  if (modelChanged) {
+    m_refinement.stop(); // the frames and points belong to the old model
+    m_rigUpdatesSeen = m_link.robot->getRigUpdateCount();
+  } else if (rigChanged && m_link.robot->getRigUpdateCount() != m_rigUpdatesSeen) {
+    m_rigUpdatesSeen = m_link.robot->getRigUpdateCount();
+    if (m_link.modifiable != nullptr && m_link.modifiable == m_link.robot) {
+      m_refinement.start(m_mismatch, static_cast<unsigned int>(m_features.size())); // from the memories before it
+    } else {
+      m_refinement.stop();
+    }
+  }
   if (modelChanged || rigChanged) {
     m_mismatch.reset();
+    std::fill(m_hasSeenPoint.begin(), m_hasSeenPoint.end(), 0); // the open loop's points: of the old frame
   }
   const vpProjectiveStereoRig &rig = m_link.robot->getModel().getStereoRig();
   for (size_t i = 0; i < m_targets.size(); ++i) {
@@ -110,7 +123,36 @@ namespace
 {
 //! Plans again from an off-path configuration per target, before the task gives the path up for law (47).
 const unsigned int kMaxReplans = 2;
+//! Calls of the window of the stall test, and the ratio of the error's mean to its spread that says "stalled".
+const unsigned int kStallWindow = 10;
+const double kStallRatio = 3.0;
 } // namespace
+
+bool vpServoProjective::lawStalled(const Eigen::VectorXd &e)
+{
+  // Law (47) that has converged leaves the measurement noise: the error's mean over a window of calls is as large as
+  // its spread about that mean (the noise of s* against that of s). Stalled at a minimum of the image error that is not
+  // the solution, the mean is several times the spread; and a law still converging has a mean that falls from the
+  // window's first half to its second. Unit-free: no noise level to set.
+  if (e.size() != m_stallSum.size()) {
+    return false;
+  }
+  m_stallSum += e;
+  m_stallSumSq += e.cwiseAbs2();
+  m_stallHalves[2 * m_stallCount < kStallWindow ? 0 : 1] += e.squaredNorm();
+  if (++m_stallCount < kStallWindow) {
+    return false;
+  }
+  const double w = static_cast<double>(kStallWindow);
+  const double mean2 = (m_stallSum / w).squaredNorm();
+  const double spread2 = std::max(0.0, m_stallSumSq.sum() / w - mean2);
+  const bool stalled = mean2 > kStallRatio * kStallRatio * spread2 && m_stallHalves[1] >= 0.64 * m_stallHalves[0];
+  m_stallSum.setZero();
+  m_stallSumSq.setZero();
+  m_stallHalves[0] = m_stallHalves[1] = 0.0;
+  m_stallCount = 0;
+  return stalled;
+}
 
 bool vpServoProjective::planIfNeeded(const JointVector &q, const vpServoProjectiveData &data)
 {
@@ -132,18 +174,25 @@ bool vpServoProjective::planIfNeeded(const JointVector &q, const vpServoProjecti
   if (changed) {
     m_replans = 0;
     m_lawLeftRehearsal = false;
-  } else if (m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND && m_replans <= kMaxReplans) {
+    m_planner.setRefusedTarget(JointVector());
+  } else if (m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND && m_replans <= kMaxReplans &&
+             m_openLoopCalls == 0) { // in open loop the features are not all seen: no plan from them
     const vpIteration &it = last();
     const double rms =
         it.data.m_e.size() > 0 ? it.data.m_errorNorm / std::sqrt(static_cast<double>(it.data.m_e.size())) : 0.0;
-    const bool off =
-        lawPlan ? m_sincePlan > 2 * (path.size() - 1) + 10 && rms > 2.0 * m_planner.getRehearsalResidual() + 2.0
-                : m_pathSample > 0 && m_pathSample < path.size() &&
-                      (q - path[m_pathSample - 1]).cwiseAbs().maxCoeff() > 2.0 * m_planner.getMaxJointStep();
+    const bool settled = lawPlan && m_sincePlan > 2 * (path.size() - 1) + 10;
+    const bool stalled = settled && lawStalled(it.data.m_e);
+    const bool off = lawPlan
+                         ? (settled && rms > 2.0 * m_planner.getRehearsalResidual() + 2.0) || stalled
+                         : m_pathSample > 0 && m_pathSample < path.size() &&
+                               (q - path[m_pathSample - 1]).cwiseAbs().maxCoeff() > 2.0 * m_planner.getMaxJointStep();
     if (off && m_replans < kMaxReplans) {
       ++m_replans;
       replan = true;
       m_lawLeftRehearsal = m_lawLeftRehearsal || lawPlan;
+      if (stalled) {
+        m_planner.setRefusedTarget(q); // the images refuse this minimum: another branch, along a path
+      }
     } else if (off) {
       ++m_replans;                // spent: law (47) from here, no more checks
       m_pathSample = path.size(); // not following
@@ -185,6 +234,10 @@ bool vpServoProjective::planIfNeeded(const JointVector &q, const vpServoProjecti
     m_plannedFor = sStar;
     m_pathSample = 1; // sample 0 is q
     m_sincePlan = 0;
+    m_stallSum.setZero(data.getNumberOfFeatures() * 4);
+    m_stallSumSq.setZero(data.getNumberOfFeatures() * 4);
+    m_stallHalves[0] = m_stallHalves[1] = 0.0;
+    m_stallCount = 0;
     m_replanFailed = replan && m_planner.getStatus() != vpProjectivePathPlanner::PLAN_FOUND;
   }
   // A re-plan that finds nothing leaves law (47) running where the first plan had brought the arm.

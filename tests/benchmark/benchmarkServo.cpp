@@ -428,7 +428,7 @@ void BM_vpServoProjective_Eigen_Settling(benchmark::State &state)
     t.task.computeControlLaw(q, qdot); // converged: settled from the second call on
   }
   timeControlLaw(state, t.task, q);
-  state.SetLabel(t.task.isSettled() ? "settled" : "NOT settled");
+  state.SetLabel(t.task.getSettlingState().isSettled() ? "settled" : "NOT settled");
 }
 
 /*!
@@ -489,7 +489,7 @@ std::string robustLabel(const vpServoProjective &task)
   static const char *const status[3] = {"running", "reduced", "stopped"};
   char label[96];
   std::snprintf(label, sizeof(label), "%s, %u/%u active, |q2| %.2g", status[task.getStatus()],
-                task.getNumberOfActiveFeatures(), task.getNumberOfFeatures(),
+                task.getFeatureHealth().getNumberOfActiveFeatures(), task.getNumberOfFeatures(),
                 task.getJointLimitVelocity().frobeniusNorm());
   return label;
 }

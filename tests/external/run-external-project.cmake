@@ -1,7 +1,7 @@
 # ctest case external_project: installs the built plugin into a temporary prefix, then configures, builds and runs
 # the external project of this directory against it.
 #   cmake -DBUILD_DIR=<plugin build> -DWORK_DIR=<scratch> -DGENERATOR=<generator> [-DCONFIG=<config>]
-#         [-DVISP_DIR=<the ViSP the plugin was built with>]
+#         [-DVISP_DIR=<the ViSP the plugin was built with>] [-DCXX_COMPILER=<the compiler the plugin was built with>]
 #         -P run-external-project.cmake
 foreach(var BUILD_DIR WORK_DIR GENERATOR)
   if(NOT DEFINED ${var})
@@ -20,6 +20,11 @@ file(MAKE_DIRECTORY "${WORK_DIR}")
 set(visp_dir "")
 if(VISP_DIR)
   set(visp_dir "-DVISP_DIR=${VISP_DIR}")
+endif()
+# ... and its compiler: a sanitizer build's exported flags name the compiler's own sanitizer runtime.
+set(cxx_compiler "")
+if(CXX_COMPILER)
+  set(cxx_compiler "-DCMAKE_CXX_COMPILER=${CXX_COMPILER}")
 endif()
 
 function(run step)
@@ -46,7 +51,7 @@ if(NOT config OR NOT version)
 endif()
 
 run("configure" ${CMAKE_COMMAND} -S "${CMAKE_CURRENT_LIST_DIR}" -B "${build}" -G "${GENERATOR}"
-    -DCMAKE_BUILD_TYPE=${CONFIG} -DCMAKE_PREFIX_PATH=${prefix} -DEXPECTED_PREFIX=${prefix} ${visp_dir})
+    -DCMAKE_BUILD_TYPE=${CONFIG} -DCMAKE_PREFIX_PATH=${prefix} -DEXPECTED_PREFIX=${prefix} ${visp_dir} ${cxx_compiler})
 run("build" ${CMAKE_COMMAND} --build "${build}" --config "${CONFIG}")
 find_program(exe external_main PATHS "${build}" "${build}/${CONFIG}" NO_DEFAULT_PATH)
 if(NOT exe)

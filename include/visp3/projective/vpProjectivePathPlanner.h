@@ -28,6 +28,8 @@
 #include <utility>
 #include <vector>
 
+#include <visp3/core/vpMath.h>
+
 #include <Eigen/Core>
 
 #include <visp3/projective/vpProjectiveArmModel.h>
@@ -182,12 +184,50 @@ public:
   //! No control law: plan() rehearses nothing and always plans a path (its step no longer capped by a saturation).
   void clearControlLaw() { m_hasLaw = false; }
   /*!
+    Joint values \e q where law (47) was seen to stall, pixels from s*, in the images (not in the model, which is off by
+    a few pixels and cannot tell that minimum from the solution): the next plan() leaves out the inverse-kinematic
+    branch nearest to \e q if it is within \e radius (rad or m per joint), as a target that the images refuse. An empty
+    \e q (the default) leaves none out. vpServoProjective sets it when it re-plans from such a stall.
+  */
+  void setRefusedTarget(const JointVector &q, double radius = vpMath::rad(20.0))
+  {
+    m_refused = q;
+    m_refusedRadius = radius;
+  }
+  /*!
     The largest number of iterations of the rehearsal of law (47) (default 50; 0: no rehearsal). A law that needs
     more in the model is slow in the loop too, where the noise slows it further: a path is planned instead.
   */
   void setRehearsalBudget(unsigned int iterations) { m_rehearsalBudget = iterations; }
   //! The budget of setRehearsalBudget().
   unsigned int getRehearsalBudget() const { return m_rehearsalBudget; }
+  /*!
+    Planar feature groups: each group lists the indices (in plan()'s \e points order) of points that lie on one
+    planar marker, in order around it, such as the 4 corners of an AprilTag (corner 0 to 3, ids \f$ 4\,id + k \f$ of
+    vpStereoAprilTagDetector). A detector finds such a marker only while it faces the cameras: besides the features'
+    being in view, the target and every sample of the path (and of the rehearsal of law (47)) keep each group facing
+    both cameras, its image polygon's signed area \f$ A = \frac{1}{2} \sum_k (u_k v_{k+1} - u_{k+1} v_k) \f$ in each
+    image keeping the sign it has at the planning joints and at least setMinGroupArea() times the smaller of its
+    areas there and at \f$ s^* \f$ (a tag turning edge-on shrinks to a segment, then flips). When no plan keeps every
+    group facing the cameras, plan() plans without this check and says so in getDescription(): the task's open loop
+    (vpServoProjective::setMaxOpenLoopTime()) then carries the arm past where a marker is lost. An empty list (the
+    default) disables the check; a group in which the sign differs between the planning joints and \f$ s^* \f$ is not
+    checked in that image.
+    \exception vpProjectiveException (invalidValueError) if a group has fewer than 3 points or a point twice; the
+    groups are then unchanged. plan() throws (dimensionError) if an index is not one of its points.
+  */
+  void setPlanarGroups(const std::vector<std::vector<unsigned int>> &groups);
+  //! The groups of setPlanarGroups().
+  const std::vector<std::vector<unsigned int>> &getPlanarGroups() const { return m_groups; }
+  /*!
+    The smallest image area of a planar group along a plan (setPlanarGroups()), as a fraction of the smaller of its
+    areas at the planning joints and at \f$ s^* \f$ (default 0.3: a tag seen up to about 70 deg more obliquely than at
+    the ends of the motion; 0 keeps only the sign).
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if it is not in [0, 1].
+  */
+  void setMinGroupArea(double fraction);
+  //! The fraction of setMinGroupArea().
+  double getMinGroupArea() const { return m_minGroupArea; }
   /*!
     The number of random starts of the inverse kinematics (default 24), besides the current joint values.
     \exception vpProjectiveException (invalidValueError) if 0.
@@ -252,6 +292,8 @@ public:
   const std::string &getDescription() const { return m_description; }
 
 private:
+  vpPlanStatus planOnce(const vpProjectiveArmModel &model, const JointVector &q,
+                        const std::vector<Eigen::Vector4d> &points, const std::vector<Eigen::Vector4d> &sStar);
   bool inside(const JointVector &q) const;
   std::vector<std::pair<JointVector, unsigned int>> targetCandidates(const vpProjectiveArmModel &model,
                                                                      const JointVector &q,
@@ -260,7 +302,10 @@ private:
   bool planPath(const vpProjectiveArmModel &model, const JointVector &q, const JointVector &target,
                 const std::vector<JointVector> &rehearsed, const std::vector<Eigen::Vector4d> &points,
                 const JointVector &qmin, const JointVector &qmax, std::vector<JointVector> &path,
-                std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind) const;
+                std::vector<std::vector<Eigen::Vector4d>> &features, vpPathKind &kind, bool corners) const;
+  bool connectPath(const vpProjectiveArmModel &model, const JointVector &q, const JointVector &target,
+                   const std::vector<Eigen::Vector4d> &points, const JointVector &qmin, const JointVector &qmax,
+                   std::vector<JointVector> &path, std::vector<std::vector<Eigen::Vector4d>> &features) const;
   bool visible(const vpProjectiveArmModel &model, const JointVector &q, const std::vector<Eigen::Vector4d> &points,
                std::vector<Eigen::Vector4d> &s) const;
   bool feasible(const vpProjectiveArmModel &model, const std::vector<JointVector> &path,
@@ -281,6 +326,13 @@ private:
   static double residual(const vpProjectiveArmModel &model, const JointVector &q,
                          const std::vector<Eigen::Vector4d> &points, const std::vector<Eigen::Vector4d> &sStar);
 
+  bool groupsFacing(const std::vector<Eigen::Vector4d> &s) const;
+  void computeGroupAreas(const std::vector<Eigen::Vector4d> &atStart, const std::vector<Eigen::Vector4d> &sStar);
+
+  std::vector<std::vector<unsigned int>> m_groups; // setPlanarGroups()
+  double m_minGroupArea;
+  std::vector<Eigen::Vector2d> m_groupArea; // per group: the signed reference area in each image (0: not checked)
+  bool m_groupsOn;                          // plan() checks the groups (off for its fallback)
   bool m_hasLimits;
   JointVector m_qmin, m_qmax;
   unsigned int m_width, m_height;
@@ -289,6 +341,8 @@ private:
   double m_maxExcursion; // negative: twice m_maxStep
   unsigned int m_starts;
   double m_maxResidual;
+  JointVector m_refused;  // setRefusedTarget(): empty, or where the law stalled in the images
+  double m_refusedRadius; // how near a branch must be to m_refused to be left out
   double m_limitMargin;
   std::vector<Eigen::Vector2d> m_front;  // per point: its depths in both cameras at the planning q
   std::vector<Eigen::Vector4d> m_points; // the planned points (zero reference) and their desired pixels

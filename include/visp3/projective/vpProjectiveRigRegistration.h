@@ -54,10 +54,11 @@ BEGIN_VISP_NAMESPACE
   parameters). A camera that did not move keeps its acquired projection exactly: the disparities, hence the depths,
   keep the acquisition's accuracy instead of that of a few noisy observations.
 
-  <b>Refining with the servo's frames.</b> The frames of a running task are observations too. Calling updateRig()
-  again with the first observation poses and the frames seen where the task ends makes the new cameras predict the
-  markers best where the re-expressed \f$ s^* \f$ matters; the task then ends where the model's inverse kinematics
-  puts the taught \f$ s^* \f$ (measured: \ref servo_meas_mismatch).
+  <b>Refining with the servo's frames.</b> The frames of a running task are observations too: a vpServoProjective
+  task refines the rig itself after updateRig() (vpServoProjective::setRigRefinement(), on by default), through
+  vpProjectiveRobot::refineRig() and the overload of registerRig() from given points. With the first observation
+  poses and the frames seen where the task ends, the new cameras predict the features best where the re-expressed
+  \f$ s^* \f$ matters (measured: \ref servo_meas_mismatch).
 
   <b>General (11 parameters).</b> DLT, then Ceres on the reprojection error over \f$ P \f$ (unit Frobenius norm).
   Needs more observations to reach the same accuracy; kept for a camera whose intrinsics changed (zoom, refocus).
@@ -109,6 +110,28 @@ public:
   static vpProjectiveStereoRig registerRig(const vpProjectiveArmModel &model,
                                            const std::vector<vpProjectiveArmModel::JointVector> &q,
                                            const std::vector<std::vector<Eigen::Vector4d>> &images,
+                                           vpRegistrationMode mode = FIXED_INTRINSICS, double *rms = nullptr);
+
+  /*!
+    Both cameras of the rig \e old re-estimated from given points (see the class documentation): the same as the
+    other overload, whose markers moved by \f$ H(q_k) \f$ are such points, for points that are not the model's
+    markers (e.g. a servo task's features, whose zero-reference points the task remembers: the refinement of
+    vpServoProjective::setRigRefinement()).
+    \param old : the rig before the move, in the model's frame.
+    \param G : the model's projective-to-metric matrix (4x4, invertible), used by FIXED_INTRINSICS.
+    \param points : projective points (4x1 each, model frame, any scale) where they were seen, e.g.
+    \f$ H(q_k) M_j(0) \f$.
+    \param images : their images \f$ (u, v, u', v') \f$ (pixels), same order.
+    \param mode : FIXED_INTRINSICS or GENERAL.
+    \param rms : if not null, receives the RMS reprojection error per coordinate of the new pair (pixels).
+    \return the new rig: a general camera pair in the model's frame.
+    \exception vpProjectiveException (dimensionError) if the sizes differ; (nonFiniteValueError) on a non-finite or
+    zero point or a non-finite pixel; those of resect(); (estimationFailedError) if a camera's RMS error exceeds
+    maxResidual.
+  */
+  static vpProjectiveStereoRig registerRig(const vpProjectiveStereoRig &old, const Eigen::Matrix4d &G,
+                                           const std::vector<Eigen::Vector4d> &points,
+                                           const std::vector<Eigen::Vector4d> &images,
                                            vpRegistrationMode mode = FIXED_INTRINSICS, double *rms = nullptr);
 };
 

@@ -303,6 +303,22 @@ public:
     are left as they were.
   */
   void updateRig();
+  /*!
+    Refines the last re-registration with more views (the frames of a servo task, see
+    vpServoProjective::setRigRefinement(), which calls it): both cameras re-estimated as updateRig() did, from the
+    rig before that update, from its observations together with the projective points \e points (4x1 each, model
+    frame, where they were seen: \f$ H(q_k) M_i(0) \f$ for a point \f$ M_i(0) \f$ of the last link at the zero
+    reference seen at joints \f$ q_k \f$) and their images \e images \f$ (u, v, u', v') \f$ (pixels), same order.
+    The observations of that update are kept for the next refinement: each refinement replaces the previous one.
+    getRigGeneration() increases by one and the tasks on this robot are told, as by updateRig().
+    \exception vpProjectiveException (notInitializedError) before calibrate() or loadModel() or without a successful
+    updateRig() since; (dimensionError) if the sizes differ; and those of vpProjectiveRigRegistration::registerRig()
+    (a non-finite value, points that do not fit the model). On failure the model, the rig and every observation are
+    left as they were.
+  */
+  void refineRig(const std::vector<Eigen::Vector4d> &points, const std::vector<Eigen::Vector4d> &images);
+  //! True after a successful updateRig() since the model was computed or loaded: refineRig() has something to refine.
+  bool hasRigRegistration() const { return m_registration.valid; }
   //! Which cameras are estimated by updateRig() (default vpProjectiveRigRegistration::FIXED_INTRINSICS).
   void setRigRegistrationMode(vpProjectiveRigRegistration::vpRegistrationMode mode) { m_rigMode = mode; }
   //! The mode of setRigRegistrationMode().
@@ -310,10 +326,15 @@ public:
   //! RMS reprojection error per coordinate (pixels) of the last successful updateRig() over its observations.
   double getRigRegistrationResidual() const { return m_rigResidual; }
   /*!
-    Counts the successful updateRig() calls since the model was computed or loaded (the tasks on the robot are told
-    of each through vpListener, see vpServoProjective).
+    Counts the successful updateRig() and refineRig() calls since the model was computed or loaded (the tasks on the
+    robot are told of each through vpListener, see vpServoProjective).
   */
   unsigned long getRigGeneration() const { return m_rigGeneration; }
+  /*!
+    Counts the successful updateRig() calls since the model was computed or loaded, without the refineRig() calls
+    (which getRigGeneration() counts too): a task tells a re-registration from a refinement by it.
+  */
+  unsigned long getRigUpdateCount() const { return m_rigUpdates; }
   /*!
     Counts the models computed or loaded (calibrate(), loadModel()): the projective frame changes with each, and a
     task's points of another model are meaningless.
@@ -361,6 +382,8 @@ private:
   //! Takes \e model, calibrated from \e acquisition with these residuals, as the robot's model.
   void adopt(const vpProjectiveArmAcquisition &acquisition, const vpProjectiveArmModel &model, double residual,
              double algebraicResidual);
+  //! The model with the rig \e rig (re-registered, RMS error \e rms): a new rig generation; tells no one.
+  void adoptRig(const vpProjectiveStereoRig &rig, double rms);
   void checkJoint(unsigned int i, const char *method) const;
   JointVector toJointVector(const vpColVector &q, const char *method) const;
 
@@ -371,9 +394,18 @@ private:
   double m_algebraicResidual;
   std::vector<JointVector> m_rigJoints;                  // observations since the last updateRig()
   std::vector<std::vector<Eigen::Vector4d>> m_rigImages; // their marker images (u, v, u', v')
+  //! The last successful updateRig(): the rig before it and its observations, which refineRig() starts from.
+  struct vpRegistration {
+    vpProjectiveStereoRig rigBefore;
+    std::vector<JointVector> joints;
+    std::vector<std::vector<Eigen::Vector4d>> images;
+    bool valid = false;
+  };
+  vpRegistration m_registration;
   vpProjectiveRigRegistration::vpRegistrationMode m_rigMode;
   double m_rigResidual;
   unsigned long m_rigGeneration;
+  unsigned long m_rigUpdates;
   unsigned long m_modelGeneration;
 
   //! The listeners of attach(): a copy of the robot starts with none; an assignment to the robot tells them (it is

@@ -179,10 +179,12 @@ public:
 
 private:
   void checkInitialized(const char *where) const;
+  void updateFocalPlaneBounds();
 
   Eigen::Matrix3d m_F;
   Projection m_P;
   Projection m_Pp;
+  double m_bound2P, m_bound2Pp; // the focal-plane bounds of P and P' squared, for project() (constants of the cameras)
   Eigen::Vector3d m_e;
   Eigen::Vector3d m_ep;
   std::vector<bool> m_inliers;

@@ -115,6 +115,22 @@ public:
   bool isMismatch() const { return m_mismatch; }
   //! Prediction distance (pixels) of feature \e i at the last iteration, -1 if not evaluated (no check of \e i).
   double getDistance(unsigned int i) const { return m_records[i].distance; }
+  /*!
+    The point feature \e i is remembered as at the zero reference (4x1, unit norm, model frame; no check of \e i):
+    the acquired marker's point once recognised, else the mean of its triangulations. False (and \e M untouched)
+    without a memory.
+  */
+  bool getMemory(unsigned int i, Eigen::Vector4d &M) const
+  {
+    const vpRecord &r = m_records[i];
+    if (!r.hasMemory || !(r.sum.norm() > 0.0)) {
+      return false;
+    }
+    M = r.sum.normalized();
+    return true;
+  }
+  //! True if feature \e i is remembered as an acquired marker's point (no check of \e i).
+  bool isMemoryExact(unsigned int i) const { return m_records[i].hasMemory && m_records[i].exact; }
   //! Number of consecutive disagreeing iterations so far.
   unsigned int getDisagreeingIterations() const { return m_disagreeing; }
 

@@ -36,6 +36,7 @@
 #include <visp3/projective/vpServoJointLimitAvoidance.h>
 #include <visp3/projective/vpServoModelMismatch.h>
 #include <visp3/projective/vpServoProjectiveData.h>
+#include <visp3/projective/vpServoRigRefinement.h>
 #include <visp3/projective/vpServoSettling.h>
 #include <visp3/vs/vpAdaptiveGain.h>
 
@@ -62,13 +63,9 @@ BEGIN_VISP_NAMESPACE
   (\ref page_porting maps vpServo's calls to this task's). Each iteration computes its data once
   (vpServoProjectiveData, getData()), which every part of the task reads (\ref servo_task_data).
 
-  Each feature gets a state (getFeatureState(), vpServoFeatureHealth); the features set aside have their 4 rows of
-  \f$ e \f$ and \f$ J \f$ set to zero, and getStatus() tells whether the active ones still constrain every joint:
-  SERVO_STOPPED (\f$ \dot q = 0 \f$) when \f$ \sigma_{min}(J D^{-1}) < \tau\, \sigma_{max}(J D^{-1}) \f$,
-  \f$ D = \mathrm{diag}(\|J_{:,k}\|) \f$ (\f$ \tau \f$: setRankTolerance()), or fewer than \f$ n/3 \f$ points are
-  active (\ref servo_task_features). setJointLimits() adds ViSP's joint-limit avoidance with the large projection
-  operator (vpServoJointLimitAvoidance). Every getter is const and writes nothing: several threads may read one task
-  while none computes.
+  Each feature gets a state (getFeatureState(), vpServoFeatureHealth); the rows of the features set aside are zero,
+  and getStatus() tells whether the active ones still constrain every joint (\ref servo_task_features). Every getter
+  is const and writes nothing: several threads may read one task while none computes.
 
   \code
   task.setRobot(robot); task.setLambda(0.5);
@@ -96,13 +93,17 @@ public:
 
   //! Outcome of the last computeControlLaw() (\ref servo_task_features).
   enum vpServoStatus {
-    SERVO_RUNNING,       //!< Every feature used.
-    SERVO_REDUCED,       //!< Some features set aside, the remaining ones keep rank n: the task continues on them.
-    SERVO_STOPPED,       //!< The active features no longer constrain every joint (rank < n): \f$ \dot q = 0 \f$.
-    SERVO_NO_PLAN,       //!< Path planning is on and no plan exists for the target (getPathPlanner() says why):
-                         //!< \f$ \dot q = 0 \f$.
-    SERVO_MODEL_MISMATCH //!< Every usable feature disagrees with the model's prediction on consecutive calls (a
-                         //!< moved camera; setModelMismatchThreshold()): \f$ \dot q = 0 \f$; re-register the rig.
+    SERVO_RUNNING,        //!< Every feature used.
+    SERVO_REDUCED,        //!< Some features set aside, the remaining ones keep rank n: the task continues on them.
+    SERVO_STOPPED,        //!< The active features no longer constrain every joint (rank < n): \f$ \dot q = 0 \f$.
+    SERVO_NO_PLAN,        //!< Path planning is on and no plan exists for the target (getPathPlanner() says why):
+                          //!< \f$ \dot q = 0 \f$.
+    SERVO_MODEL_MISMATCH, //!< Every usable feature disagrees with the model's prediction on consecutive calls (a
+                          //!< moved camera; setModelMismatchThreshold()): \f$ \dot q = 0 \f$; re-register the rig.
+    SERVO_OPEN_LOOP       //!< Planned task: the active features no longer constrain every joint (a tag seen edge-on,
+                          //!< occluded), and the features set aside are replaced by the model's predictions at the
+                          //!< measured joints, for at most setMaxOpenLoopTime(): the arm keeps to its plan, the images
+                          //!< take over again when the features return.
   };
 
   //! The unit of the task error \f$ e \f$ that the gain sees (see setErrorUnit()).
@@ -128,6 +129,12 @@ public:
     \exception vpProjectiveException (notInitializedError) if the model is not acquired.
   */
   void setRobot(const vpProjectiveRobot &robot);
+  /*!
+    The same, with leave to refine the robot's re-registered rig with the task's own frames (setRigRefinement()): a
+    task given a robot it may not change never refines.
+    \exception vpProjectiveException (notInitializedError) if the model is not acquired.
+  */
+  void setRobot(vpProjectiveRobot &robot);
   //! Constant gain \f$ \lambda > 0 \f$ (per second; per call with the default period of 1 s).
   //! \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if not positive and finite.
   void setLambda(double lambda);
@@ -168,9 +175,8 @@ public:
     full gain returns when an F-test at \f$ 10^{-4} \f$ sees a real error (\ref servo_task_settling).
   */
   void setSettling(bool settling);
-  bool getSettling() const { return m_settling.isEnabled(); } //!< True if settling is on (setSettling()).
-  bool isSettled() const { return m_settling.isSettled(); }   //!< True if the last call used the settling gain.
-  //! The settling gain's state: settled calls, noise estimate, last test statistic.
+  //! The settling gain: on or off (setSettling()), settled at the last call, settled calls, noise estimate, last
+  //! test statistic.
   const vpServoSettling &getSettlingState() const { return m_settling; }
   //@}
 
@@ -236,9 +242,7 @@ public:
     \exception vpProjectiveException if \e pixels is negative or not finite.
   */
   void setModelMismatchThreshold(double pixels);
-  //! The threshold of setModelMismatchThreshold() (pixels; 0: off).
-  double getModelMismatchThreshold() const { return m_mismatch.getThreshold(); }
-  //! The detector, its settings and its last distances.
+  //! The detector, its threshold (getThreshold()) and its last distances.
   const vpServoModelMismatch &getModelMismatch() const { return m_mismatch; }
   /*!
     The desired value (4x1, pixels) the task uses for feature \e i: the user's \f$ s^*_i \f$, or after the robot
@@ -246,6 +250,17 @@ public:
     showed (the user's feature is not rewritten): the same joint target. \exception vpProjectiveException on a bad i.
   */
   vpColVector getDesiredFeature(unsigned int i) const;
+  /*!
+    Refinement of a re-registered rig with the task's own frames (default on, every 40 calls, 3 times): after
+    vpProjectiveRobot::updateRig() the task refines the rig with its active features every \e period calls that move
+    the arm, \e refinements times (vpServoRigRefinement, \ref servo_meas_mismatch). Needs the robot given to
+    setRobot() as modifiable and the model-mismatch check on. false: the rig stays as updateRig() left it.
+    \exception vpProjectiveException (invalidValueError) if \e period or \e refinements is 0 or their product above
+    100000; the settings are then unchanged.
+  */
+  void setRigRefinement(bool refine, unsigned int period = 40, unsigned int refinements = 3);
+  //! The rig refinement's settings and its state since the last re-registration (setRigRefinement()).
+  const vpServoRigRefinement &getRigRefinementState() const { return m_refinement; }
   //@}
 
   /*! \name Joint limits (forwarded to vpServoJointLimitAvoidance) */
@@ -333,14 +348,6 @@ public:
   //! State of feature \e i at the last computeControlLaw() (FEATURE_ACTIVE before).
   //! \exception vpProjectiveException (dimensionError) on a bad index.
   vpFeatureState getFeatureState(unsigned int i) const;
-  //! Number of features used by the last computeControlLaw().
-  unsigned int getNumberOfActiveFeatures() const { return m_health.getNumberOfActiveFeatures(); }
-  //! Epipolar distance \f$ d_F \f$ (pixels, vpServoFeatureHealth) of feature \e i at the last call; -1 if not
-  //! evaluated. \exception vpProjectiveException on a bad index.
-  double getEpipolarDistance(unsigned int i) const;
-  //! Prediction distance (pixels, vpServoFeatureHealth) of feature \e i at the last call; -1 if not evaluated.
-  //! \exception vpProjectiveException on a bad index.
-  double getPredictionDistance(unsigned int i) const;
   //! \f$ \sigma_{min}(J D^{-1}) / \sigma_{max}(J D^{-1}) \f$ of the last reduced \f$ J \f$, \f$ D \f$ its column norms:
   //! what setRankTolerance() is compared with (0 if a column is below it). On demand.
   double getSingularValueRatio() const;
@@ -380,6 +387,20 @@ public:
   void setPathFollowingGain(double gain);
   //! True while the last computeControlLaw() followed the planned path (before the final law (47)).
   bool isFollowingPath() const { return m_following; }
+  /*!
+    Open loop on the model (default 2 s; 0: off): while a plan is under way and the active features no longer
+    constrain every joint (a tag turned edge-on, an occlusion), each feature set aside that was active before is
+    replaced by its prediction \f$ \hat s_i = (P, P')\, H(q)\, H(q_l)^{-1} M_l \f$ at the measured joints (\f$ M_l \f$
+    its point at the last call \f$ q_l \f$ where it was active): SERVO_OPEN_LOOP for at most \e seconds of consecutive
+    calls (setControlPeriod()), then SERVO_STOPPED until the features return (\ref servo_task_open_loop).
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if \e seconds is negative or not finite;
+    the setting is then unchanged.
+  */
+  void setMaxOpenLoopTime(double seconds);
+  //! The bound of setMaxOpenLoopTime() (seconds; 0: off).
+  double getMaxOpenLoopTime() const { return m_maxOpenLoopTime; }
+  //! Consecutive calls that ended in SERVO_OPEN_LOOP, up to the last one (0 when it did not).
+  unsigned int getOpenLoopCalls() const { return m_openLoopCalls; }
   //! The planner, its settings and its last plan (target, branches, path, description).
   const vpProjectivePathPlanner &getPathPlanner() const { return m_planner; }
   //! The planner, to change its settings (setMaxJointStep(), setMaxExcursion(), setNumberOfStarts()).
@@ -390,7 +411,8 @@ public:
   //@{
   //! The control law and its settings (setDamping(), setMaxJointVelocity(), setPseudoInverseThreshold()).
   const vpServoDampedLeastSquares &getDampedLeastSquares() const { return m_law; }
-  //! The feature checks and their settings (setImageSize(), setOutlierThreshold(), setFeatureTracked()).
+  //! The feature checks, their settings (setImageSize(), setOutlierThreshold(), setFeatureTracked()) and their last
+  //! verdicts: active features, each feature's epipolar and prediction distances.
   const vpServoFeatureHealth &getFeatureHealth() const { return m_health; }
   //! The joint-limit avoidance and its settings (setJointLimits(), setLargeProjectionThresholds()).
   const vpServoJointLimitAvoidance &getJointLimitAvoidance() const { return m_jointLimits; }
@@ -417,7 +439,8 @@ private:
   //! The robot of setRobot(), attached: it tells the task of a new model or rig (vpProjectiveRobot::vpListener).
   struct vpRobotLink : public vpProjectiveRobot::vpListener {
     const vpProjectiveRobot *robot = nullptr;
-    bool modelChanged = false; // told since the task last took it into account
+    vpProjectiveRobot *modifiable = nullptr; // the same robot, if given modifiable (the rig refinement)
+    bool modelChanged = false;               // told since the task last took it into account
     bool rigChanged = false;
     vpRobotLink() = default;
     vpRobotLink(const vpRobotLink &other);
@@ -425,7 +448,7 @@ private:
     ~vpRobotLink() override;
     void set(const vpProjectiveRobot *r);
     void robotModelChanged(bool rigOnly) override;
-    void robotDestroyed() override { robot = nullptr; }
+    void robotDestroyed() override { robot = nullptr, modifiable = nullptr; }
   };
 
   void check(const char *method) const;
@@ -437,14 +460,17 @@ private:
   static double taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale, const JointMatrix &JtJ,
                          const JointVector &Jte, double errorInf);
   void addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const;
+  void keepInside(const JointVector &q, const vpIteration &it, JointVector &qdot) const;
   void stop(vpIteration &it, JointVector &qdot);
   void commit();
   const vpIteration &last() const { return m_iterations[m_lastIteration]; }
   bool planIfNeeded(const JointVector &q, const vpServoProjectiveData &data);
+  bool lawStalled(const Eigen::VectorXd &e);
   Eigen::Vector4d desired(unsigned int i) const;
   void refreshTargets();
   void computeData(const JointVector &q, vpServoProjectiveData &data) const;
   bool detectMismatch(const vpServoProjectiveData &data);
+  bool openLoop(vpIteration &it);
 
   //! The task's copy of a desired feature.
   struct vpTarget {
@@ -479,9 +505,21 @@ private:
   bool m_lawLeftRehearsal; // law (47) left its rehearsal since the target was set: plan paths only
   size_t m_sincePlan;      // calls since the last plan
   bool m_replanFailed;     // the last plan was a re-plan that found nothing: law (47) runs
+  // Law (47) as planned, after its rehearsed iterations: the error's sum and sum of squares over a window of calls,
+  // and its squared norms over the window's halves (sized at each plan: no allocation per call).
+  Eigen::VectorXd m_stallSum, m_stallSumSq;
+  double m_stallHalves[2];
+  unsigned int m_stallCount;
   double m_followGain;
-  double m_period;  // seconds per computeControlLaw() call (setControlPeriod())
-  double m_qdotMax; // the user's saturation, per second (the law's is per call: m_qdotMax * m_period)
+  // setMaxOpenLoopTime(): the bound, the consecutive open-loop calls, each feature's point (zero reference) at the last
+  // call where it was active and whether it has one.
+  double m_maxOpenLoopTime;
+  unsigned int m_openLoopCalls;
+  std::vector<Eigen::Vector4d> m_seenPoints;
+  std::vector<char> m_hasSeenPoint;
+  std::vector<char> m_activeNow; // per feature: active in the iteration in progress (buildTask())
+  double m_period;               // seconds per computeControlLaw() call (setControlPeriod())
+  double m_qdotMax;              // the user's saturation, per second (the law's is per call: m_qdotMax * m_period)
 
   // setErrorUnit(): the unit, the focal length given (0: estimated), pixels per unit of error; setJointPositions().
   vpGainInput m_gainInput;
@@ -493,6 +531,9 @@ private:
   // setSettling(): the settling gain, and the generation of the task's targets (refreshTargets()) it settles on.
   vpServoSettling m_settling;
   unsigned long m_targetGeneration;
+  // setRigRefinement(): the refinement, and the robot's re-registrations (getRigUpdateCount()) taken into account.
+  vpServoRigRefinement m_refinement;
+  unsigned long m_rigUpdatesSeen;
 };
 
 END_VISP_NAMESPACE

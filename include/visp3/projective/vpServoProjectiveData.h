@@ -88,6 +88,14 @@ public:
   const Eigen::Matrix4d *getJointMotions() const { return m_HhatKq; }
   //! Number of \f$ H(q) \f$ computed since the last computeKinematics() began (1 after it).
   unsigned int getDisplacementCount() const { return m_displacementCount; }
+  /*!
+    The images \f$ \hat s = (u, v, u', v') \f$ (4x1, pixels) of \f$ H(q) X \f$, \e X (4x1, any scale and sign) a point
+    at the zero reference: vpProjectiveStereoRig::project(getDisplacement() * X, s) by the rig of the model given to
+    the last computeKinematics() (which must still exist). The predictions of the feature health and of the
+    model-mismatch check. False, \e s unspecified, on a camera's focal plane, for a non-finite image or before any
+    computeKinematics().
+  */
+  bool predict(const Eigen::Vector4d &X, Eigen::Vector4d &s) const;
   //@}
 
   /*! \name Features (index i in addFeature() order) */
@@ -124,6 +132,7 @@ private:
   JointVector m_q;
   Eigen::Matrix4d m_H;
   Eigen::Matrix4d m_Hinv;
+  const vpProjectiveStereoRig *m_rig; // the model's rig of the last computeKinematics(), for predict()
   Eigen::Matrix4d m_HhatKq[vpProjectiveArmModel::maxJoints];
   Eigen::Matrix4d m_Hhat[vpProjectiveArmModel::maxJoints];  // the generators that m_Hhat2 was computed from
   Eigen::Matrix4d m_Hhat2[vpProjectiveArmModel::maxJoints]; // their squares
