@@ -45,34 +45,51 @@ using namespace vpProjectiveTest;
 
 namespace
 {
-//! A task with noisy images: start and target drawn within \e range, the images of the markers \e tracked there with
-//! the noise \e noise (seen at the start, s* at the target), and the points triangulated from the seen images by the
-//! model's rig and carried to the zero reference by H(q_start)^-1, as vpServoProjective does.
-struct NoisyTask {
-  vpColVector qStart, qTarget;
-  std::vector<Eigen::Vector4d> seen, sStar, points;
-};
+//! Tasks with noisy images on markers 0-2 of a noise-free model, drawn one after the other (next()): start and target
+//! within +-rangeDeg, the images seen at the start and s* at the target with kSigma px of noise, and the points
+//! triangulated from the seen images by the model's rig and carried to the zero reference by H(q_start)^-1, as
+//! vpServoProjective does.
+struct NoisyTasks {
+  static constexpr double kSigma = 0.5;
+  const ArmSetup s;
+  const vpProjectiveRobot robot;
+  const vpProjectiveArmModel &model;
+  const std::vector<unsigned int> tracked = {0, 1, 2};
+  const std::vector<double> range;
+  vpUniRand rng;
+  vpGaussRand noise;
 
-NoisyTask noisyTask(const ArmSetup &s, const vpProjectiveArmModel &model, const std::vector<unsigned int> &tracked,
-                    const std::vector<double> &range, vpUniRand &rng, vpGaussRand &noise)
-{
-  NoisyTask t;
-  t.qStart = s.randomVisibleJoints(rng, range);
-  t.qTarget = s.randomVisibleJoints(rng, range);
-  t.seen = trueImages(s, t.qStart, tracked);
-  t.sStar = trueImages(s, t.qTarget, tracked);
-  for (size_t k = 0; k < tracked.size(); ++k) {
-    for (int c = 0; c < 4; ++c) {
-      t.seen[k](c) += noise();
-      t.sStar[k](c) += noise();
+  NoisyTasks(const ArmSetup &setup, double rangeDeg, long drawSeed, long noiseSeed)
+      : s(setup), robot(calibratedRobot(s)), model(robot.getModel()), range(s.n(), vpMath::rad(rangeDeg)),
+        rng(drawSeed), noise(kSigma, 0.0, noiseSeed)
+  {
+  }
+
+  struct Task {
+    vpColVector qStart, qTarget;
+    std::vector<Eigen::Vector4d> seen, sStar, points;
+  };
+
+  Task next()
+  {
+    Task t;
+    t.qStart = s.randomVisibleJoints(rng, range);
+    t.qTarget = s.randomVisibleJoints(rng, range);
+    t.seen = trueImages(s, t.qStart, tracked);
+    t.sStar = trueImages(s, t.qTarget, tracked);
+    for (size_t k = 0; k < tracked.size(); ++k) {
+      for (int c = 0; c < 4; ++c) {
+        t.seen[k](c) += noise();
+        t.sStar[k](c) += noise();
+      }
     }
+    const Eigen::PartialPivLU<Eigen::Matrix4d> H(model.displacement(toEigenV(t.qStart)));
+    for (const Eigen::Vector4d &p : t.seen) {
+      t.points.push_back(H.solve(model.getStereoRig().triangulate(p.head<2>(), p.tail<2>())));
+    }
+    return t;
   }
-  const Eigen::PartialPivLU<Eigen::Matrix4d> H(model.displacement(toEigenV(t.qStart)));
-  for (const Eigen::Vector4d &p : t.seen) {
-    t.points.push_back(H.solve(model.getStereoRig().triangulate(p.head<2>(), p.tail<2>())));
-  }
-  return t;
-}
+};
 
 struct SetupCase {
   const char *label;
@@ -191,17 +208,15 @@ TEST_P(PathPlannerArms, TwoViewRefinementBringsTheResidualToTheNoise)
 {
   // A task's points triangulated at the start from noisy pixels, then the inverse kinematics of noisy desired pixels:
   // points fixed (solve()) against points refined by both views (solveWithPoints()), from the true target.
-  const ArmSetup s = GetParam().make();
-  const vpProjectiveRobot robot = calibratedRobot(s);
-  const vpProjectiveArmModel &model = robot.getModel();
-  const std::vector<unsigned int> tracked = {0, 1, 2};
-  const double sigma = 0.5;
-  vpUniRand rng(23);
-  vpGaussRand noise(sigma, 0.0, 29);
-  const std::vector<double> range(s.n(), vpMath::rad(2.0 * GetParam().rangeDeg));
+  NoisyTasks tasks(GetParam().make(), 2.0 * GetParam().rangeDeg, 23, 29);
+  const ArmSetup &s = tasks.s;
+  const vpProjectiveRobot &robot = tasks.robot;
+  const vpProjectiveArmModel &model = tasks.model;
+  const std::vector<unsigned int> &tracked = tasks.tracked;
+  const double sigma = NoisyTasks::kSigma;
   std::vector<double> fixedError, refinedError, fixedResidual, refinedResidual;
   for (int task = 0; task < 30; ++task) {
-    NoisyTask t = noisyTask(s, model, tracked, range, rng, noise);
+    NoisyTasks::Task t = tasks.next();
     const vpColVector &qStart = t.qStart, &qTarget = t.qTarget;
     const std::vector<Eigen::Vector4d> &seen = t.seen, &sStar = t.sStar;
     std::vector<Eigen::Vector4d> &points = t.points;
@@ -280,18 +295,15 @@ TEST(PathPlanner, UsesTheAcquiredMarkersItRecognises)
   // Noisy features of three acquired markers, triangulated at the start: the planner recognises them (their images at
   // q are the model's predictions) and solves the target with the bundle adjustment's points, which the two-view
   // refinement of one stereo pair cannot match. A feature between two markers is no marker: it stays triangulated.
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
-  const vpProjectiveArmModel &model = robot.getModel();
-  const std::vector<unsigned int> tracked = {0, 1, 2};
-  const double sigma = 0.5;
-  vpUniRand rng(31);
-  vpGaussRand noise(sigma, 0.0, 37);
-  const std::vector<double> range(s.n(), vpMath::rad(30.0));
+  NoisyTasks tasks(pumaEyeToHand(), 30.0, 31, 37);
+  const ArmSetup &s = tasks.s;
+  const vpProjectiveRobot &robot = tasks.robot;
+  const vpProjectiveArmModel &model = tasks.model;
+  const std::vector<unsigned int> &tracked = tasks.tracked;
   std::vector<double> plannedError, refinedError;
   vpProjectivePathPlanner planner;
   for (int task = 0; task < 20; ++task) {
-    NoisyTask t = noisyTask(s, model, tracked, range, rng, noise);
+    NoisyTasks::Task t = tasks.next();
     const vpColVector &qStart = t.qStart, &qTarget = t.qTarget;
     const std::vector<Eigen::Vector4d> &seen = t.seen, &sStar = t.sStar;
     std::vector<Eigen::Vector4d> &points = t.points;

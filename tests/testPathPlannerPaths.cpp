@@ -39,15 +39,11 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveTest;
 
-TEST(PathPlanner, KeepsTheTargetOutOfTheJointLimitMargins)
+TEST_F(PathPlanner, KeepsTheTargetOutOfTheJointLimitMargins)
 {
   // A target with joint 5 at 140 deg, 30 deg from its limit: in the band of a margin of 0.1 of the 340 deg range, and
   // the nearest branch to a start 40 deg away on that joint. The wrist's other branch (joints 3 and 5 half a turn
   // away, joint 4 mirrored) shows the same images with every joint out of the margins, farther from the start.
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
-  const std::vector<unsigned int> tracked = {0, 1, 2};
-  const std::vector<Eigen::Vector4d> points = modelPoints(robot, tracked);
   vpColVector qStart(s.n(), 0.0), qTarget(s.n(), 0.0);
   qStart[3] = qTarget[3] = vpMath::rad(60.0);
   qStart[4] = qTarget[4] = vpMath::rad(10.0);
@@ -88,12 +84,8 @@ TEST(PathPlanner, KeepsTheTargetOutOfTheJointLimitMargins)
   EXPECT_EQ(planner.getJointLimitMargin(), 0.5);
 }
 
-TEST(PathPlanner, PlansStayInsideLimitsAndView)
+TEST_F(PathPlanner, PlansStayInsideLimitsAndView)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
-  const std::vector<unsigned int> tracked = {0, 1, 2};
-  const std::vector<Eigen::Vector4d> points = modelPoints(robot, tracked);
   const double border = 10.0, step = vpMath::rad(5.0);
   const JointVector qmin = JointVector::Constant(s.n(), vpMath::rad(-50.0));
   const JointVector qmax = JointVector::Constant(s.n(), vpMath::rad(50.0));
@@ -133,15 +125,11 @@ TEST(PathPlanner, PlansStayInsideLimitsAndView)
   EXPECT_GT(kinds[vpProjectivePathPlanner::PATH_IMAGE_LINE], 0u);
 }
 
-TEST(PathPlanner, FollowsStraightImageLinesWithinTheExcursionBound)
+TEST_F(PathPlanner, FollowsStraightImageLinesWithinTheExcursionBound)
 {
   // The main tutorial's task (the gripper moves by 82 cm and turns by 88 deg, start near the wrist singularity):
   // straight image lines need joint 2 to fold some 30 deg past its target. Under the default bound (twice the 10 deg
   // step) the plan is the joint-space line, every joint monotonic; allowed 40 deg, it follows the straight lines.
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
-  const std::vector<unsigned int> tracked = {0, 1, 2};
-  const std::vector<Eigen::Vector4d> points = modelPoints(robot, tracked);
   const vpColVector qStart = paperTaskStart(), qTarget = paperTaskTarget();
   const std::vector<Eigen::Vector4d> sStar = trueImages(s, qTarget, tracked);
   const double border = 10.0, step = vpMath::rad(10.0);
@@ -207,14 +195,10 @@ TEST(PathPlanner, FollowsStraightImageLinesWithinTheExcursionBound)
   EXPECT_LT(straight, 0.25 * arc);
 }
 
-TEST(PathPlanner, FindsAWaypointWhenTheLinesLeaveTheView)
+TEST_F(PathPlanner, FindsAWaypointWhenTheLinesLeaveTheView)
 {
   // Tasks drawn (seeded) in a wide box with a narrow image window, until one needs a waypoint: then the joint-space
   // line truly leaves the window and the plan truly stays inside.
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
-  const std::vector<unsigned int> tracked = {0, 1, 2};
-  const std::vector<Eigen::Vector4d> points = modelPoints(robot, tracked);
   const double border = 60.0;
   vpProjectivePathPlanner planner;
   planner.setImageSize(s.width, s.height, border);
@@ -243,12 +227,8 @@ TEST(PathPlanner, FindsAWaypointWhenTheLinesLeaveTheView)
   EXPECT_TRUE(found) << "no task of 300 needed a waypoint";
 }
 
-TEST(PathPlanner, SaysWhenThereIsNoPlan)
+TEST_F(PathPlanner, SaysWhenThereIsNoPlan)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
-  const std::vector<unsigned int> tracked = {0, 1, 2};
-  const std::vector<Eigen::Vector4d> points = modelPoints(robot, tracked);
   vpColVector qStart(s.n(), 0.0), qTarget(s.n(), 0.0);
   qTarget[0] = vpMath::rad(20.0);
   qTarget[4] = vpMath::rad(-15.0);
@@ -338,12 +318,9 @@ bool groupTurnsAway(const vpProjectivePathPlanner &planner, const std::vector<Ei
 // Issue 20: a tag's corners are found only while the tag faces the cameras. Declared a planar group, the points keep
 // their image polygon's orientation and a fraction of its size along every plan that does not say it gave the check
 // up, where plans without the check turn it away (the servo on the tag lost it, and stopped, mid-path).
-TEST(PathPlanner, PlansKeepPlanarGroupsFacingTheCameras)
+TEST_F(PathPlanner, PlansKeepPlanarGroupsFacingTheCameras)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
-  const std::vector<unsigned int> tracked = {0, 1, 2}, group = {0, 1, 2};
-  const std::vector<Eigen::Vector4d> points = modelPoints(robot, tracked);
+  const std::vector<unsigned int> group = {0, 1, 2};
   const JointVector qmin = JointVector::Constant(s.n(), vpMath::rad(-100.0));
   const JointVector qmax = JointVector::Constant(s.n(), vpMath::rad(100.0));
   vpProjectivePathPlanner plain, facing;

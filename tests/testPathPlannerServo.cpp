@@ -85,13 +85,10 @@ int runServo(const ArmSetup &s, const vpProjectiveRobot &robot, const std::vecto
 }
 } // namespace
 
-TEST(PathPlanner, PlannedServoReachesWideTargets)
+TEST_F(PathPlanner, PlannedServoReachesWideTargets)
 {
   // Three tracked markers, tasks within +-60 deg (same branch or not): law (47) meets local minima and lost
   // features; the planned servo reaches every target, with joints that stay near their [start, target] intervals.
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
-  const std::vector<unsigned int> tracked = {0, 1, 2};
   const vpColVector qmin(s.n(), vpMath::rad(-80.0)), qmax(s.n(), vpMath::rad(80.0));
   vpUniRand rng(5);
   const std::vector<double> range(s.n(), vpMath::rad(60.0));
@@ -114,11 +111,8 @@ TEST(PathPlanner, PlannedServoReachesWideTargets)
   EXPECT_LT(worstExcursion, vpMath::rad(20.0));
 }
 
-TEST(PathPlanner, ServoStopsWithoutAPlan)
+TEST_F(PathPlanner, ServoStopsWithoutAPlan)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
-  const std::vector<unsigned int> tracked = {0, 1, 2};
   vpColVector q(s.n(), 0.0), qTarget(s.n(), 0.0);
   qTarget[0] = vpMath::rad(20.0);
   std::vector<vpFeatureStereoPoint> f(3), fStar(3);
@@ -152,11 +146,8 @@ TEST(PathPlanner, ServoStopsWithoutAPlan)
 // Issue 20: a planned servo whose features are all lost for a while mid-path (a tag seen edge-on, an occlusion)
 // follows its plan on the model's predictions (SERVO_OPEN_LOOP) for setMaxOpenLoopTime() at most, then stops; with
 // the features back, it reaches the target. Off, it stops at once, as before.
-TEST(PathPlanner, PlannedServoCrossesAShortLossOfTheFeatures)
+TEST_F(PathPlanner, PlannedServoCrossesAShortLossOfTheFeatures)
 {
-  const ArmSetup s = pumaEyeToHand();
-  const vpProjectiveRobot robot = calibratedRobot(s);
-  const std::vector<unsigned int> tracked = {0, 1, 2};
   const vpColVector qmin(s.n(), vpMath::rad(-80.0)), qmax(s.n(), vpMath::rad(80.0));
   vpColVector qStart(s.n(), 0.0), qTarget(s.n(), 0.0);
   for (unsigned int i = 0; i < s.n(); ++i) {

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include <Eigen/Dense>
+#include <gtest/gtest.h>
 
 #include <visp3/projective/vpProjectivePathPlanner.h>
 #include <visp3/projective/vpProjectiveRobot.h>
@@ -97,6 +98,19 @@ inline bool trulyInView(const ArmSetup &s, const vpColVector &q, const std::vect
   }
   return true;
 }
+
+/*!
+  The tests on the PUMA-like arm watched by the paper's rig (testPathPlannerPaths, testPathPlannerServo): its model
+  acquired noise-free, markers 0-2 tracked, their zero-reference points in the model.
+*/
+class PathPlanner : public ::testing::Test
+{
+protected:
+  const ArmSetup s = pumaEyeToHand();
+  const vpProjectiveRobot robot = calibratedRobot(s);
+  const std::vector<unsigned int> tracked = {0, 1, 2};
+  const std::vector<Eigen::Vector4d> points = modelPoints(robot, tracked);
+};
 } // namespace vpProjectiveTest
 
 #endif
