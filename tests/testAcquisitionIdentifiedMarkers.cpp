@@ -74,6 +74,27 @@ struct IdentifiedCell {
     return r;
   }
 
+  //! The acquisition procedure on \e robot, its cameras giving frame() with the markers \e visible accepts.
+  template <typename Visible>
+  vpProjectiveAcquisitionProcedure procedure(vpSimulatorRobotArm &robot, Visible visible)
+  {
+    return vpProjectiveAcquisitionProcedure(
+        [this, &robot, visible](std::vector<int> &ids, std::vector<vpImagePoint> &left,
+                                std::vector<vpImagePoint> &right) {
+          frame(robot.getArmJoints(), visible, ids, left, right);
+          return true;
+        },
+        sim.getWidth(), sim.getHeight());
+  }
+
+  //! An acquisition of the 6R arm with this cell's rig.
+  vpProjectiveArmAcquisition acquisition() const
+  {
+    vpProjectiveArmAcquisition acq(std::vector<vpProjectiveJoint::vpJointType>(6, vpProjectiveJoint::REVOLUTE));
+    acq.setStereoRig(rig());
+    return acq;
+  }
+
   /*!
     Noisy images of the markers at arm joints q whose ids \e visible(id, q) accepts, in a shuffled order; the
     stranger too when joint 0 has moved by more than 3 deg.
@@ -163,8 +184,7 @@ bool allVisible(int, const vpColVector &)
 template <typename Visible>
 vpProjectiveArmModel calibrateByHand(IdentifiedCell &cell, Visible visible, vpProjectiveArmAcquisition &acq)
 {
-  acq = vpProjectiveArmAcquisition(std::vector<vpProjectiveJoint::vpJointType>(6, vpProjectiveJoint::REVOLUTE));
-  acq.setStereoRig(cell.rig());
+  acq = cell.acquisition();
   std::vector<int> ids;
   std::vector<vpImagePoint> left, right;
   cell.frame(vpColVector(6, 0.0), visible, ids, left, right);
@@ -224,8 +244,7 @@ TEST(AcquisitionIdentifiedMarkers, HiddenAndShuffledMarkersCalibrateAtTheNoiseLe
 TEST(AcquisitionIdentifiedMarkers, TooFewCommonMarkersOrRepeatedIdsThrow)
 {
   IdentifiedCell cell;
-  vpProjectiveArmAcquisition acq(std::vector<vpProjectiveJoint::vpJointType>(6, vpProjectiveJoint::REVOLUTE));
-  acq.setStereoRig(cell.rig());
+  vpProjectiveArmAcquisition acq = cell.acquisition();
   std::vector<int> ids;
   std::vector<vpImagePoint> left, right;
   cell.frame(vpColVector(6, 0.0), allVisible, ids, left, right);
@@ -277,8 +296,7 @@ TEST(AcquisitionIdentifiedMarkers, ProcedureToleratesMissingMarkers)
     procedure.setMaxAmounts(vpColVector(6, vpMath::rad(20.0)));
     std::ostringstream log;
     procedure.setOutput(&log);
-    vpProjectiveArmAcquisition acq(std::vector<vpProjectiveJoint::vpJointType>(6, vpProjectiveJoint::REVOLUTE));
-    acq.setStereoRig(cell.rig());
+    vpProjectiveArmAcquisition acq = cell.acquisition();
     const vpProjectiveArmModel model = procedure.run(robot, acq);
     EXPECT_EQ(acq.getMarkerIds(), std::vector<int>(kIds, kIds + 7));
     EXPECT_TRUE(procedure.getDroppedMarkers().empty());
@@ -317,19 +335,12 @@ TEST(AcquisitionIdentifiedMarkers, RarelySeenMarkerDroppedTooFewCommonMarkersThr
   {
     IdentifiedCell cell;
     vpSimulatorRobotArm robot(cell.arm);
-    vpProjectiveAcquisitionProcedure procedure(
-        [&](std::vector<int> &ids, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
-          const vpColVector q = robot.getArmJoints();
-          cell.frame(
-              q, [&](int id, const vpColVector &qq) { return id != 42 || !movedAtAll(qq); }, ids, left, right);
-          return true;
-        },
-        cell.sim.getWidth(), cell.sim.getHeight());
+    vpProjectiveAcquisitionProcedure procedure =
+        cell.procedure(robot, [&](int id, const vpColVector &qq) { return id != 42 || !movedAtAll(qq); });
     procedure.setMaxAmounts(vpColVector(6, vpMath::rad(20.0)));
     std::ostringstream log;
     procedure.setOutput(&log);
-    vpProjectiveArmAcquisition acq(std::vector<vpProjectiveJoint::vpJointType>(6, vpProjectiveJoint::REVOLUTE));
-    acq.setStereoRig(cell.rig());
+    vpProjectiveArmAcquisition acq = cell.acquisition();
     const vpProjectiveArmModel model = procedure.run(robot, acq);
     EXPECT_EQ(procedure.getDroppedMarkers(), std::vector<int>(1, 42));
     EXPECT_EQ(acq.getMarkerIds(), std::vector<int>(kIds, kIds + 6));
@@ -344,16 +355,9 @@ TEST(AcquisitionIdentifiedMarkers, RarelySeenMarkerDroppedTooFewCommonMarkersThr
   {
     IdentifiedCell cell;
     vpSimulatorRobotArm robot(cell.arm);
-    vpProjectiveAcquisitionProcedure procedure(
-        [&](std::vector<int> &ids, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
-          const vpColVector q = robot.getArmJoints();
-          cell.frame(
-              q, [&](int id, const vpColVector &qq) { return id < 40 || !movedAtAll(qq); }, ids, left, right);
-          return true;
-        },
-        cell.sim.getWidth(), cell.sim.getHeight());
-    vpProjectiveArmAcquisition acq(std::vector<vpProjectiveJoint::vpJointType>(6, vpProjectiveJoint::REVOLUTE));
-    acq.setStereoRig(cell.rig());
+    vpProjectiveAcquisitionProcedure procedure =
+        cell.procedure(robot, [&](int id, const vpColVector &qq) { return id < 40 || !movedAtAll(qq); });
+    vpProjectiveArmAcquisition acq = cell.acquisition();
     try {
       procedure.run(robot, acq);
       FAIL() << "no exception";
@@ -373,12 +377,7 @@ TEST(AcquisitionIdentifiedMarkers, EstimatesTheRigFromIdentifiedMarkers)
 {
   IdentifiedCell cell;
   vpSimulatorRobotArm robot(cell.arm);
-  vpProjectiveAcquisitionProcedure procedure(
-      [&](std::vector<int> &ids, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
-        cell.frame(robot.getArmJoints(), partlyHidden, ids, left, right);
-        return true;
-      },
-      cell.sim.getWidth(), cell.sim.getHeight());
+  vpProjectiveAcquisitionProcedure procedure = cell.procedure(robot, partlyHidden);
   EXPECT_THROW(procedure.setMinMarkerVisibility(1.5), vpProjectiveException);
   EXPECT_THROW(procedure.setMinMarkerVisibility(std::nan("")), vpProjectiveException);
   procedure.setMaxAmounts(vpColVector(6, vpMath::rad(20.0)));

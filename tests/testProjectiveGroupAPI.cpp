@@ -139,6 +139,19 @@ protected:
   }
   // X read in the metric frame.
   Eigen::Matrix4d metric(const Eigen::Matrix4d &X) const { return scene.Hpe * X * scene.HpeInv; }
+  // body(k, Hhat, That, q, rng) for 5 random generators k drawn from \e seed and each of the group's amounts q, traced.
+  template <typename Body> void forEachGeneratorAndAmount(long seed, Body body) const
+  {
+    vpUniRand rng(seed);
+    for (int k = 0; k < 5; ++k) {
+      Eigen::Matrix4d That;
+      const Eigen::Matrix4d Hhat = randomGenerator(rng, That);
+      for (double q : Traits::amounts()) {
+        SCOPED_TRACE(::testing::Message() << "generator " << k << ", amount " << q);
+        body(k, Hhat, That, q, rng);
+      }
+    }
+  }
   // A random projective point near the fixation point, unit norm; every fourth one at infinity (last coordinate 0).
   Eigen::Vector4d randomPoint(vpUniRand &rng, int k) const
   {
@@ -164,20 +177,15 @@ TYPED_TEST(GroupAPI, ExpIsTheTrueMotion)
 {
   using Traits = TypeParam;
   using Group = typename Traits::Group;
-  vpUniRand rng(11);
-  for (int k = 0; k < 5; ++k) {
-    Eigen::Matrix4d That;
-    const Eigen::Matrix4d Hhat = this->randomGenerator(rng, That);
-    for (double q : Traits::amounts()) {
-      SCOPED_TRACE(::testing::Message() << "generator " << k << ", amount " << q);
-      const Eigen::Matrix4d E = Group::exp(Hhat, q);
-      const Eigen::Matrix4d T = expm(Eigen::Matrix4d(q * That));
-      EXPECT_LT(relativeError(this->metric(E), T), 1e-9);
-      EXPECT_LT(relativeError(Traits::element(Hhat, q).matrix(), E), 1e-14);
-      EXPECT_LT(relativeError(this->metric(vpProjectiveDisplacement::exp(Hhat, q)), this->metric(E)), 1e-9);
-    }
-    EXPECT_EQ(Group::exp(Hhat, 0.0), Eigen::Matrix4d(Eigen::Matrix4d::Identity()));
-  }
+  this->forEachGeneratorAndAmount(
+      11, [&](int, const Eigen::Matrix4d &Hhat, const Eigen::Matrix4d &That, double q, vpUniRand &) {
+        const Eigen::Matrix4d E = Group::exp(Hhat, q);
+        const Eigen::Matrix4d T = expm(Eigen::Matrix4d(q * That));
+        EXPECT_LT(relativeError(this->metric(E), T), 1e-9);
+        EXPECT_LT(relativeError(Traits::element(Hhat, q).matrix(), E), 1e-14);
+        EXPECT_LT(relativeError(this->metric(vpProjectiveDisplacement::exp(Hhat, q)), this->metric(E)), 1e-9);
+        EXPECT_EQ(Group::exp(Hhat, 0.0), Eigen::Matrix4d(Eigen::Matrix4d::Identity()));
+      });
 }
 
 // log: the inverse of exp, whatever the scale and sign of H (normalisation (12)).
@@ -185,18 +193,13 @@ TYPED_TEST(GroupAPI, LogInvertsExp)
 {
   using Traits = TypeParam;
   using Group = typename Traits::Group;
-  vpUniRand rng(12);
-  for (int k = 0; k < 5; ++k) {
-    Eigen::Matrix4d That;
-    const Eigen::Matrix4d Hhat = this->randomGenerator(rng, That);
-    for (double q : Traits::amounts()) {
-      SCOPED_TRACE(::testing::Message() << "generator " << k << ", amount " << q);
-      const double scale = (k % 2 ? -1.0 : 1.0) * rng.uniform(0.01, 100.0);
-      const vpProjectiveDisplacement H(Eigen::Matrix4d(scale * Group::exp(Hhat, q)));
-      const Eigen::Matrix4d back = Traits::generatorOf(Group::log(H, q));
-      EXPECT_LT(relativeError(this->metric(back), That), 1e-9);
-    }
-  }
+  this->forEachGeneratorAndAmount(
+      12, [&](int k, const Eigen::Matrix4d &Hhat, const Eigen::Matrix4d &That, double q, vpUniRand &rng) {
+        const double scale = (k % 2 ? -1.0 : 1.0) * rng.uniform(0.01, 100.0);
+        const vpProjectiveDisplacement H(Eigen::Matrix4d(scale * Group::exp(Hhat, q)));
+        const Eigen::Matrix4d back = Traits::generatorOf(Group::log(H, q));
+        EXPECT_LT(relativeError(this->metric(back), That), 1e-9);
+      });
 }
 
 // inverse: exp(Hhat, q)^-1 = exp(Hhat, -q), the element's inverse().
@@ -204,18 +207,13 @@ TYPED_TEST(GroupAPI, InverseIsExpOfTheOppositeAmount)
 {
   using Traits = TypeParam;
   using Group = typename Traits::Group;
-  vpUniRand rng(13);
   const Eigen::Matrix4d I = Eigen::Matrix4d::Identity();
-  for (int k = 0; k < 5; ++k) {
-    Eigen::Matrix4d That;
-    const Eigen::Matrix4d Hhat = this->randomGenerator(rng, That);
-    for (double q : Traits::amounts()) {
-      SCOPED_TRACE(::testing::Message() << "generator " << k << ", amount " << q);
-      const vpProjectiveDisplacement H = Traits::element(Hhat, q);
-      EXPECT_LT(relativeError(this->metric(H.inverse().matrix()), this->metric(Group::exp(Hhat, -q))), 1e-9);
-      EXPECT_LT(relativeError(this->metric(Eigen::Matrix4d(Group::exp(Hhat, -q) * H.matrix())), I), 1e-9);
-    }
-  }
+  this->forEachGeneratorAndAmount(
+      13, [&](int, const Eigen::Matrix4d &Hhat, const Eigen::Matrix4d &, double q, vpUniRand &) {
+        const vpProjectiveDisplacement H = Traits::element(Hhat, q);
+        EXPECT_LT(relativeError(this->metric(H.inverse().matrix()), this->metric(Group::exp(Hhat, -q))), 1e-9);
+        EXPECT_LT(relativeError(this->metric(Eigen::Matrix4d(Group::exp(Hhat, -q) * H.matrix())), I), 1e-9);
+      });
 }
 
 // compose: exp(Hhat, a) exp(Hhat, b) = exp(Hhat, a + b), by the elements' operator*() and by the kernels.

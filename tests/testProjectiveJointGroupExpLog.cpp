@@ -40,9 +40,7 @@ using namespace vpProjectiveTest;
 TYPED_TEST(JointGroup, MetricTwistIsTheSimulatorsMotion)
 {
   using Traits = TypeParam;
-  vpUniRand rng(1);
-  for (int k = 0; k < 5; ++k) {
-    const Truth<Traits> truth = this->randomTruth(rng);
+  this->forEachRandomTruth(1, [&](int k, const Truth<Traits> &truth, vpUniRand &rng) {
     const Eigen::Matrix4d That = truth.metricTwist();
     std::vector<double> amounts = Traits::logAmounts();
     amounts.push_back(rng.uniform(-Traits::kRange, Traits::kRange));
@@ -52,7 +50,7 @@ TYPED_TEST(JointGroup, MetricTwistIsTheSimulatorsMotion)
       EXPECT_LT((expm(Eigen::Matrix4d(a * That)) - T).norm(), Traits::kConventionTol);
       EXPECT_LT((Traits::Group::exp(That, a) - T).norm(), Traits::kConventionTol);
     }
-  }
+  });
 }
 
 TYPED_TEST(JointGroup, ExpOfZeroIsIdentity)
@@ -64,22 +62,19 @@ TYPED_TEST(JointGroup, ExpOfZeroIsIdentity)
   const Group none;
   EXPECT_EQ(none.generator(), Eigen::Matrix4d::Zero());
   EXPECT_EQ(none.exp(0.7 * Traits::kRange).matrix(), I);
-  vpUniRand rng(2);
-  for (int k = 0; k < 5; ++k) {
-    const Group G(this->randomTruth(rng).generator());
+  this->forEachRandomTruth(2, [&](int, const Truth<Traits> &truth, vpUniRand &) {
+    const Group G(truth.generator());
     EXPECT_EQ(G.exp(0.0).matrix(), I);
     EXPECT_EQ(Group::exp(G.generator(), 0.0), I);
-  }
+  });
 }
 
 TYPED_TEST(JointGroup, LogRecoversTrueGenerator)
 {
   using Traits = TypeParam;
   using Group = typename Traits::Group;
-  vpUniRand rng(3);
   double worst = 0.0;
-  for (int k = 0; k < 5; ++k) {
-    const Truth<Traits> truth = this->randomTruth(rng);
+  this->forEachRandomTruth(3, [&](int k, const Truth<Traits> &truth, vpUniRand &) {
     const Eigen::Matrix4d Gtrue = truth.generator();
     for (double a : Traits::logAmounts()) {
       SCOPED_TRACE(::testing::Message() << "joint " << k << ", amount " << a);
@@ -105,7 +100,7 @@ TYPED_TEST(JointGroup, LogRecoversTrueGenerator)
       EXPECT_NEAR(D.getRotationAngle(), Traits::imageAngle(a), Traits::kAngleTol);
       EXPECT_NEAR(Hneg.getRotationAngle(), Traits::imageAngle(a), Traits::kAngleTol);
     }
-  }
+  });
   testLog() << "[ stats    ] " << Traits::name() << " log, noise free: worst relative generator error " << worst
             << std::endl;
 }
@@ -115,9 +110,7 @@ TYPED_TEST(JointGroup, ExpAndLogAreInverse)
 {
   using Traits = TypeParam;
   using Group = typename Traits::Group;
-  vpUniRand rng(4);
-  for (int k = 0; k < 5; ++k) {
-    const Truth<Traits> truth = this->randomTruth(rng);
+  this->forEachRandomTruth(4, [&](int k, const Truth<Traits> &truth, vpUniRand &) {
     const Group Gtrue(truth.generator());
     for (double a : Traits::logAmounts()) {
       SCOPED_TRACE(::testing::Message() << "joint " << k << ", amount " << a);
@@ -130,16 +123,14 @@ TYPED_TEST(JointGroup, ExpAndLogAreInverse)
       }
       EXPECT_LT(relativeError(Group::log(Gtrue.exp(a), a).generator(), Gtrue.generator()), 1e-9);
     }
-  }
+  });
 }
 
 TYPED_TEST(JointGroup, GeneratorStructure)
 {
   using Traits = TypeParam;
   using Group = typename Traits::Group;
-  vpUniRand rng(5);
-  for (int k = 0; k < 5; ++k) {
-    const Truth<Traits> truth = this->randomTruth(rng);
+  this->forEachRandomTruth(5, [&](int k, const Truth<Traits> &truth, vpUniRand &) {
     for (double a : Traits::logAmounts()) {
       SCOPED_TRACE(::testing::Message() << "joint " << k << ", amount " << a);
       const Eigen::Matrix4d Hhat = Group::log(vpProjectiveDisplacement(truth.motion(a)), a).generator();
@@ -156,7 +147,7 @@ TYPED_TEST(JointGroup, GeneratorStructure)
       EXPECT_NO_THROW(Group G(Hhat));
       EXPECT_NO_THROW(Group G(toVisp(Hhat)));
     }
-  }
+  });
 }
 
 /*
@@ -169,9 +160,7 @@ TYPED_TEST(JointGroup, OneParameterSubgroup)
   using Traits = TypeParam;
   using Group = typename Traits::Group;
   const Eigen::Matrix4d I = Eigen::Matrix4d::Identity();
-  vpUniRand rng(6);
-  for (int k = 0; k < 5; ++k) {
-    const Truth<Traits> truth = this->randomTruth(rng);
+  this->forEachRandomTruth(6, [&](int k, const Truth<Traits> &truth, vpUniRand &rng) {
     const Group G(truth.generator());
     for (int trial = 0; trial < 5; ++trial) {
       const double x = rng.uniform(-Traits::kRange, Traits::kRange), y = rng.uniform(-Traits::kRange, Traits::kRange);
@@ -184,7 +173,7 @@ TYPED_TEST(JointGroup, OneParameterSubgroup)
       EXPECT_LT(relativeError(G.exp(x).inverse().matrix(), G.exp(-x).matrix()), 1e-9);
       EXPECT_LT(relativeError(Ex, truth.motion(x)), 1e-9);
     }
-  }
+  });
 }
 
 /*
@@ -198,10 +187,9 @@ TYPED_TEST(JointGroup, DexpIsTheDerivativeOfExp)
 {
   using Traits = TypeParam;
   using Group = typename Traits::Group;
-  vpUniRand rng(7);
   double worst = 0.0;
-  for (int k = 0; k < 5; ++k) {
-    const Group G(this->randomTruth(rng).generator());
+  this->forEachRandomTruth(7, [&](int k, const Truth<Traits> &truth, vpUniRand &rng) {
+    const Group G(truth.generator());
     const auto expOf = [&](const Eigen::VectorXd &x) { return stacked(G.exp(x(0)).matrix()); };
     std::vector<double> amounts(1, 0.0);
     for (int trial = 0; trial < 5; ++trial) {
@@ -216,7 +204,7 @@ TYPED_TEST(JointGroup, DexpIsTheDerivativeOfExp)
       EXPECT_LT(relativeError(Eigen::Matrix4d(G.generator() * G.exp(t).matrix()), D), 1e-9);
       EXPECT_LT(relativeError(Eigen::Matrix4d(G.exp(t).matrix() * G.generator()), D), 1e-9);
     }
-  }
+  });
   testLog() << "[ stats    ] " << Traits::name() << " dexp against numeric differentiation: worst relative error "
             << worst << std::endl;
 }
@@ -266,9 +254,8 @@ TYPED_TEST(JointGroup, StaticExpAndActAgreeWithMemberExp)
 {
   using Traits = TypeParam;
   using Group = typename Traits::Group;
-  vpUniRand rng(9);
-  for (int k = 0; k < 5; ++k) {
-    const Group G(this->randomTruth(rng).generator());
+  this->forEachRandomTruth(9, [&](int k, const Truth<Traits> &truth, vpUniRand &rng) {
+    const Group G(truth.generator());
     const Eigen::Matrix4d &Hhat = G.generator();
     const double terms = 2.0 + Hhat.norm() + Hhat.squaredNorm();
     for (int trial = 0; trial < 5; ++trial) {
@@ -285,5 +272,5 @@ TYPED_TEST(JointGroup, StaticExpAndActAgreeWithMemberExp)
           Group::exp(Eigen::Matrix<long double, 4, 4>(Hhat.cast<long double>()), static_cast<long double>(t));
       EXPECT_LT((Eigen::Matrix4d(El.template cast<double>()) - E).norm(), 1e-14 * terms);
     }
-  }
+  });
 }

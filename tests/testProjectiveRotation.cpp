@@ -31,9 +31,7 @@ using namespace vpProjectiveTest;
 TEST(vpProjectiveRotation, LogWithoutEncoderUsesThePositiveImageAngle)
 {
   const Scene scene;
-  vpUniRand rng(21);
-  for (int k = 0; k < 5; ++k) {
-    const Truth<RotationTraits> truth{scene, randomJoint(rng)};
+  forEachRandomTruth<RotationTraits>(scene, 21, [&](int k, const Truth<RotationTraits> &truth, vpUniRand &) {
     const Eigen::Matrix4d Gtrue = truth.generator();
     for (double theta : {0.05, 0.5, 1.2, 2.5, 3.0}) {
       SCOPED_TRACE(::testing::Message() << "axis " << k << ", theta " << theta);
@@ -41,19 +39,18 @@ TEST(vpProjectiveRotation, LogWithoutEncoderUsesThePositiveImageAngle)
       EXPECT_LT(relativeError(vpProjectiveRotation::log(H, 0.0).generator(), Gtrue), 1e-9);
       EXPECT_LT(relativeError(vpProjectiveRotation::log(Hneg, 0.0).generator(), Eigen::Matrix4d(-Gtrue)), 1e-9);
     }
-  }
+  });
 }
 
 TEST(vpProjectiveRotation, ExpIsPeriodic)
 {
   const Scene scene;
-  vpUniRand rng(22);
-  for (int k = 0; k < 5; ++k) {
-    const vpProjectiveRotation R(Truth<RotationTraits>{scene, randomJoint(rng)}.generator());
+  forEachRandomTruth<RotationTraits>(scene, 22, [](int, const Truth<RotationTraits> &truth, vpUniRand &rng) {
+    const vpProjectiveRotation R(truth.generator());
     EXPECT_LT(relativeError(R.exp(2.0 * M_PI).matrix(), Eigen::Matrix4d(Eigen::Matrix4d::Identity())), 1e-9);
     const double t = rng.uniform(-4.0, 4.0);
     EXPECT_LT(relativeError(R.exp(t + 2.0 * M_PI).matrix(), R.exp(t).matrix()), 1e-9);
-  }
+  });
 }
 
 TEST(vpProjectiveRotation, DegenerateInputsThrow)

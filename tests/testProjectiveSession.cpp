@@ -40,7 +40,6 @@ using namespace VISP_NAMESPACE_NAME;
 #endif
 
 using namespace vpProjectiveTest;
-using json = nlohmann::json;
 
 namespace
 {
@@ -50,11 +49,7 @@ const Types kTypes = {vpProjectiveJoint::REVOLUTE, vpProjectiveJoint::REVOLUTE, 
 
 vpColVector joints(double a, double b, double c)
 {
-  vpColVector q(3);
-  q[0] = a;
-  q[1] = b;
-  q[2] = c;
-  return q;
+  return vpColVector({a, b, c});
 }
 
 //! A grey image whose pixels depend on \e seed.

@@ -35,7 +35,6 @@ using namespace VISP_NAMESPACE_NAME;
 #endif
 
 using namespace vpProjectiveTest;
-using json = nlohmann::json;
 
 namespace
 {

@@ -36,7 +36,6 @@ using namespace VISP_NAMESPACE_NAME;
 #endif
 
 using namespace vpProjectiveTest;
-using json = nlohmann::json;
 
 TEST_F(ProjectiveTool, EveryCommandHasHelpAndUsageMistakesExitWithStatus2)
 {

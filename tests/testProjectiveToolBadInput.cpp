@@ -27,7 +27,6 @@ using namespace VISP_NAMESPACE_NAME;
 #endif
 
 using namespace vpProjectiveTest;
-using json = nlohmann::json;
 
 TEST_F(ProjectiveTool, MalformedSessionsExitWithStatus1OneLineAndNoModelFile)
 {

@@ -34,9 +34,7 @@ using namespace vpProjectiveTest;
 TEST(vpProjectiveTranslation, GeneratorIsPerUnitOfEncoder)
 {
   const Scene scene;
-  vpUniRand rng(31);
-  for (int k = 0; k < 5; ++k) {
-    const Truth<TranslationTraits> truth{scene, randomJoint(rng)};
+  forEachRandomTruth<TranslationTraits>(scene, 31, [&](int k, const Truth<TranslationTraits> &truth, vpUniRand &) {
     const Eigen::Matrix4d Gtrue = truth.generator();
     for (double tau : TranslationTraits::logAmounts()) {
       SCOPED_TRACE(::testing::Message() << "direction " << k << ", tau " << tau);
@@ -48,7 +46,7 @@ TEST(vpProjectiveTranslation, GeneratorIsPerUnitOfEncoder)
       EXPECT_LT(relativeError(Eigen::Matrix4d(T.generator() * T.exp(tau).matrix()), T.generator()), 1e-9);
       EXPECT_GT(vpProjectiveRotation::generatorResidual(T.generator()), 0.5);
     }
-  }
+  });
 }
 
 TEST(vpProjectiveTranslation, DegenerateInputsThrow)

@@ -150,6 +150,36 @@ void teach(std::vector<vpFeatureStereoPoint> &sStar, const vpColVector &q, unsig
   }
 }
 
+//! s from the images of the tracked markers at q with noise sigma (the tracker); false if one left an image.
+bool observe(std::vector<vpFeatureStereoPoint> &s, const vpColVector &q, double sigma, vpGaussRand &noise)
+{
+  std::vector<vpImagePoint> l, r;
+  const bool seen = paperTask().images(q, sigma, noise, l, r);
+  for (unsigned int k = 0; k < 3; ++k) {
+    s[k].buildFrom(l[k], r[k]);
+  }
+  return seen;
+}
+
+//! The tutorial's task (configure()) on the tracked markers: features s, and s* taught from \e frames frames at the
+//! target.
+struct SettlingTask {
+  std::vector<vpFeatureStereoPoint> s, sStar;
+  vpServoProjective task;
+
+  SettlingTask(const vpProjectiveRobot &robot, bool settling, unsigned int frames, double sigma, vpGaussRand &noise)
+      : s(3), sStar(3), task()
+  {
+    configure(task, robot, settling);
+    teach(sStar, paperTask().qTarget, frames, sigma, noise);
+    for (unsigned int k = 0; k < 3; ++k) {
+      task.addFeature(s[k], sStar[k]);
+    }
+  }
+  SettlingTask(const SettlingTask &) = delete; // the task points to s and s*
+  SettlingTask &operator=(const SettlingTask &) = delete;
+};
+
 struct ServoRun {
   vpColVector finalJointError;
   int convergedAt = -1; // first iteration with an RMS image error below 2 sigma
@@ -160,27 +190,19 @@ struct ServoRun {
 ServoRun servo(const vpProjectiveRobot &robot, double sigma, vpGaussRand &noise, unsigned int frames, bool settling)
 {
   const PaperTask &w = paperTask();
-  std::vector<vpFeatureStereoPoint> s(3), sStar(3);
-  vpServoProjective task;
-  configure(task, robot, settling);
-  teach(sStar, w.qTarget, frames, sigma, noise);
-  for (unsigned int k = 0; k < 3; ++k) {
-    task.addFeature(s[k], sStar[k]);
-  }
+  SettlingTask t(robot, settling, frames, sigma, noise);
   ServoRun run;
   vpColVector q = w.qStart;
   for (unsigned int it = 0; it <= 40; ++it) {
-    std::vector<vpImagePoint> l, r;
-    if (!w.images(q, sigma, noise, l, r)) {
+    if (!observe(t.s, q, sigma, noise)) {
       run.inView = false;
       break;
     }
     double sum = 0.0;
     for (unsigned int k = 0; k < 3; ++k) {
-      s[k].buildFrom(l[k], r[k]);
-      sum += s[k].error(sStar[k]).sumSquare();
+      sum += t.s[k].error(t.sStar[k]).sumSquare();
     }
-    const vpColVector qdot = task.computeControlLaw(q);
+    const vpColVector qdot = t.task.computeControlLaw(q);
     if (run.convergedAt < 0 && std::sqrt(sum / 12.0) < 2.0 * sigma) {
       run.convergedAt = static_cast<int>(it);
     }
@@ -242,20 +264,11 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
   const double sigma = 0.5;
   const vpProjectiveRobot robot = calibratedRobot(w.setup, sigma, 1);
   vpGaussRand noise(1.0, 0.0, 7);
-  std::vector<vpFeatureStereoPoint> s(3), sStar(3);
-  vpServoProjective task;
-  configure(task, robot, true);
-  teach(sStar, w.qTarget, 16, sigma, noise);
-  for (unsigned int k = 0; k < 3; ++k) {
-    task.addFeature(s[k], sStar[k]);
-  }
+  SettlingTask t(robot, true, 16, sigma, noise);
+  vpServoProjective &task = t.task;
   vpColVector q = w.qStart;
   const auto step = [&]() {
-    std::vector<vpImagePoint> l, r;
-    EXPECT_TRUE(w.images(q, sigma, noise, l, r));
-    for (unsigned int k = 0; k < 3; ++k) {
-      s[k].buildFrom(l[k], r[k]);
-    }
+    EXPECT_TRUE(observe(t.s, q, sigma, noise));
     const vpColVector qdot = task.computeControlLaw(q);
     q = w.setup.arm.integrate(q, qdot, 1.0);
   };
@@ -299,7 +312,7 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
   for (unsigned int i = 0; i < 6; ++i) {
     qTarget2[i] += vpMath::rad(2.0);
   }
-  teach(sStar, qTarget2, 16, sigma, noise);
+  teach(t.sStar, qTarget2, 16, sigma, noise);
   step();
   EXPECT_FALSE(task.getSettlingState().isSettled()) << "the new target went unnoticed";
   EXPECT_TRUE(task.isFollowingPath() || task.getLambda() == 0.5) << "neither the plan nor the full gain";
@@ -343,11 +356,7 @@ TEST(ServoSettling, OffIsLawFortySevenAsIs)
   }
   vpColVector q = w.qStart;
   for (unsigned int it = 0; it < 30; ++it) {
-    std::vector<vpImagePoint> l, r;
-    ASSERT_TRUE(w.images(q, sigma, noise, l, r));
-    for (unsigned int k = 0; k < 3; ++k) {
-      s[k].buildFrom(l[k], r[k]);
-    }
+    ASSERT_TRUE(observe(s, q, sigma, noise));
     if (it == 20) {
       EXPECT_TRUE(toggled.getSettlingState().isSettled());
       toggled.setSettling(false);

@@ -68,6 +68,16 @@ void addRandomTags(vpSimulatorTagRenderer &renderer, long seed, int firstId, int
   }
 }
 
+//! The paper's rig seeing random tags (addRandomTags() from \e seed, ids from \e firstId): the renderer, seeded with
+//! \e seed too, and the stereo pair it renders.
+vpSimulatorTagRenderer renderRandomTags(long seed, int firstId, vpImage<unsigned char> &Il, vpImage<unsigned char> &Ir)
+{
+  vpSimulatorTagRenderer renderer(kRig, seed);
+  addRandomTags(renderer, seed, firstId);
+  renderer.render(Il, Ir);
+  return renderer;
+}
+
 //! Index of the tag of id \e id in \e renderer (-1 if none).
 int indexOf(const vpSimulatorTagRenderer &renderer, int id)
 {
@@ -125,10 +135,8 @@ TEST(SimulatorTagRenderer, EveryCodeIsDecodedAsItsId)
 // (-s/2, -s/2)), half a pixel off on both axes: AprilTag's pixel centres are at (j + 1/2, i + 1/2).
 TEST(StereoAprilTagDetector, ViSPCornerOrderAndHalfPixelOffset)
 {
-  vpSimulatorTagRenderer renderer(kRig, 3);
-  addRandomTags(renderer, 3, 0);
   vpImage<unsigned char> Il, Ir;
-  renderer.render(Il, Ir);
+  vpSimulatorTagRenderer renderer = renderRandomTags(3, 0, Il, Ir);
   vpDetectorAprilTag detector(vpDetectorAprilTag::TAG_36h11);
   detector.detect(Il);
   const std::vector<int> ids = detector.getTagsId();
@@ -156,10 +164,8 @@ TEST(StereoAprilTagDetector, CornersWithinATenthOfAPixel)
   double sum2 = 0.0, worst = 0.0;
   unsigned int count = 0;
   for (long seed = 1; seed <= 6; ++seed) {
-    vpSimulatorTagRenderer renderer(kRig, seed);
-    addRandomTags(renderer, seed, static_cast<int>(seed));
     vpImage<unsigned char> Il, Ir;
-    renderer.render(Il, Ir);
+    vpSimulatorTagRenderer renderer = renderRandomTags(seed, static_cast<int>(seed), Il, Ir);
     vpStereoAprilTagDetector detector(vpDetectorAprilTag::TAG_36h11);
     EXPECT_EQ(detector.detect(Il, Ir), 24u) << "seed " << seed;
     accumulateErrors(renderer, detector, sum2, count, worst);
@@ -178,10 +184,8 @@ TEST(StereoAprilTagDetector, RefinementImprovesTheCorners)
     double sum2 = 0.0, worst = 0.0;
     unsigned int count = 0;
     for (long seed = 1; seed <= 3; ++seed) {
-      vpSimulatorTagRenderer renderer(kRig, seed);
-      addRandomTags(renderer, seed, 0);
       vpImage<unsigned char> Il, Ir;
-      renderer.render(Il, Ir);
+      vpSimulatorTagRenderer renderer = renderRandomTags(seed, 0, Il, Ir);
       vpStereoAprilTagDetector detector;
       detector.setRefinement(refine == 1);
       detector.detect(Il, Ir);
@@ -219,10 +223,8 @@ TEST(StereoAprilTagDetector, CornersUnderBlurLightingAndDecimation)
 // Ids ascending, 4 per tag; left and right points of one id are the images of one corner.
 TEST(StereoAprilTagDetector, IdsAscendingAndPairsConsistent)
 {
-  vpSimulatorTagRenderer renderer(kRig, 5);
-  addRandomTags(renderer, 5, 20);
   vpImage<unsigned char> Il, Ir;
-  renderer.render(Il, Ir);
+  vpSimulatorTagRenderer renderer = renderRandomTags(5, 20, Il, Ir);
   vpStereoAprilTagDetector detector;
   ASSERT_EQ(detector.detect(Il, Ir), 24u);
   const std::vector<int> &ids = detector.getIds();
@@ -268,10 +270,8 @@ TEST(StereoAprilTagDetector, EpipolarCheckDropsAMismatchedPair)
 // the regions finds it again.
 TEST(StereoAprilTagDetector, PredictedRegions)
 {
-  vpSimulatorTagRenderer renderer(kRig, 8);
-  addRandomTags(renderer, 8, 10);
   vpImage<unsigned char> Il, Ir;
-  renderer.render(Il, Ir);
+  vpSimulatorTagRenderer renderer = renderRandomTags(8, 10, Il, Ir);
   vpStereoAprilTagDetector detector;
   ASSERT_EQ(detector.detect(Il, Ir), 24u);
   const std::vector<int> ids = detector.getIds();
@@ -390,10 +390,8 @@ TEST(SimulatorTagRenderer, HiddenAndClippedTags)
 
 TEST(StereoAprilTagDetector, BadInputThrowsAndKeepsTheResults)
 {
-  vpSimulatorTagRenderer renderer(kRig, 6);
-  addRandomTags(renderer, 6, 0);
   vpImage<unsigned char> Il, Ir;
-  renderer.render(Il, Ir);
+  vpSimulatorTagRenderer renderer = renderRandomTags(6, 0, Il, Ir);
   vpStereoAprilTagDetector detector;
   ASSERT_EQ(detector.detect(Il, Ir), 24u);
 

@@ -286,12 +286,26 @@ template <typename Traits> struct Truth {
   }
 };
 
+//! body(k, truth, rng) for 5 random joints k of the group of \e Traits in \e scene, drawn from \e seed.
+template <typename Traits, typename Body> void forEachRandomTruth(const Scene &scene, long seed, Body body)
+{
+  vpUniRand rng(seed);
+  for (int k = 0; k < 5; ++k) {
+    body(k, Truth<Traits>{scene, randomJoint(rng)}, rng);
+  }
+}
+
 template <typename Traits> class JointGroup : public ::testing::Test
 {
 protected:
   const Scene scene;
 
   Truth<Traits> randomTruth(vpUniRand &rng) const { return Truth<Traits>{scene, randomJoint(rng)}; }
+  //! body(k, truth, rng) for 5 random joints k (randomTruth()) drawn from \e seed.
+  template <typename Body> void forEachRandomTruth(long seed, Body body) const
+  {
+    vpProjectiveTest::forEachRandomTruth<Traits>(scene, seed, body);
+  }
 };
 
 struct GroupNames {

@@ -32,6 +32,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include <visp3/projective/vpProjectiveSession.h>
 #include <visp3/projective/vpProjectiveSessionCalibration.h>
 #include <visp3/projective/vpProjectiveSessionWriter.h>
@@ -44,6 +46,9 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace vpProjectiveTest
 {
+//! The JSON of session.json, as the session suites read and edit it.
+using json = nlohmann::json;
+
 //! A fresh temporary folder, removed with the object.
 class TemporaryFolder
 {

@@ -13,19 +13,18 @@
 
 /*!
   \file study-report.cpp
-  \brief The study's report.
+  \brief The study's report: its markdown tables and the report itself (the verdicts in study-summary.cpp, the data
+  files and figures in study-files.cpp).
 */
 
 #include "study-report.h"
 
 #include "study-methods.h"
-#include "figures.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <iomanip>
 #include <map>
 #include <sstream>
@@ -40,6 +39,19 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace study
 {
+namespace
+{
+//! The header of a table of distributions: a quantity's percentiles 5, 50 and 95.
+const char *const kPercentileHeader = "| quantity | 5 % | median | 95 % |\n|---|---|---|---|\n";
+
+//! One row of a table of distributions: \e name, the percentiles 5, 50 and 95 of \e x with \e digits decimals.
+void percentileRow(std::ostream &os, const std::string &name, const std::vector<double> &x, int digits)
+{
+  os << "| " << name << " | " << fixed(percentile(x, 0.05), digits) << " | " << fixed(percentile(x, 0.5), digits)
+     << " | " << fixed(percentile(x, 0.95), digits) << " |\n";
+}
+} // namespace
+
 std::string verdict(const Cell &a, const Cell &b, unsigned int &onlyA, unsigned int &onlyB)
 {
   onlyA = onlyB = 0;
@@ -110,10 +122,9 @@ std::string taskDistribution(const World &world, const std::vector<Task> &tasks)
     ++branches[label];
   }
   std::ostringstream os;
-  os << "| quantity | 5 % | median | 95 % |\n|---|---|---|---|\n";
+  os << kPercentileHeader;
   auto row = [&](const std::string &name, const std::vector<double> &x, int digits) {
-    os << "| " << name << " | " << fixed(percentile(x, 0.05), digits) << " | " << fixed(percentile(x, 0.5), digits)
-       << " | " << fixed(percentile(x, 0.95), digits) << " |\n";
+    percentileRow(os, name, x, digits);
   };
   for (unsigned int i = 0; i < n; ++i) {
     row("abs(q*_" + std::to_string(i) + " - q0_" + std::to_string(i) + ") (" +
@@ -169,186 +180,6 @@ std::string rotationBreakdown(const World &world, const Results &results)
       os << " |\n";
     }
   }
-  return os.str();
-}
-
-void writeSummary(const Results &results, const std::string &filename)
-{
-  std::ofstream out(filename.c_str());
-  out << "case,method,sigma_px,calibration_error,tasks,success_percent,acquisition_failed,lost_view,joint_limit,"
-         "not_converged,other,median_iterations,p95_iterations,median_joint_error_over_floor,median_straightness,"
-         "median_extra_moves,median_joint_path_ratio,median_excursion_deg,max_excursion_deg,no_plan,plans,"
-         "other_branch,mismatch_runs\n";
-  for (const Cell &c : results.cells) {
-    out << c.scenario << "," << c.method << "," << c.sigma << "," << c.calibrationFactor << "," << c.tasks << ","
-        << c.successRate() << "," << c.count("acquisition") << "," << c.count("lost view") << ","
-        << c.count("joint limit") << "," << c.count("not converged") << ","
-        << c.count("exception") + c.count("exploration") << "," << percentile(c.iterations, 0.5) << ","
-        << percentile(c.iterations, 0.95) << "," << percentile(c.errorOverFloor, 0.5) << ","
-        << percentile(c.straightness, 0.5) << "," << percentile(c.moves, 0.5) << ","
-        << percentile(c.jointPathRatio, 0.5) << "," << percentile(c.excursionDeg, 0.5) << ","
-        << percentile(c.excursionDeg, 1.0) << "," << c.noPlan << "," << c.planned << "," << c.otherBranch << ","
-        << c.mismatchRuns << "\n";
-  }
-}
-
-void writeFigures(const World &world, const Results &results, const std::string &dir, std::ostream &log)
-{
-  const std::string csv = dir + "/study-calibration.csv";
-  std::ofstream out(csv.c_str());
-  out << "calibration_error";
-  for (double sigma : world.sigmas) {
-    out << ",ibvs_success_" << sigma << ",ibvs_median_it_" << sigma << ",projective_success_" << sigma
-        << ",projective_median_it_" << sigma << ",broyden_success_" << sigma << ",broyden_median_it_" << sigma;
-  }
-  out << "\n";
-  for (double factor : world.calibrationFactors) {
-    out << factor;
-    for (double sigma : world.sigmas) {
-      const Cell &ibvs = results.get("nominal", "IBVS", sigma, factor);
-      const Cell &proj = results.get("nominal", "projective", sigma);
-      const Cell &broyden = results.get("nominal", "Broyden", sigma);
-      for (const Cell *c : {&ibvs, &proj, &broyden}) {
-        const double it = percentile(c->iterations, 0.5);
-        out << "," << c->successRate() << "," << (std::isfinite(it) ? std::to_string(it) : std::string("NaN"));
-      }
-    }
-    out << "\n";
-  }
-  out.close();
-
-  const char *colors[3] = {"#1f77b4", "#d62728", "#2ca02c"};
-  std::ostringstream gp;
-  gp << "set datafile separator ','\nset datafile missing 'NaN'\nset terminal pngcairo size 900,600\nset key outside "
-        "right\n"
-     << "set xlabel 'calibration error of IBVS (x intrinsics 5 %, rig 2 deg, base 5 deg + 5 cm, links 2 %)'\n"
-     << "set xtics ('0' 0, '1x' 1, '2x' 2, '4x' 4)\nset xrange [-0.2:4.2]\nset grid\n";
-  for (int figure = 0; figure < 2; ++figure) {
-    gp << "set output '" << dir << (figure == 0 ? "/study-success.png'\n" : "/study-iterations.png'\n") << "set title '"
-       << (figure == 0 ? "success rate" : "median iterations to converge (successes)") << " over "
-       << results.tasks.size() << " random tasks'\nset ylabel '" << (figure == 0 ? "success [%]" : "iterations")
-       << "'\n"
-       << (figure == 0 ? "set yrange [0:100]\n" : "set yrange [0:*]\n") << "plot ";
-    for (size_t j = 0; j < world.sigmas.size(); ++j) {
-      const size_t base = 2 + 6 * j + figure;
-      gp << "'" << csv << "' using 1:" << base << " with linespoints lw 2 pt 7 lc rgb '" << colors[j % 3]
-         << "' title 'IBVS, " << world.sigmas[j] << " px', '" << csv << "' using 1:" << base + 2
-         << " with lines lw 2 dt 2 lc rgb '" << colors[j % 3] << "' title 'projective, " << world.sigmas[j] << " px', '"
-         << csv << "' using 1:" << base + 4 << " with lines lw 2 dt 3 lc rgb '" << colors[j % 3] << "' title 'Broyden, "
-         << world.sigmas[j] << " px'" << (j + 1 < world.sigmas.size() ? ", " : "\n");
-    }
-  }
-  app::runGnuplot(gp.str(), dir + "/study-figures.gp", dir + "/study-success.png, " + dir + "/study-iterations.png",
-                  csv, log);
-}
-
-std::string summary(const World &world, const Results &results)
-{
-  std::ostringstream os;
-  const double s0 = world.calibrationFactors.front(), sMax = world.calibrationFactors.back();
-  for (double sigma : world.sigmas) {
-    const Cell &p = results.get("nominal", "projective", sigma);
-    const Cell &b = results.get("nominal", "Broyden", sigma);
-    os << "- **" << sigma << " px**: projective " << fixed(p.successRate(), 1) << " % (" << p.count("acquisition")
-       << " failed acquisitions, " << p.tasks - p.count("success") - p.count("acquisition") << " servo failures). ";
-    for (double factor : world.calibrationFactors) {
-      const Cell &c = results.get("nominal", "IBVS", sigma, factor);
-      unsigned int onlyP, onlyC;
-      const std::string v = verdict(p, c, onlyP, onlyC);
-      os << "It " << v << " " << c.name() << " (" << fixed(c.successRate(), 1) << " %; " << onlyP
-         << " tasks solved by the projective servo only, " << onlyC << " by IBVS only; median iterations "
-         << fixed(percentile(p.iterations, 0.5), 0) << " vs " << fixed(percentile(c.iterations, 0.5), 0)
-         << ", joint error / floor " << fixed(percentile(p.errorOverFloor, 0.5), 2) << " vs "
-         << fixed(percentile(c.errorOverFloor, 0.5), 2) << ", straightness "
-         << fixed(percentile(p.straightness, 0.5), 3) << " vs " << fixed(percentile(c.straightness, 0.5), 3) << "). ";
-    }
-    unsigned int onlyP, onlyB;
-    const std::string v = verdict(p, b, onlyP, onlyB);
-    os << "It " << v << " Broyden (" << fixed(b.successRate(), 1) << " %; " << onlyP << " vs " << onlyB
-       << " tasks; median iterations " << fixed(percentile(p.iterations, 0.5), 0) << " vs "
-       << fixed(percentile(b.iterations, 0.5), 0) << " after Broyden's " << fixed(percentile(b.moves, 0.5), 0)
-       << " exploratory moves, joint error / floor " << fixed(percentile(p.errorOverFloor, 0.5), 2) << " vs "
-       << fixed(percentile(b.errorOverFloor, 0.5), 2) << ", straightness " << fixed(percentile(p.straightness, 0.5), 3)
-       << " vs " << fixed(percentile(b.straightness, 0.5), 3) << ").\n";
-  }
-
-  // Tasks no method solves: what the task set costs every method.
-  const double sigmaMid = world.robustnessSigma;
-  const std::vector<const Cell *> cells = results.select("nominal", sigmaMid);
-  unsigned int none = 0;
-  for (size_t t = 0; t < results.tasks.size(); ++t) {
-    bool any = false;
-    for (const Cell *c : cells) {
-      any = any || c->successes[t];
-    }
-    none += !any;
-  }
-  const Cell &p = results.get("nominal", "projective", sigmaMid);
-  const Cell &i0 = results.get("nominal", "IBVS", sigmaMid, s0);
-  const Cell &iMax = results.get("nominal", "IBVS", sigmaMid, sMax);
-  const Cell &b = results.get("nominal", "Broyden", sigmaMid);
-  os << "\nWhy, at " << sigmaMid << " px:\n"
-     << "- The task set costs every method: " << none << " of " << results.tasks.size()
-     << " tasks are solved by none of them. Their runs stall (the projective servo's unconverged runs end at a "
-        "median "
-     << (p.notConvergedRms.empty() ? std::string("-") : fixed(percentile(p.notConvergedRms, 0.5), 1))
-     << " px RMS, far above the noise: a local minimum of the image error, J^T e = 0 with e != 0, which any "
-        "image-based joint-space law shares), run into a joint limit, or lose a marker. Success falls with the "
-        "task's rotation for every method (table by rotation).\n"
-     << "- Calibrated IBVS with the exact calibration is the ideal: it has the true image Jacobian (checked at start "
-        "up) and noise-free depths. The projective servo has the same Jacobian up to its acquisition's error (its "
-        "model predicts the markers at the targets to a median "
-     << fixed(percentile(p.modelErrorTarget, 0.5), 2)
-     << " px RMS), so it behaves like it: " << fixed(p.successRate(), 1) << " % against " << fixed(i0.successRate(), 1)
-     << " %, plus " << p.count("acquisition") << " failed acquisitions of its own.\n"
-     << "- A calibration error leaves IBVS's Jacobian wrong by a fixed amount: the law still converges while "
-        "the eigenvalues of J_believed^+ J_true keep positive real parts, but its image paths bend (straightness "
-     << fixed(percentile(i0.straightness, 0.5), 3) << " exact, " << fixed(percentile(iMax.straightness, 0.5), 3)
-     << " at " << sMax << "x), it needs more iterations (median " << fixed(percentile(i0.iterations, 0.5), 0) << " to "
-     << fixed(percentile(iMax.iterations, 0.5), 0) << ") and it fails more often (" << fixed(i0.successRate(), 1)
-     << " % to " << fixed(iMax.successRate(), 1) << " %, lost views " << i0.count("lost view") << " to "
-     << iMax.count("lost view")
-     << "). The projective servo has no such error to suffer: its model comes from the "
-        "images it servoes with.\n"
-     << "- Broyden knows nothing but pays " << fixed(percentile(b.moves, 0.5), 0)
-     << " exploratory moves per task, starts from finite differences that noise blurs (sigma / 2 deg per column), "
-        "and learns the Jacobian only along the directions it travels; on large motions its paths bend "
-        "(straightness "
-     << fixed(percentile(b.straightness, 0.5), 3) << ") and it loses markers (" << b.count("lost view")
-     << ") or stalls (" << b.count("not converged") << "). Its accuracy at the end, "
-     << fixed(percentile(b.errorOverFloor, 0.5), 2) << " times the floor against "
-     << fixed(percentile(p.errorOverFloor, 0.5), 2)
-     << " for the projective servo: any Jacobian other than the true one weighs the noise of s* sub-optimally at "
-        "its equilibrium J^T e = 0, which is why the calibrated IBVS ends further from the floor as its error grows "
-        "too ("
-     << fixed(percentile(i0.errorOverFloor, 0.5), 2) << " exact, " << fixed(percentile(iMax.errorOverFloor, 0.5), 2)
-     << " at " << sMax << "x).\n";
-  os << "- Noise: success at";
-  for (double sigma : world.sigmas) {
-    os << " " << sigma << " px: projective " << fixed(results.get("nominal", "projective", sigma).successRate(), 1)
-       << " %, IBVS exact " << fixed(results.get("nominal", "IBVS", sigma, s0).successRate(), 1) << " %, Broyden "
-       << fixed(results.get("nominal", "Broyden", sigma).successRate(), 1) << " %;";
-  }
-  os << " the threshold 2 sigma is harder to reach within the budget at low noise for runs that converge slowly "
-        "(damped near singular targets), so success can rise with the noise. Broyden's Jacobian comes from the "
-        "task's own noisy measurements (6 differences over 2 deg, then updates on the steps), whereas the projective "
-        "model averages 13 images of 7 markers in a bundle adjustment and IBVS estimates nothing.\n";
-  // Per method, over every case and noise level.
-  std::map<std::string, std::array<unsigned int, 3>> alarms; // runs, runs with an alarm, alarm iterations
-  for (const Cell &c : results.cells) {
-    if (c.method.compare(0, 10, "projective") == 0 || c.method == "planned") {
-      std::array<unsigned int, 3> &a = alarms[c.method];
-      a[0] += c.tasks;
-      a[1] += c.mismatchRuns;
-      a[2] += c.mismatchIterations;
-    }
-  }
-  os << "- Model mismatch: no camera moves in this study, so every SERVO_MODEL_MISMATCH is a false alarm (every case "
-        "and noise level):";
-  for (const auto &a : alarms) {
-    os << " " << a.first << " " << a.second[2] << " iterations in " << a.second[1] << " of " << a.second[0] << " runs;";
-  }
-  os << "\n";
   return os.str();
 }
 
@@ -420,10 +251,9 @@ std::string rigDistribution(const std::vector<RigDraw> &draws)
     ++sizes[std::to_string(d.width) + " x " + std::to_string(d.height)];
   }
   std::ostringstream os;
-  os << "| quantity | 5 % | median | 95 % |\n|---|---|---|---|\n";
+  os << kPercentileHeader;
   auto row = [&](const std::string &name, const std::vector<double> &x, int digits) {
-    os << "| " << name << " | " << fixed(percentile(x, 0.05), digits) << " | " << fixed(percentile(x, 0.5), digits)
-       << " | " << fixed(percentile(x, 0.95), digits) << " |\n";
+    percentileRow(os, name, x, digits);
   };
   row("distance to the fixation point (cm)", distance, 0);
   row("baseline (cm)", baseline, 0);

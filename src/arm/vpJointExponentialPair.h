@@ -48,6 +48,22 @@ inline void jointExponentialPair(vpProjectiveJoint::vpJointType type, double dq,
     Einv = Eigen::Matrix4d::Identity() - dq * Hhat;
   }
 }
+
+/*!
+  Chains one joint's pair onto the product of the joints before it along the chain: A = A E, Ainv = Einv Ainv; the
+  first joint (\e first) starts them (A = E, Ainv = Einv, no product with the identity).
+*/
+inline void chainExponentialPair(bool first, const Eigen::Matrix4d &E, const Eigen::Matrix4d &Einv, Eigen::Matrix4d &A,
+                                 Eigen::Matrix4d &Ainv)
+{
+  if (first) {
+    A = E;
+    Ainv = Einv;
+  } else {
+    A = A * E;
+    Ainv = Einv * Ainv;
+  }
+}
 } // namespace vpProjectiveInternal
 
 #endif

@@ -161,13 +161,7 @@ void vpProjectiveArmModel::jointMotions(const JointVector &q, Eigen::Matrix4d *H
       Hhat2.noalias() = Hhat * Hhat;
     }
     vpProjectiveInternal::jointExponentialPair(m_types[i], dq, Hhat, Hhat2, E, Einv);
-    if (k == 0) {
-      A = E;
-      Ainv = Einv;
-    } else {
-      A = A * E;
-      Ainv = Einv * Ainv;
-    }
+    vpProjectiveInternal::chainExponentialPair(k == 0, E, Einv, A, Ainv);
   }
 }
 

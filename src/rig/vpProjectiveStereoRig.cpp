@@ -32,11 +32,6 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
-namespace
-{
-const vpErrorSite at("vpProjectiveStereoRig");
-} // namespace
-
 namespace vpProjectiveInternal
 {
 
@@ -132,14 +127,14 @@ void vpProjectiveStereoRig::updateFocalPlaneBounds()
 void vpProjectiveStereoRig::checkInitialized(const char *where) const
 {
   if (!m_initialized) {
-    fail(vpProjectiveException::notInitializedError, at("") + where,
+    fail(vpProjectiveException::notInitializedError, stereoRigAt("") + where,
          "the rig has no fundamental matrix yet; call estimate() with >= 8 matches or setFundamentalMatrix() first");
   }
 }
 
 void vpProjectiveStereoRig::setFundamentalMatrix(const vpMatrix &F)
 {
-  const std::string where = at("setFundamentalMatrix()");
+  const std::string where = stereoRigAt("setFundamentalMatrix()");
   const Eigen::Matrix3d Fin = toEigen<3, 3>(F, where, "F");
   Eigen::JacobiSVD<Eigen::Matrix3d> svd(Fin, Eigen::ComputeFullU | Eigen::ComputeFullV);
   const Eigen::Vector3d sigma = svd.singularValues();
@@ -173,13 +168,13 @@ void vpProjectiveStereoRig::setFundamentalMatrix(const vpMatrix &F)
 
 void vpProjectiveStereoRig::setProjections(const vpMatrix &P, const vpMatrix &Pp)
 {
-  const std::string where = at("setProjections()");
+  const std::string where = stereoRigAt("setProjections()");
   setProjections(Projection(toEigen<3, 4>(P, where, "P")), Projection(toEigen<3, 4>(Pp, where, "P'")));
 }
 
 void vpProjectiveStereoRig::setProjections(const Projection &P, const Projection &Pp)
 {
-  const std::string where = at("setProjections()");
+  const std::string where = stereoRigAt("setProjections()");
   if (!P.allFinite() || !Pp.allFinite()) {
     fail(vpProjectiveException::nonFiniteValueError, where, "a camera matrix has a NaN or infinite entry");
   }
@@ -302,7 +297,7 @@ Eigen::Vector4d vpProjectiveStereoRig::triangulate(const Eigen::Vector2d &left, 
 
 vpColVector vpProjectiveStereoRig::triangulate(const vpImagePoint &ipLeft, const vpImagePoint &ipRight) const
 {
-  const std::string where = at("triangulate()");
+  const std::string where = stereoRigAt("triangulate()");
   checkInitialized("triangulate()");
   const Eigen::Vector2d l = toEigen(ipLeft, where, "the left image point");
   const Eigen::Vector2d r = toEigen(ipRight, where, "the right image point");
@@ -345,7 +340,7 @@ bool vpProjectiveStereoRig::project(const Eigen::Vector4d &M, Eigen::Vector4d &s
 
 void vpProjectiveStereoRig::project(const vpColVector &M, vpImagePoint &ipLeft, vpImagePoint &ipRight) const
 {
-  const std::string where = at("project()");
+  const std::string where = stereoRigAt("project()");
   checkInitialized("project()");
   const Eigen::Vector4d Me = toEigen<4>(M, where, "the projective point M");
   if (Me.norm() == 0.0) {

@@ -45,7 +45,6 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-const vpErrorSite at("vpProjectiveStereoRig");
 
 Eigen::Vector2d dehomogenize(const Eigen::Vector3d &m)
 {
@@ -145,7 +144,7 @@ Eigen::Matrix3d goldStandardFundamental(const std::vector<Eigen::Vector2d> &l, c
 void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right,
                                      double inlierThreshold)
 {
-  const std::string where = at("estimate()");
+  const std::string where = stereoRigAt("estimate()");
   if (left.size() != right.size()) {
     std::ostringstream os;
     os << "got " << left.size() << " left points but " << right.size() << " right points; pass matched pairs";

@@ -12,7 +12,8 @@
  */
 
 /*
-  Private: the two-view geometry that the rig's estimation and its triangulation share. Not installed.
+  Private: what the rig's estimation and its triangulation share: the two-view geometry and the error site. Not
+  installed.
 */
 
 #ifndef _vpStereoRigGeometry_h_
@@ -22,12 +23,18 @@
 
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
+#include "core/vpProjectiveErrors.h"
+
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
 namespace vpProjectiveInternal
 {
+//! The error site of vpProjectiveStereoRig, whose sources are vpProjectiveStereoRig.cpp and
+//! vpProjectiveStereoRigEstimation.cpp.
+const vpErrorSite stereoRigAt("vpProjectiveStereoRig");
+
 //! The canonical right camera of a unit, canonically signed F with right epipole e': P' = [[e']_x F + e' e'^T | e'].
 vpProjectiveStereoRig::Projection canonicalRightProjection(const Eigen::Matrix3d &F, const Eigen::Vector3d &ep);
 

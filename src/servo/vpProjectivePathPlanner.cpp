@@ -26,6 +26,7 @@
 #include <visp3/projective/vpProjectiveInverseKinematics.h>
 
 #include "core/vpProjectiveErrors.h"
+#include "servo/vpProjectivePathPlannerInternal.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -35,7 +36,6 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-const vpErrorSite at("vpProjectivePathPlanner");
 
 //! Number of configurations drawn in the search of a waypoint.
 const unsigned int kWaypointDraws = 200;
@@ -246,7 +246,7 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::plan(const vpProj
         std::ostringstream os;
         os << "planar group " << g << " names point " << k << " but plan() was given " << points.size()
            << " points; setPlanarGroups() takes indices in the order of plan()'s points";
-        fail(vpProjectiveException::dimensionError, at("plan()"), os.str());
+        fail(vpProjectiveException::dimensionError, plannerAt("plan()"), os.str());
       }
     }
   }
@@ -276,7 +276,7 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::planOnce(const vp
                                                                         const std::vector<Eigen::Vector4d> &points,
                                                                         const std::vector<Eigen::Vector4d> &sStar)
 {
-  const std::string where = at("plan()");
+  const std::string where = plannerAt("plan()");
   const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
   if (q.size() != n || (m_hasLimits && m_qmin.size() != n) || points.size() != sStar.size()) {
     std::ostringstream os;

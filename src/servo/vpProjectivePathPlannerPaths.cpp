@@ -41,7 +41,6 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-const vpErrorSite at("vpProjectivePathPlanner");
 //! Weight of the joint-space line in the tracking of straight image lines (pixels per radian).
 const double kPriorWeight = 30.0;
 } // namespace

@@ -30,17 +30,13 @@
 #include <visp3/projective/vpProjectiveInverseKinematics.h>
 
 #include "core/vpProjectiveErrors.h"
+#include "servo/vpProjectivePathPlannerInternal.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
 using namespace vpProjectiveInternal;
-
-namespace
-{
-const vpErrorSite at("vpProjectivePathPlanner");
-} // namespace
 
 vpProjectivePathPlanner::vpProjectivePathPlanner()
     : m_groups(), m_minGroupArea(0.3), m_groupArea(), m_groupsOn(true), m_hasLimits(false), m_qmin(), m_qmax(),
@@ -55,7 +51,7 @@ vpProjectivePathPlanner::vpProjectivePathPlanner()
 
 void vpProjectivePathPlanner::setJointLimits(const JointVector &qmin, const JointVector &qmax)
 {
-  const std::string where = at("setJointLimits()");
+  const std::string where = plannerAt("setJointLimits()");
   if (qmin.size() != qmax.size()) {
     fail(vpProjectiveException::dimensionError, where, "qmin and qmax must have the same size");
   }
@@ -76,7 +72,7 @@ void vpProjectivePathPlanner::setJointLimits(const JointVector &qmin, const Join
 
 void vpProjectivePathPlanner::setImageSize(unsigned int width, unsigned int height, double border)
 {
-  const std::string where = at("setImageSize()");
+  const std::string where = plannerAt("setImageSize()");
   requireFinite(border, where, "the border");
   if ((width == 0) != (height == 0) || border < 0.0 ||
       (width > 0 && (2.0 * border > width - 1.0 || 2.0 * border > height - 1.0))) {
@@ -93,7 +89,7 @@ void vpProjectivePathPlanner::setImageSize(unsigned int width, unsigned int heig
 void vpProjectivePathPlanner::setMaxJointStep(double step)
 {
   if (!std::isfinite(step) || !(step > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, at("setMaxJointStep()"),
+    fail(vpProjectiveException::invalidValueError, plannerAt("setMaxJointStep()"),
          "the largest joint step between samples must be positive and finite");
   }
   m_maxStep = step;
@@ -102,7 +98,7 @@ void vpProjectivePathPlanner::setMaxJointStep(double step)
 void vpProjectivePathPlanner::setMaxExcursion(double excursion)
 {
   if (!std::isfinite(excursion) || excursion < 0.0) {
-    fail(vpProjectiveException::invalidValueError, at("setMaxExcursion()"),
+    fail(vpProjectiveException::invalidValueError, plannerAt("setMaxExcursion()"),
          "the largest motion of a joint beyond its start and target values must be non-negative and finite");
   }
   m_maxExcursion = excursion;
@@ -122,7 +118,7 @@ double vpProjectivePathPlanner::getMaxExcursion() const
 void vpProjectivePathPlanner::setMaxResidual(double pixels)
 {
   if (!std::isfinite(pixels) || !(pixels > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, at("setMaxResidual()"),
+    fail(vpProjectiveException::invalidValueError, plannerAt("setMaxResidual()"),
          "the largest RMS pixel residual of a target must be positive and finite");
   }
   m_maxResidual = pixels;
@@ -138,7 +134,7 @@ void vpProjectivePathPlanner::setPlanarGroups(const std::vector<std::vector<unsi
       os << "planar group " << g << " has " << groups[g].size() << " points"
          << (sorted.size() < 3 ? "" : ", one of them twice")
          << "; a group lists 3 or more distinct point indices in order around its marker (a tag's 4 corners)";
-      fail(vpProjectiveException::invalidValueError, at("setPlanarGroups()"), os.str());
+      fail(vpProjectiveException::invalidValueError, plannerAt("setPlanarGroups()"), os.str());
     }
   }
   m_groups = groups;
@@ -146,7 +142,7 @@ void vpProjectivePathPlanner::setPlanarGroups(const std::vector<std::vector<unsi
 
 void vpProjectivePathPlanner::setMinGroupArea(double fraction)
 {
-  const std::string where = at("setMinGroupArea()");
+  const std::string where = plannerAt("setMinGroupArea()");
   requireFinite(fraction, where, "the smallest group area");
   if (fraction < 0.0 || fraction > 1.0) {
     fail(vpProjectiveException::invalidValueError, where,
@@ -158,7 +154,7 @@ void vpProjectivePathPlanner::setMinGroupArea(double fraction)
 void vpProjectivePathPlanner::setJointLimitMargin(double fraction)
 {
   if (!std::isfinite(fraction) || fraction < 0.0 || fraction > 0.5) {
-    fail(vpProjectiveException::invalidValueError, at("setJointLimitMargin()"),
+    fail(vpProjectiveException::invalidValueError, plannerAt("setJointLimitMargin()"),
          "the margin is a fraction of each joint's range kept from both limits: in [0, 1/2]");
   }
   m_limitMargin = fraction;
@@ -167,7 +163,7 @@ void vpProjectivePathPlanner::setJointLimitMargin(double fraction)
 void vpProjectivePathPlanner::setNumberOfStarts(unsigned int starts)
 {
   if (starts == 0) {
-    fail(vpProjectiveException::invalidValueError, at("setNumberOfStarts()"),
+    fail(vpProjectiveException::invalidValueError, plannerAt("setNumberOfStarts()"),
          "the inverse kinematics needs at least one random start to look for other branches");
   }
   m_starts = starts;
@@ -177,7 +173,7 @@ void vpProjectivePathPlanner::setControlLaw(const vpGain &gain, const vpServoDam
                                             const vpServoJointLimitAvoidance &avoidance, double errorScale)
 {
   if (!gain || !std::isfinite(errorScale) || !(errorScale > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, at("setControlLaw()"),
+    fail(vpProjectiveException::invalidValueError, plannerAt("setControlLaw()"),
          "give a gain function and a positive, finite error scale (1 for pixels)");
   }
   m_gain = gain;

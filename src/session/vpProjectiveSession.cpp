@@ -24,9 +24,6 @@
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
-#ifdef VISP_HAVE_MODULE_IO
-#include <visp3/io/vpImageIo.h>
-#endif
 
 #include "core/vpProjectiveErrors.h"
 #include "session/vpProjectiveSessionInternal.h"
@@ -421,25 +418,8 @@ void vpProjectiveSession::getImages(unsigned int k, vpImage<unsigned char> &Ilef
   const vpFrame &frame = getFrame(k);
   for (int side = 0; side < 2; ++side) {
     const std::string path = getImagePath(k, side == 0);
-    std::string problem;
-#ifdef VISP_HAVE_MODULE_IO
-    try {
-      vpImageIo::read(side == 0 ? Ileft : Iright, path);
-    } catch (const vpException &e) {
-      problem = e.getStringMessage();
-    } catch (const std::exception &e) {
-      problem = e.what();
-    }
-#else
-    problem = "this ViSP has no io module (vpImageIo)";
-#endif
-    if (problem.empty() && (side == 0 ? Ileft : Iright).getSize() == 0) {
-      problem = "empty image";
-    }
+    const std::string problem = vpProjectiveSessionInternal::readImage(path, side == 0 ? Ileft : Iright);
     if (!problem.empty()) {
-      for (char &c : problem) {
-        c = (c == '\n' || c == '\r') ? ' ' : c;
-      }
       fail(vpProjectiveException::fileError, at("getImages()"),
            "cannot read the " + std::string(side == 0 ? "left" : "right") + " image '" + path + "' of " +
                frameName(k, frame.left) + " (" + problem + "); record the frame again or remove it from session.json");

@@ -46,7 +46,6 @@ using namespace vpProjectiveSessionInternal;
 
 namespace
 {
-const vpErrorSite at("vpProjectiveSessionCalibration");
 
 std::string amountText(vpProjectiveJoint::vpJointType type, double amount)
 {
@@ -72,16 +71,17 @@ vpProjectiveSessionCalibration::vpProjectiveSessionCalibration(const vpMarkerExt
 void vpProjectiveSessionCalibration::setMarkerExtractor(const vpMarkerExtractor &extractor)
 {
   if (!extractor) {
-    fail(vpProjectiveException::invalidValueError, at("setMarkerExtractor()"), "the extraction function is empty");
+    fail(vpProjectiveException::invalidValueError, calibrationAt("setMarkerExtractor()"),
+         "the extraction function is empty");
   }
   m_extractor = extractor;
 }
 
 void vpProjectiveSessionCalibration::setEpipolarThreshold(double pixels)
 {
-  requireFinite(pixels, at("setEpipolarThreshold()"), "the epipolar threshold");
+  requireFinite(pixels, calibrationAt("setEpipolarThreshold()"), "the epipolar threshold");
   if (pixels <= 0.0) {
-    fail(vpProjectiveException::invalidValueError, at("setEpipolarThreshold()"),
+    fail(vpProjectiveException::invalidValueError, calibrationAt("setEpipolarThreshold()"),
          "the epipolar threshold must be positive (pixels)");
   }
   m_epipolar = pixels;
@@ -89,15 +89,15 @@ void vpProjectiveSessionCalibration::setEpipolarThreshold(double pixels)
 
 void vpProjectiveSessionCalibration::setOutlierThreshold(double pixels)
 {
-  m_outlier =
-      nonNegative(pixels, at("setOutlierThreshold()"), "the outlier threshold", "pixels; 0 keeps every observation");
+  m_outlier = nonNegative(pixels, calibrationAt("setOutlierThreshold()"), "the outlier threshold",
+                          "pixels; 0 keeps every observation");
 }
 
 void vpProjectiveSessionCalibration::setCoplanarityThreshold(double pixels)
 {
-  requireFinite(pixels, at("setCoplanarityThreshold()"), "the coplanarity threshold");
+  requireFinite(pixels, calibrationAt("setCoplanarityThreshold()"), "the coplanarity threshold");
   if (pixels <= 0.0) {
-    fail(vpProjectiveException::invalidValueError, at("setCoplanarityThreshold()"),
+    fail(vpProjectiveException::invalidValueError, calibrationAt("setCoplanarityThreshold()"),
          "the coplanarity threshold must be positive (pixels)");
   }
   m_coplanarity = pixels;
@@ -105,9 +105,9 @@ void vpProjectiveSessionCalibration::setCoplanarityThreshold(double pixels)
 
 void vpProjectiveSessionCalibration::setMismatchThreshold(double pixels)
 {
-  requireFinite(pixels, at("setMismatchThreshold()"), "the mismatch threshold");
+  requireFinite(pixels, calibrationAt("setMismatchThreshold()"), "the mismatch threshold");
   if (pixels <= 0.0) {
-    fail(vpProjectiveException::invalidValueError, at("setMismatchThreshold()"),
+    fail(vpProjectiveException::invalidValueError, calibrationAt("setMismatchThreshold()"),
          "the mismatch threshold must be positive (pixels)");
   }
   m_mismatch = pixels;
@@ -122,7 +122,7 @@ void vpProjectiveSessionCalibration::progress(const std::string &line) const
 
 vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiveSession &session)
 {
-  const std::string where = at("calibrate()");
+  const std::string where = calibrationAt("calibrate()");
   const unsigned int n = session.getNumberOfJoints();
   const unsigned int zero = session.getZeroFrame();
   const std::vector<vpProjectiveJoint::vpJointType> &types = session.getJointTypes();

@@ -38,11 +38,6 @@ using namespace VISP_NAMESPACE_NAME;
 using namespace vpProjectiveInternal;
 using namespace vpProjectiveSessionInternal;
 
-namespace
-{
-const vpErrorSite at("vpProjectiveSessionCalibration");
-} // namespace
-
 void vpProjectiveSessionCalibration::checkWritable(const std::string &filename)
 {
   const size_t slash = filename.find_last_of('/');
@@ -50,7 +45,7 @@ void vpProjectiveSessionCalibration::checkWritable(const std::string &filename)
   const std::string probe = folder + ".tmp-" + std::to_string(static_cast<long>(getpid())) + "-probe";
   std::FILE *file = filename.empty() ? nullptr : std::fopen(probe.c_str(), "wb");
   if (file == nullptr) {
-    fail(vpProjectiveException::fileError, at("checkWritable()"),
+    fail(vpProjectiveException::fileError, calibrationAt("checkWritable()"),
          "cannot write the model file '" + filename +
              "': its folder does not exist or is not writable; choose another output path");
   }
@@ -61,10 +56,12 @@ void vpProjectiveSessionCalibration::checkWritable(const std::string &filename)
 void vpProjectiveSessionCalibration::saveModel(const std::string &filename) const
 {
   if (!m_calibrated) {
-    fail(vpProjectiveException::notInitializedError, at("saveModel()"), "no model yet; call calibrate() first");
+    fail(vpProjectiveException::notInitializedError, calibrationAt("saveModel()"),
+         "no model yet; call calibrate() first");
   }
   vpProjectiveSessionInternal::writeAtomically(
-      filename, vpProjectiveModelFile::toString(m_model, m_residual, m_algebraicResidual, m_ids), at("saveModel()"));
+      filename, vpProjectiveModelFile::toString(m_model, m_residual, m_algebraicResidual, m_ids),
+      calibrationAt("saveModel()"));
 }
 
 std::string vpProjectiveSessionCalibration::toString(vpRigState state)
@@ -88,7 +85,7 @@ std::vector<vpProjectiveSessionCalibration::vpFrameCheck>
 vpProjectiveSessionCalibration::check(const vpProjectiveArmModel &model, const std::vector<int> &ids,
                                       const vpProjectiveSession &session)
 {
-  const std::string where = at("check()");
+  const std::string where = calibrationAt("check()");
   if (model.getNumberOfJoints() == 0) {
     fail(vpProjectiveException::notInitializedError, where, "the model is empty; load one first");
   }

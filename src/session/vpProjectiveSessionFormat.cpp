@@ -13,7 +13,7 @@
 
 /*
   The session format's pieces that the reader (vpProjectiveSession.cpp) and the writer share: the PNG header check,
-  a frame's JSON text, the session.json text, the joint a trial moved.
+  the image files, a frame's JSON text, the session.json text, the joint a trial moved.
 */
 
 #include <visp3/projective/vpProjectiveSession.h>
@@ -45,6 +45,63 @@ using namespace vpProjectiveInternal;
 namespace vpProjectiveSessionInternal
 {
 using json = nlohmann::json;
+
+namespace
+{
+//! vpImageIo's call \e io; what it threw, on one line, or that this ViSP has no io module.
+template <typename Io> std::string imageProblem(Io io)
+{
+  std::string problem;
+#ifdef VISP_HAVE_MODULE_IO
+  try {
+    io();
+  } catch (const vpException &e) {
+    problem = e.getStringMessage();
+  } catch (const std::exception &e) {
+    problem = e.what();
+  }
+#else
+  (void)io;
+  problem = "this ViSP has no io module (vpImageIo)";
+#endif
+  for (char &c : problem) {
+    c = (c == '\n' || c == '\r') ? ' ' : c;
+  }
+  return problem;
+}
+
+template <typename Type> std::string writeImageOf(const std::string &path, const vpImage<Type> &I)
+{
+#ifdef VISP_HAVE_MODULE_IO
+  return imageProblem([&] { vpImageIo::write(I, path); });
+#else
+  (void)path;
+  (void)I;
+  return imageProblem(0);
+#endif
+}
+} // namespace
+
+std::string readImage(const std::string &path, vpImage<unsigned char> &I)
+{
+#ifdef VISP_HAVE_MODULE_IO
+  const std::string problem = imageProblem([&] { vpImageIo::read(I, path); });
+#else
+  (void)path;
+  const std::string problem = imageProblem(0);
+#endif
+  return problem.empty() && I.getSize() == 0 ? std::string("empty image") : problem;
+}
+
+std::string writeImage(const std::string &path, const vpImage<unsigned char> &I)
+{
+  return writeImageOf(path, I);
+}
+
+std::string writeImage(const std::string &path, const vpImage<vpRGBa> &I)
+{
+  return writeImageOf(path, I);
+}
 
 std::string checkPngFile(const std::string &path, unsigned int &width, unsigned int &height)
 {

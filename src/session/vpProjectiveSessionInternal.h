@@ -25,11 +25,15 @@
 
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpConfig.h>
+#include <visp3/core/vpImage.h>
+#include <visp3/core/vpRGBa.h>
 #include <Eigen/Core>
 
 #include <visp3/projective/vpProjectiveArmModel.h>
 #include <visp3/projective/vpProjectiveSession.h>
 #include <visp3/projective/vpProjectiveSessionCalibration.h>
+
+#include "core/vpProjectiveErrors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -63,12 +67,27 @@ void appendFrame(std::string &frames, const vpProjectiveSession::vpFrame &frame)
 std::string sessionText(const std::vector<vpProjectiveJoint::vpJointType> &types, const std::string &frames);
 
 /*!
+  Reads the image file \e path into \e I (vpImageIo); returns what is wrong on one line (ViSP's message, an empty
+  image, a ViSP without the io module), empty if nothing.
+*/
+std::string readImage(const std::string &path, vpImage<unsigned char> &I);
+
+//! Writes \e I to the image file \e path (vpImageIo, the format by the extension); returns what is wrong, empty if
+//! nothing.
+std::string writeImage(const std::string &path, const vpImage<unsigned char> &I);
+std::string writeImage(const std::string &path, const vpImage<vpRGBa> &I);
+
+/*!
   Writes \e text to \e path atomically: to a temporary file in the same folder, then renamed over \e path, so that
   \e path is either as before or complete. Throws vpProjectiveException (fileError) naming \e path, \e where.
 */
 void writeAtomically(const std::string &path, const std::string &text, const std::string &where);
 
 // What the calibration and the check of a session share (vpProjectiveSessionMarkers.cpp).
+
+//! The error site of vpProjectiveSessionCalibration, whose sources are vpProjectiveSessionCalibration.cpp,
+//! vpProjectiveSessionMarkers.cpp and vpProjectiveSessionCheck.cpp.
+const vpProjectiveInternal::vpErrorSite calibrationAt("vpProjectiveSessionCalibration");
 
 //! The markers of one frame: identifiers (ascending) and pixels (u, v, u', v').
 struct FrameMarkers {

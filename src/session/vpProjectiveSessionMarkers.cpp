@@ -39,11 +39,6 @@ using namespace VISP_NAMESPACE_NAME;
 using namespace vpProjectiveInternal;
 using namespace vpProjectiveSessionInternal;
 
-namespace
-{
-const vpErrorSite at("vpProjectiveSessionCalibration");
-} // namespace
-
 namespace vpProjectiveSessionInternal
 {
 std::string frameLabel(const vpProjectiveSession &session, unsigned int k)
@@ -178,7 +173,7 @@ vpProjectiveSessionCalibration::aprilTagMarkers(const std::string &family)
     }
     names += (names.empty() ? "" : ", ") + f.first;
   }
-  fail(vpProjectiveException::invalidValueError, at("aprilTagMarkers()"),
+  fail(vpProjectiveException::invalidValueError, calibrationAt("aprilTagMarkers()"),
        "unknown AprilTag family '" + family + "'; use " + names);
 #else
   return [family](const vpImage<unsigned char> &, const vpImage<unsigned char> &, std::vector<int> &,
@@ -195,7 +190,7 @@ vpProjectiveSessionCalibration::markerSource(vpStereoImageSource &images, const 
                                              vpRobot &robot, vpProjectiveSessionWriter *writer)
 {
   if (!extractor) {
-    fail(vpProjectiveException::invalidValueError, at("markerSource()"), "the extraction function is empty");
+    fail(vpProjectiveException::invalidValueError, calibrationAt("markerSource()"), "the extraction function is empty");
   }
   struct State {
     bool started = false;
@@ -219,7 +214,7 @@ vpProjectiveSessionCalibration::markerSource(vpStereoImageSource &images, const 
         std::vector<vpImagePoint> l, r;
         const unsigned int n = extractor(state->Il, state->Ir, ids, l, r);
         if (n != ids.size() || n != l.size() || n != r.size()) {
-          fail(vpProjectiveException::dimensionError, at("markerSource()"),
+          fail(vpProjectiveException::dimensionError, calibrationAt("markerSource()"),
                "the marker extraction must give one identifier, one left and one right point per marker");
         }
         if (!state->started) {

@@ -27,9 +27,6 @@
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpTime.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
-#ifdef VISP_HAVE_MODULE_IO
-#include <visp3/io/vpImageIo.h>
-#endif
 
 #include "core/vpProjectiveErrors.h"
 #include "session/vpProjectiveSessionInternal.h"
@@ -197,17 +194,12 @@ unsigned int vpProjectiveSessionWriter::add(vpProjectiveSession::vpFrameRole rol
   for (int side = 0; side < 2; ++side) {
     const std::string path = m_session.getFolder() + "/" + (side == 0 ? frame.left : frame.right);
     const std::string tmp = temporaryName(path);
-#ifdef VISP_HAVE_MODULE_IO
-    try {
-      vpImageIo::write(side == 0 ? Ileft : Iright, tmp);
-    } catch (const vpException &e) {
+    const std::string problem = vpProjectiveSessionInternal::writeImage(tmp, side == 0 ? Ileft : Iright);
+    if (!problem.empty()) {
       std::remove(tmp.c_str());
       fail(vpProjectiveException::fileError, where,
-           "cannot write the image '" + path + "' (" + e.getStringMessage() + "); check the disk and permissions");
+           "cannot write the image '" + path + "' (" + problem + "); check the disk and permissions");
     }
-#else
-    fail(vpProjectiveException::fileError, where, "this ViSP has no io module (vpImageIo) to write '" + path + "'");
-#endif
     renameOver(tmp, path, where);
   }
   const size_t framesLength = m_frames.size();

@@ -30,6 +30,7 @@
 #include <visp3/projective/vpProjectiveException.h>
 
 #include "core/vpProjectiveConversions.h"
+#include "simulation/vpSimulatorArmInternal.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -47,14 +48,6 @@ Eigen::Matrix4d dhTransform(double theta, double d, double a, double alpha)
   Eigen::Matrix4d T;
   T << ct, -st * ca, st * sa, a * ct, st, ct * ca, -ct * sa, a * st, 0.0, sa, ca, d, 0.0, 0.0, 0.0, 1.0;
   return T;
-}
-
-Eigen::Matrix4d linkTransform(const vpSimulatorArm::vpDHRow &row, double q)
-{
-  if (row.type == vpSimulatorArm::REVOLUTE) {
-    return dhTransform(row.theta + q, row.d, row.a, row.alpha);
-  }
-  return dhTransform(row.theta, row.d + q, row.a, row.alpha);
 }
 
 vpColVector point3(double x, double y, double z)
@@ -86,6 +79,14 @@ public:
   double getD6() const { return d6; }
 };
 } // namespace
+
+Eigen::Matrix4d vpProjectiveInternal::linkTransform(const vpSimulatorArm::vpDHRow &row, double q)
+{
+  if (row.type == vpSimulatorArm::REVOLUTE) {
+    return dhTransform(row.theta + q, row.d, row.a, row.alpha);
+  }
+  return dhTransform(row.theta, row.d + q, row.a, row.alpha);
+}
 
 vpSimulatorArm::vpSimulatorArm(const std::vector<vpDHRow> &dh, const vpHomogeneousMatrix &eMt,
                                const std::vector<vpColVector> &tMarkers, const vpHomogeneousMatrix &wMb)

@@ -25,6 +25,7 @@
 #include <visp3/robot/vpRobotException.h>
 
 #include "core/vpProjectiveErrors.h"
+#include "simulation/vpSimulatorArmInternal.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -35,18 +36,6 @@ using namespace vpProjectiveInternal;
 namespace
 {
 const vpErrorSite at("vpSimulatorRobotArm");
-
-//! One Denavit-Hartenberg row at joint value q: \f$ R_z(\theta) T_z(d) T_x(a) R_x(\alpha) \f$.
-Eigen::Matrix4d linkTransform(const vpSimulatorArm::vpDHRow &row, double q)
-{
-  const double theta = row.theta + (row.type == vpSimulatorArm::REVOLUTE ? q : 0.0);
-  const double d = row.d + (row.type == vpSimulatorArm::PRISMATIC ? q : 0.0);
-  const double ct = std::cos(theta), st = std::sin(theta);
-  const double ca = std::cos(row.alpha), sa = std::sin(row.alpha);
-  Eigen::Matrix4d T;
-  T << ct, -st * ca, st * sa, row.a * ct, st, ct * ca, -ct * sa, row.a * st, 0.0, sa, ca, d, 0.0, 0.0, 0.0, 1.0;
-  return T;
-}
 
 std::string jointValue(double v, bool revolute)
 {

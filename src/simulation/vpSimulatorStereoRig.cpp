@@ -44,8 +44,6 @@ using namespace vpProjectiveInternal;
 
 namespace
 {
-typedef Eigen::Matrix<double, 3, 4> Matrix34d;
-
 bool finiteValue(double x)
 {
   return std::isfinite(x);
@@ -213,7 +211,7 @@ vpSimulatorStereoRig vpSimulatorStereoRig::paperRig(const vpColVector &fixation,
 
 vpMatrix vpSimulatorStereoRig::getLeftMetricProjection() const
 {
-  Matrix34d P = Matrix34d::Zero();
+  vpProjectiveStereoRig::Projection P = vpProjectiveStereoRig::Projection::Zero();
   P.leftCols<3>() = toEigenUnchecked<3, 3>(m_camLeft.get_K());
   return toVisp(P);
 }
@@ -221,7 +219,7 @@ vpMatrix vpSimulatorStereoRig::getLeftMetricProjection() const
 vpMatrix vpSimulatorStereoRig::getRightMetricProjection() const
 {
   const Eigen::Matrix4d rMl = toEigenUnchecked<4, 4>(m_rMl);
-  const Matrix34d P = toEigenUnchecked<3, 3>(m_camRight.get_K()) * rMl.topRows<3>();
+  const vpProjectiveStereoRig::Projection P = toEigenUnchecked<3, 3>(m_camRight.get_K()) * rMl.topRows<3>();
   return toVisp(P);
 }
 

@@ -38,11 +38,6 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
-namespace
-{
-typedef Eigen::Matrix<double, 3, 4> Matrix34d;
-} // namespace
-
 vpMatrix vpSimulatorStereoRig::getProjectiveToEuclidean(const vpProjectiveStereoRig &rig) const
 {
   double residual = 0.0;
@@ -106,8 +101,8 @@ vpMatrix vpSimulatorStereoRig::getProjectiveToEuclidean(const vpProjectiveStereo
                                 std::string(where) + ": the projective rig has no fundamental matrix yet; call its "
                                                      "estimate() or setFundamentalMatrix() first");
   }
-  const Matrix34d P = toEigenUnchecked<3, 4>(rig.getLeftProjection());
-  const Matrix34d Pp = toEigenUnchecked<3, 4>(rig.getRightProjection());
+  const vpProjectiveStereoRig::Projection P = toEigenUnchecked<3, 4>(rig.getLeftProjection());
+  const vpProjectiveStereoRig::Projection Pp = toEigenUnchecked<3, 4>(rig.getRightProjection());
   if (!P.allFinite() || !Pp.allFinite()) {
     throw vpProjectiveException(vpProjectiveException::nonFiniteValueError,
                                 std::string(where) + ": the projective rig's camera matrices contain NaN or infinity");
@@ -136,10 +131,9 @@ vpMatrix vpSimulatorStereoRig::getProjectiveToEuclidean(const vpProjectiveStereo
                                 std::string(where) + ": the projective rig's left camera matrix is not of rank 3");
   }
   n.normalize();
-  Matrix34d Pm = Matrix34d::Zero();
-  Pm.leftCols<3>() = toEigenUnchecked<3, 3>(m_camLeft.get_K());
-  const Matrix34d Pmp = toEigenUnchecked<3, 3>(m_camRight.get_K()) * toEigenUnchecked<4, 4>(m_rMl).topRows<3>();
-  const Matrix34d B = Pp * Pplus * Pm;
+  const vpProjectiveStereoRig::Projection Pm = toEigenUnchecked<3, 4>(getLeftMetricProjection());
+  const vpProjectiveStereoRig::Projection Pmp = toEigenUnchecked<3, 4>(getRightMetricProjection());
+  const vpProjectiveStereoRig::Projection B = Pp * Pplus * Pm;
   const Eigen::Vector3d e = Pp * n;
 
   const std::vector<Eigen::Vector4d> samples = samplePoints();
