@@ -115,14 +115,18 @@ TEST(RigUpdate, MonteCarloOfBumps)
   EXPECT_EQ(falseAlarms, 0);
   EXPECT_LE(median(ratio3), 2.0);
   EXPECT_LE(median(ratio10), 1.2);
-  // Issue 18, point 5: from 3 observation poses, the task refining the rig itself, at its target as often as from 10
-  // (a margin of 2.5 % of the cases: the runs see other noise), and in at least 90 % of the cases. Measured over four
-  // sets of 120 seeds: 97.5 % on these (1000-1119), 95.0 % over 1000-1239, 96.7 % over 2000-2119, 90.8 % over
-  // 5000-5119 (94.4 % of all 480, from 10 poses 93.8 %): the bound is the worst set's, not this one's. There a rig
-  // fitted on 30 noise-free poses gives the same 90.8 % in the same cases: what remains is the re-expressed target,
-  // not the rig (docs/servo.dox, servo_meas_mismatch).
-  EXPECT_GE(reached3 + static_cast<int>(std::ceil(0.025 * n)), reached10);
-  EXPECT_GE(reached3, static_cast<int>(std::ceil(0.90 * n)));
-  EXPECT_GE(reached3OfThose, static_cast<int>(std::ceil(0.93 * unbumpedReached)));
+  // Issue 18, point 5: from 3 observation poses, the task refining the rig itself, at its target about as often as from
+  // 10, and in at least 91 % of the cases. The frames' points are the features' triangulations through the rig before
+  // the bump, the frame of the re-expressed s* (vpServoModelMismatch::getTriangulatedMemory()). Measured over five
+  // sets of 120 seeds, from 3 and from 10 poses: 96.7 % and 95.8 % on these (1000-1119); 96.3 % and 95.8 % over
+  // 1000-1239; 95.0 % and 96.7 % over 2000-2119; 91.7 % and 95.0 % over 5000-5119; 95.8 % and 96.7 % over 7000-7119
+  // (95.0 % and 96.0 % of all 600; the unbumped task 96.3 %). The bounds are the worst set's, not this one's: from 3
+  // within 3.5 % of the cases of from 10 (5000-5119: 4 cases of 120), at least 91 % of the cases, and 91 % of those
+  // where the unbumped task, whose s* has its own noise, ends at the target (5000-5119: 108 of 118). What keeps the
+  // rate below 100 % is mostly the noise of s* itself: a re-expression exact but for that noise would reach 96.7 % of
+  // the 480 cases of the first four sets (docs/servo.dox, servo_meas_mismatch).
+  EXPECT_GE(reached3 + static_cast<int>(std::ceil(0.035 * n)), reached10);
+  EXPECT_GE(reached3, static_cast<int>(std::ceil(0.91 * n)));
+  EXPECT_GE(reached3OfThose, static_cast<int>(std::ceil(0.91 * unbumpedReached)));
   EXPECT_EQ(userUnchanged, cases);
 }

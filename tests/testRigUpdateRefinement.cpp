@@ -14,8 +14,9 @@
 /*
   The task refines a re-registered rig with its own frames (issue 18, point 5; vpServoProjective::setRigRefinement(),
   vpProjectiveRobot::refineRig()): the switch and its settings, nothing without a re-registration, nothing when off or
-  on a robot given as const, a failed refinement leaves everything as it was, features set aside never enter. The
-  rate at which the task then reaches its target is measured by testRigUpdateMonteCarlo.
+  on a robot given as const, a failed refinement leaves everything as it was, features set aside never enter, the
+  frames' points are in the frame of the rig that saw them. The rate at which the task then reaches its target is
+  measured by testRigUpdateMonteCarlo.
 */
 
 #include <gtest/gtest.h>
@@ -264,4 +265,56 @@ TEST(RigRefinement, RobotRefineRigChecksAndFailures)
   EXPECT_EQ(t.robot.getRigGeneration(), 2u);
   EXPECT_EQ(t.robot.getRigUpdateCount(), 1u);
   EXPECT_LT(predictionError(t.robot, t.b, test, quiet, 0.0), before);
+}
+
+// The points the refinement pairs with the images after a re-registration are the old rig's triangulations
+// (vpServoModelMismatch::getTriangulatedMemory()), the frame of the task's re-expressed s*, even for the acquired
+// markers, which the mismatch check remembers as the model's points: these differ from what the rig saw by the arm
+// model's own error (a model acquired at 0.5 px), which a rig fitted to them near the target carried into s*.
+TEST(RigRefinement, PointsInTheFrameOfTheRigThatSawThem)
+{
+  const ArmSetup s = pumaEyeToHand();
+  vpGaussRand noise(1.0, 0.0, 18);
+  vpUniRand rng(18);
+  const vpProjectiveRobot robot = acquiredRobot(s, noise);
+  const vpProjectiveArmModel &model = robot.getModel();
+  const vpColVector q = jointsNear({&s}, rng, vpColVector(s.n(), 0.0), vpMath::rad(20.0));
+  const unsigned int K = static_cast<unsigned int>(model.markers().size());
+  vpProjectiveArmModel::JointVector qe(q.getRows());
+  for (unsigned int i = 0; i < q.getRows(); ++i) {
+    qe(i) = q[i];
+  }
+  vpServoProjectiveData data;
+  vpServoModelMismatch mismatch;
+  mismatch.resize(K);
+  for (int it = 0; it < 3; ++it) { // a task at rest: three agreeing iterations at q, noise-free images
+    data.computeKinematics(model, qe, K);
+    for (unsigned int j = 0; j < K; ++j) {
+      data.computeFeature(model, j, s.imageOf(s.armJoints(q), j));
+    }
+    mismatch.startIteration(model, data);
+    for (unsigned int j = 0; j < K; ++j) {
+      mismatch.observe(j, true);
+    }
+    EXPECT_FALSE(mismatch.endIteration());
+  }
+  double triangulated2 = 0.0, markers2 = 0.0;
+  for (unsigned int j = 0; j < K; ++j) {
+    Eigen::Vector4d M, T, sT, sM;
+    ASSERT_TRUE(mismatch.isMemoryExact(j)) << "marker " << j;
+    ASSERT_TRUE(mismatch.getMemory(j, M) && mismatch.getTriangulatedMemory(j, T));
+    EXPECT_LT((M - model.markers()[j].normalized()).norm(), 1e-12); // the model's point
+    EXPECT_NEAR(T.norm(), 1.0, 1e-12);
+    ASSERT_TRUE(data.predict(T, sT) && data.predict(M, sM));
+    triangulated2 += (sT - s.imageOf(s.armJoints(q), j)).squaredNorm();
+    markers2 += (sM - s.imageOf(s.armJoints(q), j)).squaredNorm();
+  }
+  const double triangulated = std::sqrt(triangulated2 / (4.0 * K)), markers = std::sqrt(markers2 / (4.0 * K));
+  testLog() << "[ measured ] images of the memories at the joints of their triangulations, RMS: triangulated "
+            << triangulated << " px, acquired markers' points " << markers << " px" << std::endl;
+  EXPECT_LT(triangulated, 0.1);           // what that rig saw, but for its epipolar error (0.08 px here)
+  EXPECT_GT(markers, 2.0 * triangulated); // the arm model's own error
+  mismatch.reset();
+  Eigen::Vector4d T;
+  EXPECT_FALSE(mismatch.getTriangulatedMemory(0, T)); // forgotten with the rig (a re-registration)
 }

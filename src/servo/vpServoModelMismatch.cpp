@@ -64,6 +64,7 @@ void vpServoModelMismatch::reset()
     r.recent.setZero();
     r.offset.setZero();
     r.last.setZero();
+    r.triangulated.setZero();
     r.s.setZero();
     r.distance = -1.0;
     r.usable = false;
@@ -143,6 +144,7 @@ bool vpServoModelMismatch::endIteration()
       Eigen::Vector4d sHat;
       r.offset = m_data->predict(r.recent, sHat) ? Eigen::Vector4d(r.s - sHat) : Eigen::Vector4d::Zero();
       r.last = r.s;
+      r.triangulated += r.triangulated.dot(M) < 0.0 ? Eigen::Vector4d(-M) : M;
       if (r.exact) {
         continue;
       }

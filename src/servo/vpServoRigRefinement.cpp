@@ -68,9 +68,12 @@ void vpServoRigRefinement::stop()
 
 void vpServoRigRefinement::start(const vpServoModelMismatch &mismatch, unsigned int nbFeatures)
 {
-  // The mismatch memories are the features' points at the zero reference as seen through the rig of before the move;
-  // a feature without one keeps its point of an earlier re-registration, if any (the same model and features: stop()
-  // forgets them otherwise).
+  // The features' points at the zero reference as the rig of before the move triangulated them (the mismatch check's
+  // mean of the iterations that agreed), not the acquired markers' points: the task re-expresses s* from its point
+  // triangulated through that rig, so the refined rig must map that rig's points, not the arm model's, to the new
+  // images. The model's points differ from them by its own error (0.2 px RMS at a target), which a rig fitted to them
+  // near the target carried into s* (a median 0.3 mm of tool pose, issue 18). A feature without a memory keeps its
+  // point of an earlier re-registration, if any (the same model and features: stop() forgets them otherwise).
   m_active = false;
   m_calls = m_done = m_failed = 0;
   m_X.clear();
@@ -83,7 +86,7 @@ void vpServoRigRefinement::start(const vpServoModelMismatch &mismatch, unsigned 
   unsigned int known = 0;
   for (unsigned int i = 0; i < nbFeatures; ++i) {
     Eigen::Vector4d M;
-    if (i < mismatch.getNumberOfFeatures() && mismatch.getMemory(i, M)) {
+    if (i < mismatch.getNumberOfFeatures() && mismatch.getTriangulatedMemory(i, M)) {
       m_zero[i] = M;
       m_hasZero[i] = 1;
     }

@@ -129,6 +129,22 @@ public:
     M = r.sum.normalized();
     return true;
   }
+  /*!
+    The unit-norm mean of feature \e i's triangulations at the zero reference, \f$ \propto \sum_k \pm H(q_k)^{-1}
+    M_{ik} \f$ over the iterations where it agreed (4x1, no check of \e i), kept for a recognised marker too: the
+    point in the frame of the rig that saw it (where a task's \f$ s^* \f$, triangulated through that rig, lies),
+    which the acquired marker's point is not by the arm model's own error. What vpServoRigRefinement pairs with the
+    images after a re-registration. False (and \e M untouched) without a memory.
+  */
+  bool getTriangulatedMemory(unsigned int i, Eigen::Vector4d &M) const
+  {
+    const vpRecord &r = m_records[i];
+    if (!r.hasMemory || !(r.triangulated.norm() > 0.0)) {
+      return false;
+    }
+    M = r.triangulated.normalized();
+    return true;
+  }
   //! True if feature \e i is remembered as an acquired marker's point (no check of \e i).
   bool isMemoryExact(unsigned int i) const { return m_records[i].hasMemory && m_records[i].exact; }
   //! Number of consecutive disagreeing iterations so far.
@@ -136,15 +152,16 @@ public:
 
 private:
   struct vpRecord {
-    Eigen::Vector4d sum;    // sum of the sign-aligned unit points at the zero reference
-    Eigen::Vector4d s;      // this iteration's value
-    double distance;        // this iteration's distance, -1: not evaluated
-    bool usable;            // this iteration
-    bool hasMemory;         // sum is set
-    bool exact;             // sum is an acquired marker's point (vpProjectiveArmModel::matchMarker())
-    Eigen::Vector4d recent; // the recent memory (unit, zero reference), set with hasMemory
-    Eigen::Vector4d offset; // the feature's value minus the recent memory's image where it last agreed
-    Eigen::Vector4d last;   // the feature's value where it last agreed
+    Eigen::Vector4d sum;          // sum of the sign-aligned unit points at the zero reference
+    Eigen::Vector4d s;            // this iteration's value
+    double distance;              // this iteration's distance, -1: not evaluated
+    bool usable;                  // this iteration
+    bool hasMemory;               // sum is set
+    bool exact;                   // sum is an acquired marker's point (vpProjectiveArmModel::matchMarker())
+    Eigen::Vector4d recent;       // the recent memory (unit, zero reference), set with hasMemory
+    Eigen::Vector4d offset;       // the feature's value minus the recent memory's image where it last agreed
+    Eigen::Vector4d last;         // the feature's value where it last agreed
+    Eigen::Vector4d triangulated; // as sum, of the triangulations only (kept for a marker)
   };
 
   std::vector<vpRecord> m_records;
