@@ -19,6 +19,7 @@
 */
 
 #include <gtest/gtest.h>
+#include <visp3/core/vpThetaUVector.h>
 
 #include "vpSimulatorTestTools.h"
 
@@ -64,6 +65,27 @@ TEST(SimulatorArm, ProductOfExponentialsWithPrismaticJoint)
   const Eigen::Vector3d vp = Tp.topRightCorner<3, 1>();
   EXPECT_LT(Wp.norm(), 1e-15);
   EXPECT_NEAR(vp.norm(), 1.0, 1e-12);
+}
+
+TEST(SimulatorArm, StanfordTableSlidesAlongItsThirdAxis)
+{
+  const vpSimulatorArm arm(vpSimulatorArm::stanfordTable(), vpSimulatorArm::gripperMount(),
+                           vpSimulatorArm::gripperMarkers(), vpHomogeneousMatrix(0.1, 0.0, 0.5, 0.0, 0.3, 0.0));
+  ASSERT_EQ(arm.getNumberOfJoints(), 6u);
+  for (unsigned int i = 0; i < 6; ++i) {
+    EXPECT_EQ(arm.getJointType(i), i == 2 ? vpSimulatorArm::PRISMATIC : vpSimulatorArm::REVOLUTE);
+  }
+  vpUniRand rng(45);
+  expectProductOfExponentials(arm, rng, 50);
+  // Moving the slide alone moves the tool by the same distance without turning it (the wrist is spherical).
+  vpColVector q(6, 0.0);
+  q[1] = 0.6;
+  q[2] = 0.45;
+  const vpHomogeneousMatrix wMt0 = arm.get_wMt(q);
+  q[2] += 0.05;
+  const vpHomogeneousMatrix t0Mt1 = wMt0.inverse() * arm.get_wMt(q);
+  EXPECT_NEAR(t0Mt1.getTranslationVector().frobeniusNorm(), 0.05, 1e-12);
+  EXPECT_LT(std::sqrt(vpThetaUVector(t0Mt1.getRotationMatrix()).sumSquare()), 1e-12);
 }
 
 TEST(SimulatorArm, TwistsAreRotationsAboutJointAxes)

@@ -180,13 +180,7 @@ inline bool recordCalibrationSession(const ArmSetup &s, const std::string &folde
 */
 inline ArmSetup rrprrrEyeToHand()
 {
-  std::vector<vpSimulatorArm::vpDHRow> dh(6);
-  dh[0] = {vpSimulatorArm::REVOLUTE, 0.0, 0.41, 0.0, -M_PI / 2};
-  dh[1] = {vpSimulatorArm::REVOLUTE, 0.0, 0.15, 0.0, M_PI / 2};
-  dh[2] = {vpSimulatorArm::PRISMATIC, 0.0, 0.0, 0.0, 0.0};
-  dh[3] = {vpSimulatorArm::REVOLUTE, 0.0, 0.0, 0.0, -M_PI / 2};
-  dh[4] = {vpSimulatorArm::REVOLUTE, 0.0, 0.0, 0.0, M_PI / 2};
-  dh[5] = {vpSimulatorArm::REVOLUTE, 0.0, 0.10, 0.0, 0.0};
+  const std::vector<vpSimulatorArm::vpDHRow> dh = vpSimulatorArm::stanfordTable();
   vpColVector qRef(6, 0.0);
   qRef[1] = vpMath::rad(60.0);
   qRef[2] = 0.45;

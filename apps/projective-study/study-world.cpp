@@ -78,18 +78,6 @@ void World::box(unsigned int i, double &lower, double &upper) const
   }
 }
 
-std::vector<vpSimulatorArm::vpDHRow> prismaticTable()
-{
-  std::vector<vpSimulatorArm::vpDHRow> dh(6);
-  dh[0] = {vpSimulatorArm::REVOLUTE, 0.0, 0.41, 0.0, -M_PI / 2};
-  dh[1] = {vpSimulatorArm::REVOLUTE, 0.0, 0.15, 0.0, M_PI / 2};
-  dh[2] = {vpSimulatorArm::PRISMATIC, 0.0, 0.0, 0.0, 0.0};
-  dh[3] = {vpSimulatorArm::REVOLUTE, 0.0, 0.0, 0.0, -M_PI / 2};
-  dh[4] = {vpSimulatorArm::REVOLUTE, 0.0, 0.0, 0.0, M_PI / 2};
-  dh[5] = {vpSimulatorArm::REVOLUTE, 0.0, 0.10, 0.0, 0.0};
-  return dh;
-}
-
 vpSimulatorArm shiftedArm(const vpSimulatorArm &arm, const vpColVector &qRef)
 {
   std::vector<vpSimulatorArm::vpDHRow> dh = arm.getDHTable();
@@ -119,7 +107,7 @@ World makeWorld(const std::string &armName)
   } else if (armName == "prismatic") {
     vpColVector qRef = degrees({0, 60, 0, 0, -50, 0});
     qRef[2] = 0.45;
-    const std::vector<vpSimulatorArm::vpDHRow> dh = prismaticTable();
+    const std::vector<vpSimulatorArm::vpDHRow> dh = vpSimulatorArm::stanfordTable();
     vpSimulatorArm arm(dh, vpSimulatorArm::gripperMount(), vpSimulatorArm::gripperMarkers(),
                        basePoseFor(dh, qRef, wMt));
     vpColVector qmin = degrees({-170, -170, 0, -170, -120, -170}), qmax = degrees({170, 170, 0, 170, 120, 170});

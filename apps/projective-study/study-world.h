@@ -103,15 +103,12 @@ struct World {
     uses), zero reference (0, -150, 190, 0, -75, 0) deg with the gripper at the PUMA's zero-reference tool pose, so
     the markers face the paper's rig (the tests' viperEyeToHand()); trials 30, 8, 12, 30, 30, 60 deg.
   - prismatic: the Stanford arm's R-R-P-R-R-R structure (a telescoping prismatic third joint, spherical wrist; see
-    prismaticTable()), zero reference (0, 60 deg, 0.45 m, 0, -50 deg, 0), tool at the same pose; limits +-170 deg,
-    the wrist bend +-120 deg, the slide 0.25-0.75 m; trials 20, 10, 0.04 m, 40, 40, 60 deg.
+    vpSimulatorArm::stanfordTable()), zero reference (0, 60 deg, 0.45 m, 0, -50 deg, 0), tool at the same pose;
+    limits +-170 deg, the wrist bend +-120 deg, the slide 0.25-0.75 m; trials 20, 10, 0.04 m, 40, 40, 60 deg.
   The arm's DH offsets hold the zero reference, so that its q = 0 is the zero reference.
   \exception vpException for another name.
 */
 World makeWorld(const std::string &armName);
-
-//! The R-R-P-R-R-R arm of makeWorld("prismatic"): the Stanford arm's DH structure with a 10 cm wrist-to-flange.
-std::vector<vpSimulatorArm::vpDHRow> prismaticTable();
 
 //! \e arm with its DH offsets moved by qRef (theta of a revolute joint, d of a prismatic one) and its limits with
 //! them, so that the new q = 0 is the old qRef.

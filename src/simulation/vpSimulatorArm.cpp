@@ -181,6 +181,18 @@ std::vector<vpSimulatorArm::vpDHRow> vpSimulatorArm::pumaTable()
   return dh;
 }
 
+std::vector<vpSimulatorArm::vpDHRow> vpSimulatorArm::stanfordTable()
+{
+  std::vector<vpDHRow> dh(6);
+  dh[0] = {REVOLUTE, 0.0, 0.41, 0.0, -M_PI / 2};
+  dh[1] = {REVOLUTE, 0.0, 0.15, 0.0, M_PI / 2};
+  dh[2] = {PRISMATIC, 0.0, 0.0, 0.0, 0.0};
+  dh[3] = {REVOLUTE, 0.0, 0.0, 0.0, -M_PI / 2};
+  dh[4] = {REVOLUTE, 0.0, 0.0, 0.0, M_PI / 2};
+  dh[5] = {REVOLUTE, 0.0, 0.10, 0.0, 0.0};
+  return dh;
+}
+
 vpHomogeneousMatrix vpSimulatorArm::gripperMount()
 {
   vpHomogeneousMatrix eMt;

@@ -112,6 +112,12 @@ public:
   //! The Denavit-Hartenberg table of puma() (its theta entries hold the zero-reference offsets).
   static std::vector<vpDHRow> pumaTable();
   /*!
+    The Denavit-Hartenberg table of an R-R-P-R-R-R arm with the Stanford arm's structure (Scheinman's: a telescoping
+    third joint, spherical wrist): d1 = 0.41 m, d2 = 0.15 m, the third joint's d its prismatic value (metres), 10 cm
+    from the wrist to the flange; no zero-reference offsets. The evaluation's arm with a prismatic joint.
+  */
+  static std::vector<vpDHRow> stanfordTable();
+  /*!
     The 7 gripper markers (3x1, metres) in the tool frame \c t: origin at the gripper's centre, z the approach
     direction; markers 0-2 lie on the face y = -2 cm.
   */
