@@ -115,7 +115,7 @@ TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
   vpServoProjective &task = t.task;
   // Feature indices.
   EXPECT_TRUE(throwsProjective([&] { task.setFeatureTracked(3, false); }, dim, "feature index 3 is out of range"));
-  EXPECT_TRUE(throwsProjective([&] { task.isFeatureTracked(3); }, dim, "the task has 3 features"));
+  EXPECT_TRUE(throwsProjective([&] { task.getFeatureHealth().isFeatureTracked(3); }, dim, "the task has 3 features"));
   EXPECT_TRUE(throwsProjective([&] { task.getReport().getFeatureState(7); }, dim, "feature index 7"));
   EXPECT_TRUE(throwsProjective([&] { task.getFeatureHealth().getEpipolarDistance(3); }, dim, "out of range"));
   EXPECT_TRUE(throwsProjective([&] { task.getFeatureHealth().getPredictionDistance(3); }, dim, "out of range"));
@@ -134,9 +134,12 @@ TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
   EXPECT_TRUE(throwsProjective([&] { task.setRankTolerance(0.0); }, invalid, "(0, 1)"));
   EXPECT_TRUE(throwsProjective([&] { task.setRankTolerance(1.0); }, invalid, "(0, 1)"));
   EXPECT_TRUE(throwsProjective([&] { task.setRankTolerance(nan); }, nonFinite, "rank tolerance"));
-  EXPECT_TRUE(throwsProjective([&] { task.setLargeProjectionThresholds(0.7, 0.1); }, invalid, "0 <= e0 < e1"));
-  EXPECT_TRUE(throwsProjective([&] { task.setLargeProjectionThresholds(-1.0, 1.0); }, invalid, "0 <= e0 < e1"));
-  EXPECT_TRUE(throwsProjective([&] { task.setLargeProjectionThresholds(0.1, nan); }, nonFinite, "e1"));
+  EXPECT_TRUE(throwsProjective([&] { task.getJointLimitAvoidance().setLargeProjectionThresholds(0.7, 0.1); }, invalid,
+                               "0 <= e0 < e1"));
+  EXPECT_TRUE(throwsProjective([&] { task.getJointLimitAvoidance().setLargeProjectionThresholds(-1.0, 1.0); }, invalid,
+                               "0 <= e0 < e1"));
+  EXPECT_TRUE(
+      throwsProjective([&] { task.getJointLimitAvoidance().setLargeProjectionThresholds(0.1, nan); }, nonFinite, "e1"));
   // Joint limits.
   const vpColVector lo(6, -1.0), hi(6, 1.0);
   EXPECT_TRUE(throwsProjective([&] { task.setJointLimits(vpColVector(5, -1.0), hi); }, dim, "qmin has 5 entries"));
@@ -158,11 +161,11 @@ TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
   EXPECT_TRUE(throwsProjective([&] { task.setJointLimits(lo, hi, 0.1, 1.5); }, invalid, "rho1"));
   EXPECT_TRUE(throwsProjective([&] { task.setJointLimits(lo, hi, 0.1, 0.3, -0.1); }, invalid, "lambdaTune"));
   EXPECT_TRUE(throwsProjective([&] { task.setJointLimits(lo, hi, 0.1, 0.3, 1.1); }, invalid, "lambdaTune"));
-  EXPECT_FALSE(task.hasJointLimits()); // nothing was set by the failed calls
+  EXPECT_FALSE(task.getJointLimitAvoidance().hasJointLimits()); // nothing was set by the failed calls
   EXPECT_NO_THROW(task.setJointLimits(lo, hi, 0.5, 1.0, 0.0));
-  EXPECT_TRUE(task.hasJointLimits());
+  EXPECT_TRUE(task.getJointLimitAvoidance().hasJointLimits());
   task.clearJointLimits();
-  EXPECT_FALSE(task.hasJointLimits());
+  EXPECT_FALSE(task.getJointLimitAvoidance().hasJointLimits());
   // Joint limits given before the robot, of the wrong size: caught by computeControlLaw().
   vpServoProjective early;
   std::vector<vpFeatureStereoPoint> f(2), fStar(2);
@@ -215,7 +218,7 @@ TEST_F(ServoProjectivePuma, PrintDimensionSingularValuesAndPseudoInverseThreshol
   // below e0 (here ||e|| < e0 = 1e3 px) P = I - J^+ J, 0 for a full-rank J; at a threshold above sigma_min / sigma_max
   // the right singular vector of sigma_min counts as a null direction.
   t.task.setFeatureTracked(1, true);
-  t.task.setLargeProjectionThresholds(1e3, 2e3);
+  t.task.getJointLimitAvoidance().setLargeProjectionThresholds(1e3, 2e3);
   const Eigen::VectorXd qdotDefault = toEigenV(t.task.computeControlLaw(q));
   EXPECT_EQ(toEigenX(t.task.getReport().getLargeProjectionOperator()).norm(), 0.0);
   const Eigen::MatrixXd J = toEigenX(t.task.getReport().getTaskJacobian());
@@ -357,7 +360,8 @@ TEST_F(ServoProjectivePuma, ReportIsTheLastSuccessfulCallWithItsSettings)
   EXPECT_EQ(after.getTaskJacobian().getCols(), 6u);
   // P is the call's: thresholds changed afterwards do not change it, the next call does.
   const Eigen::MatrixXd P = toEigenX(after.getLargeProjectionOperator());
-  t.task.setLargeProjectionThresholds(1e6, 2e6); // ||e|| below e0: I - J^+ J from the next call on
+  t.task.getJointLimitAvoidance().setLargeProjectionThresholds(1e6,
+                                                               2e6); // ||e|| below e0: I - J^+ J from the next call on
   EXPECT_EQ(toEigenX(t.task.getReport().getLargeProjectionOperator()), P);
   // A copy is a snapshot; a call that throws changes nothing.
   const vpServoProjectiveReport snapshot = t.task.getReport();

@@ -179,9 +179,9 @@ TEST_F(ServoProjectivePuma, NewChecksChangeNothingWhenThereIsNothingToCatch)
   configure(plain.task);
   configure(checked.task);
   EXPECT_EQ(plain.task.getStatus(), vpServoProjective::SERVO_RUNNING);
-  EXPECT_FALSE(plain.task.hasJointLimits());
+  EXPECT_FALSE(plain.task.getJointLimitAvoidance().hasJointLimits());
   for (unsigned int k = 0; k < 3; ++k) {
-    EXPECT_TRUE(plain.task.isFeatureTracked(k));
+    EXPECT_TRUE(plain.task.getFeatureHealth().isFeatureTracked(k));
     EXPECT_EQ(plain.task.getReport().getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
   }
   checked.task.setImageSize(s.width, s.height, 5.0);

@@ -255,12 +255,6 @@ void vpServoProjective::setFeatureTracked(unsigned int i, bool tracked)
   m_health.setFeatureTracked(i, tracked);
 }
 
-bool vpServoProjective::isFeatureTracked(unsigned int i) const
-{
-  checkFeatureIndex(i, "isFeatureTracked()");
-  return m_health.isFeatureTracked(i);
-}
-
 void vpServoProjective::setOutlierThreshold(double pixels)
 {
   m_health.setOutlierThreshold(pixels);
@@ -278,11 +272,6 @@ void vpServoProjective::setJointLimits(const vpColVector &qmin, const vpColVecto
     fail(vpProjectiveException::dimensionError, at("setJointLimits()"), os.str());
   }
   m_jointLimits = limits;
-}
-
-void vpServoProjective::setLargeProjectionThresholds(double e0, double e1)
-{
-  m_jointLimits.setLargeProjectionThresholds(e0, e1);
 }
 
 void vpServoProjective::clearJointLimits()

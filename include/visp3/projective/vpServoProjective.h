@@ -220,8 +220,6 @@ public:
   //! The tracker's verdict on feature \e i (addFeature() order; default true): false sets it aside
   //! (FEATURE_NOT_TRACKED) until set back. \exception vpProjectiveException (dimensionError) on a bad index.
   void setFeatureTracked(unsigned int i, bool tracked);
-  //! The value given by setFeatureTracked() for feature \e i. \exception vpProjectiveException on a bad index.
-  bool isFeatureTracked(unsigned int i) const;
   /*!
     Outlier rejection (pixels; 0, the default, disables it): feature \e i is FEATURE_OUTLIER when its epipolar
     distance \f$ d_F \f$ or, from its second acceptance on, the distance to its prediction, the image of
@@ -277,16 +275,8 @@ public:
   */
   void setJointLimits(const vpColVector &qmin, const vpColVector &qmax, double rho = 0.1, double rho1 = 0.3,
                       double lambdaTune = 0.7);
-  /*!
-    Error norms \f$ 0 \le e_0 < e_1 \f$ (unit of setErrorUnit(); default vpServo's 0.1, 0.7) of the switch between
-    \f$ P_{\|e\|} \f$ (above \f$ e_1 \f$) and \f$ I_n - J^+ J \f$ (below \f$ e_0 \f$), vpServoJointLimitAvoidance.
-    \exception vpProjectiveException if they are not finite or not \f$ 0 \le e_0 < e_1 \f$.
-  */
-  void setLargeProjectionThresholds(double e0, double e1);
   //! Removes the joint limits set by setJointLimits().
   void clearJointLimits();
-  //! True if setJointLimits() is in effect.
-  bool hasJointLimits() const { return m_jointLimits.hasJointLimits(); }
   //@}
 
   /*! \name Features */
@@ -378,11 +368,17 @@ public:
   //@{
   //! The control law and its settings (setDamping(), setMaxJointVelocity(), setPseudoInverseThreshold()).
   const vpServoDampedLeastSquares &getDampedLeastSquares() const { return m_law; }
-  //! The feature checks, their settings (setImageSize(), setOutlierThreshold(), setFeatureTracked()) and their last
-  //! verdicts: active features, each feature's epipolar and prediction distances.
+  //! The feature checks, their settings (setImageSize(), setOutlierThreshold(), setFeatureTracked(): read with
+  //! isFeatureTracked()) and their last verdicts: active features, each feature's epipolar and prediction distances.
   const vpServoFeatureHealth &getFeatureHealth() const { return m_health; }
-  //! The joint-limit avoidance and its settings (setJointLimits(), setLargeProjectionThresholds()).
+  //! The joint-limit avoidance and its settings (setJointLimits(); hasJointLimits(), the thresholds of \f$ P \f$).
   const vpServoJointLimitAvoidance &getJointLimitAvoidance() const { return m_jointLimits; }
+  /*!
+    The same, to change the thresholds \f$ 0 \le e_0 < e_1 \f$ of \f$ P \f$ (unit of setErrorUnit(); default vpServo's
+    0.1, 0.7): vpServoJointLimitAvoidance::setLargeProjectionThresholds(). Its setJointLimits() does not check the
+    robot's joints as the task's does; computeControlLaw() does.
+  */
+  vpServoJointLimitAvoidance &getJointLimitAvoidance() { return m_jointLimits; }
   //@}
 
   //! Prints the task in the layout of vpServo::print(vpServo::ALL) (J in place of Ls), then the status, each
