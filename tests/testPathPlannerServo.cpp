@@ -192,7 +192,7 @@ TEST_F(PathPlanner, PlannedServoCrossesAShortLossOfTheFeatures)
       statuses.push_back(task.getStatus());
       if (task.getStatus() == vpServoProjective::SERVO_OPEN_LOOP) {
         EXPECT_GT(qdot.frobeniusNorm(), 0.0) << "call " << it;
-        EXPECT_TRUE(task.isFollowingPath()) << "call " << it;
+        EXPECT_TRUE(task.getReport().isFollowingPath()) << "call " << it;
         // On the plan: the arm stays within two samples' steps of the sample the call aims at.
         EXPECT_LT((toEigenV(q) -
                    task.getPathPlanner().getPath()[std::min<size_t>(task.getPathPlanner().getPath().size() - 1, it)])

@@ -167,14 +167,14 @@ NoisyRun runNoisy(const ViperWorld &w, vpColVector q, const vpColVector &qTarget
       }
     }
     run.mismatches += task.getStatus() == vpServoProjective::SERVO_MODEL_MISMATCH;
-    if (task.isFollowingPath()) {
+    if (task.getReport().isFollowingPath()) {
       bool inBand = false;
       for (unsigned int i = 0; i < q.size(); ++i) {
         const double band = 0.1 * (w.qmax[i] - w.qmin[i]); // the avoidance's default activation band
         inBand = inBand || q[i] < w.qmin[i] + band || q[i] > w.qmax[i] - band;
       }
       run.followedInBand += inBand;
-      const vpColVector qdot2 = task.getJointLimitVelocity();
+      const vpColVector qdot2 = task.getReport().getJointLimitVelocity();
       for (unsigned int i = 0; i < qdot2.size(); ++i) {
         run.avoidanceWhileFollowing = std::max(run.avoidanceWhileFollowing, std::abs(qdot2[i]));
       }

@@ -158,7 +158,7 @@ TEST(ProjectiveRobot, AcquisitionWithMismatchedMarkers)
       EXPECT_LE(rmsRobust, 2.0 * rms) << "seed " << seed;
       for (unsigned int k = 0; k < trials; ++k) {
         for (unsigned int j = 0; j < K; ++j) {
-          const bool flagged = contaminated.isOutlier(k, j);
+          const bool flagged = contaminated.getAcquisition().isOutlier(k, j);
           found += flagged && donor[k][j] >= 0 ? 1 : 0;
           falseAlarms += flagged && donor[k][j] < 0 ? 1 : 0;
         }
@@ -190,7 +190,7 @@ TEST(ProjectiveRobot, AcquisitionWithMismatchedMarkers)
                                "outlier threshold"));
   EXPECT_TRUE(throwsProjective([&] { robot.setOutlierThreshold(std::numeric_limits<double>::quiet_NaN()); },
                                vpProjectiveException::invalidValueError, "outlier threshold"));
-  EXPECT_TRUE(throwsProjective([&] { robot.isOutlier(0, 0); }, vpProjectiveException::dimensionError,
+  EXPECT_TRUE(throwsProjective([&] { robot.getAcquisition().isOutlier(0, 0); }, vpProjectiveException::dimensionError,
                                "no observation of marker 0 in trial 0"));
   EXPECT_GE(recall, 0.95);
   EXPECT_LE(falseRate, 0.03);

@@ -141,6 +141,29 @@ TEST(ProjectiveRobot, BadInputsThrow)
   EXPECT_TRUE(throwsProjective([&] { again.calibrate(); }, notInit, "zero reference"));
 }
 
+TEST(ProjectiveRobot, SetCalibrationTakesAModelOfItsJointsOnly)
+{
+  const ArmSetup s = pumaEyeToHand();
+  const vpProjectiveRobot model = calibratedRobot(s);
+  const vpColVector q(6, 0.3);
+  // What vpProjectiveAcquisitionProcedure::run() does: a model computed outside the robot, taken as calibrate() would.
+  vpProjectiveRobot other(model.getModel().jointTypes());
+  other.setCalibration(model.getAcquisition(), model.getModel(), model.getCalibrationResidual());
+  EXPECT_TRUE(other.isCalibrated());
+  EXPECT_EQ(other.getCalibrationResidual(), model.getCalibrationResidual());
+  EXPECT_EQ(other.getAlgebraicResidual(), model.getAlgebraicResidual());
+  EXPECT_EQ((other.getDisplacement(q) - model.getDisplacement(q)).frobeniusNorm(), 0.0);
+  // Another arm's model, or a residual that is no RMS error: refused, the robot unchanged.
+  vpProjectiveRobot five(std::vector<vpProjectiveRobot::vpJointType>(5, vpProjectiveRobot::REVOLUTE));
+  EXPECT_TRUE(throwsProjective([&] { five.setCalibration(model.getAcquisition(), model.getModel(), 0.1); },
+                               vpProjectiveException::dimensionError, "different joints"));
+  EXPECT_FALSE(five.isCalibrated());
+  vpProjectiveRobot fresh(model.getModel().jointTypes());
+  EXPECT_TRUE(throwsProjective([&] { fresh.setCalibration(model.getAcquisition(), model.getModel(), -1.0); },
+                               vpProjectiveException::invalidValueError, "residual"));
+  EXPECT_FALSE(fresh.isCalibrated());
+}
+
 TEST(ProjectiveRobot, InverseKinematicsBadInputs)
 {
   const ArmSetup s = pumaEyeToHand();

@@ -71,7 +71,7 @@ TEST(RigUpdate, MismatchPrecedenceAndSwitch)
     const Eigen::Vector4d s2 = run.s[2].getFeature();
     run.s[2].buildFrom(s2(0) + 20.0, s2(1), s2(2), s2(3));
     run.task.computeControlLaw(q);
-    EXPECT_EQ(run.task.getFeatureState(2), vpServoProjective::FEATURE_OUTLIER);
+    EXPECT_EQ(run.task.getReport().getFeatureState(2), vpServoProjective::FEATURE_OUTLIER);
     EXPECT_EQ(run.task.getStatus(), vpServoProjective::SERVO_REDUCED);
     // The camera moves: every feature is an outlier for the health, and a mismatch at the second call.
     vpServoProjective::vpServoStatus first = run.step(b, q, 0.0, t.noise);
@@ -122,8 +122,8 @@ TEST(RigUpdate, TaskReExpressesItsDesiredFeatures)
   for (int it = 0; it < 100; ++it) {
     const vpServoProjective::vpServoStatus st = run.step(b, q, 0.0, t.noise);
     if (it % 10 == 0)
-      testLog() << it << " " << st << " " << run.task.getError().frobeniusNorm() << " " << run.task.getConditionNumber()
-                << std::endl;
+      testLog() << it << " " << st << " " << run.task.getError().frobeniusNorm() << " "
+                << run.task.getReport().getConditionNumber() << std::endl;
   }
   double deg = 0.0, metres = 0.0;
   {

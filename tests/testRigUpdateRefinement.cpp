@@ -174,7 +174,7 @@ TEST(RigRefinement, FeaturesSetAsideNeverEnter)
   const Eigen::Vector4d s2 = b.run.s[2].getFeature();
   b.run.s[2].buildFrom(s2(0) + 20.0, s2(1), s2(2), s2(3));
   b.run.task.computeControlLaw(b.q);
-  ASSERT_EQ(b.run.task.getFeatureState(2), vpServoProjective::FEATURE_OUTLIER);
+  ASSERT_EQ(b.run.task.getReport().getFeatureState(2), vpServoProjective::FEATURE_OUTLIER);
   EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfPoints(), before + N - 1);
   // Feature 4 not tracked: left out too.
   before = b.run.task.getRigRefinementState().getNumberOfPoints();

@@ -103,7 +103,7 @@ struct Task {
 void expectModelData(const vpServoProjective &task, const vpProjectiveArmModel &model,
                      const std::vector<vpFeatureStereoPoint> &s, const std::vector<Eigen::Vector4d> &seen)
 {
-  const vpServoProjectiveData &d = task.getData();
+  const vpServoProjectiveData &d = task.getReport().getData();
   ASSERT_EQ(d.getDisplacementCount(), 1u) << "H(q) computed more than once in one iteration";
   const Eigen::Matrix4d H = model.displacement(d.getJoints());
   // The same exponentials, to rounding (H is far from orthogonal: entries from 1e-3 to 3e2 here, and the rounding of
@@ -174,7 +174,7 @@ TEST(ServoProjectiveData, OneDisplacementPerIterationWithEveryCheckOn)
     EXPECT_GE(checked.task.getFeatureHealth().getPredictionDistance(0), k > 0 ? 0.0 : -1.0); // the prediction test ran
   }
   EXPECT_EQ(checked.task.getStatus(), vpServoProjective::SERVO_REDUCED);
-  EXPECT_EQ(checked.task.getFeatureState(3), vpServoProjective::FEATURE_NOT_TRACKED);
+  EXPECT_EQ(checked.task.getReport().getFeatureState(3), vpServoProjective::FEATURE_NOT_TRACKED);
 
   // Path planning and following.
   Task planned(setup, robot);
@@ -188,7 +188,7 @@ TEST(ServoProjectiveData, OneDisplacementPerIterationWithEveryCheckOn)
     ASSERT_NE(planned.task.getStatus(), vpServoProjective::SERVO_NO_PLAN)
         << planned.task.getPathPlanner().getDescription();
     expectModelData(planned.task, model, planned.s, planned.seen);
-    followed = followed || planned.task.isFollowingPath();
+    followed = followed || planned.task.getReport().isFollowingPath();
   }
   EXPECT_TRUE(followed);
 }

@@ -115,8 +115,8 @@ TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
   vpServoProjective &task = t.task;
   // Feature indices.
   EXPECT_TRUE(throwsProjective([&] { task.setFeatureTracked(3, false); }, dim, "feature index 3 is out of range"));
-  EXPECT_TRUE(throwsProjective([&] { task.isFeatureTracked(3); }, dim, "the task has 3 features"));
-  EXPECT_TRUE(throwsProjective([&] { task.getFeatureState(7); }, dim, "feature index 7"));
+  EXPECT_TRUE(throwsProjective([&] { task.getFeatureHealth().isFeatureTracked(3); }, dim, "the task has 3 features"));
+  EXPECT_TRUE(throwsProjective([&] { task.getReport().getFeatureState(7); }, dim, "feature index 7"));
   EXPECT_TRUE(throwsProjective([&] { task.getFeatureHealth().getEpipolarDistance(3); }, dim, "out of range"));
   EXPECT_TRUE(throwsProjective([&] { task.getFeatureHealth().getPredictionDistance(3); }, dim, "out of range"));
   // Image size.
@@ -134,9 +134,12 @@ TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
   EXPECT_TRUE(throwsProjective([&] { task.setRankTolerance(0.0); }, invalid, "(0, 1)"));
   EXPECT_TRUE(throwsProjective([&] { task.setRankTolerance(1.0); }, invalid, "(0, 1)"));
   EXPECT_TRUE(throwsProjective([&] { task.setRankTolerance(nan); }, nonFinite, "rank tolerance"));
-  EXPECT_TRUE(throwsProjective([&] { task.setLargeProjectionThresholds(0.7, 0.1); }, invalid, "0 <= e0 < e1"));
-  EXPECT_TRUE(throwsProjective([&] { task.setLargeProjectionThresholds(-1.0, 1.0); }, invalid, "0 <= e0 < e1"));
-  EXPECT_TRUE(throwsProjective([&] { task.setLargeProjectionThresholds(0.1, nan); }, nonFinite, "e1"));
+  EXPECT_TRUE(throwsProjective([&] { task.getJointLimitAvoidance().setLargeProjectionThresholds(0.7, 0.1); }, invalid,
+                               "0 <= e0 < e1"));
+  EXPECT_TRUE(throwsProjective([&] { task.getJointLimitAvoidance().setLargeProjectionThresholds(-1.0, 1.0); }, invalid,
+                               "0 <= e0 < e1"));
+  EXPECT_TRUE(
+      throwsProjective([&] { task.getJointLimitAvoidance().setLargeProjectionThresholds(0.1, nan); }, nonFinite, "e1"));
   // Joint limits.
   const vpColVector lo(6, -1.0), hi(6, 1.0);
   EXPECT_TRUE(throwsProjective([&] { task.setJointLimits(vpColVector(5, -1.0), hi); }, dim, "qmin has 5 entries"));
@@ -158,11 +161,11 @@ TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
   EXPECT_TRUE(throwsProjective([&] { task.setJointLimits(lo, hi, 0.1, 1.5); }, invalid, "rho1"));
   EXPECT_TRUE(throwsProjective([&] { task.setJointLimits(lo, hi, 0.1, 0.3, -0.1); }, invalid, "lambdaTune"));
   EXPECT_TRUE(throwsProjective([&] { task.setJointLimits(lo, hi, 0.1, 0.3, 1.1); }, invalid, "lambdaTune"));
-  EXPECT_FALSE(task.hasJointLimits()); // nothing was set by the failed calls
+  EXPECT_FALSE(task.getJointLimitAvoidance().hasJointLimits()); // nothing was set by the failed calls
   EXPECT_NO_THROW(task.setJointLimits(lo, hi, 0.5, 1.0, 0.0));
-  EXPECT_TRUE(task.hasJointLimits());
+  EXPECT_TRUE(task.getJointLimitAvoidance().hasJointLimits());
   task.clearJointLimits();
-  EXPECT_FALSE(task.hasJointLimits());
+  EXPECT_FALSE(task.getJointLimitAvoidance().hasJointLimits());
   // Joint limits given before the robot, of the wrong size: caught by computeControlLaw().
   vpServoProjective early;
   std::vector<vpFeatureStereoPoint> f(2), fStar(2);
@@ -172,7 +175,8 @@ TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
   early.addFeature(f[1], fStar[1]);
   EXPECT_NO_THROW(early.setJointLimits(vpColVector(5, -1.0), vpColVector(5, 1.0)));
   early.setRobot(robot);
-  EXPECT_TRUE(throwsProjective([&] { early.getLargeProjectionOperator(); }, notInit, "computeControlLaw() first"));
+  EXPECT_TRUE(
+      throwsProjective([&] { early.getReport().getLargeProjectionOperator(); }, notInit, "computeControlLaw() first"));
   EXPECT_TRUE(throwsProjective([&] { early.computeControlLaw(q); }, dim, "the joint limits have 5 entries"));
 }
 
@@ -184,7 +188,7 @@ TEST_F(ServoProjectivePuma, PrintDimensionSingularValuesAndPseudoInverseThreshol
   Task t(s, robot, {0, 1, 2}, q, qStar);
   configure(t.task);
   EXPECT_EQ(t.task.getDimension(), 12u);
-  EXPECT_EQ(t.task.getTaskSingularValues().size(), 0u);
+  EXPECT_EQ(t.task.getReport().getTaskSingularValues().size(), 0u);
   std::ostringstream before;
   t.task.print(before);
   EXPECT_NE(before.str().find("3 stereo points"), std::string::npos) << before.str();
@@ -196,8 +200,8 @@ TEST_F(ServoProjectivePuma, PrintDimensionSingularValuesAndPseudoInverseThreshol
   t.task.setJointLimits(vpColVector(6, -M_PI), vpColVector(6, M_PI));
   const Eigen::VectorXd qdot = toEigenV(t.task.computeControlLaw(q));
   // Singular values of the last J (here with feature 1's rows zero), decreasing, as an SVD gives them.
-  const Eigen::VectorXd sv = toEigenV(t.task.getTaskSingularValues());
-  const Eigen::VectorXd expected = singularValues(toEigenX(t.task.getTaskJacobian()));
+  const Eigen::VectorXd sv = toEigenV(t.task.getReport().getTaskSingularValues());
+  const Eigen::VectorXd expected = singularValues(toEigenX(t.task.getReport().getTaskJacobian()));
   ASSERT_EQ(sv.size(), 6);
   EXPECT_LT((sv - expected).norm(), 1e-12 * expected(0));
   EXPECT_LT(sv(5), 1e-9 * sv(0)); // 2 markers: rank 5
@@ -214,19 +218,20 @@ TEST_F(ServoProjectivePuma, PrintDimensionSingularValuesAndPseudoInverseThreshol
   // below e0 (here ||e|| < e0 = 1e3 px) P = I - J^+ J, 0 for a full-rank J; at a threshold above sigma_min / sigma_max
   // the right singular vector of sigma_min counts as a null direction.
   t.task.setFeatureTracked(1, true);
-  t.task.setLargeProjectionThresholds(1e3, 2e3);
+  t.task.getJointLimitAvoidance().setLargeProjectionThresholds(1e3, 2e3);
   const Eigen::VectorXd qdotDefault = toEigenV(t.task.computeControlLaw(q));
-  EXPECT_EQ(toEigenX(t.task.getLargeProjectionOperator()).norm(), 0.0);
-  const Eigen::MatrixXd J = toEigenX(t.task.getTaskJacobian());
+  EXPECT_EQ(toEigenX(t.task.getReport().getLargeProjectionOperator()).norm(), 0.0);
+  const Eigen::MatrixXd J = toEigenX(t.task.getReport().getTaskJacobian());
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
   const double ratio = svd.singularValues()(5) / svd.singularValues()(0);
-  EXPECT_LT((toEigenV(t.task.getTaskSingularValues()) - svd.singularValues()).norm(), 1e-12 * svd.singularValues()(0));
-  EXPECT_NEAR(t.task.getConditionNumber(), 1.0 / ratio, 1e-6 / ratio);
+  EXPECT_LT((toEigenV(t.task.getReport().getTaskSingularValues()) - svd.singularValues()).norm(),
+            1e-12 * svd.singularValues()(0));
+  EXPECT_NEAR(t.task.getReport().getConditionNumber(), 1.0 / ratio, 1e-6 / ratio);
   t.task.setPseudoInverseThreshold(1.5 * ratio);
   EXPECT_EQ(t.task.getDampedLeastSquares().getPseudoInverseThreshold(), 1.5 * ratio);
   EXPECT_EQ(toEigenV(t.task.computeControlLaw(q)), qdotDefault);
   const Eigen::VectorXd v = svd.matrixV().col(5);
-  EXPECT_LT((toEigenX(t.task.getLargeProjectionOperator()) - v * v.transpose()).norm(), 1e-6);
+  EXPECT_LT((toEigenX(t.task.getReport().getLargeProjectionOperator()) - v * v.transpose()).norm(), 1e-6);
   EXPECT_TRUE(throwsProjective([&] { t.task.setPseudoInverseThreshold(1.0); }, vpProjectiveException::invalidValueError,
                                "[0, 1)"));
   EXPECT_TRUE(throwsProjective([&] { t.task.setPseudoInverseThreshold(std::numeric_limits<double>::quiet_NaN()); },
@@ -254,9 +259,10 @@ TEST_F(ServoProjectivePuma, AFailedCallLeavesTheTaskAsItWas)
     t->task.computeControlLaw(q);
   }
   const Eigen::VectorXd e = toEigenV(failing.task.getError());
-  const Eigen::MatrixXd J = toEigenX(failing.task.getTaskJacobian());
-  const double condition = failing.task.getConditionNumber(), ratio = failing.task.getSingularValueRatio();
-  const double damping = failing.task.getDamping(), lambda = failing.task.getLambda();
+  const Eigen::MatrixXd J = toEigenX(failing.task.getReport().getTaskJacobian());
+  const double condition = failing.task.getReport().getConditionNumber(),
+               ratio = failing.task.getReport().getSingularValueRatio();
+  const double damping = failing.task.getReport().getDamping(), lambda = failing.task.getReport().getLambda();
   ASSERT_EQ(failing.task.getStatus(), vpServoProjective::SERVO_REDUCED);
 
   const Eigen::Vector4d m = failing.s[2].getFeature();
@@ -267,14 +273,14 @@ TEST_F(ServoProjectivePuma, AFailedCallLeavesTheTaskAsItWas)
   EXPECT_TRUE(throwsProjective([&] { failing.task.computeControlLaw(q); }, vpProjectiveException::pointAtInfinityError,
                                "feature 2 triangulates onto"));
   EXPECT_EQ(toEigenV(failing.task.getError()), e);
-  EXPECT_EQ(toEigenX(failing.task.getTaskJacobian()), J);
+  EXPECT_EQ(toEigenX(failing.task.getReport().getTaskJacobian()), J);
   EXPECT_EQ(failing.task.getStatus(), vpServoProjective::SERVO_REDUCED);
-  EXPECT_EQ(failing.task.getFeatureState(2), vpServoProjective::FEATURE_NOT_TRACKED);
+  EXPECT_EQ(failing.task.getReport().getFeatureState(2), vpServoProjective::FEATURE_NOT_TRACKED);
   EXPECT_EQ(failing.task.getFeatureHealth().getNumberOfActiveFeatures(), 3u);
-  EXPECT_EQ(failing.task.getConditionNumber(), condition);
-  EXPECT_EQ(failing.task.getSingularValueRatio(), ratio);
-  EXPECT_EQ(failing.task.getDamping(), damping);
-  EXPECT_EQ(failing.task.getLambda(), lambda);
+  EXPECT_EQ(failing.task.getReport().getConditionNumber(), condition);
+  EXPECT_EQ(failing.task.getReport().getSingularValueRatio(), ratio);
+  EXPECT_EQ(failing.task.getReport().getDamping(), damping);
+  EXPECT_EQ(failing.task.getReport().getLambda(), lambda);
   for (unsigned int k = 0; k < 4; ++k) {
     EXPECT_EQ(failing.task.getFeatureHealth().getEpipolarDistance(k),
               twin.task.getFeatureHealth().getEpipolarDistance(k));
@@ -291,7 +297,7 @@ TEST_F(ServoProjectivePuma, AFailedCallLeavesTheTaskAsItWas)
   setFeatures(s, qNext, tracked, twin.s);
   EXPECT_EQ(toEigenV(failing.task.computeControlLaw(qNext)), toEigenV(twin.task.computeControlLaw(qNext)));
   for (unsigned int k = 0; k < 4; ++k) {
-    EXPECT_EQ(failing.task.getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
+    EXPECT_EQ(failing.task.getReport().getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
     EXPECT_GE(failing.task.getFeatureHealth().getPredictionDistance(k), 0.0);
     EXPECT_EQ(failing.task.getFeatureHealth().getPredictionDistance(k),
               twin.task.getFeatureHealth().getPredictionDistance(k))
@@ -311,14 +317,16 @@ TEST_F(ServoProjectivePuma, ConstGettersWriteNothingAndCanBeSharedByThreads)
   t.task.setFeatureTracked(3, false);
   t.task.computeControlLaw(q);
   const vpServoProjective &task = t.task;
-  const double condition = task.getConditionNumber(), ratio = task.getSingularValueRatio();
-  const Eigen::MatrixXd P = toEigenX(task.getLargeProjectionOperator());
-  const Eigen::VectorXd sv = toEigenV(task.getTaskSingularValues());
+  const double condition = task.getReport().getConditionNumber(), ratio = task.getReport().getSingularValueRatio();
+  const Eigen::MatrixXd P = toEigenX(task.getReport().getLargeProjectionOperator());
+  const Eigen::VectorXd sv = toEigenV(task.getReport().getTaskSingularValues());
   bool agree[2] = {true, true};
   auto reader = [&](int k) {
     for (int it = 0; it < 200; ++it) {
-      agree[k] = agree[k] && task.getConditionNumber() == condition && task.getSingularValueRatio() == ratio &&
-                 toEigenX(task.getLargeProjectionOperator()) == P && toEigenV(task.getTaskSingularValues()) == sv;
+      agree[k] = agree[k] && task.getReport().getConditionNumber() == condition &&
+                 task.getReport().getSingularValueRatio() == ratio &&
+                 toEigenX(task.getReport().getLargeProjectionOperator()) == P &&
+                 toEigenV(task.getReport().getTaskSingularValues()) == sv;
     }
   };
   std::thread a(reader, 0), b(reader, 1);
@@ -326,4 +334,40 @@ TEST_F(ServoProjectivePuma, ConstGettersWriteNothingAndCanBeSharedByThreads)
   b.join();
   EXPECT_TRUE(agree[0]);
   EXPECT_TRUE(agree[1]);
+}
+
+TEST_F(ServoProjectivePuma, ReportIsTheLastSuccessfulCallWithItsSettings)
+{
+  vpUniRand rng(22);
+  vpColVector q, qStar;
+  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
+  Task t(s, robot, {0, 1, 2, 3}, q, qStar);
+  // Before the first call: running, every feature active, nothing computed.
+  const vpServoProjectiveReport &report = t.task.getReport();
+  EXPECT_EQ(report.getStatus(), vpServoProjectiveReport::SERVO_RUNNING);
+  EXPECT_EQ(report.getNumberOfFeatures(), 4u);
+  EXPECT_EQ(report.getFeatureState(3), vpServoProjective::FEATURE_ACTIVE);
+  EXPECT_TRUE(
+      throwsProjective([&] { report.getFeatureState(4); }, vpProjectiveException::dimensionError, "4 features"));
+  EXPECT_EQ(report.getTaskSingularValues().size(), 0u);
+
+  t.task.computeControlLaw(q);
+  const vpServoProjectiveReport &after = t.task.getReport();
+  EXPECT_EQ(after.getStatus(), t.task.getStatus());
+  EXPECT_EQ(toEigenV(after.getError()), toEigenV(t.task.getError()));
+  EXPECT_EQ(after.getNumberOfActiveFeatures(), 4u);
+  EXPECT_EQ(after.getTaskJacobian().getRows(), 16u);
+  EXPECT_EQ(after.getTaskJacobian().getCols(), 6u);
+  // P is the call's: thresholds changed afterwards do not change it, the next call does.
+  const Eigen::MatrixXd P = toEigenX(after.getLargeProjectionOperator());
+  t.task.getJointLimitAvoidance().setLargeProjectionThresholds(1e6,
+                                                               2e6); // ||e|| below e0: I - J^+ J from the next call on
+  EXPECT_EQ(toEigenX(t.task.getReport().getLargeProjectionOperator()), P);
+  // A copy is a snapshot; a call that throws changes nothing.
+  const vpServoProjectiveReport snapshot = t.task.getReport();
+  EXPECT_THROW(t.task.computeControlLaw(vpColVector(5, 0.0)), vpProjectiveException);
+  EXPECT_EQ(toEigenV(t.task.getReport().getError()), toEigenV(snapshot.getError()));
+  t.task.computeControlLaw(q);
+  EXPECT_GT((toEigenX(t.task.getReport().getLargeProjectionOperator()) - P).norm(), 1e-3);
+  EXPECT_EQ(toEigenX(snapshot.getLargeProjectionOperator()), P);
 }

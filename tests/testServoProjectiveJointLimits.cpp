@@ -153,11 +153,11 @@ TEST_F(ServoProjectivePuma, LargeProjectionOperatorAndJointLimitTaskMatchViSP)
       t.task.setDamping(c == 2 ? 1.0 : 0.0, c == 2 ? 10.0 : 0.0);
       t.task.setJointLimits(qmin, qmax, rho, rho1);
       const Eigen::VectorXd qdot = toEigenV(t.task.computeControlLaw(q));
-      const Eigen::VectorXd q2 = toEigenV(t.task.getJointLimitVelocity());
+      const Eigen::VectorXd q2 = toEigenV(t.task.getReport().getJointLimitVelocity());
       const Eigen::VectorXd dq = qdot - q2; // no saturation
-      const Eigen::MatrixXd P = toEigenX(t.task.getLargeProjectionOperator());
+      const Eigen::MatrixXd P = toEigenX(t.task.getReport().getLargeProjectionOperator());
       const Eigen::VectorXd e = toEigenV(t.task.getError());
-      const Eigen::MatrixXd J = toEigenX(t.task.getTaskJacobian());
+      const Eigen::MatrixXd J = toEigenX(t.task.getReport().getTaskJacobian());
       const Eigen::VectorXd b = J.transpose() * e;
       std::ostringstream what;
       what << "case " << c << " pair " << p << ", ||e|| = " << e.norm();

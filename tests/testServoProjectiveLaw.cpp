@@ -44,7 +44,7 @@ TEST_F(ServoProjectivePuma, ControlLawIsPseudoInverseAwayFromSingularities)
     task.task.setDamping(0.0, 0.0);
     const vpColVector qdot = task.task.computeControlLaw(q);
     const Eigen::VectorXd e = toEigenV(task.task.getError());
-    const Eigen::MatrixXd J = toEigenX(task.task.getTaskJacobian());
+    const Eigen::MatrixXd J = toEigenX(task.task.getReport().getTaskJacobian());
     ASSERT_EQ(e.size(), 28);
     ASSERT_EQ(J.rows(), 28);
     ASSERT_EQ(J.cols(), 6);
@@ -55,19 +55,19 @@ TEST_F(ServoProjectivePuma, ControlLawIsPseudoInverseAwayFromSingularities)
       EXPECT_LT((J.middleRows(4 * k, 4) - Jk).norm() / Jk.norm(), 1e-9) << "marker " << k;
     }
     const Eigen::VectorXd sv = singularValues(J);
-    EXPECT_NEAR(task.task.getConditionNumber(), sv(0) / sv(5), 1e-9 * sv(0) / sv(5));
+    EXPECT_NEAR(task.task.getReport().getConditionNumber(), sv(0) / sv(5), 1e-9 * sv(0) / sv(5));
     // qdot = -lambda J^+ e with ViSP's pseudo-inverse.
-    const Eigen::VectorXd expected = -0.4 * toEigenX(task.task.getTaskJacobian().pseudoInverse()) * e;
-    EXPECT_EQ(task.task.getDamping(), 0.0);
-    EXPECT_DOUBLE_EQ(task.task.getLambda(), 0.4);
-    EXPECT_FALSE(task.task.isSaturated());
+    const Eigen::VectorXd expected = -0.4 * toEigenX(task.task.getReport().getTaskJacobian().pseudoInverse()) * e;
+    EXPECT_EQ(task.task.getReport().getDamping(), 0.0);
+    EXPECT_DOUBLE_EQ(task.task.getReport().getLambda(), 0.4);
+    EXPECT_FALSE(task.task.getReport().isSaturated());
     EXPECT_LT((toEigenV(qdot) - expected).norm() / expected.norm(), 1e-9);
     // Below sigma_0 the documented damping: mu^2 = mu_max^2 (1 - (sigma_min / sigma_0)^2).
     const double sigma0 = 2.0 * sv(5), muMax = 0.5 * sv(5);
     task.task.setDamping(sigma0, muMax);
     const Eigen::VectorXd qdotDamped = toEigenV(task.task.computeControlLaw(q));
     const double mu2 = muMax * muMax * (1.0 - 0.25);
-    EXPECT_NEAR(task.task.getDamping(), std::sqrt(mu2), 1e-9 * std::sqrt(mu2));
+    EXPECT_NEAR(task.task.getReport().getDamping(), std::sqrt(mu2), 1e-9 * std::sqrt(mu2));
     const Eigen::MatrixXd A = J.transpose() * J + mu2 * Eigen::MatrixXd::Identity(6, 6);
     const Eigen::VectorXd dls = -0.4 * A.ldlt().solve(J.transpose() * e);
     EXPECT_LT((qdotDamped - dls).norm() / dls.norm(), 1e-9);
@@ -75,7 +75,7 @@ TEST_F(ServoProjectivePuma, ControlLawIsPseudoInverseAwayFromSingularities)
     // Just above sigma_min: no damping again.
     task.task.setDamping(0.99 * sv(5), muMax);
     task.task.computeControlLaw(q);
-    EXPECT_EQ(task.task.getDamping(), 0.0);
+    EXPECT_EQ(task.task.getReport().getDamping(), 0.0);
   }
 }
 
@@ -95,10 +95,11 @@ TEST_F(ServoProjectivePuma, AdaptiveGain)
     const Eigen::VectorXd qdot = toEigenV(task.task.computeControlLaw(q));
     const Eigen::VectorXd e = toEigenV(task.task.getError());
     const double expectedLambda = gain.value_const(e.cwiseAbs().maxCoeff());
-    EXPECT_NEAR(task.task.getLambda(), expectedLambda, 1e-15);
-    const Eigen::VectorXd expected = -expectedLambda * toEigenX(task.task.getTaskJacobian().pseudoInverse()) * e;
+    EXPECT_NEAR(task.task.getReport().getLambda(), expectedLambda, 1e-15);
+    const Eigen::VectorXd expected =
+        -expectedLambda * toEigenX(task.task.getReport().getTaskJacobian().pseudoInverse()) * e;
     EXPECT_LT((qdot - expected).norm() / expected.norm(), 1e-9);
-    (pass == 0 ? lambdaFar : lambdaNear) = task.task.getLambda();
+    (pass == 0 ? lambdaFar : lambdaNear) = task.task.getReport().getLambda();
     // The three-value overload is the same gain.
     task.task.setLambda(2.0, 0.2, 0.05);
     EXPECT_LT((toEigenV(task.task.computeControlLaw(q)) - qdot).norm(), 1e-12 * qdot.norm());
@@ -116,17 +117,17 @@ TEST_F(ServoProjectivePuma, VelocitySaturationKeepsDirection)
   randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(15.0), q, qStar);
   Task task(s, robot, {0, 1, 2}, q, qStar);
   const Eigen::VectorXd free = toEigenV(task.task.computeControlLaw(q));
-  EXPECT_FALSE(task.task.isSaturated());
+  EXPECT_FALSE(task.task.getReport().isSaturated());
   const double cap = 0.25 * free.cwiseAbs().maxCoeff();
   task.task.setMaxJointVelocity(cap);
   const Eigen::VectorXd capped = toEigenV(task.task.computeControlLaw(q));
-  EXPECT_TRUE(task.task.isSaturated());
+  EXPECT_TRUE(task.task.getReport().isSaturated());
   EXPECT_NEAR(capped.cwiseAbs().maxCoeff(), cap, 1e-15);
   EXPECT_LT((capped - 0.25 * free).norm(), 1e-12 * free.norm());
   // A cap above the step changes nothing.
   task.task.setMaxJointVelocity(2.0 * free.cwiseAbs().maxCoeff());
   EXPECT_EQ(toEigenV(task.task.computeControlLaw(q)), free);
-  EXPECT_FALSE(task.task.isSaturated());
+  EXPECT_FALSE(task.task.getReport().isSaturated());
 }
 
 TEST(ServoProjective, DampingKeepsSingularTasksFinite)
@@ -137,22 +138,22 @@ TEST(ServoProjective, DampingKeepsSingularTasksFinite)
     task.task.setDamping(1.0, muMax);
     const Eigen::VectorXd qdot = toEigenV(task.task.computeControlLaw(q));
     const Eigen::VectorXd e = toEigenV(task.task.getError());
-    const Eigen::MatrixXd J = toEigenX(task.task.getTaskJacobian());
+    const Eigen::MatrixXd J = toEigenX(task.task.getReport().getTaskJacobian());
     Eigen::JacobiSVD<Eigen::MatrixXd> svd(J, Eigen::ComputeFullV);
     const Eigen::VectorXd sv = svd.singularValues();
     testLog() << "[ measured ] " << what << ": singular values " << sv.transpose() << ", damping "
-              << task.task.getDamping() << ", |qdot| " << qdot.norm() << std::endl;
+              << task.task.getReport().getDamping() << ", |qdot| " << qdot.norm() << std::endl;
     // Rank deficient: sigma_min ~ 0, so mu = mu_max.
     EXPECT_LT(sv(expectedRank) / sv(0), 1e-9) << what;
     EXPECT_GT(sv(expectedRank - 1) / sv(0), 1e-4) << what;
-    EXPECT_GT(task.task.getConditionNumber(), 1e9) << what;
-    EXPECT_NEAR(task.task.getDamping(), muMax, 1e-6) << what;
+    EXPECT_GT(task.task.getReport().getConditionNumber(), 1e9) << what;
+    EXPECT_NEAR(task.task.getReport().getDamping(), muMax, 1e-6) << what;
     ASSERT_TRUE(qdot.allFinite()) << what;
     // |(J^T J + mu^2 I)^-1 J^T e| <= |e| / (2 mu), and the step lies in the row space of J.
-    EXPECT_LE(qdot.norm(), lambda * e.norm() / (2.0 * task.task.getDamping()) * (1.0 + 1e-9)) << what;
+    EXPECT_LE(qdot.norm(), lambda * e.norm() / (2.0 * task.task.getReport().getDamping()) * (1.0 + 1e-9)) << what;
     const Eigen::MatrixXd N = svd.matrixV().rightCols(6 - expectedRank);
     EXPECT_LT((N.transpose() * qdot).norm(), 1e-9 * qdot.norm()) << what;
-    const double mu2 = task.task.getDamping() * task.task.getDamping();
+    const double mu2 = task.task.getReport().getDamping() * task.task.getReport().getDamping();
     const Eigen::VectorXd dls =
         -lambda * (J.transpose() * J + mu2 * Eigen::MatrixXd::Identity(6, 6)).ldlt().solve(J.transpose() * e);
     EXPECT_LT((qdot - dls).norm(), 1e-9 * dls.norm()) << what;
@@ -186,7 +187,7 @@ TEST(ServoProjective, DampingKeepsSingularTasksFinite)
   nearTask.task.setLambda(lambda);
   nearTask.task.setDamping(1.0, muMax);
   const double damped = toEigenV(nearTask.task.computeControlLaw(qNear)).norm();
-  EXPECT_GT(nearTask.task.getDamping(), 0.9 * muMax);
+  EXPECT_GT(nearTask.task.getReport().getDamping(), 0.9 * muMax);
   nearTask.task.setDamping(0.0, 0.0);
   const double undamped = toEigenV(nearTask.task.computeControlLaw(qNear)).norm();
   testLog() << "[ measured ] 0.01 deg from the wrist singularity: |qdot| " << damped << " damped, " << undamped
@@ -209,13 +210,13 @@ TEST_F(ServoProjectivePuma, ItsVelocityIsTheDampedLeastSquaresLawOfItsTask)
       t.task.setMaxJointVelocity(c == 2 ? vpMath::rad(1.0) : 0.0);
       const Eigen::VectorXd qdot = toEigenV(t.task.computeControlLaw(q));
       vpServoDampedLeastSquares law = t.task.getDampedLeastSquares();
-      const Eigen::VectorXd expected =
-          toEigenV(law.computeVelocity(t.task.getTaskJacobian(), t.task.getError(), t.task.getLambda()));
+      const Eigen::VectorXd expected = toEigenV(
+          law.computeVelocity(t.task.getReport().getTaskJacobian(), t.task.getError(), t.task.getReport().getLambda()));
       EXPECT_EQ(qdot, expected) << "pair " << p << ", case " << c;
-      EXPECT_EQ(t.task.getDamping(), law.getDamping());
-      EXPECT_EQ(t.task.isSaturated(), law.isSaturated());
-      EXPECT_EQ(t.task.getDamping() > 0.0, c > 0);
-      EXPECT_EQ(t.task.isSaturated(), c == 2);
+      EXPECT_EQ(t.task.getReport().getDamping(), law.getDamping());
+      EXPECT_EQ(t.task.getReport().isSaturated(), law.isSaturated());
+      EXPECT_EQ(t.task.getReport().getDamping() > 0.0, c > 0);
+      EXPECT_EQ(t.task.getReport().isSaturated(), c == 2);
     }
   }
 }

@@ -56,7 +56,7 @@ TEST_F(ServoProjectivePuma, OutlierDistancesAreTheDocumentedOnes)
         EXPECT_GE(t.task.getFeatureHealth().getPredictionDistance(k), 0.0);
         EXPECT_LT(t.task.getFeatureHealth().getPredictionDistance(k), 1e-5) << "iteration " << it << " marker " << k;
       }
-      EXPECT_EQ(t.task.getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
+      EXPECT_EQ(t.task.getReport().getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
     }
     qNext = s.arm.integrate(s.armJoints(qNext), qdot, 1.0) - s.qRef;
     setFeatures(s, qNext, {0, 1, 2, 3}, t.s);
@@ -69,7 +69,7 @@ TEST_F(ServoProjectivePuma, OutlierDistancesAreTheDocumentedOnes)
   t.task.computeControlLaw(qNext);
   EXPECT_LT(t.task.getFeatureHealth().getEpipolarDistance(1), 1e-6);
   EXPECT_NEAR(t.task.getFeatureHealth().getPredictionDistance(1), 20.0, 1e-4);
-  EXPECT_EQ(t.task.getFeatureState(1), vpServoProjective::FEATURE_OUTLIER);
+  EXPECT_EQ(t.task.getReport().getFeatureState(1), vpServoProjective::FEATURE_OUTLIER);
   EXPECT_EQ(t.task.getStatus(), vpServoProjective::SERVO_REDUCED);
   // 20 px across the line: caught by the epipolar test first (the prediction is then not evaluated).
   const Eigen::Vector2d across = lp.head<2>().normalized();
@@ -77,11 +77,11 @@ TEST_F(ServoProjectivePuma, OutlierDistancesAreTheDocumentedOnes)
   t.task.computeControlLaw(qNext);
   EXPECT_GT(t.task.getFeatureHealth().getEpipolarDistance(1), 19.0);
   EXPECT_EQ(t.task.getFeatureHealth().getPredictionDistance(1), -1.0);
-  EXPECT_EQ(t.task.getFeatureState(1), vpServoProjective::FEATURE_OUTLIER);
+  EXPECT_EQ(t.task.getReport().getFeatureState(1), vpServoProjective::FEATURE_OUTLIER);
   // Back on its true image: accepted again, predicted from its last acceptance two iterations ago.
   t.s[1].setRaw(m(0), m(1), m(2), m(3));
   t.task.computeControlLaw(qNext);
-  EXPECT_EQ(t.task.getFeatureState(1), vpServoProjective::FEATURE_ACTIVE);
+  EXPECT_EQ(t.task.getReport().getFeatureState(1), vpServoProjective::FEATURE_ACTIVE);
   EXPECT_LT(t.task.getFeatureHealth().getPredictionDistance(1), 1e-5);
 }
 
@@ -136,7 +136,7 @@ TEST_F(ServoProjectivePuma, GrossOutliersAreRejected)
         if (run == 1) {
           for (size_t k = 0; k < tracked.size(); ++k) {
             const bool flagged =
-                t.task.getFeatureState(static_cast<unsigned int>(k)) == vpServoProjective::FEATURE_OUTLIER;
+                t.task.getReport().getFeatureState(static_cast<unsigned int>(k)) == vpServoProjective::FEATURE_OUTLIER;
             injected += corrupted[k] ? 1 : 0;
             missed += corrupted[k] && !flagged ? 1 : 0;
             clean += corrupted[k] ? 0 : 1;
@@ -179,10 +179,10 @@ TEST_F(ServoProjectivePuma, NewChecksChangeNothingWhenThereIsNothingToCatch)
   configure(plain.task);
   configure(checked.task);
   EXPECT_EQ(plain.task.getStatus(), vpServoProjective::SERVO_RUNNING);
-  EXPECT_FALSE(plain.task.hasJointLimits());
+  EXPECT_FALSE(plain.task.getJointLimitAvoidance().hasJointLimits());
   for (unsigned int k = 0; k < 3; ++k) {
-    EXPECT_TRUE(plain.task.isFeatureTracked(k));
-    EXPECT_EQ(plain.task.getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
+    EXPECT_TRUE(plain.task.getFeatureHealth().isFeatureTracked(k));
+    EXPECT_EQ(plain.task.getReport().getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
   }
   checked.task.setImageSize(s.width, s.height, 5.0);
   checked.task.setOutlierThreshold(5.0);
@@ -195,8 +195,8 @@ TEST_F(ServoProjectivePuma, NewChecksChangeNothingWhenThereIsNothingToCatch)
     ASSERT_EQ(toEigenV(a), toEigenV(b)) << "iteration " << it;
     EXPECT_EQ(checked.task.getStatus(), vpServoProjective::SERVO_RUNNING);
     EXPECT_EQ(checked.task.getFeatureHealth().getNumberOfActiveFeatures(), 3u);
-    EXPECT_TRUE(allZero(toEigenV(checked.task.getJointLimitVelocity())));
-    EXPECT_TRUE(allZero(toEigenV(plain.task.getJointLimitVelocity())));
+    EXPECT_TRUE(allZero(toEigenV(checked.task.getReport().getJointLimitVelocity())));
+    EXPECT_TRUE(allZero(toEigenV(plain.task.getReport().getJointLimitVelocity())));
     q = s.arm.integrate(s.armJoints(q), a, 1.0) - s.qRef;
   }
 }

@@ -221,7 +221,7 @@ TEST_F(ServoProjectiveParity, AnAdaptiveGainGetsVpServosValueAtEveryIteration)
       feature.setInteractionMatrix(trueJacobian(s, q, tracked));
       feature.set_s(modeTask.getError());
       const vpColVector qdotViSP = vs.computeControlLaw();
-      const double ratio = modeTask.getLambda() / vs.lambda.getLastValue();
+      const double ratio = modeTask.getReport().getLambda() / vs.lambda.getLastValue();
       worst = std::max(worst, std::max(ratio, 1.0 / ratio));
       if (mode == 0) {
         EXPECT_NEAR(ratio, 1.0, 1e-5) << "iteration " << it;
@@ -285,8 +285,8 @@ TEST_F(ServoProjectiveParity, TheUnitChangesNeitherAConstantGainsLawNorThePixelS
   task.setLambda(0.7);
   const vpColVector qdotPixels = task.computeControlLaw(q);
   const vpColVector ePixels = task.getError();
-  const vpMatrix JPixels = task.getTaskJacobian();
-  const vpColVector svPixels = task.getTaskSingularValues();
+  const vpMatrix JPixels = task.getReport().getTaskJacobian();
+  const vpColVector svPixels = task.getReport().getTaskSingularValues();
   EXPECT_EQ(task.getErrorUnit(), vpServoProjective::ERROR_PIXELS);
   EXPECT_EQ(task.getErrorScale(), 1.0);
 
@@ -294,8 +294,8 @@ TEST_F(ServoProjectiveParity, TheUnitChangesNeitherAConstantGainsLawNorThePixelS
   const vpColVector qdot = task.computeControlLaw(q);
   EXPECT_LT((qdot - qdotPixels).frobeniusNorm(), 1e-12 * qdotPixels.frobeniusNorm());
   EXPECT_LT((task.getError() * 1000.0 - ePixels).frobeniusNorm(), 1e-12 * ePixels.frobeniusNorm());
-  EXPECT_LT((task.getTaskJacobian() * 1000.0 - JPixels).frobeniusNorm(), 1e-12 * JPixels.frobeniusNorm());
-  const vpColVector svNormalised = task.getTaskSingularValues();
+  EXPECT_LT((task.getReport().getTaskJacobian() * 1000.0 - JPixels).frobeniusNorm(), 1e-12 * JPixels.frobeniusNorm());
+  const vpColVector svNormalised = task.getReport().getTaskSingularValues();
   ASSERT_EQ(svNormalised.size(), svPixels.size());
   for (unsigned int k = 0; k < svPixels.size(); ++k) {
     EXPECT_NEAR(svNormalised[k] * 1000.0, svPixels[k], 1e-9 * svPixels[0]);

@@ -56,12 +56,12 @@ TEST(ServoProjective, LostFeatureIsSetAsideThenUsedAgain)
           const vpColVector qdot = t.task.computeControlLaw(q);
           ASSERT_TRUE(toEigenV(qdot).allFinite());
           const Eigen::VectorXd e = toEigenV(t.task.getError());
-          const Eigen::MatrixXd J = toEigenX(t.task.getTaskJacobian());
+          const Eigen::MatrixXd J = toEigenX(t.task.getReport().getTaskJacobian());
           ASSERT_EQ(e.size(), 16);
           ASSERT_EQ(J.rows(), 16);
           if (lost) {
             EXPECT_EQ(t.task.getStatus(), vpServoProjective::SERVO_REDUCED) << s.name << " iteration " << it;
-            EXPECT_EQ(t.task.getFeatureState(1), vpServoProjective::FEATURE_NOT_TRACKED);
+            EXPECT_EQ(t.task.getReport().getFeatureState(1), vpServoProjective::FEATURE_NOT_TRACKED);
             EXPECT_EQ(t.task.getFeatureHealth().getNumberOfActiveFeatures(), 3u);
             EXPECT_TRUE(allZero(e.segment<4>(4)));
             EXPECT_TRUE(allZero(Eigen::Map<const Eigen::VectorXd>(J.middleRows(4, 4).eval().data(), 24)));
@@ -70,7 +70,7 @@ TEST(ServoProjective, LostFeatureIsSetAsideThenUsedAgain)
             EXPECT_EQ(t.task.getStatus(), vpServoProjective::SERVO_RUNNING) << s.name << " iteration " << it;
             EXPECT_EQ(t.task.getFeatureHealth().getNumberOfActiveFeatures(), 4u);
             for (unsigned int k = 0; k < 4; ++k) {
-              EXPECT_EQ(t.task.getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
+              EXPECT_EQ(t.task.getReport().getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
             }
           }
           if (!lost && activeRms(t.task) < 1e-6) {
@@ -113,7 +113,7 @@ TEST_F(ServoProjectivePuma, ReducedTaskIsTheDampedLawOfTheActiveFeatures)
     four.task.setFeatureTracked(2, false);
     three.task.setDamping(0.0, 0.0);
     three.task.computeControlLaw(q);
-    const Eigen::MatrixXd J3 = toEigenX(three.task.getTaskJacobian());
+    const Eigen::MatrixXd J3 = toEigenX(three.task.getReport().getTaskJacobian());
     const Eigen::VectorXd e3 = toEigenV(three.task.getError());
     const Eigen::VectorXd sv3 = singularValues(J3);
     const double sigma0 = 2.0 * sv3(5), muMax = sv3(5);
@@ -124,14 +124,14 @@ TEST_F(ServoProjectivePuma, ReducedTaskIsTheDampedLawOfTheActiveFeatures)
     const Eigen::VectorXd qdot4 = toEigenV(four.task.computeControlLaw(q));
     const Eigen::VectorXd qdot3 = toEigenV(three.task.computeControlLaw(q));
     EXPECT_EQ(four.task.getStatus(), vpServoProjective::SERVO_REDUCED);
-    EXPECT_EQ(four.task.getFeatureState(2), vpServoProjective::FEATURE_NOT_TRACKED);
+    EXPECT_EQ(four.task.getReport().getFeatureState(2), vpServoProjective::FEATURE_NOT_TRACKED);
     EXPECT_LT((qdot4 - qdot3).norm(), 1e-12 * qdot3.norm()) << "pair " << p;
     const double mu2 = muMax * muMax * (1.0 - 0.25);
-    EXPECT_NEAR(four.task.getDamping(), std::sqrt(mu2), 1e-9 * muMax);
-    EXPECT_NEAR(four.task.getDamping(), three.task.getDamping(), 1e-12 * muMax);
-    EXPECT_DOUBLE_EQ(four.task.getLambda(), gain.value_const(e3.cwiseAbs().maxCoeff()));
-    EXPECT_NEAR(four.task.getConditionNumber(), sv3(0) / sv3(5), 1e-7 * sv3(0) / sv3(5));
-    const double lambda = four.task.getLambda();
+    EXPECT_NEAR(four.task.getReport().getDamping(), std::sqrt(mu2), 1e-9 * muMax);
+    EXPECT_NEAR(four.task.getReport().getDamping(), three.task.getReport().getDamping(), 1e-12 * muMax);
+    EXPECT_DOUBLE_EQ(four.task.getReport().getLambda(), gain.value_const(e3.cwiseAbs().maxCoeff()));
+    EXPECT_NEAR(four.task.getReport().getConditionNumber(), sv3(0) / sv3(5), 1e-7 * sv3(0) / sv3(5));
+    const double lambda = four.task.getReport().getLambda();
     const Eigen::VectorXd dls =
         -lambda * (J3.transpose() * J3 + mu2 * Eigen::MatrixXd::Identity(6, 6)).ldlt().solve(J3.transpose() * e3);
     EXPECT_LT((qdot4 - dls).norm(), 1e-9 * dls.norm());
@@ -184,7 +184,7 @@ TEST(ServoProjective, StopsWhenTheActiveFeaturesNoLongerConstrainEveryJoint)
         unsigned int active = 0;
         for (unsigned int k = 0; k < 4; ++k) {
           active += c.tracked[k] ? 1 : 0;
-          EXPECT_EQ(t.task.getFeatureState(k),
+          EXPECT_EQ(t.task.getReport().getFeatureState(k),
                     c.tracked[k] ? vpServoProjective::FEATURE_ACTIVE : vpServoProjective::FEATURE_NOT_TRACKED);
         }
         ASSERT_EQ(t.task.getFeatureHealth().getNumberOfActiveFeatures(), active);
@@ -199,21 +199,21 @@ TEST(ServoProjective, StopsWhenTheActiveFeaturesNoLongerConstrainEveryJoint)
           }
           if (c.rank == 6) {
             const double ratio = equilibratedRatio(Ja);
-            EXPECT_NEAR(t.task.getSingularValueRatio(), ratio, 1e-6 * ratio) << what.str();
+            EXPECT_NEAR(t.task.getReport().getSingularValueRatio(), ratio, 1e-6 * ratio) << what.str();
           }
           testLog() << "[ measured ] " << what.str() << ": singular values of the active rows " << sv.transpose()
-                    << ", ratio of J D^-1 " << t.task.getSingularValueRatio() << std::endl;
+                    << ", ratio of J D^-1 " << t.task.getReport().getSingularValueRatio() << std::endl;
         }
         EXPECT_EQ(t.task.getStatus(), c.status) << what.str();
         if (c.status == vpServoProjective::SERVO_STOPPED) {
           EXPECT_TRUE(allZero(qdot)) << what.str() << ": qdot " << qdot.transpose();
-          EXPECT_EQ(t.task.getDamping(), 0.0);
-          EXPECT_EQ(t.task.getLambda(), 0.0);
-          EXPECT_FALSE(t.task.isSaturated());
-          EXPECT_LT(t.task.getSingularValueRatio(), 1e-6) << what.str();
+          EXPECT_EQ(t.task.getReport().getDamping(), 0.0);
+          EXPECT_EQ(t.task.getReport().getLambda(), 0.0);
+          EXPECT_FALSE(t.task.getReport().isSaturated());
+          EXPECT_LT(t.task.getReport().getSingularValueRatio(), 1e-6) << what.str();
         } else {
           EXPECT_GT(qdot.norm(), 0.0) << what.str();
-          EXPECT_GT(t.task.getSingularValueRatio(), 1e-6) << what.str();
+          EXPECT_GT(t.task.getReport().getSingularValueRatio(), 1e-6) << what.str();
         }
       }
     }
@@ -246,11 +246,12 @@ TEST_F(ServoProjectivePuma, FeatureOutsideTheImageIsDetectedNotExtrapolated)
         ASSERT_TRUE(qdot.allFinite());
         const Eigen::VectorXd e = toEigenV(t.task.getError());
         if (beyond == 1) {
-          EXPECT_EQ(t.task.getFeatureState(1), vpServoProjective::FEATURE_OUT_OF_IMAGE) << "coordinate " << c;
+          EXPECT_EQ(t.task.getReport().getFeatureState(1), vpServoProjective::FEATURE_OUT_OF_IMAGE)
+              << "coordinate " << c;
           EXPECT_EQ(t.task.getStatus(), vpServoProjective::SERVO_REDUCED);
           EXPECT_TRUE(allZero(e.segment<4>(4)));
         } else {
-          EXPECT_EQ(t.task.getFeatureState(1), vpServoProjective::FEATURE_ACTIVE) << "coordinate " << c;
+          EXPECT_EQ(t.task.getReport().getFeatureState(1), vpServoProjective::FEATURE_ACTIVE) << "coordinate " << c;
           EXPECT_EQ(t.task.getStatus(), vpServoProjective::SERVO_RUNNING);
         }
       }
@@ -259,10 +260,10 @@ TEST_F(ServoProjectivePuma, FeatureOutsideTheImageIsDetectedNotExtrapolated)
   // 0 x 0 disables the check.
   t.s[1].setRaw(-100.0, s1(1), s1(2), s1(3));
   t.task.computeControlLaw(q);
-  EXPECT_EQ(t.task.getFeatureState(1), vpServoProjective::FEATURE_OUT_OF_IMAGE);
+  EXPECT_EQ(t.task.getReport().getFeatureState(1), vpServoProjective::FEATURE_OUT_OF_IMAGE);
   t.task.setImageSize(0, 0);
   t.task.computeControlLaw(q);
-  EXPECT_EQ(t.task.getFeatureState(1), vpServoProjective::FEATURE_ACTIVE);
+  EXPECT_EQ(t.task.getReport().getFeatureState(1), vpServoProjective::FEATURE_ACTIVE);
 
   // Closed loop: all 7 markers tracked from a start where one of them is more than 30 px outside an image (the
   // simulator still gives its extrapolated pixels, as a tracker predicting it would). It is set aside exactly while it
@@ -307,7 +308,7 @@ TEST_F(ServoProjectivePuma, FeatureOutsideTheImageIsDetectedNotExtrapolated)
         const bool out = m(0) < 0.0 || m(0) > w - 1.0 || m(1) < 0.0 || m(1) > h - 1.0 || m(2) < 0.0 || m(2) > w - 1.0 ||
                          m(3) < 0.0 || m(3) > h - 1.0;
         anyOut = anyOut || out;
-        EXPECT_EQ(loop.task.getFeatureState(k),
+        EXPECT_EQ(loop.task.getReport().getFeatureState(k),
                   out ? vpServoProjective::FEATURE_OUT_OF_IMAGE : vpServoProjective::FEATURE_ACTIVE)
             << "iteration " << it << " marker " << k;
         if (out) {
@@ -347,13 +348,13 @@ TEST_F(ServoProjectivePuma, NonFiniteFeatureIsSetAsideWithoutNaN)
     vpColVector qdot;
     ASSERT_NO_THROW(qdot = t.task.computeControlLaw(q)) << what;
     const Eigen::VectorXd e = toEigenV(t.task.getError());
-    const Eigen::MatrixXd J = toEigenX(t.task.getTaskJacobian());
+    const Eigen::MatrixXd J = toEigenX(t.task.getReport().getTaskJacobian());
     EXPECT_TRUE(toEigenV(qdot).allFinite()) << what;
     EXPECT_TRUE(e.allFinite()) << what;
     EXPECT_TRUE(J.allFinite()) << what;
     EXPECT_EQ(t.task.getStatus(), status) << what;
     for (unsigned int k = 0; k < 4; ++k) {
-      EXPECT_EQ(t.task.getFeatureState(k), expected[k]) << what << ", feature " << k;
+      EXPECT_EQ(t.task.getReport().getFeatureState(k), expected[k]) << what << ", feature " << k;
       if (expected[k] != vpServoProjective::FEATURE_ACTIVE) {
         EXPECT_TRUE(allZero(e.segment<4>(4 * k))) << what;
       }

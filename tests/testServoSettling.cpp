@@ -279,12 +279,12 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
     ++calls;
   }
   ASSERT_TRUE(task.getSettlingState().isSettled()) << "not settled after " << calls << " calls";
-  EXPECT_FALSE(task.isFollowingPath());
+  EXPECT_FALSE(task.getReport().isFollowingPath());
   for (unsigned int c = 0; c < 25; ++c) {
     step();
     ASSERT_TRUE(task.getSettlingState().isSettled()) << "a false alarm " << c << " calls after settling";
     const double k = task.getSettlingState().getSettledIterations();
-    EXPECT_NEAR(task.getLambda(), 0.5 / (1.0 + 0.5 * k), 1e-12);
+    EXPECT_NEAR(task.getReport().getLambda(), 0.5 / (1.0 + 0.5 * k), 1e-12);
     EXPECT_GE(k, c + 1.0);
   }
   EXPECT_NEAR(task.getSettlingState().getNoiseEstimate(), sigma, 0.3 * sigma); // 16 frames: ~1.03 sigma per row
@@ -294,7 +294,7 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
   q[0] += vpMath::rad(1.0);
   step();
   EXPECT_FALSE(task.getSettlingState().isSettled()) << "the bump went unnoticed";
-  EXPECT_EQ(task.getLambda(), 0.5);
+  EXPECT_EQ(task.getReport().getLambda(), 0.5);
   calls = 0;
   while (!task.getSettlingState().isSettled() && calls < 15) {
     step();
@@ -315,7 +315,8 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
   teach(t.sStar, qTarget2, 16, sigma, noise);
   step();
   EXPECT_FALSE(task.getSettlingState().isSettled()) << "the new target went unnoticed";
-  EXPECT_TRUE(task.isFollowingPath() || task.getLambda() == 0.5) << "neither the plan nor the full gain";
+  EXPECT_TRUE(task.getReport().isFollowingPath() || task.getReport().getLambda() == 0.5)
+      << "neither the plan nor the full gain";
   for (unsigned int c = 0; c < 40; ++c) {
     step();
   }
@@ -332,7 +333,7 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
   task.setFeatureTracked(2, true);
   step();
   EXPECT_FALSE(task.getSettlingState().isSettled()) << "settling must converge anew after a stop";
-  EXPECT_EQ(task.getLambda(), 0.5);
+  EXPECT_EQ(task.getReport().getLambda(), 0.5);
 }
 
 // Off (the default), the task is law (47) as is; turning settling off again gives it back at once.
@@ -368,7 +369,7 @@ TEST(ServoSettling, OffIsLawFortySevenAsIs)
     const vpColVector qdotToggled = toggled.computeControlLaw(q);
     if (it >= 20) {
       EXPECT_FALSE(toggled.getSettlingState().isSettled());
-      EXPECT_EQ(toggled.getLambda(), plain.getLambda());
+      EXPECT_EQ(toggled.getReport().getLambda(), plain.getReport().getLambda());
     }
     q = w.setup.arm.integrate(q, qdot, 1.0);
   }

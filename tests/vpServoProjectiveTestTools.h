@@ -209,11 +209,11 @@ inline double jointError(const vpColVector &q, const vpColVector &qTarget)
 //! The rows of J that belong to the active features.
 inline Eigen::MatrixXd activeRows(const vpServoProjective &task)
 {
-  const Eigen::MatrixXd J = toEigenX(task.getTaskJacobian());
+  const Eigen::MatrixXd J = toEigenX(task.getReport().getTaskJacobian());
   Eigen::MatrixXd Ja(4 * task.getFeatureHealth().getNumberOfActiveFeatures(), J.cols());
   Eigen::Index r = 0;
   for (unsigned int i = 0; i < task.getNumberOfFeatures(); ++i) {
-    if (task.getFeatureState(i) == vpServoProjective::FEATURE_ACTIVE) {
+    if (task.getReport().getFeatureState(i) == vpServoProjective::FEATURE_ACTIVE) {
       Ja.middleRows(r, 4) = J.middleRows(4 * i, 4);
       r += 4;
     }

@@ -145,7 +145,7 @@ public:
     }
     if (m_robust) {
       for (unsigned int k = 0; k < m_s.size(); ++k) {
-        m_rejected[k] = m_task.getFeatureState(k) == vpServoProjective::FEATURE_OUTLIER;
+        m_rejected[k] = m_task.getReport().getFeatureState(k) == vpServoProjective::FEATURE_OUTLIER;
       }
       m_stopped += m_task.getStatus() == vpServoProjective::SERVO_STOPPED;
     }

@@ -242,7 +242,7 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
         break;
       }
       robot.setVelocity(vpRobot::ARTICULAR_FRAME, qdot);
-      quiet = seen && errorRms < settings.successPx && !task.isFollowingPath() ? quiet + 1 : 0;
+      quiet = seen && errorRms < settings.successPx && !task.getReport().isFollowingPath() ? quiet + 1 : 0;
       if (quiet >= 25) {
         break; // converged, and settled for a second
       }

@@ -429,11 +429,11 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
 
 void vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpProjectiveRobot &projectiveRobot)
 {
-  vpProjectiveArmAcquisition acquisition = projectiveRobot.m_acquisition;
+  vpProjectiveArmAcquisition acquisition = projectiveRobot.getAcquisition();
   const vpProjectiveStereoRig &rig = projectiveRobot.getStereoRig(); // once calibrated, the model's (updateRig())
   if (rig.isInitialized()) {
     acquisition.setStereoRig(rig);
   }
   const vpProjectiveArmModel model = run(robot, acquisition);
-  projectiveRobot.adopt(acquisition, model, m_residual, acquisition.getAlgebraicResidual());
+  projectiveRobot.setCalibration(acquisition, model, m_residual);
 }

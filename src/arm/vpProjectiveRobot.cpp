@@ -14,7 +14,7 @@
 #include <visp3/projective/vpProjectiveRobot.h>
 
 #include <algorithm>
-
+#include <cmath>
 #include <limits>
 #include <sstream>
 
@@ -138,6 +138,22 @@ void vpProjectiveRobot::calibrate()
 {
   const vpProjectiveArmModel model = m_acquisition.calibrate(); // throws before anything changes
   adopt(m_acquisition, model, m_acquisition.getCalibrationResidual(), m_acquisition.getAlgebraicResidual());
+}
+
+void vpProjectiveRobot::setCalibration(const vpProjectiveArmAcquisition &acquisition, const vpProjectiveArmModel &model,
+                                       double residual)
+{
+  const std::string where = at("setCalibration()");
+  if (model.jointTypes() != acquisition.getJointTypes() || model.jointTypes() != m_acquisition.getJointTypes()) {
+    fail(vpProjectiveException::dimensionError, where,
+         "the model, the acquisition and the robot have different joints; calibrate from an acquisition of this "
+         "robot's joints (getAcquisition())");
+  }
+  if (!std::isfinite(residual) || residual < 0.0) {
+    fail(vpProjectiveException::invalidValueError, where,
+         "the residual is the RMS pixel error of the model's refinement: finite and not negative");
+  }
+  adopt(acquisition, model, residual, acquisition.getAlgebraicResidual());
 }
 
 void vpProjectiveRobot::adopt(const vpProjectiveArmAcquisition &acquisition, const vpProjectiveArmModel &model,

@@ -30,41 +30,6 @@ using namespace vpProjectiveInternal;
 
 const vpErrorSite at("vpServoProjective");
 
-namespace
-{
-/*!
-  \f$ \sigma_{min}(J D^{-1}) / \sigma_{max}(J D^{-1}) \f$, \f$ D = \mathrm{diag}(\|J_{:,k}\|) \f$, from \f$ J^T J \f$:
-  the singular values squared are the eigenvalues of \f$ D^{-1} J^T J D^{-1} \f$, the Gram matrix with unit diagonal.
-  0 if a column norm is below \e tolerance times the largest (a joint that moves no active feature, or too little to
-  tell), or without any column.
-*/
-double equilibratedSingularValueRatio(const vpProjectiveArmModel::JointMatrix &JtJ, double tolerance)
-{
-  const Eigen::Index n = JtJ.rows();
-  vpProjectiveArmModel::JointVector d(n);
-  for (Eigen::Index k = 0; k < n; ++k) {
-    d(k) = std::sqrt(std::max(0.0, JtJ(k, k)));
-  }
-  const double dMax = n > 0 ? d.maxCoeff() : 0.0;
-  if (!(dMax > 0.0) || !(d.minCoeff() > tolerance * dMax)) {
-    return 0.0;
-  }
-  vpProjectiveArmModel::JointMatrix C(n, n);
-  for (Eigen::Index c = 0; c < n; ++c) {
-    for (Eigen::Index r = 0; r < n; ++r) {
-      C(r, c) = JtJ(r, c) / (d(r) * d(c));
-    }
-  }
-  Eigen::SelfAdjointEigenSolver<vpProjectiveArmModel::JointMatrix> eig(C, Eigen::EigenvaluesOnly);
-  const double lambdaMax = eig.eigenvalues()(n - 1);
-  if (lambdaMax > 0.0) {
-    return std::sqrt(std::max(0.0, eig.eigenvalues()(0)) / lambdaMax);
-  }
-  return 0.0;
-}
-
-} // namespace
-
 vpServoProjective::vpServoProjective()
     : m_link(), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(), m_jointLimits(),
       m_mismatch(), m_targets(), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
@@ -89,6 +54,8 @@ void vpServoProjective::addFeature(vpFeatureStereoPoint &s, vpFeatureStereoPoint
   m_plannedFor.clear(); // another task: plan anew
   m_following = false;
   m_refinement.stop(); // another set of features: its frames and points would not match
+  m_iterations[m_lastIteration].m_states.push_back(FEATURE_ACTIVE); // the report's state before the first call
+  m_iterations[m_lastIteration].m_following = false;
 }
 
 void vpServoProjective::clearFeatures()
@@ -105,8 +72,12 @@ void vpServoProjective::clearFeatures()
   m_plannedFor.clear();
   m_following = false;
   m_refinement.stop();
-  m_iterations[m_lastIteration].status = SERVO_RUNNING;
-  m_iterations[m_lastIteration].data.m_nbActive = 0;
+  vpServoProjectiveReport &report = m_iterations[m_lastIteration];
+  report.m_status = SERVO_RUNNING;
+  report.m_data.m_nbActive = 0;
+  report.m_states.clear();
+  report.m_following = false;
+  report.m_openLoopCalls = 0;
 }
 
 inline void vpServoProjective::check(const char *method) const
@@ -162,7 +133,7 @@ inline void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, 
 {
   // Task Jacobian, eq. (46) stacked over the active points, at the current q and triangulated points; the rows of
   // the features set aside are zero.
-  vpServoProjectiveData &d = it.data;
+  vpServoProjectiveData &d = it.m_data;
   const vpProjectiveArmModel &model = m_link.robot->getModel();
   const Eigen::Index n = q.size();
   const Eigen::Index rows = 4 * static_cast<Eigen::Index>(m_features.size());
@@ -201,11 +172,12 @@ inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vp
   // With every feature active the task is the user's: a rank loss is left to the damping. With features set aside,
   // the remaining ones must constrain every joint: a stereo point gives at most 3 independent equations, then the
   // scale-aware rank test on J D^-1.
-  if (it.data.m_nbActive == m_features.size()) {
+  if (it.m_data.m_nbActive == m_features.size()) {
     return SERVO_RUNNING;
   }
-  const bool stopped = 3 * static_cast<Eigen::Index>(it.data.m_nbActive) < it.data.m_JtJ.rows() ||
-                       !(equilibratedSingularValueRatio(it.data.m_JtJ, m_rankTolerance) >= m_rankTolerance);
+  const bool stopped =
+      3 * static_cast<Eigen::Index>(it.m_data.m_nbActive) < it.m_data.m_JtJ.rows() ||
+      !(vpServoProjectiveReport::singularValueRatio(it.m_data.m_JtJ, m_rankTolerance) >= m_rankTolerance);
   return stopped ? SERVO_STOPPED : SERVO_REDUCED;
 }
 
@@ -219,7 +191,7 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
   if (!planned || !(m_maxOpenLoopTime > 0.0) || (m_openLoopCalls + 1) * m_period > m_maxOpenLoopTime * (1.0 + 1e-9)) {
     return false;
   }
-  vpServoProjectiveData &d = it.data;
+  vpServoProjectiveData &d = it.m_data;
   const vpProjectiveArmModel &model = m_link.robot->getModel();
   vpProjectiveRobot::PointJacobian Ji;
   unsigned int used = d.m_nbActive;
@@ -265,11 +237,11 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
 inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot)
 {
   m_settling.reset(); // stopped: converge anew before settling
-  qdot.setZero(it.data.m_JtJ.rows());
-  it.qdot2.setZero(it.data.m_JtJ.rows());
-  it.lambda = 0.0;
-  it.damping = 0.0;
-  it.saturated = false;
+  qdot.setZero(it.m_data.m_JtJ.rows());
+  it.m_qdot2.setZero(it.m_data.m_JtJ.rows());
+  it.m_lambda = 0.0;
+  it.m_damping = 0.0;
+  it.m_saturated = false;
 }
 
 inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIteration &it, JointVector &qdot)
@@ -277,10 +249,10 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
   // qdot1 = -lambda (J^T J + mu^2 I)^-1 J^T e, saturated: the motion the arm really makes. Along a planned path it is
   // the path's step to the next sample (feedforward) plus the law on the error to the current sample (feedback, with
   // the follower's gain), saturated as a whole.
-  it.lambda = m_following ? m_followGain
-                          : m_period * taskGain(m_lambda, m_gainInput, m_errorScale, it.data.m_JtJ, it.data.m_Jte,
-                                                it.data.m_e.cwiseAbs().maxCoeff());
-  if (m_following || it.status == SERVO_OPEN_LOOP) {
+  it.m_lambda = m_following ? m_followGain
+                            : m_period * taskGain(m_lambda, m_gainInput, m_errorScale, it.m_data.m_JtJ, it.m_data.m_Jte,
+                                                  it.m_data.m_e.cwiseAbs().maxCoeff());
+  if (m_following || it.m_status == SERVO_OPEN_LOOP) {
     m_settling.reset(); // a path (or a prediction) is not a rest: settle on law (47), on the images, after it
   } else if (m_settling.isEnabled()) {
     // Settling restarts with another set of active features or another target (their signature).
@@ -288,10 +260,10 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
     for (unsigned int i = 0; i < m_features.size(); ++i) {
       context = 31 * context + (m_health.getFeatureState(i) == FEATURE_ACTIVE ? i + 1 : 0);
     }
-    it.lambda = m_settling.gain(it.lambda, it.data.m_JtJ, it.data.m_Jte, it.data.m_e.squaredNorm(),
-                                4 * it.data.m_nbActive, context);
+    it.m_lambda = m_settling.gain(it.m_lambda, it.m_data.m_JtJ, it.m_data.m_Jte, it.m_data.m_e.squaredNorm(),
+                                  4 * it.m_data.m_nbActive, context);
   }
-  m_law.computeVelocity(it.data.m_JtJ, it.data.m_Jte, it.lambda, qdot);
+  m_law.computeVelocity(it.m_data.m_JtJ, it.m_data.m_Jte, it.m_lambda, qdot);
   if (m_following) {
     // The feedback corrects the model's error, a few pixels: bounded by half a path step, so that near a singular
     // configuration (where its least-squares step is large) it cannot throw the arm off its path.
@@ -304,13 +276,13 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
   } else if (m_planning) {
     m_planner.guardStep(m_link.robot->getModel(), q, qdot); // law (47) toward a planned task: no overshoot
   }
-  it.damping = m_law.getDamping();
-  it.saturated = m_law.isSaturated();
+  it.m_damping = m_law.getDamping();
+  it.m_saturated = m_law.isSaturated();
 }
 
 inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const
 {
-  it.qdot2.setZero(q.size());
+  it.m_qdot2.setZero(q.size());
   if (!m_jointLimits.hasJointLimits()) {
     return;
   }
@@ -324,11 +296,12 @@ inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIt
                        m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
   if (!m_following) {
     const JointVector *target = planned ? &m_planner.getTarget() : nullptr;
-    m_jointLimits.computeVelocity(q, qdot, it.data.m_JtJ, it.data.m_Jte, it.data.m_errorNorm, m_law, it.qdot2, target);
-    qdot += it.qdot2;
+    m_jointLimits.computeVelocity(q, qdot, it.m_data.m_JtJ, it.m_data.m_Jte, it.m_data.m_errorNorm, m_law, it.m_qdot2,
+                                  target);
+    qdot += it.m_qdot2;
   }
   if (m_law.saturate(qdot)) {
-    it.saturated = true;
+    it.m_saturated = true;
   }
   if (planned) {
     keepInside(q, it, qdot);
@@ -346,8 +319,8 @@ inline void vpServoProjective::keepInside(const JointVector &q, const vpIteratio
   // task stalls, pixels from its goal, with every other joint free. Instead, each joint that would cross is held (its
   // column out of the task: the law solved again with the others), until no joint crosses; the scaling is left for
   // the rest (a joint already beyond its limit).
-  JointMatrix JtJ = it.data.m_JtJ;
-  JointVector Jte = it.data.m_Jte, alone;
+  JointMatrix JtJ = it.m_data.m_JtJ;
+  JointVector Jte = it.m_data.m_Jte, alone;
   vpServoDampedLeastSquares law = m_law; // computeVelocity() writes its report: the iteration's stays the first law's
   const Eigen::Index n = q.size();
   for (Eigen::Index pass = 0; pass < n && m_jointLimits.stepInside(q, qdot) < 1.0; ++pass) {
@@ -367,7 +340,7 @@ inline void vpServoProjective::keepInside(const JointVector &q, const vpIteratio
     if (!held) {
       break;
     }
-    law.computeVelocity(JtJ, Jte, it.lambda, qdot);
+    law.computeVelocity(JtJ, Jte, it.m_lambda, qdot);
     law.saturate(qdot);
   }
   qdot *= m_jointLimits.stepInside(q, qdot);
@@ -379,12 +352,12 @@ inline void vpServoProjective::commit()
   m_health.endIteration();
   m_settling.commit();
   const vpIteration &it = m_iterations[m_lastIteration];
-  const vpServoStatus status = it.status;
+  const vpServoStatus status = it.m_status;
   // The open loop's memory: each active feature's point at the zero reference (no allocation), and the count of
   // consecutive open-loop calls, which only the features seen again (a running task) restart.
   for (unsigned int i = 0; i < m_features.size(); ++i) {
-    if (m_health.getFeatureState(i) == FEATURE_ACTIVE && it.data.hasPoint(i)) {
-      m_seenPoints[i] = it.data.getZeroPoint(i);
+    if (m_health.getFeatureState(i) == FEATURE_ACTIVE && it.m_data.hasPoint(i)) {
+      m_seenPoints[i] = it.m_data.getZeroPoint(i);
       m_hasSeenPoint[i] = 1;
     }
   }
@@ -397,6 +370,18 @@ inline void vpServoProjective::commit()
       (status == SERVO_RUNNING || status == SERVO_REDUCED || status == SERVO_OPEN_LOOP)) {
     ++m_pathSample; // the next call aims at the next sample (of the path, or of law (47)'s rehearsal)
   }
+  // The report of the call (no allocation once the sizes are known): what the task's parts keep of it.
+  vpServoProjectiveReport &report = m_iterations[m_lastIteration];
+  report.m_states.resize(m_features.size());
+  for (unsigned int i = 0; i < m_features.size(); ++i) {
+    report.m_states[i] = m_health.getFeatureState(i);
+  }
+  report.m_following = m_following;
+  report.m_openLoopCalls = m_openLoopCalls;
+  report.m_errorScale = m_errorScale;
+  report.m_rankTolerance = m_rankTolerance;
+  report.m_law = m_law;
+  report.m_limits = m_jointLimits;
 }
 
 void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdot)
@@ -407,17 +392,17 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
   checkJoints(q, method);
   vpIteration &it = m_iterations[1 - m_lastIteration];
   refreshTargets();
-  computeData(q, it.data);
-  const bool planned = !m_planning || planIfNeeded(q, it.data);
+  computeData(q, it.m_data);
+  const bool planned = !m_planning || planIfNeeded(q, it.m_data);
   m_following = m_planning && planned && m_pathSample < m_planner.getPath().size() &&
                 m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
   buildTask(q, it, method);
-  const bool mismatch = detectMismatch(it.data); // after the last step that may throw
-  it.status = mismatch ? SERVO_MODEL_MISMATCH : (planned ? decideStatus(it) : SERVO_NO_PLAN);
-  if (it.status == SERVO_STOPPED && openLoop(it)) {
-    it.status = SERVO_OPEN_LOOP;
+  const bool mismatch = detectMismatch(it.m_data); // after the last step that may throw
+  it.m_status = mismatch ? SERVO_MODEL_MISMATCH : (planned ? decideStatus(it) : SERVO_NO_PLAN);
+  if (it.m_status == SERVO_STOPPED && openLoop(it)) {
+    it.m_status = SERVO_OPEN_LOOP;
   }
-  if (it.status == SERVO_STOPPED || it.status == SERVO_NO_PLAN || it.status == SERVO_MODEL_MISMATCH) {
+  if (it.m_status == SERVO_STOPPED || it.m_status == SERVO_NO_PLAN || it.m_status == SERVO_MODEL_MISMATCH) {
     stop(it, qdot);
   } else {
     computePrimaryVelocity(q, it, qdot);
@@ -427,11 +412,11 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
   commit();
   // The rig refinement records the calls that move the arm, with the robot given modifiable; refine() never throws: a
   // failed refinement leaves everything as it was.
-  const vpServoStatus status = last().status;
+  const vpServoStatus status = last().m_status;
   if (m_refinement.isActive() && (status == SERVO_RUNNING || status == SERVO_REDUCED)) {
     if (m_link.modifiable == nullptr || m_link.modifiable != m_link.robot) {
       m_refinement.stop();
-    } else if (m_refinement.record(last().data, m_health)) {
+    } else if (m_refinement.record(last().m_data, m_health)) {
       m_refinement.refine(*m_link.modifiable);
     }
   }
@@ -488,9 +473,4 @@ vpColVector vpServoProjective::computeControlLaw()
   computeControlLaw(m_q, qdot); // throws, changing nothing, if q does not fit the robot
   m_qFresh = false;
   return toVispVector(qdot);
-}
-
-double vpServoProjective::getSingularValueRatio() const
-{
-  return equilibratedSingularValueRatio(last().data.m_JtJ, m_rankTolerance);
 }

@@ -83,7 +83,7 @@ void vpServoProjective::print(std::ostream &os) const
 {
   // The sections of vpServo::print(vpServo::ALL), in its order and with its titles, then what only this task has.
   const bool computed =
-      last().data.m_J.rows() == static_cast<Eigen::Index>(getDimension()) && last().data.m_J.rows() > 0;
+      last().m_data.m_J.rows() == static_cast<Eigen::Index>(getDimension()) && last().m_data.m_J.rows() > 0;
   const char *const unit = m_errorUnit == ERROR_PIXELS ? "pixels" : "normalised: pixels / f";
   os << "Visual servoing task: non-metric stereo (vpServoProjective)\n";
   os << "Type of control law\n";
@@ -124,14 +124,14 @@ void vpServoProjective::print(std::ostream &os) const
   }
   os << "Task Jacobian J (" << unit << " per joint unit; vpServo's interaction matrix Ls)\n";
   if (computed) {
-    os << toVisp(last().data.m_J / m_errorScale) << "\n";
+    os << toVisp(last().m_data.m_J / m_errorScale) << "\n";
   } else {
     os << "not yet computed\n";
   }
   os << "Error vector (s-s*) (" << unit << ", rows of the features set aside zero)\n";
   if (computed) {
-    os << toVispVector(last().data.m_e / m_errorScale).t() << "\n";
-    os << "|e| = " << last().data.m_errorNorm << "\n";
+    os << toVispVector(last().m_data.m_e / m_errorScale).t() << "\n";
+    os << "|e| = " << last().m_data.m_errorNorm << "\n";
   } else {
     os << "not yet computed (No computeControlLaw() yet)\n";
   }
@@ -143,16 +143,16 @@ void vpServoProjective::print(std::ostream &os) const
   os << ")\n";
   os << "Status and settings\n";
   if (computed) {
-    os << "  Status: " << statusName(last().status) << "\n";
-    if (last().status == SERVO_MODEL_MISMATCH && m_link.robot != nullptr && m_link.robot->getRigGeneration() == 0) {
+    os << "  Status: " << statusName(last().m_status) << "\n";
+    if (last().m_status == SERVO_MODEL_MISMATCH && m_link.robot != nullptr && m_link.robot->getRigGeneration() == 0) {
       // No re-registration since the acquisition: the model may never have fit, whatever moved.
       os << "  Model never re-registered since its acquisition: if it never fit, check the rig mounting ("
          << (m_link.robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "EYE_IN_HAND" : "EYE_TO_HAND")
          << " now; EYE_IN_HAND when the cameras ride on the arm, vpProjectiveAcquisitionProcedure tells it) and the "
             "markers' order; if the rig moved, re-register it\n";
     }
-    os << "  Last step: gain " << last().lambda << ", damping " << last().damping << ", "
-       << (last().saturated ? "saturated" : "not saturated") << "\n";
+    os << "  Last step: gain " << last().m_lambda << ", damping " << last().m_damping << ", "
+       << (last().m_saturated ? "saturated" : "not saturated") << "\n";
   }
   os << "  Settling: ";
   if (!m_settling.isEnabled()) {

@@ -88,7 +88,8 @@ void vpServoProjective::setErrorUnit(vpErrorUnit unit, double focalLength)
   }
   m_errorUnit = unit;
   m_focalLength = focalLength;
-  m_errorScale = scale; // 0 until setRobot() estimates it
+  m_errorScale = scale;                               // 0 until setRobot() estimates it
+  m_iterations[m_lastIteration].m_errorScale = scale; // the report's getters follow the unit
 }
 
 void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
@@ -99,6 +100,7 @@ void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
   }
   if (m_errorUnit == ERROR_NORMALIZED && m_focalLength == 0.0) {
     m_errorScale = estimatedFocalLength(robot, at("setRobot()")); // before anything changes
+    m_iterations[m_lastIteration].m_errorScale = m_errorScale;
   }
   if (m_link.robot != &robot) {
     m_mismatch.reset(); // memories of another robot's model
@@ -229,6 +231,7 @@ void vpServoProjective::setRankTolerance(double tolerance)
          "the rank tolerance is a ratio of singular values and must be in (0, 1), e.g. 1e-6");
   }
   m_rankTolerance = tolerance;
+  m_iterations[m_lastIteration].m_rankTolerance = tolerance;
 }
 
 void vpServoProjective::setImageSize(unsigned int width, unsigned int height, double border)
@@ -252,12 +255,6 @@ void vpServoProjective::setFeatureTracked(unsigned int i, bool tracked)
   m_health.setFeatureTracked(i, tracked);
 }
 
-bool vpServoProjective::isFeatureTracked(unsigned int i) const
-{
-  checkFeatureIndex(i, "isFeatureTracked()");
-  return m_health.isFeatureTracked(i);
-}
-
 void vpServoProjective::setOutlierThreshold(double pixels)
 {
   m_health.setOutlierThreshold(pixels);
@@ -275,11 +272,6 @@ void vpServoProjective::setJointLimits(const vpColVector &qmin, const vpColVecto
     fail(vpProjectiveException::dimensionError, at("setJointLimits()"), os.str());
   }
   m_jointLimits = limits;
-}
-
-void vpServoProjective::setLargeProjectionThresholds(double e0, double e1)
-{
-  m_jointLimits.setLargeProjectionThresholds(e0, e1);
 }
 
 void vpServoProjective::clearJointLimits()

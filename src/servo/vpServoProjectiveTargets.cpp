@@ -179,9 +179,9 @@ bool vpServoProjective::planIfNeeded(const JointVector &q, const vpServoProjecti
              m_openLoopCalls == 0) { // in open loop the features are not all seen: no plan from them
     const vpIteration &it = last();
     const double rms =
-        it.data.m_e.size() > 0 ? it.data.m_errorNorm / std::sqrt(static_cast<double>(it.data.m_e.size())) : 0.0;
+        it.m_data.m_e.size() > 0 ? it.m_data.m_errorNorm / std::sqrt(static_cast<double>(it.m_data.m_e.size())) : 0.0;
     const bool settled = lawPlan && m_sincePlan > 2 * (path.size() - 1) + 10;
-    const bool stalled = settled && lawStalled(it.data.m_e);
+    const bool stalled = settled && lawStalled(it.m_data.m_e);
     const bool off = lawPlan
                          ? (settled && rms > 2.0 * m_planner.getRehearsalResidual() + 2.0) || stalled
                          : m_pathSample > 0 && m_pathSample < path.size() &&

@@ -341,7 +341,8 @@ struct ProjectiveTask {
 std::string taskLabel(const vpServoProjective &task)
 {
   char label[96];
-  std::snprintf(label, sizeof(label), "cond %.3g, damping %.3g", task.getConditionNumber(), task.getDamping());
+  std::snprintf(label, sizeof(label), "cond %.3g, damping %.3g", task.getReport().getConditionNumber(),
+                task.getReport().getDamping());
   return label;
 }
 
@@ -490,7 +491,7 @@ std::string robustLabel(const vpServoProjective &task)
   char label[96];
   std::snprintf(label, sizeof(label), "%s, %u/%u active, |q2| %.2g", status[task.getStatus()],
                 task.getFeatureHealth().getNumberOfActiveFeatures(), task.getNumberOfFeatures(),
-                task.getJointLimitVelocity().frobeniusNorm());
+                task.getReport().getJointLimitVelocity().frobeniusNorm());
   return label;
 }
 
@@ -539,7 +540,7 @@ void BM_vpServoProjective_Eigen_Following(benchmark::State &state)
     benchmark::ClobberMemory();
   }
   reportAllocations(state, before);
-  state.SetLabel(std::string(t.task.isFollowingPath() ? "following, " : "NOT following, ") +
+  state.SetLabel(std::string(t.task.getReport().isFollowingPath() ? "following, " : "NOT following, ") +
                  std::to_string(t.task.getPathPlanner().getPath().size()) + " samples");
 }
 

@@ -38,8 +38,6 @@
 
 BEGIN_VISP_NAMESPACE
 
-class vpProjectiveAcquisitionProcedure;
-
 /*!
   \class vpProjectiveRobot
   \ingroup group_projective
@@ -162,22 +160,22 @@ public:
     \exception vpProjectiveException (invalidValueError) if \e pixels is negative or not finite.
   */
   void setOutlierThreshold(double pixels);
-  //! The outlier threshold in pixels (0: no rejection).
-  double getOutlierThreshold() const { return m_acquisition.getOutlierThreshold(); }
-  //! Number of trial observations (marker in a trial's pair of images) the last calibrate() left out.
-  unsigned int getNumberOfOutliers() const { return m_acquisition.getNumberOfOutliers(); }
   /*!
-    True if the last calibrate() left out marker \e marker of trial \e trial (trials numbered in the order of
-    addTrialMotion(), from 0).
-    \exception vpProjectiveException (dimensionError) if there is no such observation.
-  */
-  bool isOutlier(unsigned int trial, unsigned int marker) const { return m_acquisition.isOutlier(trial, marker); }
-  /*!
-    The acquisition: its images, outlier flags and residuals, and the rig as it was estimated or set (getStereoRig()
-    returns the model's, refined by the bundle adjustment, once calibrated). After loadModel(): no images, the
-    model's rig.
+    The acquisition: its images, the outlier threshold and the observations the last calibrate() left out
+    (getOutlierThreshold(), getNumberOfOutliers(), isOutlier(trial, marker)), its residuals, and the rig as it was
+    estimated or set (getStereoRig() returns the model's, refined by the bundle adjustment, once calibrated). After
+    loadModel(): no images, the model's rig.
   */
   const vpProjectiveArmAcquisition &getAcquisition() const { return m_acquisition; }
+  /*!
+    Takes \e model, computed from \e acquisition outside the robot (vpProjectiveAcquisitionProcedure::run() does),
+    with the RMS residual \e residual (pixels) of its final refinement, as calibrate() would: the rig observations
+    and re-registration are forgotten and the tasks on the robot are told (vpListener).
+    \exception vpProjectiveException (dimensionError) if the joint types of \e model, \e acquisition and the robot
+    differ; (invalidValueError) if \e residual is negative or not finite. The robot is then unchanged.
+  */
+  void setCalibration(const vpProjectiveArmAcquisition &acquisition, const vpProjectiveArmModel &model,
+                      double residual);
   //@}
 
   /*! \name Model */
@@ -377,8 +375,6 @@ public:
   //@}
 
 private:
-  friend class vpProjectiveAcquisitionProcedure; // run(vpRobot &, vpProjectiveRobot &) calibrates through adopt()
-
   //! Takes \e model, calibrated from \e acquisition with these residuals, as the robot's model.
   void adopt(const vpProjectiveArmAcquisition &acquisition, const vpProjectiveArmModel &model, double residual,
              double algebraicResidual);

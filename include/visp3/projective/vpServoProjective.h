@@ -35,7 +35,7 @@
 #include <visp3/projective/vpServoFeatureHealth.h>
 #include <visp3/projective/vpServoJointLimitAvoidance.h>
 #include <visp3/projective/vpServoModelMismatch.h>
-#include <visp3/projective/vpServoProjectiveData.h>
+#include <visp3/projective/vpServoProjectiveReport.h>
 #include <visp3/projective/vpServoRigRefinement.h>
 #include <visp3/projective/vpServoSettling.h>
 #include <visp3/vs/vpAdaptiveGain.h>
@@ -61,17 +61,17 @@ BEGIN_VISP_NAMESPACE
 
   Like vpServo, the task keeps references to the features: the loop updates them and calls computeControlLaw()
   (\ref page_porting maps vpServo's calls to this task's). Each iteration computes its data once
-  (vpServoProjectiveData, getData()), which every part of the task reads (\ref servo_task_data).
+  (vpServoProjectiveData), which every part of the task reads (\ref servo_task_data).
 
-  Each feature gets a state (getFeatureState(), vpServoFeatureHealth); the rows of the features set aside are zero,
-  and getStatus() tells whether the active ones still constrain every joint (\ref servo_task_features). Every getter
-  is const and writes nothing: several threads may read one task while none computes.
+  Each feature gets a state (vpServoFeatureHealth); the rows of the features set aside are zero, and getStatus()
+  tells whether the active ones still constrain every joint (\ref servo_task_features); getReport() gives the rest
+  of the last call. Every getter is const and writes nothing: several threads may read one task while none computes.
 
   \code
   task.setRobot(robot); task.setLambda(0.5);
   for (unsigned int i = 0; i < 4; ++i) task.addFeature(s[i], s_star[i]);
   while (!converged) { // track, s[i].buildFrom(ipLeft[i], ipRight[i]), task.setFeatureTracked(i, found[i])
-    vpColVector qdot = task.computeControlLaw(q); // qdot = 0 when SERVO_STOPPED: getFeatureState(i) tells why
+    vpColVector qdot = task.computeControlLaw(q); // SERVO_STOPPED: getReport().getFeatureState(i) says why
   }
   \endcode
 */
@@ -91,20 +91,19 @@ public:
   //! Set aside: farther than setOutlierThreshold() from its epipolar line or its prediction.
   static constexpr vpFeatureState FEATURE_OUTLIER = vpServoFeatureHealth::FEATURE_OUTLIER;
 
-  //! Outcome of the last computeControlLaw() (\ref servo_task_features).
-  enum vpServoStatus {
-    SERVO_RUNNING,        //!< Every feature used.
-    SERVO_REDUCED,        //!< Some features set aside, the remaining ones keep rank n: the task continues on them.
-    SERVO_STOPPED,        //!< The active features no longer constrain every joint (rank < n): \f$ \dot q = 0 \f$.
-    SERVO_NO_PLAN,        //!< Path planning is on and no plan exists for the target (getPathPlanner() says why):
-                          //!< \f$ \dot q = 0 \f$.
-    SERVO_MODEL_MISMATCH, //!< Every usable feature disagrees with the model's prediction on consecutive calls (a
-                          //!< moved camera; setModelMismatchThreshold()): \f$ \dot q = 0 \f$; re-register the rig.
-    SERVO_OPEN_LOOP       //!< Planned task: the active features no longer constrain every joint (a tag seen edge-on,
-                          //!< occluded), and the features set aside are replaced by the model's predictions at the
-                          //!< measured joints, for at most setMaxOpenLoopTime(): the arm keeps to its plan, the images
-                          //!< take over again when the features return.
-  };
+  //! Outcome of the last computeControlLaw() (\ref servo_task_features): see vpServoProjectiveReport::vpServoStatus.
+  typedef vpServoProjectiveReport::vpServoStatus vpServoStatus;
+  static constexpr vpServoStatus SERVO_RUNNING = vpServoProjectiveReport::SERVO_RUNNING; //!< Every feature used.
+  //! Some features set aside, the others keep rank n.
+  static constexpr vpServoStatus SERVO_REDUCED = vpServoProjectiveReport::SERVO_REDUCED;
+  //! Rank < n: \f$ \dot q = 0 \f$.
+  static constexpr vpServoStatus SERVO_STOPPED = vpServoProjectiveReport::SERVO_STOPPED;
+  //! No plan for the target: \f$ \dot q = 0 \f$.
+  static constexpr vpServoStatus SERVO_NO_PLAN = vpServoProjectiveReport::SERVO_NO_PLAN;
+  //! The features disagree with the model (a moved camera): \f$ \dot q = 0 \f$.
+  static constexpr vpServoStatus SERVO_MODEL_MISMATCH = vpServoProjectiveReport::SERVO_MODEL_MISMATCH;
+  //! Planned task on the model's predictions of the features set aside.
+  static constexpr vpServoStatus SERVO_OPEN_LOOP = vpServoProjectiveReport::SERVO_OPEN_LOOP;
 
   //! The unit of the task error \f$ e \f$ that the gain sees (see setErrorUnit()).
   enum vpErrorUnit {
@@ -221,8 +220,6 @@ public:
   //! The tracker's verdict on feature \e i (addFeature() order; default true): false sets it aside
   //! (FEATURE_NOT_TRACKED) until set back. \exception vpProjectiveException (dimensionError) on a bad index.
   void setFeatureTracked(unsigned int i, bool tracked);
-  //! The value given by setFeatureTracked() for feature \e i. \exception vpProjectiveException on a bad index.
-  bool isFeatureTracked(unsigned int i) const;
   /*!
     Outlier rejection (pixels; 0, the default, disables it): feature \e i is FEATURE_OUTLIER when its epipolar
     distance \f$ d_F \f$ or, from its second acceptance on, the distance to its prediction, the image of
@@ -278,16 +275,8 @@ public:
   */
   void setJointLimits(const vpColVector &qmin, const vpColVector &qmax, double rho = 0.1, double rho1 = 0.3,
                       double lambdaTune = 0.7);
-  /*!
-    Error norms \f$ 0 \le e_0 < e_1 \f$ (unit of setErrorUnit(); default vpServo's 0.1, 0.7) of the switch between
-    \f$ P_{\|e\|} \f$ (above \f$ e_1 \f$) and \f$ I_n - J^+ J \f$ (below \f$ e_0 \f$), vpServoJointLimitAvoidance.
-    \exception vpProjectiveException if they are not finite or not \f$ 0 \le e_0 < e_1 \f$.
-  */
-  void setLargeProjectionThresholds(double e0, double e1);
   //! Removes the joint limits set by setJointLimits().
   void clearJointLimits();
-  //! True if setJointLimits() is in effect.
-  bool hasJointLimits() const { return m_jointLimits.hasJointLimits(); }
   //@}
 
   /*! \name Features */
@@ -306,7 +295,7 @@ public:
   //@{
   /*!
     Law (47) \f$ \dot q = -\lambda J^+ (s - s^*) \f$ on the active features, plus the joint-limit avoidance, then
-    saturated; a feature set aside never throws (getFeatureState(), getStatus()).
+    saturated; a feature set aside never throws (getStatus(), getReport()).
     \param q : joint values (n x 1), the model's (radians, or the encoder's length unit).
     \return \f$ \dot q \f$ (n x 1), joint units per call (or per second, following \f$ \lambda \f$).
     \exception vpProjectiveException if the robot or the features are missing, q has the wrong size or is not
@@ -327,45 +316,17 @@ public:
   vpColVector computeControlLaw();
   //@}
 
-  /*! \name State of the last computeControlLaw() */
+  /*! \name What the last computeControlLaw() did */
   //@{
   //! \f$ e = s - s^* \f$ (4N, in the unit of setErrorUnit(): pixels by default) of the last computeControlLaw(); the
   //! 4 rows of a feature set aside are zero.
-  vpColVector getError() const;
-  //! \f$ J \f$ (4N x n, unit of setErrorUnit() per joint unit) of the last computeControlLaw(); the 4 rows of a
-  //! feature set aside are zero.
-  vpMatrix getTaskJacobian() const;
-  //! Singular values of the last \f$ J \f$ (n x 1, decreasing, unit of setErrorUnit() per joint unit), as
-  //! vpServo::getTaskSingularValues(); empty before the first call. An SVD on demand.
-  vpColVector getTaskSingularValues() const;
-
-  //! What the last computeControlLaw() computed once and every part read (\f$ H(q) \f$, points, J, e in px).
-  const vpServoProjectiveData &getData() const { return last().data; }
+  vpColVector getError() const { return last().getError(); }
   //! Outcome of the last computeControlLaw() (SERVO_RUNNING before the first one).
-  vpServoStatus getStatus() const { return last().status; }
+  vpServoStatus getStatus() const { return last().getStatus(); }
   //! The status's name and what it means (as print() gives it), e.g. for a program's log when it stops.
   static std::string toString(vpServoStatus status);
-  //! State of feature \e i at the last computeControlLaw() (FEATURE_ACTIVE before).
-  //! \exception vpProjectiveException (dimensionError) on a bad index.
-  vpFeatureState getFeatureState(unsigned int i) const;
-  //! \f$ \sigma_{min}(J D^{-1}) / \sigma_{max}(J D^{-1}) \f$ of the last reduced \f$ J \f$, \f$ D \f$ its column norms:
-  //! what setRankTolerance() is compared with (0 if a column is below it). On demand.
-  double getSingularValueRatio() const;
-  //! Large projection operator \f$ P \f$ (n x n, vpServoJointLimitAvoidance) of the last \f$ J \f$, \f$ e \f$.
-  //! \exception vpProjectiveException (notInitializedError) before the first computeControlLaw().
-  vpMatrix getLargeProjectionOperator() const;
-  //! Secondary-task velocity \f$ \dot q_2 \f$ (n x 1, before the final saturation) of the last call; empty before.
-  vpColVector getJointLimitVelocity() const;
-  //! Condition number \f$ \sigma_{max} / \sigma_{min} \f$ of the last reduced \f$ J \f$ (infinite if rank
-  //! deficient, 0 before the first call), from the eigenvalues of its \f$ J^T J \f$ on demand.
-  double getConditionNumber() const;
-  //! Damping \f$ \mu \f$ (pixels per joint unit) used at the last computeControlLaw() (0 away from singularities,
-  //! and when it stopped).
-  double getDamping() const { return last().damping; }
-  //! Gain used at the last computeControlLaw() (0 when it stopped: SERVO_STOPPED).
-  double getLambda() const { return last().lambda; }
-  //! True if the last computeControlLaw() was scaled down by the velocity saturation.
-  bool isSaturated() const { return last().saturated; }
+  //! Everything else the last computeControlLaw() did: features' states, J, gain, damping, saturation, ...
+  const vpServoProjectiveReport &getReport() const { return last(); }
   //@}
 
   /*! \name Global servoing: plan with the acquired model, follow the plan, finish with law (47) */
@@ -385,8 +346,6 @@ public:
   //! Gain of the path following's feedback (default 1): the fraction of the error to the sample's predicted
   //! features corrected per call. \exception vpProjectiveException if it is not in (0, 1].
   void setPathFollowingGain(double gain);
-  //! True while the last computeControlLaw() followed the planned path (before the final law (47)).
-  bool isFollowingPath() const { return m_following; }
   /*!
     Open loop on the model (default 2 s; 0: off): while a plan is under way and the active features no longer
     constrain every joint (a tag turned edge-on, an occlusion), each feature set aside that was active before is
@@ -399,8 +358,6 @@ public:
   void setMaxOpenLoopTime(double seconds);
   //! The bound of setMaxOpenLoopTime() (seconds; 0: off).
   double getMaxOpenLoopTime() const { return m_maxOpenLoopTime; }
-  //! Consecutive calls that ended in SERVO_OPEN_LOOP, up to the last one (0 when it did not).
-  unsigned int getOpenLoopCalls() const { return m_openLoopCalls; }
   //! The planner, its settings and its last plan (target, branches, path, description).
   const vpProjectivePathPlanner &getPathPlanner() const { return m_planner; }
   //! The planner, to change its settings (setMaxJointStep(), setMaxExcursion(), setNumberOfStarts()).
@@ -411,11 +368,17 @@ public:
   //@{
   //! The control law and its settings (setDamping(), setMaxJointVelocity(), setPseudoInverseThreshold()).
   const vpServoDampedLeastSquares &getDampedLeastSquares() const { return m_law; }
-  //! The feature checks, their settings (setImageSize(), setOutlierThreshold(), setFeatureTracked()) and their last
-  //! verdicts: active features, each feature's epipolar and prediction distances.
+  //! The feature checks, their settings (setImageSize(), setOutlierThreshold(), setFeatureTracked(): read with
+  //! isFeatureTracked()) and their last verdicts: active features, each feature's epipolar and prediction distances.
   const vpServoFeatureHealth &getFeatureHealth() const { return m_health; }
-  //! The joint-limit avoidance and its settings (setJointLimits(), setLargeProjectionThresholds()).
+  //! The joint-limit avoidance and its settings (setJointLimits(); hasJointLimits(), the thresholds of \f$ P \f$).
   const vpServoJointLimitAvoidance &getJointLimitAvoidance() const { return m_jointLimits; }
+  /*!
+    The same, to change the thresholds \f$ 0 \le e_0 < e_1 \f$ of \f$ P \f$ (unit of setErrorUnit(); default vpServo's
+    0.1, 0.7): vpServoJointLimitAvoidance::setLargeProjectionThresholds(). Its setJointLimits() does not check the
+    robot's joints as the task's does; computeControlLaw() does.
+  */
+  vpServoJointLimitAvoidance &getJointLimitAvoidance() { return m_jointLimits; }
   //@}
 
   //! Prints the task in the layout of vpServo::print(vpServo::ALL) (J in place of Ls), then the status, each
@@ -426,15 +389,8 @@ private:
   typedef vpProjectiveArmModel::JointMatrix JointMatrix;
   typedef vpProjectiveArmModel::JointVector JointVector;
 
-  //! What one computeControlLaw() computes; kept only when it succeeds.
-  struct vpIteration {
-    vpServoProjectiveData data;           // H(q), joint motions, points, J, e, J^T J, J^T e: computed once
-    vpServoStatus status = SERVO_RUNNING; // outcome
-    double lambda = 0.0;                  // gain used
-    double damping = 0.0;                 // mu used
-    bool saturated = false;               // scaled down by the saturation
-    JointVector qdot2;                    // secondary task
-  };
+  //! What one computeControlLaw() computes (vpServoProjectiveReport); kept only when it succeeds.
+  typedef vpServoProjectiveReport vpIteration;
 
   //! The robot of setRobot(), attached: it tells the task of a new model or rig (vpProjectiveRobot::vpListener).
   struct vpRobotLink : public vpProjectiveRobot::vpListener {
@@ -463,7 +419,7 @@ private:
   void keepInside(const JointVector &q, const vpIteration &it, JointVector &qdot) const;
   void stop(vpIteration &it, JointVector &qdot);
   void commit();
-  const vpIteration &last() const { return m_iterations[m_lastIteration]; }
+  const vpServoProjectiveReport &last() const { return m_iterations[m_lastIteration]; }
   bool planIfNeeded(const JointVector &q, const vpServoProjectiveData &data);
   bool lawStalled(const Eigen::VectorXd &e);
   Eigen::Vector4d desired(unsigned int i) const;

@@ -49,9 +49,9 @@ BEGIN_VISP_NAMESPACE
   - the task: \f$ J \f$ (4N x n, pixels per joint unit; zero rows for features set aside), \f$ e = s - s^* \f$
     (4N, pixels), \f$ J^T J \f$, \f$ J^T e \f$, filled by vpServoProjective::computeControlLaw().
 
-  vpServoProjective::getData() gives the data of the last successful iteration. No allocation once the sizes are
-  known. getDisplacementCount() counts the \f$ H(q) \f$ computed since the last computeKinematics() (1 after an
-  iteration), so that a test can check that none is computed twice.
+  vpServoProjectiveReport::getData() (vpServoProjective::getReport()) gives the data of the last successful iteration.
+  No allocation once the sizes are known. getDisplacementCount() counts the \f$ H(q) \f$ computed since the last
+  computeKinematics() (1 after an iteration), so that a test can check that none is computed twice.
 */
 class VISP_EXPORT vpServoProjectiveData
 {
