@@ -68,8 +68,10 @@ Eigen::Vector3d unitVector(vpUniRand &rng)
 // A point near the fixation point, in the left camera frame (metres).
 Eigen::Vector3d pointNearFixation(const Scene &scene, vpUniRand &rng)
 {
-  return scene.cameraPoint(Scene::fixation()).head<3>() +
-         Eigen::Vector3d(rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1));
+  const double dz = rng.uniform(-0.1, 0.1); // drawn last to first: see point3(), vpProjectiveTestTools.h
+  const double dy = rng.uniform(-0.1, 0.1);
+  const double dx = rng.uniform(-0.1, 0.1);
+  return scene.cameraPoint(Scene::fixation()).head<3>() + Eigen::Vector3d(dx, dy, dz);
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -83,8 +85,10 @@ struct DisplacementTraits {
   static Eigen::Matrix4d metricGenerator(const Scene &scene, vpUniRand &rng)
   {
     const Eigen::Vector3d w = unitVector(rng);
-    return vpMetricTwist::revolute(w, pointNearFixation(scene, rng)) +
-           vpMetricTwist::prismatic(Eigen::Vector3d(rng.uniform(-0.05, 0.05) * w));
+    // The pitch, then the point: drawn last to first, see point3(), vpProjectiveTestTools.h.
+    const double pitch = rng.uniform(-0.05, 0.05);
+    const Eigen::Vector3d point = pointNearFixation(scene, rng);
+    return vpMetricTwist::revolute(w, point) + vpMetricTwist::prismatic(Eigen::Vector3d(pitch * w));
   }
   // Angles in (-pi, pi), where the principal logarithm is this exponential's inverse.
   static std::vector<double> amounts() { return {0.05, -0.3, 0.9, -1.7, 2.4, -2.9, 3.0}; }
@@ -100,7 +104,10 @@ struct RotationTraits {
   static std::string name() { return "Rotation"; }
   static Eigen::Matrix4d metricGenerator(const Scene &scene, vpUniRand &rng)
   {
-    return vpMetricTwist::revolute(unitVector(rng), pointNearFixation(scene, rng));
+    // The point, then the axis: drawn last to first, see point3(), vpProjectiveTestTools.h.
+    const Eigen::Vector3d point = pointNearFixation(scene, rng);
+    const Eigen::Vector3d axis = unitVector(rng);
+    return vpMetricTwist::revolute(axis, point);
   }
   static std::vector<double> amounts() { return {0.05, -0.3, 0.9, -1.7, 2.4, -2.9, 3.0}; }
   static vpProjectiveDisplacement element(const Eigen::Matrix4d &Hhat, double q)
