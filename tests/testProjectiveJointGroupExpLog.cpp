@@ -262,8 +262,10 @@ TYPED_TEST(JointGroup, StaticExpAndActAgreeWithMemberExp)
       const double t = rng.uniform(-Traits::kRange, Traits::kRange);
       SCOPED_TRACE(::testing::Message() << "joint " << k << ", t " << t);
       const Eigen::Matrix4d E = G.exp(t).matrix();
-      const Eigen::Vector4d M(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0),
-                              rng.uniform(-1.0, 1.0));
+      Eigen::Vector4d M; // drawn last to first: see point3(), vpProjectiveTestTools.h
+      for (int i = 3; i >= 0; --i) {
+        M(i) = rng.uniform(-1.0, 1.0);
+      }
       EXPECT_LT(relativeError(Group::exp(Hhat, t), E), 1e-15);
       EXPECT_LT(relativeError(vpProjectiveJoint::exp(Traits::kType, Hhat, t), E), 1e-15);
       EXPECT_LT((Group::act(Hhat, t, M) - E * M).norm(), 1e-14 * terms * M.norm());

@@ -45,8 +45,10 @@ namespace
 Eigen::Matrix4d randomTwist(const Scene &scene, vpUniRand &rng, double theta, double along, double across)
 {
   const Eigen::Vector3d w = scene.cameraDirection(randomDirection(rng));
-  const Eigen::Vector3d p = scene.cameraPoint(Scene::fixation()).head<3>() +
-                            Eigen::Vector3d(rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1));
+  const double dz = rng.uniform(-0.1, 0.1); // drawn last to first: see point3(), vpProjectiveTestTools.h
+  const double dy = rng.uniform(-0.1, 0.1);
+  const double dx = rng.uniform(-0.1, 0.1);
+  const Eigen::Vector3d p = scene.cameraPoint(Scene::fixation()).head<3>() + Eigen::Vector3d(dx, dy, dz);
   const Eigen::Vector3d u = scene.cameraDirection(randomDirection(rng));
   const Eigen::Vector3d v = p.cross(w) * theta + along * w + across * (u - u.dot(w) * w).normalized();
   return vpMetricTwist::hat(v, Eigen::Vector3d(theta * w));
@@ -183,9 +185,14 @@ TEST(vpProjectiveBodyVelocity, SequenceSmoothsNoise)
     for (size_t j = 0; j < N; ++j) {
       t.push_back(static_cast<double>(j) * dt);
       // Noise of 1 mrad and 1 mm on each measured displacement, in the metric frame.
-      const Eigen::Matrix4d noiseTwist =
-          vpMetricTwist::hat(Eigen::Vector3d(1e-3 * noise(), 1e-3 * noise(), 1e-3 * noise()),
-                             Eigen::Vector3d(1e-3 * noise(), 1e-3 * noise(), 1e-3 * noise()));
+      Eigen::Vector3d w, v; // drawn last to first: see point3(), vpProjectiveTestTools.h (w, then v)
+      for (int i = 2; i >= 0; --i) {
+        w(i) = 1e-3 * noise();
+      }
+      for (int i = 2; i >= 0; --i) {
+        v(i) = 1e-3 * noise();
+      }
+      const Eigen::Matrix4d noiseTwist = vpMetricTwist::hat(v, w);
       const Eigen::Matrix4d T = expm(t.back() * Xi);
       H.push_back(vpProjectiveDisplacement(Eigen::Matrix4d(scene.HpeInv * expm(noiseTwist) * T * scene.Hpe)));
       Hexact.push_back(vpProjectiveDisplacement(Eigen::Matrix4d(scene.HpeInv * T * scene.Hpe)));

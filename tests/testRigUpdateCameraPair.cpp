@@ -231,7 +231,9 @@ TEST(RigUpdate, BadInputsThrowAndChangeNothing)
   std::vector<Eigen::Vector4d> X;
   std::vector<Eigen::Vector2d> uv;
   for (int k = 0; k < 12; ++k) {
-    const Eigen::Vector4d Xk(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), 0.0, 1.0);
+    const double y = rng.uniform(-1.0, 1.0); // drawn last to first: see point3(), vpProjectiveTestTools.h
+    const double x = rng.uniform(-1.0, 1.0);
+    const Eigen::Vector4d Xk(x, y, 0.0, 1.0);
     const Eigen::Vector3d m = P0 * (Xk + Eigen::Vector4d(0.0, 0.0, 3.0, 0.0));
     X.push_back(Xk + Eigen::Vector4d(0.0, 0.0, 3.0, 0.0));
     uv.push_back(m.head<2>() / m(2));

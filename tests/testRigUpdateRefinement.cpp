@@ -203,8 +203,11 @@ TEST(RigRefinement, FailureLeavesEverythingAsItWas)
     ServoRun::measure(b.t.b, q, 0.0, b.t.noise, b.run.s);
     for (vpFeatureStereoPoint &f : b.run.s) {
       const Eigen::Vector4d v = f.getFeature();
-      f.buildFrom(v(0) + garbage.uniform(-60.0, 60.0), v(1) + garbage.uniform(-60.0, 60.0),
-                  v(2) + garbage.uniform(-60.0, 60.0), v(3) + garbage.uniform(-60.0, 60.0));
+      Eigen::Vector4d thrown; // drawn last to first: see point3(), vpProjectiveTestTools.h
+      for (int i = 3; i >= 0; --i) {
+        thrown(i) = v(i) + garbage.uniform(-60.0, 60.0);
+      }
+      f.buildFrom(thrown(0), thrown(1), thrown(2), thrown(3));
     }
     b.run.task.computeControlLaw(q);
   }

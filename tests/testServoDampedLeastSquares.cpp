@@ -137,8 +137,12 @@ TEST(ServoDampedLeastSquares, IsVpServosLawOnAMetricIbvsTask)
     servo.setInteractionMatrixType(vpServo::CURRENT);
     servo.setLambda(0.5);
     for (unsigned int k = 0; k < 6; ++k) {
-      s[k].buildFrom(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), rng.uniform(0.8, 1.5));
-      sStar[k].buildFrom(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), rng.uniform(0.8, 1.5));
+      for (vpFeaturePoint *f : {&s[k], &sStar[k]}) {
+        const double Z = rng.uniform(0.8, 1.5); // drawn last to first: see point3(), vpProjectiveTestTools.h
+        const double y = rng.uniform(-0.3, 0.3);
+        const double x = rng.uniform(-0.3, 0.3);
+        f->buildFrom(x, y, Z);
+      }
       servo.addFeature(s[k], sStar[k]);
     }
     const vpColVector v = servo.computeControlLaw();

@@ -77,7 +77,10 @@ TEST(FeatureStereoPointBuilder, KnownPointsGiveThePixelsOfViSPsProjection)
   // Random points against vpPoint::track() and vpMeterPixelConversion (with distortion on the right).
   vpUniRand rng(7);
   for (int k = 0; k < 50; ++k) {
-    vpPoint P(rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2));
+    const double Z = rng.uniform(-0.2, 0.2); // drawn last to first: see point3(), vpProjectiveTestTools.h
+    const double Y = rng.uniform(-0.2, 0.2);
+    const double X = rng.uniform(-0.2, 0.2);
+    vpPoint P(X, Y, Z);
     s.buildFrom(P, camL, cLMo, camR, cRMo);
     double u, v, up, vp;
     P.track(cLMo);

@@ -61,9 +61,12 @@ void addRandomTags(vpSimulatorTagRenderer &renderer, long seed, int firstId, int
   vpUniRand rnd(seed);
   for (int n = 0; n < count; ++n) {
     const int a = n % 3, b = (n / 3) % 2;
-    const vpHomogeneousMatrix wMt(-0.09 + 0.09 * a + rnd.uniform(-0.01, 0.01), -0.05 + 0.1 * b,
-                                  rnd.uniform(-0.05, 0.05), rnd.uniform(-0.6, 0.6), rnd.uniform(-0.6, 0.6),
-                                  rnd.uniform(-M_PI, M_PI));
+    const double tuz = rnd.uniform(-M_PI, M_PI); // drawn last to first: see point3(), vpProjectiveTestTools.h
+    const double tuy = rnd.uniform(-0.6, 0.6);
+    const double tux = rnd.uniform(-0.6, 0.6);
+    const double tz = rnd.uniform(-0.05, 0.05);
+    const double dx = rnd.uniform(-0.01, 0.01);
+    const vpHomogeneousMatrix wMt(-0.09 + 0.09 * a + dx, -0.05 + 0.1 * b, tz, tux, tuy, tuz);
     renderer.addTag(firstId + n, 0.04, wMt);
   }
 }

@@ -99,7 +99,10 @@ inline vpHomogeneousMatrix randomMotion(const Scene &scene, vpUniRand &rng, cons
   const vpColVector c = centroid(body);
   for (;;) {
     const vpColVector axis = randomDirection(rng);
-    const vpColVector p = c + point3(rng.uniform(-0.03, 0.03), rng.uniform(-0.03, 0.03), rng.uniform(-0.03, 0.03));
+    const double dz = rng.uniform(-0.03, 0.03); // drawn last to first: see point3(), vpProjectiveTestTools.h
+    const double dy = rng.uniform(-0.03, 0.03);
+    const double dx = rng.uniform(-0.03, 0.03);
+    const vpColVector p = c + point3(dx, dy, dz);
     vpHomogeneousMatrix T;
     switch (kind) {
     case Rotation:

@@ -73,7 +73,10 @@ struct Joint {
 inline Joint randomJoint(vpUniRand &rng)
 {
   Joint j;
-  j.point = Scene::fixation() + point3(rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1), rng.uniform(-0.1, 0.1));
+  const double dz = rng.uniform(-0.1, 0.1); // drawn last to first: see point3(), vpProjectiveTestTools.h
+  const double dy = rng.uniform(-0.1, 0.1);
+  const double dx = rng.uniform(-0.1, 0.1);
+  j.point = Scene::fixation() + point3(dx, dy, dz);
   j.direction = randomDirection(rng);
   return j;
 }

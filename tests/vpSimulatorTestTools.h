@@ -59,7 +59,10 @@ const double kTrialDeg[6] = {30.0, 20.0, 30.0, 40.0, 60.0, 60.0}; // the paper's
 inline vpColVector visiblePoint(const vpSimulatorStereoRig &sim, vpUniRand &rng)
 {
   for (;;) {
-    const vpColVector X = point3(rng.uniform(-0.15, 0.15), rng.uniform(-0.12, 0.12), rng.uniform(-0.2, 0.2));
+    const double z = rng.uniform(-0.2, 0.2); // drawn last to first: see point3(), vpProjectiveTestTools.h
+    const double y = rng.uniform(-0.12, 0.12);
+    const double x = rng.uniform(-0.15, 0.15);
+    const vpColVector X = point3(x, y, z);
     if (sim.isVisible(X, 5.0)) {
       return X;
     }

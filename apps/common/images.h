@@ -147,8 +147,14 @@ struct Session {
     for (unsigned int k : indices) {
       vpImagePoint l, r;
       renderer.getStereoRig().project(X[k], l, r); // the cameras as they are now (see bump())
-      clickLeft.push_back(l + vpImagePoint(clicks.uniform(-2.0, 2.0), clicks.uniform(-2.0, 2.0)));
-      clickRight.push_back(r + vpImagePoint(clicks.uniform(-2.0, 2.0), clicks.uniform(-2.0, 2.0)));
+      // The clicks drawn j then i: the order g++ evaluated them in as the arguments of one call (C++ leaves it
+      // unspecified; the documented figures were measured with g++).
+      const double lj = clicks.uniform(-2.0, 2.0);
+      const double li = clicks.uniform(-2.0, 2.0);
+      clickLeft.push_back(l + vpImagePoint(li, lj));
+      const double rj = clicks.uniform(-2.0, 2.0);
+      const double ri = clicks.uniform(-2.0, 2.0);
+      clickRight.push_back(r + vpImagePoint(ri, rj));
     }
     tracker = vpStereoDotTracker();
     tracker.initTracking(Ileft, Iright, clickLeft, clickRight);

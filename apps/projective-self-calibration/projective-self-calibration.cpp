@@ -118,9 +118,15 @@ RigErrors planarCalibrate(const vpSimulatorStereoRig &rig, double width, double 
   const vpColVector centre = rig.get_wMl() * vpColVector({0.0, 0.0, 1.0, 1.0}); // 1 m in front of the left camera
   while (wMo.size() < 13) {
     // The grid 1 m away, tilted by up to 30 deg about its axes, placed where the rig sees all of it.
-    const vpHomogeneousMatrix M(centre[0] + uniform.uniform(-0.05, 0.05), centre[1] + uniform.uniform(-0.05, 0.05),
-                                centre[2] + uniform.uniform(-0.1, 0.1), vpMath::rad(uniform.uniform(-30, 30)),
-                                vpMath::rad(uniform.uniform(-30, 30)), vpMath::rad(uniform.uniform(-180, 180)));
+    // Drawn last to first, the order g++ evaluated them in as the arguments of one call (C++ leaves that order
+    // unspecified; the documented figures were measured with g++): the same poses whichever the compiler.
+    const double tuz = vpMath::rad(uniform.uniform(-180, 180));
+    const double tuy = vpMath::rad(uniform.uniform(-30, 30));
+    const double tux = vpMath::rad(uniform.uniform(-30, 30));
+    const double z = centre[2] + uniform.uniform(-0.1, 0.1);
+    const double y = centre[1] + uniform.uniform(-0.05, 0.05);
+    const double x = centre[0] + uniform.uniform(-0.05, 0.05);
+    const vpHomogeneousMatrix M(x, y, z, tux, tuy, tuz);
     vpCalibration calib[2];
     bool visible = true;
     for (int i = 0; i < 6 && visible; ++i) {

@@ -62,8 +62,13 @@ struct Scene {
   {
     vpUniRand rnd(1);
     for (int n = 0; n < 8; ++n) {
-      const vpHomogeneousMatrix wMt(-0.12 + 0.08 * (n % 4), -0.05 + 0.1 * (n / 4), rnd.uniform(-0.03, 0.03),
-                                    rnd.uniform(-0.5, 0.5), rnd.uniform(-0.5, 0.5), rnd.uniform(-3.14, 3.14));
+      // Drawn last to first, the order g++ evaluated these arguments in (C++ leaves it unspecified): the same tags
+      // whichever the compiler.
+      const double tuz = rnd.uniform(-3.14, 3.14);
+      const double tuy = rnd.uniform(-0.5, 0.5);
+      const double tux = rnd.uniform(-0.5, 0.5);
+      const double tz = rnd.uniform(-0.03, 0.03);
+      const vpHomogeneousMatrix wMt(-0.12 + 0.08 * (n % 4), -0.05 + 0.1 * (n / 4), tz, tux, tuy, tuz);
       renderer.addTag(3 * n, 0.04, wMt);
     }
     renderer.render(left, right);
