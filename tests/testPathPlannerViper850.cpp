@@ -127,7 +127,9 @@ NoisyRun runNoisy(const ViperWorld &w, vpColVector q, const vpColVector &qTarget
   auto measure = [&](const vpColVector &qm, std::vector<vpFeatureStereoPoint> &f) {
     for (size_t k = 0; k < tracked.size(); ++k) {
       const Eigen::Vector4d p = s.imageOf(s.armJoints(qm), tracked[k]);
-      f[k].buildFrom(p(0) + noise(), p(1) + noise(), p(2) + noise(), p(3) + noise());
+      // Drawn last coordinate first (see point3() on the order).
+      const double n3 = noise(), n2 = noise(), n1 = noise(), n0 = noise();
+      f[k].buildFrom(p(0) + n0, p(1) + n1, p(2) + n2, p(3) + n3);
     }
   };
   std::vector<vpFeatureStereoPoint> f(tracked.size()), fStar(tracked.size());
