@@ -50,13 +50,7 @@ void jointMotionsAndDisplacement(const vpProjectiveArmModel &model, const vpProj
     const double dq = q(i) - qRef(i);
     // Hhat2s[i] is Hhat * Hhat, as jointMotions() computes it: the same motions to the bit.
     vpProjectiveInternal::jointExponentialPair(model.jointTypes()[i], dq, Hhat, Hhat2s[i], E, Einv);
-    if (k == 0) {
-      A = E;
-      Ainv = Einv;
-    } else {
-      A = A * E;
-      Ainv = Einv * Ainv;
-    }
+    vpProjectiveInternal::chainExponentialPair(k == 0, E, Einv, A, Ainv);
   }
 }
 } // namespace
