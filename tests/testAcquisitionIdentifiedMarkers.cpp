@@ -75,8 +75,7 @@ struct IdentifiedCell {
   }
 
   //! The acquisition procedure on \e robot, its cameras giving frame() with the markers \e visible accepts.
-  template <typename Visible>
-  vpProjectiveAcquisitionProcedure procedure(vpSimulatorRobotArm &robot, Visible visible)
+  template <typename Visible> vpProjectiveAcquisitionProcedure procedure(vpSimulatorRobotArm &robot, Visible visible)
   {
     return vpProjectiveAcquisitionProcedure(
         [this, &robot, visible](std::vector<int> &ids, std::vector<vpImagePoint> &left,
