@@ -28,6 +28,13 @@ namespace
 {
 //! The relative error of the model's local motion that the recent prediction tolerates (a tenth of the motion).
 const double kMotionTolerance = 0.1;
+
+//! \e M or \f$ -M \f$, whichever agrees in sign with \e reference: a projective point's sign is arbitrary, so the
+//! points summed into one memory are aligned first.
+Eigen::Vector4d alignedWith(const Eigen::Vector4d &reference, const Eigen::Vector4d &M)
+{
+  return reference.dot(M) < 0.0 ? Eigen::Vector4d(-M) : M;
+}
 } // namespace
 
 vpServoModelMismatch::vpServoModelMismatch()
@@ -140,11 +147,11 @@ bool vpServoModelMismatch::endIteration()
       if (!M.allFinite()) {
         continue;
       }
-      r.recent = r.hasMemory ? Eigen::Vector4d((r.recent + (r.recent.dot(M) < 0.0 ? -M : M)).normalized()) : M;
+      r.recent = r.hasMemory ? Eigen::Vector4d((r.recent + alignedWith(r.recent, M)).normalized()) : M;
       Eigen::Vector4d sHat;
       r.offset = m_data->predict(r.recent, sHat) ? Eigen::Vector4d(r.s - sHat) : Eigen::Vector4d::Zero();
       r.last = r.s;
-      r.triangulated += r.triangulated.dot(M) < 0.0 ? Eigen::Vector4d(-M) : M;
+      r.triangulated += alignedWith(r.triangulated, M);
       if (r.exact) {
         continue;
       }
@@ -156,7 +163,7 @@ bool vpServoModelMismatch::endIteration()
         r.hasMemory = r.exact = true;
         continue;
       }
-      r.sum += r.hasMemory && r.sum.dot(M) < 0.0 ? Eigen::Vector4d(-M) : M;
+      r.sum += r.hasMemory ? alignedWith(r.sum, M) : M;
       r.hasMemory = true;
     }
   }
