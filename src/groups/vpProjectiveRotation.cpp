@@ -21,7 +21,7 @@
 
 #include <visp3/projective/vpProjectiveDisplacement.h>
 
-#include "core/vpProjectiveConversions.h"
+#include "core/vpProjectiveErrors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -32,25 +32,7 @@ using namespace vpProjectiveInternal;
 namespace
 {
 const vpErrorSite at("vpProjectiveRotation");
-
-void checkGenerator(const Eigen::Matrix4d &Hhat, double tolerance, const std::string &where)
-{
-  if (!Hhat.allFinite()) {
-    fail(vpProjectiveException::nonFiniteValueError, where, "the generator has a NaN or infinite entry");
-  }
-  if (!(tolerance >= 0.0)) {
-    fail(vpProjectiveException::invalidValueError, where, "the tolerance must be non-negative");
-  }
-  const double residual = vpProjectiveRotation::generatorResidual(Hhat);
-  if (Hhat.norm() > 0.0 && residual > tolerance) {
-    std::ostringstream os;
-    os << "not a p-rotation generator: |Hhat^3 + Hhat| / |Hhat| = " << residual << " exceeds " << tolerance
-       << " (eq. (26) needs Hhat^3 = -Hhat)";
-    fail(vpProjectiveException::invalidValueError, where, os.str());
-  }
 }
-
-} // namespace
 
 Eigen::Matrix4d vpProjectiveRotation::project(const Eigen::Matrix4d &Hhat)
 {
@@ -77,18 +59,6 @@ Eigen::Matrix4d vpProjectiveRotation::project(const Eigen::Matrix4d &Hhat)
   projected(partner) = std::complex<double>(0.0, -1.0);
   const Eigen::Matrix4cd X = V * projected.asDiagonal() * V.inverse();
   return X.real();
-}
-
-vpProjectiveRotation::vpProjectiveRotation() : m_Hhat(Eigen::Matrix4d::Zero()) {}
-
-vpProjectiveRotation::vpProjectiveRotation(const Eigen::Matrix4d &Hhat, double tolerance) : m_Hhat(Hhat)
-{
-  checkGenerator(Hhat, tolerance, at("vpProjectiveRotation()"));
-}
-
-vpProjectiveRotation::vpProjectiveRotation(const vpMatrix &Hhat, double tolerance)
-    : vpProjectiveRotation(toEigen<4, 4>(Hhat, at("vpProjectiveRotation()"), "Hhat"), tolerance)
-{
 }
 
 double vpProjectiveRotation::generatorResidual(const Eigen::Matrix4d &Hhat)
@@ -118,22 +88,10 @@ vpProjectiveRotation vpProjectiveRotation::log(const vpProjectiveDisplacement &H
     fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
   }
   const Eigen::Matrix4d &Hn = H.matrix();
-  vpProjectiveRotation R;
-  R.m_Hhat = project((Hn - Hn.inverse()) / (2.0 * s));
-  return R;
-}
-
-vpProjectiveDisplacement vpProjectiveRotation::exp(double theta) const
-{
-  return vpProjectiveDisplacement(exp(m_Hhat, theta), vpProjectiveDisplacement::vpNormalized());
+  return fromExactGenerator(project((Hn - Hn.inverse()) / (2.0 * s)));
 }
 
 Eigen::Matrix4d vpProjectiveRotation::dexp(double theta) const
 {
-  return m_Hhat * exp(m_Hhat, theta);
-}
-
-vpMatrix vpProjectiveRotation::getGenerator() const
-{
-  return toVisp(m_Hhat);
+  return generator() * exp(generator(), theta);
 }

@@ -14,13 +14,12 @@
 #include <visp3/projective/vpProjectiveTranslation.h>
 
 #include <cmath>
-#include <sstream>
 
 #include <Eigen/Dense>
 
 #include <visp3/projective/vpProjectiveDisplacement.h>
 
-#include "core/vpProjectiveConversions.h"
+#include "core/vpProjectiveErrors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -31,31 +30,6 @@ using namespace vpProjectiveInternal;
 namespace
 {
 const vpErrorSite at("vpProjectiveTranslation");
-}
-
-vpProjectiveTranslation::vpProjectiveTranslation() : m_Hhat(Eigen::Matrix4d::Zero()) {}
-
-vpProjectiveTranslation::vpProjectiveTranslation(const Eigen::Matrix4d &Hhat, double tolerance) : m_Hhat(Hhat)
-{
-  const std::string where = at("vpProjectiveTranslation()");
-  if (!Hhat.allFinite()) {
-    fail(vpProjectiveException::nonFiniteValueError, where, "the generator has a NaN or infinite entry");
-  }
-  if (!(tolerance >= 0.0)) {
-    fail(vpProjectiveException::invalidValueError, where, "the tolerance must be non-negative");
-  }
-  const double residual = generatorResidual(Hhat);
-  if (residual > tolerance) {
-    std::ostringstream os;
-    os << "not a p-translation generator: |Hhat^2| / |Hhat|^2 = " << residual << " exceeds " << tolerance
-       << " (eq. (31) needs Hhat^2 = 0)";
-    fail(vpProjectiveException::invalidValueError, where, os.str());
-  }
-}
-
-vpProjectiveTranslation::vpProjectiveTranslation(const vpMatrix &Hhat, double tolerance)
-    : vpProjectiveTranslation(toEigen<4, 4>(Hhat, at("vpProjectiveTranslation()"), "Hhat"), tolerance)
-{
 }
 
 double vpProjectiveTranslation::generatorResidual(const Eigen::Matrix4d &Hhat)
@@ -78,19 +52,12 @@ vpProjectiveTranslation vpProjectiveTranslation::log(const vpProjectiveDisplacem
          "the encoder amount tau is zero; a prismatic joint must move to reveal its generator, and the length of its "
          "motion must be read by its encoder");
   }
-  vpProjectiveTranslation T;
-  T.m_Hhat = project((H.matrix() - Eigen::Matrix4d::Identity()) / amount);
-  return T;
-}
-
-vpProjectiveDisplacement vpProjectiveTranslation::exp(double tau) const
-{
-  return vpProjectiveDisplacement(exp(m_Hhat, tau), vpProjectiveDisplacement::vpNormalized());
+  return fromExactGenerator(project((H.matrix() - Eigen::Matrix4d::Identity()) / amount));
 }
 
 Eigen::Matrix4d vpProjectiveTranslation::dexp(double) const
 {
-  return m_Hhat;
+  return generator();
 }
 
 Eigen::Matrix4d vpProjectiveTranslation::project(const Eigen::Matrix4d &Hhat)
@@ -101,9 +68,4 @@ Eigen::Matrix4d vpProjectiveTranslation::project(const Eigen::Matrix4d &Hhat)
   Eigen::Vector4d u = svd.matrixU().col(0);
   u -= v.dot(u) * v;
   return svd.singularValues()(0) * u * v.transpose();
-}
-
-vpMatrix vpProjectiveTranslation::getGenerator() const
-{
-  return toVisp(m_Hhat);
 }

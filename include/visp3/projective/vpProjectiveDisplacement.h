@@ -33,6 +33,7 @@
 BEGIN_VISP_NAMESPACE
 
 class vpProjectiveStereoRig;
+template <typename Derived> class vpProjectiveJointSubgroup;
 
 /*!
   \class vpProjectiveDisplacement
@@ -301,8 +302,7 @@ public:
   //@}
 
 private:
-  friend class vpProjectiveRotation;
-  friend class vpProjectiveTranslation;
+  template <typename Derived> friend class vpProjectiveJointSubgroup; // exp(q) of the joints' subgroups
   //! Wraps \e H, normalised by construction (an exponential): no eq. (12), which would only add rounding.
   struct vpNormalized {
   };

@@ -27,6 +27,7 @@
 
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpProjectiveDisplacement.h>
+#include <visp3/projective/vpProjectiveJointSubgroup.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -52,20 +53,27 @@ BEGIN_VISP_NAMESPACE
   Group operations, and the page \ref page_groups): the kernels exp(Hhat, q) and act(Hhat, q, M), log(H, amount),
   and for the elements exp(q) returns, their inverse(), operator*() and act(M); with dexp(), generator(), project()
   and generatorResidual() shared by the two joint subgroups, so that generic code and tests treat the groups alike.
-  vpProjectiveJoint dispatches on a joint's type.
+  What the two share is written once in their base vpProjectiveJointSubgroup: generator(), getGenerator(), exp(theta)
+  and the checks of the constructors. vpProjectiveJoint dispatches on a joint's type.
 */
-class VISP_EXPORT vpProjectiveRotation
+class VISP_EXPORT vpProjectiveRotation : public vpProjectiveJointSubgroup<vpProjectiveRotation>
 {
 public:
   //! Zero generator (no motion); set one with the constructor or log().
-  vpProjectiveRotation();
+  vpProjectiveRotation() = default;
   /*!
     Takes a generator (4x4). \exception vpProjectiveException if it is not finite, not 4x4, or violates
-    \f$ \hat H^3 = -\hat H \f$ by more than \e tolerance relative to \f$ \|\hat H\| \f$.
+    \f$ \hat H^3 = -\hat H \f$ (26) by more than \e tolerance relative to \f$ \|\hat H\| \f$ (generatorResidual()).
   */
-  explicit vpProjectiveRotation(const vpMatrix &Hhat, double tolerance = 1e-6);
+  explicit vpProjectiveRotation(const vpMatrix &Hhat, double tolerance = 1e-6)
+      : vpProjectiveJointSubgroup(Hhat, tolerance)
+  {
+  }
   //! \overload
-  explicit vpProjectiveRotation(const Eigen::Matrix4d &Hhat, double tolerance = 1e-6);
+  explicit vpProjectiveRotation(const Eigen::Matrix4d &Hhat, double tolerance = 1e-6)
+      : vpProjectiveJointSubgroup(Hhat, tolerance)
+  {
+  }
 
   /*!
     Logarithm (25) of a p-rotation: the generator \f$ \hat H_R \f$ with \f$ H = \exp(\theta \hat H_R) \f$, projected on
@@ -83,7 +91,7 @@ public:
   static vpProjectiveRotation log(const vpProjectiveDisplacement &H, double amount);
 
   //! The p-rotation \f$ \exp(\theta \hat H_R) \f$ by Rodrigues' form (26): the kernel exp(generator(), theta).
-  vpProjectiveDisplacement exp(double theta) const;
+  using vpProjectiveJointSubgroup::exp;
   //! \f$ \frac{d}{d\theta} \exp(\theta \hat H_R) = \hat H_R \exp(\theta \hat H_R) \f$ (4x4).
   Eigen::Matrix4d dexp(double theta) const;
 
@@ -112,11 +120,6 @@ public:
     return M + sin(theta) * HM + (T(1.0) - cos(theta)) * (Hhat * HM);
   }
 
-  //! The generator \f$ \hat H_R \f$ (4x4).
-  const Eigen::Matrix4d &generator() const { return m_Hhat; }
-  //! The generator \f$ \hat H_R \f$ (4x4) as a vpMatrix.
-  vpMatrix getGenerator() const;
-
   /*!
     Closest exact generator to an approximate one (for instance an average of noisy logarithms): in the eigenbasis of
     \e Hhat, the conjugate pair of eigenvalues nearest to \f$ \pm i \f$ is set to exactly \f$ \pm i \f$ and the
@@ -128,7 +131,12 @@ public:
   static double generatorResidual(const Eigen::Matrix4d &Hhat);
 
 private:
-  Eigen::Matrix4d m_Hhat;
+  friend class vpProjectiveJointSubgroup<vpProjectiveRotation>;
+  // What the base's errors say of a rejected generator.
+  static constexpr const char *s_className = "vpProjectiveRotation";
+  static constexpr const char *s_kind = "p-rotation";
+  static constexpr const char *s_residualFormula = "|Hhat^3 + Hhat| / |Hhat|";
+  static constexpr const char *s_identity = "eq. (26) needs Hhat^3 = -Hhat";
 };
 
 END_VISP_NAMESPACE

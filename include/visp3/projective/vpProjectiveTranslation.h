@@ -25,6 +25,7 @@
 
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpProjectiveDisplacement.h>
+#include <visp3/projective/vpProjectiveJointSubgroup.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -45,20 +46,27 @@ BEGIN_VISP_NAMESPACE
     inverse is \f$ I - \tau \hat H_T \f$.
 
   The group API is the one of vpProjectiveDisplacement and vpProjectiveRotation (see there and the page
-  \ref page_groups).
+  \ref page_groups); generator(), getGenerator(), exp(tau) and the checks of the constructors are written once in the
+  base vpProjectiveJointSubgroup.
 */
-class VISP_EXPORT vpProjectiveTranslation
+class VISP_EXPORT vpProjectiveTranslation : public vpProjectiveJointSubgroup<vpProjectiveTranslation>
 {
 public:
   //! Zero generator (no motion).
-  vpProjectiveTranslation();
+  vpProjectiveTranslation() = default;
   /*!
     Takes a generator (4x4). \exception vpProjectiveException if it is not finite, not 4x4, or violates
-    \f$ \hat H^2 = 0 \f$ by more than \e tolerance relative to \f$ \|\hat H\|^2 \f$.
+    \f$ \hat H^2 = 0 \f$ (31) by more than \e tolerance relative to \f$ \|\hat H\|^2 \f$ (generatorResidual()).
   */
-  explicit vpProjectiveTranslation(const vpMatrix &Hhat, double tolerance = 1e-6);
+  explicit vpProjectiveTranslation(const vpMatrix &Hhat, double tolerance = 1e-6)
+      : vpProjectiveJointSubgroup(Hhat, tolerance)
+  {
+  }
   //! \overload
-  explicit vpProjectiveTranslation(const Eigen::Matrix4d &Hhat, double tolerance = 1e-6);
+  explicit vpProjectiveTranslation(const Eigen::Matrix4d &Hhat, double tolerance = 1e-6)
+      : vpProjectiveJointSubgroup(Hhat, tolerance)
+  {
+  }
 
   /*!
     Logarithm of a p-translation of length \e amount (31): \f$ \hat H_T = (H_T - I) / \tau \f$, \f$ \tau \f$ =
@@ -70,7 +78,7 @@ public:
   static vpProjectiveTranslation log(const vpProjectiveDisplacement &H, double amount);
 
   //! The p-translation \f$ I + \tau \hat H_T \f$ (31): the kernel exp(generator(), tau).
-  vpProjectiveDisplacement exp(double tau) const;
+  using vpProjectiveJointSubgroup::exp;
   //! \f$ \frac{d}{d\tau} \exp(\tau \hat H_T) = \hat H_T \f$ (4x4).
   Eigen::Matrix4d dexp(double tau) const;
 
@@ -90,11 +98,6 @@ public:
     return M + tau * (Hhat * M);
   }
 
-  //! The generator \f$ \hat H_T \f$ (4x4).
-  const Eigen::Matrix4d &generator() const { return m_Hhat; }
-  //! The generator \f$ \hat H_T \f$ (4x4) as a vpMatrix.
-  vpMatrix getGenerator() const;
-
   /*!
     Closest exact generator to an approximate one: the best rank-1 approximation \f$ \sigma u v^T \f$ with \f$ u \f$
     made orthogonal to \f$ v \f$, so that \f$ \hat H^2 = 0 \f$ holds exactly. An exact generator is unchanged.
@@ -105,7 +108,12 @@ public:
   static double generatorResidual(const Eigen::Matrix4d &Hhat);
 
 private:
-  Eigen::Matrix4d m_Hhat;
+  friend class vpProjectiveJointSubgroup<vpProjectiveTranslation>;
+  // What the base's errors say of a rejected generator.
+  static constexpr const char *s_className = "vpProjectiveTranslation";
+  static constexpr const char *s_kind = "p-translation";
+  static constexpr const char *s_residualFormula = "|Hhat^2| / |Hhat|^2";
+  static constexpr const char *s_identity = "eq. (31) needs Hhat^2 = 0";
 };
 
 END_VISP_NAMESPACE
