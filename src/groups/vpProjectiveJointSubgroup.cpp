@@ -32,7 +32,7 @@ BEGIN_VISP_NAMESPACE
 
 template <typename Derived> std::string vpProjectiveJointSubgroup<Derived>::constructorSite()
 {
-  return vpProjectiveInternal::vpErrorSite(Derived::s_className)((std::string(Derived::s_className) + "()").c_str());
+  return vpProjectiveInternal::vpErrorSite(s_identity.className)((std::string(s_identity.className) + "()").c_str());
 }
 
 template <typename Derived>
@@ -54,8 +54,8 @@ vpProjectiveJointSubgroup<Derived>::vpProjectiveJointSubgroup(const Eigen::Matri
   const double residual = Derived::generatorResidual(Hhat);
   if (residual > tolerance) {
     std::ostringstream os;
-    os << "not a " << Derived::s_kind << " generator: " << Derived::s_residualFormula << " = " << residual
-       << " exceeds " << tolerance << " (" << Derived::s_identity << ")";
+    os << "not a " << s_identity.kind << " generator: " << s_identity.residual << " = " << residual << " exceeds "
+       << tolerance << " (" << s_identity.identity << ")";
     fail(vpProjectiveException::invalidValueError, constructorSite(), os.str());
   }
 }
@@ -76,7 +76,17 @@ template <typename Derived> vpMatrix vpProjectiveJointSubgroup<Derived>::getGene
   return vpProjectiveInternal::toVisp(m_Hhat);
 }
 
+// The subgroups: the words of their errors, and the instantiations that the shared library exports.
+template <>
+const vpProjectiveJointSubgroup<vpProjectiveRotation>::vpIdentity
+    vpProjectiveJointSubgroup<vpProjectiveRotation>::s_identity = {
+        "vpProjectiveRotation", "p-rotation", "|Hhat^3 + Hhat| / |Hhat|", "eq. (26) needs Hhat^3 = -Hhat"};
 template class vpProjectiveJointSubgroup<vpProjectiveRotation>;
+
+template <>
+const vpProjectiveJointSubgroup<vpProjectiveTranslation>::vpIdentity
+    vpProjectiveJointSubgroup<vpProjectiveTranslation>::s_identity = {
+        "vpProjectiveTranslation", "p-translation", "|Hhat^2| / |Hhat|^2", "eq. (31) needs Hhat^2 = 0"};
 template class vpProjectiveJointSubgroup<vpProjectiveTranslation>;
 
 END_VISP_NAMESPACE

@@ -45,18 +45,19 @@ BEGIN_VISP_NAMESPACE
   \f$ \hat H^2 = 0 \f$, eq. (31)) is at most a tolerance \f$ \ge 0 \f$. The zero matrix (no motion) is accepted by
   both kinds.
 
-  \tparam Derived The subgroup: vpProjectiveRotation or vpProjectiveTranslation (the two for which the library
-  instantiates this template). It derives publicly from vpProjectiveJointSubgroup<Derived>, declares it a friend, and
-  provides:
+  \tparam Derived The subgroup: vpProjectiveRotation or vpProjectiveTranslation, the two for which the library
+  instantiates this template (src/groups/vpProjectiveJointSubgroup.cpp). It derives publicly from
+  vpProjectiveJointSubgroup<Derived> and provides:
   - <tt>template <typename T> static Eigen::Matrix<T, 4, 4> exp(const Eigen::Matrix<T, 4, 4> &Hhat, const T &q)</tt>:
     the closed-form exponential of its generators, unchecked. It hides the base's exp(q) member, so Derived brings
-    that one back with <tt>using vpProjectiveJointSubgroup<Derived>::exp;</tt>;
-  - <tt>static double generatorResidual(const Eigen::Matrix4d &Hhat)</tt>: the relative defect of the identity,
-    zero for an exact generator and for the zero matrix;
-  - for the message of a rejected generator, <tt>static constexpr const char *</tt> members
-    <tt>s_className</tt> ("vpProjectiveRotation"), <tt>s_kind</tt> ("p-rotation"), <tt>s_residualFormula</tt>
-    (the defect written out, "|Hhat^3 + Hhat| / |Hhat|") and <tt>s_identity</tt> (the equation the defect measures,
-    "eq. (26) needs Hhat^3 = -Hhat").
+    that one back with <tt>using vpProjectiveJointSubgroup::exp;</tt>;
+  - <tt>static double generatorResidual(const Eigen::Matrix4d &Hhat)</tt>: the relative defect of its identity, zero
+    for an exact generator and for the zero matrix.
+
+  The library's source src/groups/vpProjectiveJointSubgroup.cpp gives each Derived, beside its explicit
+  instantiation, the words of the error on a rejected generator (the explicit specialization of the private
+  <tt>s_identity</tt>): the class name, the kind ("p-rotation"), the defect written out ("|Hhat^3 + Hhat| / |Hhat|")
+  and the equation it measures ("eq. (26) needs Hhat^3 = -Hhat").
 */
 template <typename Derived> class VISP_EXPORT vpProjectiveJointSubgroup
 {
@@ -89,6 +90,16 @@ protected:
   }
 
 private:
+  //! The words of the error on a rejected generator (see the template parameter Derived).
+  struct vpIdentity {
+    const char *className; //!< "vpProjectiveRotation"
+    const char *kind;      //!< "p-rotation"
+    const char *residual;  //!< the defect written out: "|Hhat^3 + Hhat| / |Hhat|"
+    const char *identity;  //!< the equation the defect measures: "eq. (26) needs Hhat^3 = -Hhat"
+  };
+  //! Derived's words: an explicit specialization, defined beside the explicit instantiation.
+  static const vpIdentity s_identity;
+
   //! "vpProjectiveRotation::vpProjectiveRotation()": where the constructors' errors come from.
   static std::string constructorSite();
 

@@ -129,14 +129,6 @@ public:
 
   //! \f$ \|\hat H^3 + \hat H\|_F / \|\hat H\|_F \f$: zero for an exact p-rotation generator.
   static double generatorResidual(const Eigen::Matrix4d &Hhat);
-
-private:
-  friend class vpProjectiveJointSubgroup<vpProjectiveRotation>;
-  // What the base's errors say of a rejected generator.
-  static constexpr const char *s_className = "vpProjectiveRotation";
-  static constexpr const char *s_kind = "p-rotation";
-  static constexpr const char *s_residualFormula = "|Hhat^3 + Hhat| / |Hhat|";
-  static constexpr const char *s_identity = "eq. (26) needs Hhat^3 = -Hhat";
 };
 
 END_VISP_NAMESPACE

@@ -106,14 +106,6 @@ public:
 
   //! \f$ \|\hat H^2\|_F / \|\hat H\|_F^2 \f$: zero for an exact p-translation generator.
   static double generatorResidual(const Eigen::Matrix4d &Hhat);
-
-private:
-  friend class vpProjectiveJointSubgroup<vpProjectiveTranslation>;
-  // What the base's errors say of a rejected generator.
-  static constexpr const char *s_className = "vpProjectiveTranslation";
-  static constexpr const char *s_kind = "p-translation";
-  static constexpr const char *s_residualFormula = "|Hhat^2| / |Hhat|^2";
-  static constexpr const char *s_identity = "eq. (31) needs Hhat^2 = 0";
 };
 
 END_VISP_NAMESPACE
