@@ -48,9 +48,9 @@ BEGIN_VISP_NAMESPACE
   \tparam Derived The subgroup: vpProjectiveRotation or vpProjectiveTranslation, the two for which the library
   instantiates this template (src/groups/vpProjectiveJointSubgroup.cpp). It derives publicly from
   vpProjectiveJointSubgroup<Derived> and provides:
-  - <tt>template <typename T> static Eigen::Matrix<T, 4, 4> exp(const Eigen::Matrix<T, 4, 4> &Hhat, const T &q)</tt>:
-    the closed-form exponential of its generators, unchecked. It hides the base's exp(q) member, so Derived brings
-    that one back with <tt>using vpProjectiveJointSubgroup::exp;</tt>;
+  - the kernel <tt>template \<typename T\> static Eigen::Matrix\<T, 4, 4\> exp(const Eigen::Matrix\<T, 4, 4\>
+    &Hhat, const T &q)</tt>: the closed-form exponential of its generators, unchecked. It hides the base's exp(q)
+    member, so Derived brings that one back with <tt>using vpProjectiveJointSubgroup::exp;</tt>;
   - <tt>static double generatorResidual(const Eigen::Matrix4d &Hhat)</tt>: the relative defect of its identity, zero
     for an exact generator and for the zero matrix.
 
@@ -78,7 +78,10 @@ protected:
     (invalidValueError) if \e tolerance is negative or not a number, or Derived::generatorResidual(Hhat) exceeds it.
   */
   vpProjectiveJointSubgroup(const Eigen::Matrix4d &Hhat, double tolerance);
-  //! \overload \exception vpProjectiveException also if \e Hhat is not 4x4.
+  /*!
+    \overload
+    \exception vpProjectiveException also if \e Hhat is not 4x4.
+  */
   vpProjectiveJointSubgroup(const vpMatrix &Hhat, double tolerance);
 
   //! The subgroup of an exact generator, unchecked (the logarithms, whose result is projected).
