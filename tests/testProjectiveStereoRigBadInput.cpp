@@ -111,6 +111,9 @@ TEST(vpProjectiveStereoRig, UseBeforeInitialisationThrows)
   vpColVector M(4, 0.5);
   const int code = vpProjectiveException::notInitializedError;
   EXPECT_TRUE(throwsProjective([&] { rig.triangulate(l, r); }, code, "no fundamental matrix"));
+  EXPECT_TRUE(
+      throwsProjective([&] { rig.triangulate(std::vector<vpImagePoint>(1, l), std::vector<vpImagePoint>(1, r)); }, code,
+                       "no fundamental matrix"));
   EXPECT_TRUE(throwsProjective([&] { rig.project(M, l, r); }, code, "no fundamental matrix"));
   EXPECT_TRUE(throwsProjective([&] { rig.getFundamentalMatrix(); }, code, "no fundamental matrix"));
   EXPECT_TRUE(throwsProjective([&] { rig.getLeftProjection(); }, code, "no fundamental matrix"));
@@ -129,6 +132,13 @@ TEST(vpProjectiveStereoRig, TriangulateAndProjectInvalidInputsThrow)
       throwsProjective([&] { rig.triangulate(nan, r); }, vpProjectiveException::nonFiniteValueError, "not finite"));
   EXPECT_TRUE(
       throwsProjective([&] { rig.triangulate(l, nan); }, vpProjectiveException::nonFiniteValueError, "not finite"));
+  // The overload for lists of matches: the same checks on every match, and lists of equal sizes.
+  const std::vector<vpImagePoint> lefts = {l, l}, rights = {r, nan};
+  EXPECT_TRUE(throwsProjective([&] { rig.triangulate(lefts, rights); }, vpProjectiveException::nonFiniteValueError,
+                               "not finite"));
+  EXPECT_TRUE(throwsProjective([&] { rig.triangulate(lefts, std::vector<vpImagePoint>(1, r)); },
+                               vpProjectiveException::dimensionError, "pass matched pairs"));
+  EXPECT_TRUE(rig.triangulate(std::vector<vpImagePoint>(), std::vector<vpImagePoint>()).empty());
 
   vpImagePoint pl, pr;
   EXPECT_TRUE(throwsProjective([&] { rig.project(vpColVector(3, 1.0), pl, pr); }, vpProjectiveException::dimensionError,

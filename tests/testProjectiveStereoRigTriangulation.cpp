@@ -33,8 +33,11 @@ TEST(vpProjectiveStereoRig, TriangulateNoiseFreeIsExact)
   const std::vector<vpImagePoint> &left = data.left, &right = data.right;
   const std::vector<vpColVector> &wX = data.points;
   double worstPixel = 0.0, worstPoint = 0.0;
+  const std::vector<vpColVector> all = scene.rig.triangulate(left, right); // the overload for lists of matches
+  ASSERT_EQ(all.size(), wX.size());
   for (size_t i = 0; i < wX.size(); ++i) {
     const vpColVector M = scene.rig.triangulate(left[i], right[i]);
+    EXPECT_EQ(all[i], M); // the same arithmetic, hence the same bits
     ASSERT_EQ(M.getRows(), 4u);
     EXPECT_NEAR(M.frobeniusNorm(), 1.0, 1e-12);
     vpImagePoint l, r;

@@ -139,10 +139,8 @@ inline Observation observe(const Scene &scene, const std::vector<vpColVector> &b
   Observation o;
   scene.sim.project(body, o.left0, o.right0, sigma, noise);
   scene.sim.project(vpSimulatorStereoRig::transform(T, body), o.left1, o.right1, sigma, noise);
-  for (size_t j = 0; j < body.size(); ++j) {
-    o.M0.push_back(scene.rig.triangulate(o.left0[j], o.right0[j]));
-    o.M1.push_back(scene.rig.triangulate(o.left1[j], o.right1[j]));
-  }
+  o.M0 = scene.rig.triangulate(o.left0, o.right0);
+  o.M1 = scene.rig.triangulate(o.left1, o.right1);
   return o;
 }
 

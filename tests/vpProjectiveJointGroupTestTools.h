@@ -116,11 +116,17 @@ inline Eigen::Matrix4d randomFrame(vpUniRand &rng)
 // What differs between the groups
 // ---------------------------------------------------------------------------------------------------------------
 
-struct RotationTraits {
-  using Group = vpProjectiveRotation;
-  static std::string name() { return "Rotation"; }
-  static constexpr vpProjectiveJoint::vpJointType kType = vpProjectiveJoint::REVOLUTE;
-  static constexpr vpProjectiveDisplacement::vpMotionType kMotion = vpProjectiveDisplacement::ROTATION;
+// What names a group in the typed tests: its class, the joint type it moves, the motion type of its elements.
+template <typename G, vpProjectiveJoint::vpJointType type, vpProjectiveDisplacement::vpMotionType motion>
+struct GroupIdentity {
+  using Group = G;
+  static constexpr vpProjectiveJoint::vpJointType kType = type;
+  static constexpr vpProjectiveDisplacement::vpMotionType kMotion = motion;
+  static std::string name() { return type == vpProjectiveJoint::REVOLUTE ? "Rotation" : "Translation"; }
+};
+
+struct RotationTraits
+    : GroupIdentity<vpProjectiveRotation, vpProjectiveJoint::REVOLUTE, vpProjectiveDisplacement::ROTATION> {
 
   // The simulator's rotation by \e amount radians about the joint's axis.
   static vpHomogeneousMatrix worldMotion(const Joint &j, double amount)
@@ -201,11 +207,8 @@ struct RotationTraits {
   static constexpr double kProjectedTol = 1e-10;
 };
 
-struct TranslationTraits {
-  using Group = vpProjectiveTranslation;
-  static std::string name() { return "Translation"; }
-  static constexpr vpProjectiveJoint::vpJointType kType = vpProjectiveJoint::PRISMATIC;
-  static constexpr vpProjectiveDisplacement::vpMotionType kMotion = vpProjectiveDisplacement::TRANSLATION;
+struct TranslationTraits
+    : GroupIdentity<vpProjectiveTranslation, vpProjectiveJoint::PRISMATIC, vpProjectiveDisplacement::TRANSLATION> {
 
   // The simulator's translation by \e amount metres along the joint's (unit) direction.
   static vpHomogeneousMatrix worldMotion(const Joint &j, double amount)

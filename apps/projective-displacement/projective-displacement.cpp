@@ -73,12 +73,8 @@ void estimateMotion(const vpProjectiveStereoRig &rig, const std::vector<vpImageP
                     const vpMatrix &Hpe, const vpMatrix &HhatTrue, Estimate &linear, Estimate &refined, bool verbose)
 {
   // Linear estimate: triangulate every marker before (M0) and after (M1) the motion, then M1 ~ H M0 (DLT).
-  std::vector<vpColVector> M0, M1;
-  for (size_t j = 0; j < left0.size(); ++j) {
-    M0.push_back(rig.triangulate(left0[j], right0[j]));
-    M1.push_back(rig.triangulate(left1[j], right1[j]));
-  }
-  const vpProjectiveDisplacement Hlinear = vpProjectiveDisplacement::estimate(M0, M1);
+  const vpProjectiveDisplacement Hlinear =
+      vpProjectiveDisplacement::estimate(rig.triangulate(left0, right0), rig.triangulate(left1, right1));
 
   // Maximum-likelihood estimate: the H and points that best explain the four images (Ceres, from the linear one).
   const vpProjectiveDisplacement Hrefined = vpProjectiveDisplacement::estimate(rig, left0, right0, left1, right1);

@@ -295,6 +295,15 @@ Eigen::Vector4d vpProjectiveStereoRig::triangulate(const Eigen::Vector2d &left, 
   return M;
 }
 
+void vpProjectiveInternal::checkMatchedPairs(size_t nbLeft, size_t nbRight, const std::string &where)
+{
+  if (nbLeft != nbRight) {
+    std::ostringstream os;
+    os << "got " << nbLeft << " left points but " << nbRight << " right points; pass matched pairs";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+}
+
 vpColVector vpProjectiveStereoRig::triangulate(const vpImagePoint &ipLeft, const vpImagePoint &ipRight) const
 {
   const std::string where = stereoRigAt("triangulate()");
@@ -302,6 +311,21 @@ vpColVector vpProjectiveStereoRig::triangulate(const vpImagePoint &ipLeft, const
   const Eigen::Vector2d l = toEigen(ipLeft, where, "the left image point");
   const Eigen::Vector2d r = toEigen(ipRight, where, "the right image point");
   return toVispVector(triangulate(l, r));
+}
+
+std::vector<vpColVector> vpProjectiveStereoRig::triangulate(const std::vector<vpImagePoint> &ipLeft,
+                                                            const std::vector<vpImagePoint> &ipRight) const
+{
+  const std::string where = stereoRigAt("triangulate()");
+  checkInitialized("triangulate()");
+  checkMatchedPairs(ipLeft.size(), ipRight.size(), where);
+  std::vector<vpColVector> M;
+  M.reserve(ipLeft.size());
+  for (size_t i = 0; i < ipLeft.size(); ++i) {
+    M.push_back(toVispVector(triangulate(toEigen(ipLeft[i], where, "a left image point"),
+                                         toEigen(ipRight[i], where, "a right image point"))));
+  }
+  return M;
 }
 
 bool vpProjectiveStereoRig::project(const Eigen::Vector4d &M, Eigen::Vector4d &s, Eigen::Matrix4d *L) const

@@ -246,20 +246,8 @@ void vpServoFeatureHealth::endIteration()
   m_data = nullptr;
 }
 
-vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::getFeatureState(unsigned int i) const
+const vpServoFeatureHealth::vpRecord &vpServoFeatureHealth::outcome(unsigned int i, const char *method) const
 {
-  checkIndex(i, "getFeatureState()");
-  return m_records[i].state;
-}
-
-double vpServoFeatureHealth::getEpipolarDistance(unsigned int i) const
-{
-  checkIndex(i, "getEpipolarDistance()");
-  return m_records[i].epipolarDistance;
-}
-
-double vpServoFeatureHealth::getPredictionDistance(unsigned int i) const
-{
-  checkIndex(i, "getPredictionDistance()");
-  return m_records[i].predictionDistance;
+  checkIndex(i, method);
+  return m_records[i];
 }

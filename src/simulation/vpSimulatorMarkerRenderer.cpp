@@ -50,13 +50,10 @@ void checkRange(double value, double low, double high, const char *what, const c
 
 vpSimulatorMarkerRenderer::vpSimulatorMarkerRenderer(const vpSimulatorStereoRig &rig, long seed)
     : m_rig(rig), m_radius(0.003), m_background(30.0), m_marker(220.0), m_blur(0.8), m_noise(4.0), m_supersampling(8),
-      m_seed(seed), m_kernel(vpProjectiveInternal::halfKernel(0.8)), m_cameras(), m_imageNoise(m_noise, seed)
+      m_seed(seed),
+      m_kernel(vpProjectiveInternal::halfKernel(0.8)), m_cameras{{rig, false, m_background}, {rig, true, m_background}},
+      m_imageNoise(m_noise, seed)
 {
-  m_cameras[0].cam = rig.getLeftCameraParameters();
-  m_cameras[0].cMw = rig.get_wMl().inverse();
-  m_cameras[1].cam = rig.getRightCameraParameters();
-  m_cameras[1].cMw = rig.get_rMl() * rig.get_wMl().inverse();
-  resetBuffers();
   resetNoise();
 }
 
@@ -112,13 +109,8 @@ double vpSimulatorMarkerRenderer::getImageRadius(double depth) const
 
 void vpSimulatorMarkerRenderer::resetBuffers()
 {
-  for (Camera &c : m_cameras) {
-    const unsigned int h = m_rig.getHeight(), w = m_rig.getWidth();
-    c.ideal.resize(h, w, m_background);
-    c.horizontal.resize(h, w, m_background);
-    c.blurred.resize(h, w, m_background);
-    c.stamp.resize(h, w, 0);
-    c.frame = 0;
+  for (vpSimulatorCameraBuffers &c : m_cameras) {
+    c.reset(m_background);
   }
 }
 
@@ -148,7 +140,7 @@ void vpSimulatorMarkerRenderer::render(const std::vector<vpColVector> &wX, vpIma
   renderCamera(m_cameras[1], wX, Iright);
 }
 
-void vpSimulatorMarkerRenderer::renderCamera(Camera &camera, const std::vector<vpColVector> &wX,
+void vpSimulatorMarkerRenderer::renderCamera(vpSimulatorCameraBuffers &camera, const std::vector<vpColVector> &wX,
                                              vpImage<unsigned char> &I)
 {
   const int width = static_cast<int>(m_rig.getWidth()), height = static_cast<int>(m_rig.getHeight());

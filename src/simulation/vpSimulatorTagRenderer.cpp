@@ -59,19 +59,10 @@ void checkPose(const vpHomogeneousMatrix &M, const char *method)
 vpSimulatorTagRenderer::vpSimulatorTagRenderer(const vpSimulatorStereoRig &rig, long seed)
     : m_rig(rig), m_tags(), m_wMb(), m_background(128.0), m_black(30.0), m_white(220.0), m_blur(0.0), m_noise(1.0),
       m_supersampling(4), m_gain(1.0), m_offset(0.0), m_gradientU(0.0), m_gradientV(0.0), m_occluder(3, 0.0),
-      m_occluderRadius(0.0), m_occluderLevel(15.0), m_seed(seed), m_kernel(vpProjectiveInternal::halfKernel(0.0)),
-      m_cameras(), m_imageNoise(m_noise, seed), m_labels(), m_views(), m_near()
+      m_occluderRadius(0.0), m_occluderLevel(15.0), m_seed(seed),
+      m_kernel(vpProjectiveInternal::halfKernel(0.0)), m_cameras{{rig, false, m_background}, {rig, true, m_background}},
+      m_imageNoise(m_noise, seed), m_labels(), m_views(), m_near()
 {
-  m_cameras[0].cam = rig.getLeftCameraParameters();
-  m_cameras[0].cMw = rig.get_wMl().inverse();
-  m_cameras[1].cam = rig.getRightCameraParameters();
-  m_cameras[1].cMw = rig.get_rMl() * rig.get_wMl().inverse();
-  for (Camera &c : m_cameras) {
-    c.ideal.resize(rig.getHeight(), rig.getWidth(), m_background);
-    c.horizontal.resize(rig.getHeight(), rig.getWidth(), m_background);
-    c.blurred.resize(rig.getHeight(), rig.getWidth(), m_background);
-    c.stamp.resize(rig.getHeight(), rig.getWidth(), 0);
-  }
   resetNoise();
 }
 
@@ -98,18 +89,19 @@ unsigned int vpSimulatorTagRenderer::addTag(int id, double size, const vpHomogen
   return static_cast<unsigned int>(m_tags.size() - 1);
 }
 
-void vpSimulatorTagRenderer::checkIndex(unsigned int index, const char *method) const
+const vpSimulatorTagRenderer::Tag &vpSimulatorTagRenderer::tag(unsigned int index, const char *method) const
 {
   if (index >= m_tags.size()) {
     std::ostringstream os;
     os << "no tag " << index << " (there are " << m_tags.size() << "); use the index addTag() returned";
     fail(vpProjectiveException::invalidValueError, at(method), os.str());
   }
+  return m_tags[index];
 }
 
 void vpSimulatorTagRenderer::setTagPose(unsigned int index, const vpHomogeneousMatrix &bMt)
 {
-  checkIndex(index, "setTagPose()");
+  tag(index, "setTagPose()"); // throws on a bad index
   checkPose(bMt, "setTagPose()");
   m_tags[index].bMt = bMt;
 }
@@ -120,30 +112,11 @@ void vpSimulatorTagRenderer::setBodyPose(const vpHomogeneousMatrix &wMb)
   m_wMb = wMb;
 }
 
-int vpSimulatorTagRenderer::getTagId(unsigned int index) const
-{
-  checkIndex(index, "getTagId()");
-  return m_tags[index].id;
-}
-
-double vpSimulatorTagRenderer::getTagSize(unsigned int index) const
-{
-  checkIndex(index, "getTagSize()");
-  return m_tags[index].size;
-}
-
-vpHomogeneousMatrix vpSimulatorTagRenderer::getTagPose(unsigned int index) const
-{
-  checkIndex(index, "getTagPose()");
-  return m_wMb * m_tags[index].bMt;
-}
-
 std::vector<vpColVector> vpSimulatorTagRenderer::getCorners(unsigned int index) const
 {
-  checkIndex(index, "getCorners()");
-  const Tag &tag = m_tags[index];
-  const vpHomogeneousMatrix wMt = m_wMb * tag.bMt;
-  const double h = tag.size / 2.0;
+  const Tag &t = tag(index, "getCorners()");
+  const vpHomogeneousMatrix wMt = m_wMb * t.bMt;
+  const double h = t.size / 2.0;
   const double xs[4] = {-h, h, h, -h}, ys[4] = {h, h, -h, -h};
   std::vector<vpColVector> corners;
   for (int k = 0; k < 4; ++k) {

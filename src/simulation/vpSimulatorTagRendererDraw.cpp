@@ -26,7 +26,7 @@
 using namespace VISP_NAMESPACE_NAME;
 #endif
 
-bool vpSimulatorTagRenderer::view(const Camera &camera, const Tag &tag, View &v) const
+bool vpSimulatorTagRenderer::view(const vpSimulatorCameraBuffers &camera, const Tag &tag, View &v) const
 {
   const vpHomogeneousMatrix cMt = camera.cMw * m_wMb * tag.bMt;
   const double px = camera.cam.get_px(), py = camera.cam.get_py(), u0 = camera.cam.get_u0(), v0 = camera.cam.get_v0();
@@ -85,8 +85,9 @@ bool vpSimulatorTagRenderer::view(const Camera &camera, const Tag &tag, View &v)
   return true;
 }
 
-inline double vpSimulatorTagRenderer::level(const Camera &camera, const std::vector<const View *> &views, double u,
-                                            double v, int &label) const
+inline double vpSimulatorTagRenderer::level(const vpSimulatorCameraBuffers &camera,
+                                            const std::vector<const View *> &views, double u, double v,
+                                            int &label) const
 {
   label = -1;
   double value = m_background, nearest = 0.0;
@@ -125,7 +126,7 @@ void vpSimulatorTagRenderer::render(vpImage<unsigned char> &Ileft, vpImage<unsig
   renderCamera(m_cameras[1], Iright);
 }
 
-void vpSimulatorTagRenderer::renderCamera(Camera &camera, vpImage<unsigned char> &I)
+void vpSimulatorTagRenderer::renderCamera(vpSimulatorCameraBuffers &camera, vpImage<unsigned char> &I)
 {
   const int width = static_cast<int>(m_rig.getWidth()), height = static_cast<int>(m_rig.getHeight());
   const int h = static_cast<int>(m_kernel.size()) - 1;

@@ -140,6 +140,14 @@ public:
     \exception vpProjectiveException if the rig has no \f$ F \f$ or a coordinate is not finite.
   */
   vpColVector triangulate(const vpImagePoint &ipLeft, const vpImagePoint &ipRight) const;
+  /*!
+    Projective reconstruction of matches, eq. (3): triangulate(ipLeft[i], ipRight[i]) for every i.
+    \return the points \f$ M_i \f$ (4x1 each, unit norm), in the order of the matches.
+    \exception vpProjectiveException if the rig has no \f$ F \f$, the lists differ in size, or a coordinate is not
+    finite.
+  */
+  std::vector<vpColVector> triangulate(const std::vector<vpImagePoint> &ipLeft,
+                                       const std::vector<vpImagePoint> &ipRight) const;
 
   /*!
     Projects \f$ M \f$ (4x1, any scale and sign) into both images: \f$ m \simeq P M \f$, \f$ m' \simeq P' M \f$.

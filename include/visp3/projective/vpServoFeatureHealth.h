@@ -163,19 +163,22 @@ public:
     State of feature \e i (FEATURE_ACTIVE before the first iteration).
     \exception vpProjectiveException (dimensionError) on a bad index.
   */
-  vpFeatureState getFeatureState(unsigned int i) const;
+  vpFeatureState getFeatureState(unsigned int i) const { return outcome(i, "getFeatureState()").state; }
   /*!
     Epipolar distance \f$ d_F \f$ (pixels) of feature \e i; -1 if it was not evaluated (outlier rejection off, or the
     feature set aside before the test).
     \exception vpProjectiveException (dimensionError) on a bad index.
   */
-  double getEpipolarDistance(unsigned int i) const;
+  double getEpipolarDistance(unsigned int i) const { return outcome(i, "getEpipolarDistance()").epipolarDistance; }
   /*!
     Prediction distance (pixels) of feature \e i; -1 if it was not evaluated (outlier rejection off, no earlier
     acceptance, the feature set aside before the test, or the prediction on a camera's focal plane).
     \exception vpProjectiveException (dimensionError) on a bad index.
   */
-  double getPredictionDistance(unsigned int i) const;
+  double getPredictionDistance(unsigned int i) const
+  {
+    return outcome(i, "getPredictionDistance()").predictionDistance;
+  }
   //! Number of features found active.
   unsigned int getNumberOfActiveFeatures() const { return m_nbActive; }
   //@}
@@ -192,6 +195,8 @@ private:
   };
 
   void checkIndex(unsigned int i, const char *method) const;
+  //! The outcome of feature \e i in the last completed iteration; throws as checkIndex(), naming \e method.
+  const vpRecord &outcome(unsigned int i, const char *method) const;
   void checkIteration(const char *method) const;
   vpFeatureState outlierTest(const Eigen::Vector4d &s, vpRecord &record) const;
 

@@ -27,6 +27,7 @@
 
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpImage.h>
+#include <visp3/projective/vpSimulatorCameraBuffers.h>
 #include <visp3/projective/vpSimulatorImageNoise.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
@@ -116,21 +117,13 @@ public:
   double getImageRadius(double depth) const;
 
 private:
-  //! One camera as an image sensor, with its buffers (uniform background outside the balls' boxes).
-  struct Camera {
-    vpCameraParameters cam;
-    vpHomogeneousMatrix cMw;
-    vpImage<double> ideal, horizontal, blurred;
-    vpImage<unsigned int> stamp;
-    unsigned int frame = 0;
-  };
   struct Ball {
     double x, y, z, c2;         // centre in the camera frame (m), |C|^2 - R^2
     double u, v, reach;         // image of the centre, radius (px) beyond which no pixel sees the ball
     int imin, imax, jmin, jmax; // pixel box of the silhouette
   };
 
-  void renderCamera(Camera &camera, const std::vector<vpColVector> &wX, vpImage<unsigned char> &I);
+  void renderCamera(vpSimulatorCameraBuffers &camera, const std::vector<vpColVector> &wX, vpImage<unsigned char> &I);
   void resetNoise();
   void resetBuffers();
 
@@ -142,8 +135,8 @@ private:
   double m_noise;
   unsigned int m_supersampling;
   long m_seed;
-  std::vector<double> m_kernel; // half of a normalised Gaussian kernel; m_kernel[0] is its centre
-  Camera m_cameras[2];
+  std::vector<double> m_kernel;          // half of a normalised Gaussian kernel; m_kernel[0] is its centre
+  vpSimulatorCameraBuffers m_cameras[2]; // left, right (uniform background outside the balls' boxes)
   vpSimulatorImageNoise m_imageNoise;
 };
 

@@ -29,6 +29,7 @@
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
+#include <visp3/projective/vpSimulatorCameraBuffers.h>
 #include <visp3/projective/vpSimulatorImageNoise.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
 
@@ -108,11 +109,11 @@ public:
   //! Number of tags.
   unsigned int getNbTags() const { return static_cast<unsigned int>(m_tags.size()); }
   //! Id of tag \e index.
-  int getTagId(unsigned int index) const;
+  int getTagId(unsigned int index) const { return tag(index, "getTagId()").id; }
   //! Black-square side (m) of tag \e index.
-  double getTagSize(unsigned int index) const;
+  double getTagSize(unsigned int index) const { return tag(index, "getTagSize()").size; }
   //! Pose of tag \e index in the world: getBodyPose() times its pose in the body.
-  vpHomogeneousMatrix getTagPose(unsigned int index) const;
+  vpHomogeneousMatrix getTagPose(unsigned int index) const { return m_wMb * tag(index, "getTagPose()").bMt; }
   //! World coordinates (3x1) of the 4 corners of tag \e index, in vpDetectorAprilTag's order (class description).
   std::vector<vpColVector> getCorners(unsigned int index) const;
   /*!
@@ -173,18 +174,13 @@ private:
     int imin, imax, jmin, jmax; // pixel box of the quiet zone (and of the occluder's silhouette)
     const Tag *tag;             // null for the occluder
   };
-  struct Camera {
-    vpCameraParameters cam;
-    vpHomogeneousMatrix cMw;
-    vpImage<double> ideal, horizontal, blurred;
-    vpImage<unsigned int> stamp;
-    unsigned int frame = 0;
-  };
 
-  void checkIndex(unsigned int index, const char *method) const;
-  bool view(const Camera &camera, const Tag &tag, View &v) const;
-  double level(const Camera &camera, const std::vector<const View *> &views, double u, double v, int &label) const;
-  void renderCamera(Camera &camera, vpImage<unsigned char> &I);
+  //! Tag \e index; \exception vpProjectiveException (invalidValueError), naming \e method, if there is none.
+  const Tag &tag(unsigned int index, const char *method) const;
+  bool view(const vpSimulatorCameraBuffers &camera, const Tag &tag, View &v) const;
+  double level(const vpSimulatorCameraBuffers &camera, const std::vector<const View *> &views, double u, double v,
+               int &label) const;
+  void renderCamera(vpSimulatorCameraBuffers &camera, vpImage<unsigned char> &I);
   void resetNoise();
 
   vpSimulatorStereoRig m_rig;
@@ -199,7 +195,7 @@ private:
   double m_occluderRadius, m_occluderLevel;
   long m_seed;
   std::vector<double> m_kernel;
-  Camera m_cameras[2];
+  vpSimulatorCameraBuffers m_cameras[2]; // left, right
   vpSimulatorImageNoise m_imageNoise;
   std::vector<int> m_labels;
   std::vector<View> m_views;
