@@ -295,15 +295,6 @@ Eigen::Vector4d vpProjectiveStereoRig::triangulate(const Eigen::Vector2d &left, 
   return M;
 }
 
-void vpProjectiveInternal::checkMatchedPairs(size_t nbLeft, size_t nbRight, const std::string &where)
-{
-  if (nbLeft != nbRight) {
-    std::ostringstream os;
-    os << "got " << nbLeft << " left points but " << nbRight << " right points; pass matched pairs";
-    fail(vpProjectiveException::dimensionError, where, os.str());
-  }
-}
-
 vpColVector vpProjectiveStereoRig::triangulate(const vpImagePoint &ipLeft, const vpImagePoint &ipRight) const
 {
   const std::string where = stereoRigAt("triangulate()");
@@ -318,12 +309,11 @@ std::vector<vpColVector> vpProjectiveStereoRig::triangulate(const std::vector<vp
 {
   const std::string where = stereoRigAt("triangulate()");
   checkInitialized("triangulate()");
-  checkMatchedPairs(ipLeft.size(), ipRight.size(), where);
+  const std::vector<Eigen::Vector4d> s = stackStereoImages(ipLeft, ipRight, where); // same sizes, finite
   std::vector<vpColVector> M;
-  M.reserve(ipLeft.size());
-  for (size_t i = 0; i < ipLeft.size(); ++i) {
-    M.push_back(toVispVector(triangulate(toEigen(ipLeft[i], where, "a left image point"),
-                                         toEigen(ipRight[i], where, "a right image point"))));
+  M.reserve(s.size());
+  for (const Eigen::Vector4d &sj : s) {
+    M.push_back(toVispVector(triangulate(Eigen::Vector2d(sj.head<2>()), Eigen::Vector2d(sj.tail<2>()))));
   }
   return M;
 }

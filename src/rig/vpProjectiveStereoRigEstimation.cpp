@@ -145,7 +145,11 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
                                      double inlierThreshold)
 {
   const std::string where = stereoRigAt("estimate()");
-  checkMatchedPairs(left.size(), right.size(), where);
+  if (left.size() != right.size()) {
+    std::ostringstream os;
+    os << "got " << left.size() << " left points but " << right.size() << " right points; pass matched pairs";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
   if (left.size() < 8) {
     std::ostringstream os;
     os << "needs at least 8 matches to estimate the fundamental matrix, got " << left.size();

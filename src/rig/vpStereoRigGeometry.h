@@ -35,9 +35,6 @@ namespace vpProjectiveInternal
 //! vpProjectiveStereoRigEstimation.cpp.
 const vpErrorSite stereoRigAt("vpProjectiveStereoRig");
 
-//! Throws vpProjectiveException (dimensionError) at \e where unless there are as many left as right points.
-void checkMatchedPairs(size_t nbLeft, size_t nbRight, const std::string &where);
-
 //! The canonical right camera of a unit, canonically signed F with right epipole e': P' = [[e']_x F + e' e'^T | e'].
 vpProjectiveStereoRig::Projection canonicalRightProjection(const Eigen::Matrix3d &F, const Eigen::Vector3d &ep);
 
