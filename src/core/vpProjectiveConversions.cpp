@@ -31,7 +31,11 @@ std::vector<Eigen::Vector4d> stackStereoImages(const std::vector<vpImagePoint> &
   }
   std::vector<Eigen::Vector4d> s(left.size());
   for (size_t j = 0; j < left.size(); ++j) {
-    s[j] << toEigen(left[j], where, "a left marker image"), toEigen(right[j], where, "a right marker image");
+    // Both pixels converted (and checked) before the comma initialiser starts: a throw inside it would leave it
+    // unfinished, which Eigen asserts on when assertions are on (the sanitizer build).
+    const Eigen::Vector2d l = toEigen(left[j], where, "a left marker image");
+    const Eigen::Vector2d r = toEigen(right[j], where, "a right marker image");
+    s[j] << l, r;
   }
   return s;
 }

@@ -72,10 +72,13 @@ void stackImagePairs(const std::vector<vpImagePoint> &left0, const std::vector<v
   s0.resize(n);
   s1.resize(n);
   for (size_t j = 0; j < n; ++j) {
-    s0[j] << toEigen(left0[j], where, "a left image point before the motion"),
-        toEigen(right0[j], where, "a right image point before the motion");
-    s1[j] << toEigen(left1[j], where, "a left image point after the motion"),
-        toEigen(right1[j], where, "a right image point after the motion");
+    // Every pixel converted (and checked) before a comma initialiser starts, as in stackStereoImages().
+    const Eigen::Vector2d l0 = toEigen(left0[j], where, "a left image point before the motion");
+    const Eigen::Vector2d r0 = toEigen(right0[j], where, "a right image point before the motion");
+    const Eigen::Vector2d l1 = toEigen(left1[j], where, "a left image point after the motion");
+    const Eigen::Vector2d r1 = toEigen(right1[j], where, "a right image point after the motion");
+    s0[j] << l0, r0;
+    s1[j] << l1, r1;
   }
 }
 
