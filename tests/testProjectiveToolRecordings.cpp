@@ -14,11 +14,12 @@
 /*
   The recordings of the tutorial and of the main job (issue 21, point 5): each program run with --record into a
   temporary folder gives the same results as without, its session is calibrated and checked offline by
-  visp-projective, and its figure is made again from the recording alone: the tutorial's last image with the corners'
-  paths, pixel for pixel, and its final image error; the main job's trajectory and target CSV (the data of Fig. 2, 4
-  and 5), byte for byte. And `visp-projective record` from cameras and typed-in readings (recordFromReadings(), here
-  on a replayed session as the cameras): one frame per line, the readings bit for bit, the roles given or told by
-  the readings, malformed lines refused naming the line; a missing camera is refused before any folder is made.
+  visp-projective, and its figure is made again from the recording alone: the tutorial's last picture (both images
+  with the tags, s*, the corners and their paths: vpStereoServoDisplay), pixel for pixel, and its final image error; the
+  main job's trajectory and target CSV (the data of Fig. 2, 4 and 5), byte for byte. And `visp-projective record` from
+  cameras and typed-in readings (recordFromReadings(), here on a replayed session as the cameras): one frame per line,
+  the readings bit for bit, the roles given or told by the readings, malformed lines refused naming the line; a missing
+  camera is refused before any folder is made.
 */
 
 #include <sys/wait.h>
@@ -33,12 +34,11 @@
 
 #include <gtest/gtest.h>
 
-#include <visp3/core/vpImageConvert.h>
-#include <visp3/core/vpImageDraw.h>
 #include <visp3/io/vpImageIo.h>
 #include <visp3/projective/vpFeatureStereoPoint.h>
 #include <visp3/projective/vpProjectiveSessionSource.h>
 #include <visp3/projective/vpStereoAprilTagDetector.h>
+#include <visp3/projective/vpStereoServoDisplay.h>
 
 #include "visp-projective-record.h"
 #include "vpProjectiveToolTestTools.h"
@@ -83,19 +83,19 @@ TEST(ProjectiveToolRecordings, TheTutorialsRecordingCalibratesChecksAndGivesItsF
 #if defined(VISP_HAVE_APRILTAG)
   TemporaryFolder tmp;
   const ToolRun plain =
-      runProgram(tmp, VISP_PROJECTIVE_TUTORIAL_APRILTAG, "--output '" + (tmp / "plain") + "'", "plain");
+      runProgram(tmp, VISP_PROJECTIVE_TUTORIAL_APRILTAG, "-d --output '" + (tmp / "plain") + "'", "plain");
   ASSERT_EQ(plain.status, 0) << plain.out << plain.err;
   const ToolRun recorded =
       runProgram(tmp, VISP_PROJECTIVE_TUTORIAL_APRILTAG,
-                 "--output '" + (tmp / "figures") + "' --record '" + (tmp / "session") + "'", "recorded");
+                 "-d --output '" + (tmp / "figures") + "' --record '" + (tmp / "session") + "'", "recorded");
   ASSERT_EQ(recorded.status, 0) << recorded.out << recorded.err;
   // Recording changes nothing: the same final line, the same figure.
   const std::string after = lineStarting(recorded.out, "After ");
   ASSERT_FALSE(after.empty()) << recorded.out;
   EXPECT_EQ(after, lineStarting(plain.out, "After "));
   vpImage<vpRGBa> plainEnd, end;
-  vpImageIo::read(plainEnd, tmp / "plain/left-end.png");
-  vpImageIo::read(end, tmp / "figures/left-end.png");
+  vpImageIo::read(plainEnd, tmp / "plain/stereo-end.png");
+  vpImageIo::read(end, tmp / "figures/stereo-end.png");
   EXPECT_TRUE(plainEnd == end);
 
   // Offline: the tool calibrates the session and finds that every frame fits the model.
@@ -106,14 +106,15 @@ TEST(ProjectiveToolRecordings, TheTutorialsRecordingCalibratesChecksAndGivesItsF
   EXPECT_EQ(check.status, 0) << check.out << check.err;
   EXPECT_NE(check.out.find("the model fits"), std::string::npos) << check.out;
 
-  // The figure again from the recording alone: s* from the target frames, the corners' paths from the servo frames
-  // (detected as the tutorial does, near the last corners), the last left image.
+  // The figure again from the recording alone: s* from the target frames, the tags, the corners and their paths from
+  // the servo frames (detected as the tutorial does, near the last corners) shown as the tutorial shows them.
   const vpProjectiveSession session = vpProjectiveSession::read(tmp / "session", false);
   EXPECT_EQ(session.getNumberOfFrames(vpProjectiveSession::TARGET), 16u);
   vpStereoAprilTagDetector tags(vpDetectorAprilTag::TAG_36h11);
-  std::vector<std::vector<vpImagePoint>> starLeft(4), starRight(4), path(4);
+  std::vector<std::vector<vpImagePoint>> starLeft(4), starRight(4);
   vpFeatureStereoPoint s[4], s_star[4];
   vpImage<unsigned char> Ileft, Iright;
+  vpStereoServoDisplay display(640, 480, false); // the tutorial's cameras' images, without a window
   double errorRms = 0.0;
   unsigned int servoFrames = 0;
   for (vpProjectiveSession::vpFrameRole role : {vpProjectiveSession::TARGET, vpProjectiveSession::SERVO}) {
@@ -126,6 +127,8 @@ TEST(ProjectiveToolRecordings, TheTutorialsRecordingCalibratesChecksAndGivesItsF
       const std::vector<int> &ids = tags.getIds();
       unsigned int seen = 0;
       vpColVector e;
+      display.display(Ileft, Iright);
+      display.displayTags(ids, tags.getLeftPoints(), tags.getRightPoints());
       for (unsigned int c = 0; c < 4; ++c) {
         const size_t j = static_cast<size_t>(std::find(ids.begin(), ids.end(), static_cast<int>(4 + c)) - ids.begin());
         if (j < ids.size() && role == vpProjectiveSession::TARGET) {
@@ -133,16 +136,18 @@ TEST(ProjectiveToolRecordings, TheTutorialsRecordingCalibratesChecksAndGivesItsF
           starRight[c].push_back(tags.getRightPoints()[j]);
         } else if (j < ids.size()) {
           s[c].buildFrom(tags.getLeftPoints()[j], tags.getRightPoints()[j]);
-          path[c].push_back(tags.getLeftPoints()[j]);
           ++seen;
         }
         if (role == vpProjectiveSession::SERVO) {
           e.stack(s[c].error(s_star[c]));
+          display.displayFeature(c, s[c], s_star[c], j < ids.size());
         }
       }
       if (role == vpProjectiveSession::SERVO) {
-        ++servoFrames;
         errorRms = std::sqrt(e.sumSquare() / e.size());
+        display.displayText("iteration " + std::to_string(servoFrames++) + ": error " + std::to_string(errorRms) +
+                            " px RMS");
+        display.flush();
         if (seen == 4) {
           tags.setPredictedRegions(tags.getIds(), tags.getLeftPoints(), tags.getRightPoints());
         }
@@ -155,14 +160,7 @@ TEST(ProjectiveToolRecordings, TheTutorialsRecordingCalibratesChecksAndGivesItsF
   std::ostringstream expected;
   expected << "After " << servoFrames - 1 << " iterations: image error " << errorRms << " px RMS;";
   EXPECT_EQ(after.find(expected.str()), 0u) << after << " vs " << expected.str();
-  vpImage<vpRGBa> replayed;
-  vpImageConvert::convert(Ileft, replayed);
-  for (unsigned int c = 0; c < 4; ++c) {
-    for (size_t j = 1; j < path[c].size(); ++j) {
-      vpImageDraw::drawLine(replayed, path[c][j - 1], path[c][j], vpColor::green, 1);
-    }
-    vpImageDraw::drawCross(replayed, vpImagePoint(s_star[c].get_v(), s_star[c].get_u()), 9, vpColor::red, 1);
-  }
+  vpImage<vpRGBa> replayed = display.getPicture();
   EXPECT_TRUE(replayed == end) << "the figure made from the recording differs from the run's";
 #else
   GTEST_SKIP() << "ViSP without AprilTag: the tutorial records nothing";

@@ -21,10 +21,13 @@
   3. the projective displacement H (10)-(12), linearly from triangulated points, then by maximum likelihood from the
      images (vpProjectiveDisplacement);
   4. its angle (21) and the generator (25) of the p-rotation (vpProjectiveRotation).
+  With a display, both images (white: the simulated cameras give pixels) show the matches and the markers before and
+  after the rotation (vpStereoServoDisplay).
 
   The comparison with the metric truth, over many noise seeds, is the application apps/projective-displacement.
 
-  Usage: tutorial-projective-displacement [--noise SIGMA] [--seed S] [--help]
+  Usage: tutorial-projective-displacement [-c] [-d] [--noise SIGMA] [--seed S] [--help]
+  -d (--no-display): no window; -c (--no-click): no click awaited at the end (the options of ViSP's examples).
   The exit code is 0 if the refined estimate of the angle is within 5 deg of the true 30 deg (at 0.5 px its error
   is 0.96 deg on average and 3.1 deg at most over seeds 1 to 100, apps/projective-displacement).
 */
@@ -46,6 +49,7 @@
 #include <visp3/projective/vpProjectiveRotation.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
+#include <visp3/projective/vpStereoServoDisplay.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -55,14 +59,17 @@ int main(int argc, char **argv)
 {
   double sigma = 0.5; // pixel noise (px)
   long seed = 1;
+  bool opt_display = true, opt_click_allowed = true;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--noise" && i + 1 < argc) {
+    if (arg == "-d" || arg == "--no-display" || arg == "-c" || arg == "--no-click") {
+      (arg == "-d" || arg == "--no-display" ? opt_display : opt_click_allowed) = false;
+    } else if (arg == "--noise" && i + 1 < argc) {
       sigma = std::atof(argv[++i]);
     } else if (arg == "--seed" && i + 1 < argc) {
       seed = std::atol(argv[++i]);
     } else {
-      std::cout << "Usage: " << argv[0] << " [--noise SIGMA (px, default 0.5)] [--seed S (default 1)] [--help]\n";
+      std::cout << "Usage: " << argv[0] << " [-c] [-d] [--noise SIGMA (px, default 0.5)] [--seed S (default 1)]\n";
       return arg == "--help" || arg == "-h" ? EXIT_SUCCESS : EXIT_FAILURE;
     }
   }
@@ -112,6 +119,13 @@ int main(int argc, char **argv)
       return EXIT_FAILURE;
     }
     std::cout << "2. " << markers.size() << " markers imaged before and after the rotation\n";
+    vpStereoServoDisplay display(sim.getWidth(), sim.getHeight(), opt_display && vpStereoServoDisplay::hasDisplay());
+    display.display(); // white images: the simulated cameras give pixels
+    display.displayMarkers(left, right, vpColor::yellow);
+    display.displayMarkers(left0, right0, vpColor::blue);
+    display.displayMarkers(left1, right1, vpColor::green);
+    display.displayText("yellow: the matches that give F; the markers before (blue) and after (green) the rotation");
+    display.flush();
     //! [Images]
 
     //! [Estimation]
@@ -136,6 +150,10 @@ int main(int argc, char **argv)
       ok = ok && (k == 0 || std::fabs(angleDeg - 30.0) <= 5.0);
     }
     //! [Estimation]
+    if (display.isOpen() && opt_click_allowed) {
+      std::cout << "Click in the window to quit" << std::endl;
+      display.getClick();
+    }
     return ok ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getStringMessage() << std::endl;

@@ -21,10 +21,11 @@
      alone by velocity (corners identified by tag id); the stereo rig and the arm's model come from the same images.
   3. s* taught by showing: the arm at the target, 16 frames of the middle tag's 4 corners averaged.
   4. The planned servo from a start 25-40 deg away per joint, detection near the last corners, until the image error
-     settles; the first and last left images are written with the corners' paths.
+     settles. Shown while it runs (vpStereoServoDisplay; -d: not): both images with the tags, s* (red), the corners
+     and their paths (green), a vpPlot of the error and the joints; the first and last pictures go to --output.
   --record DIR writes each stereo frame used and its encoders to a session (visp-projective calibrate, check read it).
-  Usage: tutorial-projective-servo-apriltag [--blur SIGMA] [--output DIR] [--record DIR] [--help]
-  The exit code is 0 if the task converged (image error within 1 px RMS).
+  Usage: tutorial-projective-servo-apriltag [-c] [-d] [--blur SIGMA] [--output DIR] [--record DIR] [--help]
+  The exit code is 0 if the task converged (image error within 1 px RMS); with a window it waits for a click (-c: not).
 */
 
 #include <algorithm>
@@ -35,12 +36,8 @@
 #include <string>
 #include <vector>
 
-#include <visp3/core/vpImageConvert.h>
-#include <visp3/core/vpImageDraw.h>
-#include <visp3/core/vpIoTools.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpThetaUVector.h>
-#include <visp3/io/vpImageIo.h>
 
 #include <visp3/projective/vpFeatureStereoPoint.h>
 #include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
@@ -49,6 +46,7 @@
 #include <visp3/projective/vpServoProjective.h>
 #include <visp3/projective/vpSimulatorStereoCell.h>
 #include <visp3/projective/vpStereoAprilTagDetector.h>
+#include <visp3/projective/vpStereoServoDisplay.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -60,14 +58,17 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
   double blur = 0.5;                     // optical blur of the cameras (px)
   std::string output = "apriltag-servo"; // where the figures go
   std::string record;                    // where to record the session (empty: no recording)
+  bool opt_display = true, opt_click_allowed = true;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--blur" && i + 1 < argc) {
+    if (arg == "-d" || arg == "--no-display" || arg == "-c" || arg == "--no-click") {
+      (arg == "-d" || arg == "--no-display" ? opt_display : opt_click_allowed) = false;
+    } else if (arg == "--blur" && i + 1 < argc) {
       blur = std::atof(argv[++i]);
     } else if ((arg == "--output" || arg == "--record") && i + 1 < argc) {
       (arg == "--output" ? output : record) = argv[++i];
     } else {
-      std::cout << "Usage: " << argv[0] << " [--blur SIGMA (px, default 0.5)] [--output DIR] [--record DIR] [--help]\n";
+      std::cout << "Usage: " << argv[0] << " [-c] [-d] [--blur SIGMA (px)] [--output DIR] [--record DIR]\n";
       return arg == "--help" || arg == "-h" ? EXIT_SUCCESS : EXIT_FAILURE;
     }
   }
@@ -90,10 +91,13 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
     std::unique_ptr<vpProjectiveSessionWriter> writer(record.empty() ? nullptr
                                                                      : new vpProjectiveSessionWriter(record, types));
     vpStereoAprilTagDetector tags(vpDetectorAprilTag::TAG_36h11);
+    vpStereoServoDisplay display(cell.getWidth(), cell.getHeight(), opt_display && vpStereoServoDisplay::hasDisplay());
     // A stereo frame, its tags, the encoders; --record writes it (role -1: acquisition, if it shows 5 corners).
     auto see = [&](int role) {
       cell.acquire(Ileft, Iright);
       tags.detect(Ileft, Iright);
+      display.display(Ileft, Iright); // the frame and its tags: the caller adds the rest and flushes
+      display.displayTags(tags.getIds(), tags.getLeftPoints(), tags.getRightPoints());
       vpColVector q;
       robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
       if (writer && role < 0 && tags.getIds().size() >= 5) {
@@ -109,6 +113,7 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
     // The tags' corners, identified by 4 * tag id + corner index, are the acquisition's markers.
     auto corners = [&](std::vector<int> &ids, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
       see(-1);
+      display.flush(); // the acquisition's frame and its tags
       ids = tags.getIds();
       left = tags.getLeftPoints();
       right = tags.getRightPoints();
@@ -136,6 +141,7 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
     std::vector<std::vector<vpImagePoint>> starLeft(4), starRight(4);
     for (unsigned int frame = 0; frame < 16; ++frame) {
       see(vpProjectiveSession::TARGET);
+      display.flush();
       for (unsigned int k = 0; k < 4; ++k) {
         const int j = find(k);
         if (j >= 0) {
@@ -161,14 +167,13 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
     for (unsigned int k = 0; k < 4; ++k) {
       s_star[k].buildFrom(starLeft[k], starRight[k]); // s*: the mean of the frames where corner k was seen
       task.addFeature(s[k], s_star[k]);
+      std::cout << "s*[" << k << "] (i, j): left " << s_star[k].getLeft() << ", right " << s_star[k].getRight() << "\n";
     }
     //! [Task]
 
     //! [Loop]
     robot.setPosition(vpRobot::ARTICULAR_FRAME, qStart);
     robot.setRobotState(vpRobot::STATE_VELOCITY_CONTROL);
-    std::vector<std::vector<vpImagePoint>> path(4);
-    vpImage<vpRGBa> figure[2]; // the left image at the start and at the end
     double errorRms = 0.0;
     unsigned int it = 0, lost = 0; // lost: consecutive frames without the servo tag
     for (; it < 300; ++it) {
@@ -181,11 +186,14 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
         const int j = find(k);
         if (j >= 0) {
           s[k].buildFrom(tags.getLeftPoints()[static_cast<size_t>(j)], tags.getRightPoints()[static_cast<size_t>(j)]);
-          path[k].push_back(tags.getLeftPoints()[static_cast<size_t>(j)]);
         }
         task.setFeatureTracked(k, j >= 0); // a corner out of view is set aside for this iteration
         e.stack(s[k].error(s_star[k]));
+        display.displayFeature(k, s[k], s_star[k], j >= 0); // s* in red, s and its path in green
       }
+      errorRms = std::sqrt(e.sumSquare() / e.size());
+      display.displayText("iteration " + std::to_string(it) + ": error " + std::to_string(errorRms) + " px RMS");
+      display.flush();
       if (find(0) >= 0 && find(1) >= 0 && find(2) >= 0 && find(3) >= 0) { // the whole servo tag seen
         tags.setPredictedRegions(tags.getIds(), tags.getLeftPoints(), tags.getRightPoints()); // next: search there
       }
@@ -197,9 +205,9 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
         break;
       }
       robot.setVelocity(vpRobot::ARTICULAR_FRAME, qdot);
-      errorRms = std::sqrt(e.sumSquare() / e.size());
+      display.plot(e, q);
       if (it == 0) {
-        vpImageConvert::convert(Ileft, figure[0]);
+        display.write(output + "/stereo-start.png");
         std::cout << "Plan: " << task.getPathPlanner().getDescription() << "\n";
       }
       if (it % 20 == 0) {
@@ -216,21 +224,9 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
     }
     //! [Loop]
 
-    //! [Figures]
-    // The left image at the start and at the end, the corners' paths in green and s* in red.
-    vpIoTools::makeDirectory(output);
-    vpImageConvert::convert(Ileft, figure[1]);
-    for (int f = 0; f < 2; ++f) {
-      for (unsigned int k = 0; k < 4; ++k) {
-        for (size_t j = 1; j < path[k].size(); ++j) {
-          vpImageDraw::drawLine(figure[f], path[k][j - 1], path[k][j], vpColor::green, 1);
-        }
-        vpImageDraw::drawCross(figure[f], vpImagePoint(s_star[k].get_v(), s_star[k].get_u()), 9, vpColor::red, 1);
-      }
-      vpImageIo::write(figure[f], output + (f == 0 ? "/left-start.png" : "/left-end.png"));
-    }
-    std::cout << "Figures: " << output << "/left-start.png, " << output << "/left-end.png\n";
-    //! [Figures]
+    display.write(output + "/stereo-end.png"); // what the window shows (the same picture without a display)
+    display.writePlot(output + "/plot.png");   // if the plot window is open
+    std::cout << "Figures: " << output << "/stereo-start.png, " << output << "/stereo-end.png\n";
 
     // The simulator's truth, which a real cell does not have: how far the tool is from where it was shown s*.
     const vpHomogeneousMatrix tMt =
@@ -238,6 +234,10 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
     std::cout << "After " << it << " iterations: image error " << errorRms << " px RMS; the tool is "
               << 1000.0 * tMt.getTranslationVector().frobeniusNorm() << " mm and "
               << vpMath::deg(vpThetaUVector(tMt.getRotationMatrix()).getTheta()) << " deg from its target pose\n";
+    if (display.isOpen() && opt_click_allowed) {
+      std::cout << "Click in the window to quit" << std::endl;
+      display.getClick();
+    }
     return errorRms < 1.0 ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getStringMessage() << std::endl;

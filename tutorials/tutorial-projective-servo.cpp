@@ -23,11 +23,14 @@
      images; the projective model is calibrated from them;
   2. servoes the gripper with 3 tracked markers through a task of 82 cm and 88 deg, s* taught by showing (the image
      of the target configuration), with the planned path and the control law qdot = -lambda J^+ (s - s*), eq. (47).
+  While it servoes, both images (white: the simulated cameras give pixels) show the markers, s* (red), the tracked
+  markers and their paths (green), and a vpPlot the error and the joints (vpStereoServoDisplay, when a display exists).
 
   The paper's experiment itself (its table over 20 noise seeds and its figures) is the application
   apps/projective-paper.
 
-  Usage: tutorial-projective-servo [--noise SIGMA] [--seed S] [--help]
+  Usage: tutorial-projective-servo [-c] [-d] [--noise SIGMA] [--seed S] [--help]
+  -d (--no-display): no window; -c (--no-click): no click awaited at the end (the options of ViSP's examples).
   The exit code is 0 if the task converged (image error within 2 sigma RMS).
 */
 
@@ -49,6 +52,7 @@
 #include <visp3/projective/vpServoProjective.h>
 #include <visp3/projective/vpSimulatorArm.h>
 #include <visp3/projective/vpSimulatorStereoRig.h>
+#include <visp3/projective/vpStereoServoDisplay.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -58,14 +62,17 @@ int main(int argc, char **argv)
 {
   double sigma = 0.5; // pixel noise (px)
   long seed = 1;
+  bool opt_display = true, opt_click_allowed = true;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    if (arg == "--noise" && i + 1 < argc) {
+    if (arg == "-d" || arg == "--no-display" || arg == "-c" || arg == "--no-click") {
+      (arg == "-d" || arg == "--no-display" ? opt_display : opt_click_allowed) = false;
+    } else if (arg == "--noise" && i + 1 < argc) {
       sigma = std::atof(argv[++i]);
     } else if (arg == "--seed" && i + 1 < argc) {
       seed = std::atol(argv[++i]);
     } else {
-      std::cout << "Usage: " << argv[0] << " [--noise SIGMA (px, default 0.5)] [--seed S (default 1)] [--help]\n";
+      std::cout << "Usage: " << argv[0] << " [-c] [-d] [--noise SIGMA (px, default 0.5)] [--seed S (default 1)]\n";
       return arg == "--help" || arg == "-h" ? EXIT_SUCCESS : EXIT_FAILURE;
     }
   }
@@ -152,6 +159,8 @@ int main(int argc, char **argv)
     //! [Task]
 
     //! [Loop]
+    vpStereoServoDisplay display(world_rig.getWidth(), world_rig.getHeight(),
+                                 opt_display && vpStereoServoDisplay::hasDisplay());
     vpColVector q = qStart;
     double errorRms = 0.0;
     for (unsigned int it = 0; it <= 40; ++it) {
@@ -172,6 +181,14 @@ int main(int argc, char **argv)
         e.stack(s[k].error(s_star[k]));
       }
       errorRms = std::sqrt(e.sumSquare() / e.size());
+      display.display(); // white images, the 7 markers, then s*, s and the paths of s
+      display.displayMarkers(left, right);
+      for (unsigned int k = 0; k < 3; ++k) {
+        display.displayFeature(k, s[k], s_star[k]);
+      }
+      display.displayText("iteration " + std::to_string(it) + ": error " + std::to_string(errorRms) + " px RMS");
+      display.flush();
+      display.plot(e, q);
       if (it % 5 == 0) {
         std::cout << "iteration " << it << ": image error " << errorRms << " px RMS\n";
       }
@@ -186,6 +203,10 @@ int main(int argc, char **argv)
     std::cout << "\n";
     const bool converged = errorRms <= std::max(2.0 * sigma, 1e-6);
     std::cout << (converged ? "Converged" : "Not converged") << std::endl;
+    if (display.isOpen() && opt_click_allowed) {
+      std::cout << "Click in the window to quit" << std::endl;
+      display.getClick();
+    }
     return converged ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getStringMessage() << std::endl;
