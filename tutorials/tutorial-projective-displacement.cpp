@@ -121,10 +121,11 @@ int main(int argc, char **argv)
     std::cout << "2. " << markers.size() << " markers imaged before and after the rotation\n";
     vpStereoServoDisplay display(sim.getWidth(), sim.getHeight(), opt_display && vpStereoServoDisplay::hasDisplay());
     display.display(); // white images: the simulated cameras give pixels
-    display.displayMarkers(left, right, vpColor::yellow);
+    display.displayMarkers(left, right, vpColor::darkGray);
     display.displayMarkers(left0, right0, vpColor::blue);
     display.displayMarkers(left1, right1, vpColor::green);
-    display.displayText("yellow: the matches that give F; the markers before (blue) and after (green) the rotation");
+    display.displayText("grey: the matches that give F");
+    display.displayText("blue, green: the markers before and after the rotation");
     display.flush();
     //! [Images]
 

@@ -23,8 +23,9 @@
      images; the projective model is calibrated from them;
   2. servoes the gripper with 3 tracked markers through a task of 82 cm and 88 deg, s* taught by showing (the image
      of the target configuration), with the planned path and the control law qdot = -lambda J^+ (s - s*), eq. (47).
-  While it servoes, both images (white: the simulated cameras give pixels) show the markers, s* (red), the tracked
-  markers and their paths (green), and a vpPlot the error and the joints (vpStereoServoDisplay, when a display exists).
+  While it servoes, both images (white: the simulated cameras give pixels) show the markers (blue), s* (red), the
+  tracked markers and their paths (green), and a vpPlot of the error and the joints (vpStereoServoDisplay, with a
+  display).
 
   The paper's experiment itself (its table over 20 noise seeds and its figures) is the application
   apps/projective-paper.
@@ -181,8 +182,8 @@ int main(int argc, char **argv)
         e.stack(s[k].error(s_star[k]));
       }
       errorRms = std::sqrt(e.sumSquare() / e.size());
-      display.display(); // white images, the 7 markers, then s*, s and the paths of s
-      display.displayMarkers(left, right);
+      display.display(); // white images, the 7 markers (blue), then s* (red), s and the paths of s (green)
+      display.displayMarkers(left, right, vpColor::blue);
       for (unsigned int k = 0; k < 3; ++k) {
         display.displayFeature(k, s[k], s_star[k]);
       }

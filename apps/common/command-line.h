@@ -19,9 +19,9 @@
 
   \code
   unsigned int seeds = 20;
-  bool display = app::hasDisplay();
+  bool display = vpStereoServoDisplay::hasDisplay(), click = true;
   app::CommandLine cmd;
-  cmd.add("--seeds", seeds, "N", "number of noise seeds", 1).flag("--no-display", display, false, "no window");
+  cmd.add("--seeds", seeds, "N", "number of noise seeds", 1).displayOptions(display, click); // -d, -c
   int exitCode;
   if (!cmd.parse(argc, argv, exitCode)) return exitCode;
   \endcode
@@ -40,6 +40,7 @@
 #include <vector>
 
 #include <visp3/core/vpConfig.h>
+#include <visp3/projective/vpStereoServoDisplay.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -47,16 +48,6 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace app
 {
-//! True if windows can be opened: ViSP has X11 and the DISPLAY environment variable is set.
-inline bool hasDisplay()
-{
-#if defined(VISP_HAVE_X11)
-  return std::getenv("DISPLAY") != nullptr;
-#else
-  return false;
-#endif
-}
-
 //! Options of one program: declare them, then parse().
 class CommandLine
 {
@@ -114,6 +105,15 @@ public:
     o.setTo = setTo;
     m_options.push_back(o);
     return *this;
+  }
+  //! The display options of ViSP's examples: -d or --no-display sets \e display to false (no window even if a display
+  //! is available), -c or --no-click sets \e click to false (no click awaited at the end).
+  CommandLine &displayOptions(bool &display, bool &click)
+  {
+    flag("-d", display, false, "no window even if a display is available (or --no-display)");
+    flag("--no-display", display, false, "the same as -d");
+    flag("-c", click, false, "no click awaited at the end, with a window (or --no-click)");
+    return flag("--no-click", click, false, "the same as -c");
   }
   //! A line printed after the options in the usage.
   CommandLine &note(const std::string &text)
@@ -221,16 +221,17 @@ private:
 };
 //! The options of the servo apps.
 struct ServoOptions {
-  unsigned int seeds = 20;     //!< noise seeds of the study
-  std::string modelFile;       //!< model file (.json): acquired and saved once, loaded by later runs
-  std::string output;          //!< where to write data and figures
-  bool display = hasDisplay(); //!< windows, if a display is available
+  unsigned int seeds = 20; //!< noise seeds of the study
+  std::string modelFile;   //!< model file (.json): acquired and saved once, loaded by later runs
+  std::string output;      //!< where to write data and figures
+  bool display = vpStereoServoDisplay::hasDisplay(); //!< windows, if a display is available (-d: not)
+  bool click = true;                                 //!< with windows, wait for a click at the end (-c: not)
   double maxExcursionDeg = 20; //!< planned paths: a joint's largest motion beyond its start and target values
 };
 
 /*!
   Reads the options of a servo app: --seeds N, --model FILE, --output DIR (only if \e withOutput; the default is
-  \e options.output as given), --max-excursion DEG (only if \e withPlanning), --no-display. Returns false if the
+  \e options.output as given), --max-excursion DEG (only if \e withPlanning), -d, -c. Returns false if the
   program must stop with \e exitCode (see CommandLine::parse()).
 */
 inline bool parseServoOptions(int argc, char **argv, ServoOptions &options, int &exitCode, bool withOutput,
@@ -247,7 +248,7 @@ inline bool parseServoOptions(int argc, char **argv, ServoOptions &options, int 
     cmd.add("--max-excursion", options.maxExcursionDeg, "DEG",
             "largest motion of a joint beyond its start and target values on the plan (40: straight image lines)", 0.0);
   }
-  cmd.flag("--no-display", options.display, false, "no window even if a display is available");
+  cmd.displayOptions(options.display, options.click);
   return cmd.parse(argc, argv, exitCode);
 }
 } // namespace app

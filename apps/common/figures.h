@@ -26,16 +26,14 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <memory>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
 
-#include <visp3/core/vpDisplay.h>
-#include <visp3/core/vpImage.h>
 #include <visp3/core/vpMath.h>
-#include <visp3/gui/vpDisplayX.h>
-#include <visp3/gui/vpPlot.h>
+#include <visp3/projective/vpFeatureStereoPoint.h>
+#include <visp3/projective/vpStereoServoDisplay.h>
 
 #include "servo-report.h"
 
@@ -176,42 +174,22 @@ inline void writePredictionFigure(const std::vector<double> &error, const std::v
 
 //! [Live display]
 /*!
-  The two camera images of a servo run, if there is a display: the measured markers (green trajectories), their
-  targets (red crosses) and, if asked, the image error in a vpPlot. Without a display (or without X11) it does
-  nothing.
+  The two camera images of a servo run, if there is a display (vpStereoServoDisplay on white images: the simulated
+  cameras give pixels): the measured markers (green) and their paths, their targets (red crosses), and a vpPlot of
+  the image error and the joints. Without a display it draws nothing.
 */
 class LiveView
 {
 public:
-  //! Windows for \e width x \e height images at (\e x, \e y) on the screen, if \e display; a plot if \e plot.
-  LiveView(unsigned int width, unsigned int height, bool display, int x = 0, int y = 0, bool plot = false)
+  //! A window for \e width x \e height images at (\e x, \e y) on the screen, if \e display and there is a display;
+  //! waitForClick() waits only if \e click.
+  LiveView(unsigned int width, unsigned int height, bool display, bool click, int x = 0, int y = 0)
+      : m_display(width, height, display && vpStereoServoDisplay::hasDisplay(), x, y), m_click(click)
   {
-#if defined(VISP_HAVE_X11)
-    if (display) {
-      m_left.resize(height, width, 255);
-      m_right.resize(height, width, 255);
-      m_displayLeft.reset(new vpDisplayX(m_left, x, y, "Left camera"));
-      m_displayRight.reset(new vpDisplayX(m_right, x + static_cast<int>(width) + 20, y, "Right camera"));
-      if (plot) {
-        m_plot.reset(new vpPlot(1, 300, 500, x, y + static_cast<int>(height) + 60, "Image error RMS (px)"));
-        m_plot->initGraph(0, 1);
-      }
-    }
-#else
-    (void)width;
-    (void)height;
-    (void)display;
-    (void)x;
-    (void)y;
-    (void)plot;
-#endif
   }
 
   //! True if the windows are open.
-  bool isOpen() const
-  {
-    return m_displayLeft != nullptr;
-  }
+  bool isOpen() const { return m_display.isOpen(); }
 
   //! The function for a servo loop to call at every iteration: empty if the windows are not open.
   std::function<void(const ServoRun &)> callback()
@@ -222,32 +200,26 @@ public:
     return [this](const ServoRun &run) { show(run); };
   }
 
-  //! Draws the run so far (its first \e iterations iterations; all of them by default).
+  //! Draws iteration \e iterations - 1 of the run (its last one by default): call it once per iteration, in order.
   void show(const ServoRun &run, size_t iterations = 0)
   {
     if (!isOpen() || run.q.empty()) {
       return;
     }
     const size_t n = iterations > 0 ? std::min(iterations, run.q.size()) : run.q.size();
-    vpDisplay::display(m_left);
-    vpDisplay::display(m_right);
-    for (size_t k = 0; k < run.leftTarget.size(); ++k) {
-      vpDisplay::displayCross(m_left, run.leftTarget[k], 12, vpColor::red, 2);
-      vpDisplay::displayCross(m_right, run.rightTarget[k], 12, vpColor::red, 2);
-      for (size_t it = 0; it < n; ++it) {
-        vpDisplay::displayPoint(m_left, run.left[it][k], vpColor::green, 2);
-        vpDisplay::displayPoint(m_right, run.right[it][k], vpColor::green, 2);
-      }
+    m_display.display();
+    for (unsigned int k = 0; k < run.leftTarget.size(); ++k) {
+      vpFeatureStereoPoint s, s_star;
+      s.buildFrom(run.left[n - 1][k], run.right[n - 1][k]);
+      s_star.buildFrom(run.leftTarget[k], run.rightTarget[k]);
+      m_display.displayFeature(k, s, s_star);
     }
     const double rms = std::sqrt(run.error[n - 1].sumSquare() / run.error[n - 1].size());
     std::ostringstream os;
     os << "iteration " << n - 1 << ", image error " << std::fixed << std::setprecision(2) << rms << " px RMS";
-    vpDisplay::displayText(m_left, 20, 20, os.str(), vpColor::blue);
-    vpDisplay::flush(m_left);
-    vpDisplay::flush(m_right);
-    if (m_plot) {
-      m_plot->plot(0, 0, static_cast<double>(n - 1), rms);
-    }
+    m_display.displayText(os.str());
+    m_display.flush();
+    m_display.plot(run.error[n - 1], run.q[n - 1]);
   }
 
   //! Shows the marker images \e left, \e right (e.g. an acquisition step) with \e caption, if the windows are open.
@@ -257,34 +229,24 @@ public:
     if (!isOpen()) {
       return;
     }
-    vpDisplay::display(m_left);
-    vpDisplay::display(m_right);
-    for (size_t k = 0; k < left.size() && k < right.size(); ++k) {
-      vpDisplay::displayCross(m_left, left[k], 10, vpColor::green, 2);
-      vpDisplay::displayCross(m_right, right[k], 10, vpColor::green, 2);
-    }
-    vpDisplay::displayText(m_left, 20, 20, caption, vpColor::blue);
-    vpDisplay::flush(m_left);
-    vpDisplay::flush(m_right);
+    m_display.display();
+    m_display.displayMarkers(left, right, vpColor::blue);
+    m_display.displayText(caption);
+    m_display.flush();
   }
 
-  //! If the windows are open, waits for a click in the left one.
+  //! If the windows are open and clicks are allowed, waits for a click in the images' window.
   void waitForClick()
   {
-    if (isOpen()) {
-      std::cout << "Click in the left image to quit" << std::endl;
-      vpDisplay::getClick(m_left);
+    if (isOpen() && m_click) {
+      std::cout << "Click in the window to quit" << std::endl;
+      m_display.getClick();
     }
   }
 
 private:
-  vpImage<unsigned char> m_left, m_right;
-#if defined(VISP_HAVE_X11)
-  std::unique_ptr<vpDisplayX> m_displayLeft, m_displayRight;
-#else
-  std::unique_ptr<vpDisplay> m_displayLeft;
-#endif
-  std::unique_ptr<vpPlot> m_plot;
+  vpStereoServoDisplay m_display;
+  bool m_click;
 };
 //! [Live display]
 } // namespace app

@@ -27,12 +27,12 @@
 
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpConfig.h>
-#include <visp3/core/vpDisplay.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
-#include <visp3/gui/vpDisplayX.h>
 
+#include <visp3/projective/vpFeatureStereoPoint.h>
 #include <visp3/projective/vpStereoDotTracker.h>
+#include <visp3/projective/vpStereoServoDisplay.h>
 
 #include "paper-world.h"
 
@@ -78,45 +78,51 @@ struct TrackingAccuracy {
 };
 
 //! [Viewer]
-//! Both images live (seed 1, with an X display): the tracked blobs, the taught target and the servo's trajectory.
+/*!
+  Both images live (seed 1, with a display: vpStereoServoDisplay): the tracked blobs (yellow circles; red if lost),
+  the taught target s* (red crosses), the servo's features and their paths (green), and a vpPlot of the servo's error
+  and joints.
+*/
 class Viewer
 {
 public:
-  Viewer(vpImage<unsigned char> &Ileft, vpImage<unsigned char> &Iright)
-#if defined(VISP_HAVE_X11)
-      : m_left(Ileft, 0, 0, "Left camera"), m_right(Iright, static_cast<int>(Ileft.getWidth()) + 20, 0, "Right camera")
-#endif
-  {
-    (void)Iright;
-  }
+  //! A window for \e width x \e height images.
+  Viewer(unsigned int width, unsigned int height) : m_display(width, height, true) {}
   //! Shows the last stereo frame with \e caption.
   void show(const vpImage<unsigned char> &Ileft, const vpImage<unsigned char> &Iright,
             const vpStereoDotTracker &tracker, const std::string &caption)
   {
-    for (unsigned int c = 0; c < 2; ++c) {
-      const vpImage<unsigned char> &I = c == 0 ? Ileft : Iright;
-      vpDisplay::display(I);
-      vpDisplay::displayText(I, 20, 20, caption, vpColor::yellow);
-      for (const vpImagePoint &ip : target[c]) {
-        vpDisplay::displayCross(I, ip, 14, vpColor::red, 2);
-      }
-      for (const std::vector<vpImagePoint> &points : trail[c]) {
-        for (const vpImagePoint &ip : points) {
-          vpDisplay::displayPoint(I, ip, vpColor::cyan, 2);
-        }
-      }
+    m_display.display(Ileft, Iright);
+    std::vector<vpImagePoint> left[2], right[2]; // tracked, lost
+    for (unsigned int k = 0; k < tracker.getNumberOfMarkers(); ++k) {
+      const unsigned int lost = tracker.getState(k) == vpStereoDotTracker::MARKER_LOST ? 1 : 0;
+      left[lost].push_back(tracker.getLeftPoint(k));
+      right[lost].push_back(tracker.getRightPoint(k));
     }
-    tracker.display(Ileft, Iright);
-    vpDisplay::flush(Ileft);
-    vpDisplay::flush(Iright);
+    m_display.displayMarkers(left[0], right[0], vpColor::yellow);
+    m_display.displayMarkers(left[1], right[1], vpColor::red);
+    for (unsigned int k = 0; k < features[0].size() && k < target[0].size(); ++k) {
+      vpFeatureStereoPoint s, s_star;
+      s.buildFrom(features[0][k], features[1][k]);
+      s_star.buildFrom(target[0][k], target[1][k]);
+      m_display.displayFeature(k, s, s_star);
+    }
+    m_display.displayText(caption);
+    m_display.flush();
   }
-  std::vector<vpImagePoint> target[2];             //!< s* in each image
-  std::vector<std::vector<vpImagePoint>> trail[2]; //!< the servo's trajectory in each image
+  //! Plots a servo iteration's error \e e (s - s*) and joints \e q.
+  void plot(const vpColVector &e, const vpColVector &q) { m_display.plot(e, q); }
+  //! Waits for a click in the window.
+  void waitForClick()
+  {
+    std::cout << "Click in the window to quit" << std::endl;
+    m_display.getClick();
+  }
+  std::vector<vpImagePoint> target[2];   //!< s* in each image
+  std::vector<vpImagePoint> features[2]; //!< the servo's last features in each image
 
 private:
-#if defined(VISP_HAVE_X11)
-  vpDisplayX m_left, m_right;
-#endif
+  vpStereoServoDisplay m_display;
 };
 //! [Viewer]
 } // namespace app

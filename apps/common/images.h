@@ -34,14 +34,12 @@
 
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
-#include <visp3/core/vpDisplay.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpThetaUVector.h>
 #include <visp3/core/vpTranslationVector.h>
 #include <visp3/core/vpUniRand.h>
-#include <visp3/gui/vpDisplayX.h>
 
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpSimulatorMarkerRenderer.h>
@@ -180,12 +178,14 @@ struct Session {
       viewer->target[1] = right;
     }
   }
-  //! Adds an iteration's features to the servo's trajectory in the live view, if any.
-  void showTrail(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right)
+  //! Shows a servo iteration in the live view, if any: its features, the tracked centres (and their paths), and,
+  //! plotted, its error \e e = s - s* and the joints q.
+  void showServo(const vpColVector &e)
   {
     if (viewer != nullptr) {
-      viewer->trail[0].push_back(left);
-      viewer->trail[1].push_back(right);
+      viewer->features[0] = tracker.getLeftPoints();
+      viewer->features[1] = tracker.getRightPoints();
+      viewer->plot(e, q);
     }
   }
 

@@ -23,7 +23,9 @@
   keeping the arm model and the taught target; the task goes back to where it stopped and ends at its original target.
 
   Usage: projective-bumped-camera [--seed N] [--camera 0|1] [--bump-deg DEG] [--bump-mm MM]
-  [--bump-after N] [--iterations N] [--output DIR] [--help]
+  [--bump-after N] [--iterations N] [--output DIR] [-d] [-c] [--help]
+  With a display (and no -d), both images are shown live with the tracked blobs, the target and the servo's paths, and
+  a vpPlot of the error and the joints; it then waits for a click (-c: not).
   --output DIR (default .) receives the prediction-error figure and three PNGs of the stereo pair with the tracked
   markers and the model's predictions: at the start, just after the bump, at the end. The exit code is 0 only if the
   bump was detected, the rig re-registered and the task ended within 2 deg / 2 mm of its target.
@@ -33,6 +35,7 @@
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -125,6 +128,7 @@ int main(int argc, char **argv)
   unsigned int seed = 1, camera = 1, bumpAfter = 8, iterations = 40;
   double bumpDeg = 2.0, bumpMm = 10.0;
   std::string output = ".";
+  bool display = vpStereoServoDisplay::hasDisplay(), click = true;
   CommandLine cmd;
   cmd.add("--seed", seed, "N", "seed of the image noise, the clicks and the bump's axis and direction", 1)
       .choice("--camera", camera, {0, 1}, "the camera that is bumped: 0 left, 1 right")
@@ -132,7 +136,8 @@ int main(int argc, char **argv)
       .add("--bump-mm", bumpMm, "MM", "translation of the bump (mm, along a random direction)", 0.0)
       .add("--bump-after", bumpAfter, "N", "servo iterations before the bump", 1)
       .add("--iterations", iterations, "N", "servo iterations after the re-registration", 10)
-      .add("--output", output, "DIR", "where to write the figure and the PNGs");
+      .add("--output", output, "DIR", "where to write the figure and the PNGs")
+      .displayOptions(display, click);
   int exitCode = EXIT_SUCCESS;
   if (!cmd.parse(argc, argv, exitCode)) {
     return exitCode;
@@ -142,6 +147,8 @@ int main(int argc, char **argv)
     const PaperWorld world;
     const ImageModel model;
     Session session(world, model, seed);
+    std::unique_ptr<Viewer> viewer(display ? new Viewer(world.rig.getWidth(), world.rig.getHeight()) : nullptr);
+    session.viewer = viewer.get(); // the live view, with a display
     const unsigned int n = world.arm.getNumberOfJoints();
     const vpColVector qTarget = degToRad(world.targetDeg);
     std::vector<unsigned int> all(world.arm.getToolMarkers().size());
@@ -206,6 +213,7 @@ int main(int argc, char **argv)
       prediction.push_back(trackedPredictionError(robot, session));
       phase.push_back(it <= bumpAfter ? 0 : (detectedAt < 0 ? 1 : 2));
       const vpColVector qdot = task.computeControlLaw(session.q);
+      session.showServo(task.getError());
       if (task.getStatus() == vpServoProjective::SERVO_MODEL_MISMATCH) {
         detectedAt = static_cast<int>(it);
         endAt = detectedAt + static_cast<int>(iterations) + 1;
@@ -291,6 +299,9 @@ int main(int argc, char **argv)
     std::cout << (ok ? "Bump detected, rig re-registered, task ended at its original target"
                      : "FAILED: the task did not end within 2 deg / 2 mm of its target")
               << std::endl;
+    if (viewer && click) {
+      viewer->waitForClick();
+    }
     return ok ? EXIT_SUCCESS : EXIT_FAILURE;
     //! [Results]
   } catch (const vpException &e) {

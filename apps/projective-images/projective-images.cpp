@@ -23,7 +23,7 @@
   main job's table, the tracking accuracy (against the truth, for the report only) and the final joint errors
   against the main job's at 0.5 px. See its documentation page for the markers (active, seen from all around).
 
-  Usage: projective-images [--seeds N] [--model FILE] [--output DIR] [--no-display] [--help]
+  Usage: projective-images [--seeds N] [--model FILE] [--output DIR] [-d] [-c] [--help]
   With --model arm.json, the model is loaded if the file exists, otherwise acquired by seed 1 and saved; the other
   seeds servo with it. --output DIR writes seed 1's final images with the feature trajectories, and the stereo pair
   at the start and at the end with the tracked markers and the model's predictions. The exit code is 0
@@ -114,7 +114,7 @@ ServoRun servo(Session &session, const vpProjectiveRobot &robot, TrackingAccurac
     }
     run.record(it, session.q, left, right, task.getError(), session.model.convergenceThreshold);
     run.frames.push_back(r.frames);
-    session.showTrail(left, right);
+    session.showServo(task.getError());
     if (it < iterations) {
       session.caption = "servo: iteration " + std::to_string(it + 1);
       r = session.move(world.arm.integrate(session.q, qdot, 1.0)); // one control period
@@ -157,12 +157,11 @@ int main(int argc, char **argv)
       std::cout << "Model loaded from " << modelFile << ": every seed servoes with it, no acquisition\n";
     }
     ImagesStudy st;
-    std::unique_ptr<Session> firstSession; // seed 1's, kept with its windows until the end
-    std::unique_ptr<Viewer> viewer;
+    std::unique_ptr<Viewer> viewer; // seed 1's live view, kept until the end
     for (unsigned int seed = 1; seed <= seeds; ++seed) {
       std::unique_ptr<Session> session(new Session(world, model, seed));
       if (seed == 1 && options.display) {
-        viewer.reset(new Viewer(session->Ileft, session->Iright));
+        viewer.reset(new Viewer(world.rig.getWidth(), world.rig.getHeight()));
         session->viewer = viewer.get();
       }
       const bool verbose = seed == 1, acquireModel = !haveModel;
@@ -209,9 +208,6 @@ int main(int argc, char **argv)
         std::cout << "    model saved to " << modelFile << ": the other seeds servo with it\n";
         haveModel = true;
       }
-      if (seed == 1) {
-        firstSession = std::move(session);
-      }
     }
     //! [Seeds]
 
@@ -219,9 +215,8 @@ int main(int argc, char **argv)
     std::cout << "The loop closed on images " << (within ? "ends within" : "does NOT end within")
               << " 2 times the main job's final joint errors at 0.5 px; run time " << std::setprecision(1)
               << (vpTime::measureTimeMs() - t0) / 1000.0 << " s\n";
-    if (viewer) {
-      std::cout << "Click in the left image to quit" << std::endl;
-      vpDisplay::getClick(firstSession->Ileft);
+    if (viewer && options.click) {
+      viewer->waitForClick();
     }
     return st.converged == seeds ? EXIT_SUCCESS : EXIT_FAILURE;
   } catch (const vpException &e) {

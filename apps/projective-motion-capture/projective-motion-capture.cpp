@@ -31,7 +31,10 @@
      and the errors against +-floor.
 
   Usage: projective-motion-capture [--frames N] [--noise SIGMA] [--seed S] [--still-frames N] [--output DIR]
-  [--help]
+  [-d] [-c] [--help]
+  With a display (and no -d) the capture is shown live at 25 Hz (vpStereoServoDisplay, white images): the markers
+  measured (green, with their paths; hidden ones not drawn), the model's images of them at the captured joints (red),
+  and a vpPlot of their difference and the captured joints; it then waits for a click (-c: not).
   Exits with 1 if a frame could not be captured or a joint's median error exceeds 1.25 times the floor's (the median
   |error| / floor exceeds 1.25 x 0.674).
 */
@@ -122,12 +125,14 @@ int main(int argc, char **argv)
   unsigned int frames = 250, seed = 1, stillFrames = 16;
   double sigma = 0.5;
   std::string output = ".";
+  bool display = vpStereoServoDisplay::hasDisplay(), click = true;
   app::CommandLine cmd;
   cmd.add("--frames", frames, "N", "number of frames (25 Hz)", 20)
       .add("--noise", sigma, "SIGMA", "pixel noise (px, Gaussian, every image coordinate)", 0.0)
       .add("--seed", seed, "S", "seed of the noise", 1)
       .add("--still-frames", stillFrames, "N", "frames averaged at each pose of the acquisition", 1)
-      .add("--output", output, "DIR", "where the CSV data and the figures are written");
+      .add("--output", output, "DIR", "where the CSV data and the figures are written")
+      .displayOptions(display, click);
   int exitCode = 0;
   if (!cmd.parse(argc, argv, exitCode)) {
     return exitCode;
@@ -170,6 +175,7 @@ int main(int argc, char **argv)
     const app::ImagesAt trueImages = app::trueMarkerImages(world.rig, world.arm);
     std::vector<Frame> captured;
     double seconds = 0.0;
+    vpStereoServoDisplay view(world.rig.getWidth(), world.rig.getHeight(), display);
     for (unsigned int k = 0; k < frames; ++k) {
       Frame f;
       f.t = k / 25.0;
@@ -197,6 +203,23 @@ int main(int argc, char **argv)
       }
       f.floor = app::noiseFloor(J, sigma);
       captured.push_back(f);
+      if (view.isOpen()) { // measured (s) against the model's images at the captured joints (s*)
+        view.display();
+        vpColVector e;
+        for (unsigned int j = 0; j < left.size(); ++j) {
+          vpImagePoint l, r;
+          robot.projectMarker(j, f.qCaptured, l, r);
+          vpFeatureStereoPoint s, s_star;
+          s.buildFrom(left[j], right[j]);
+          s_star.buildFrom(l, r);
+          view.displayFeature(j, s, s_star, visible[j]);
+          e.stack(s.error(s_star));
+        }
+        view.displayText("frame " + std::to_string(k) + (k >= 100 && k < 130 ? ": markers 5 and 6 hidden" : ""));
+        view.flush();
+        view.plot(e, f.qCaptured);
+        vpTime::wait(40.0); // about 25 Hz
+      }
     }
 
     // Per joint: the error of each frame over that frame's floor, RMS and median of its magnitude over the frames: an
@@ -227,6 +250,10 @@ int main(int argc, char **argv)
                 << std::sqrt(z2) << " | " << app::median(z) << " | " << vpMath::deg(std::sqrt(v2)) << " |\n";
     }
     writeFigures(captured, output);
+    if (view.isOpen() && click) {
+      std::cout << "Click in the window to quit" << std::endl;
+      view.getClick();
+    }
     return ok ? 0 : 1;
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getStringMessage() << std::endl;

@@ -29,7 +29,7 @@
      with a display it also shows them live.
 
   Usage: projective-paper [--seeds N] [--output DIR] [--model FILE] [--max-excursion DEG] [--record DIR]
-                          [--replay DIR] [--no-display] [--help]
+                          [--replay DIR] [-d] [-c] [--help]
   --max-excursion 40 lets the plan follow straight image lines (Fig. 2) at the price of joints folding past their
   targets (Fig. 4); the default 20 keeps the joints monotonic.
   With --model FILE, the first run acquires the arm and saves its model; later runs load it instead of acquiring
@@ -80,7 +80,7 @@ int main(int argc, char **argv)
            "largest motion of a joint beyond its start and target values on the plan (40: straight image lines)", 0.0)
       .add("--record", record, "DIR", "record seed 1's detailed run (the figures) as a session in the new folder DIR")
       .add("--replay", replay, "DIR", "make the figures again from the recording DIR (offline), and nothing else")
-      .flag("--no-display", options.display, false, "no window even if a display is available");
+      .displayOptions(options.display, options.click);
   int exitCode = EXIT_SUCCESS;
   if (!cmd.parse(argc, argv, exitCode)) {
     return exitCode;
@@ -139,8 +139,8 @@ int main(int argc, char **argv)
     app::printTable(studies, 30.0);
     //! [Monte Carlo table]
 
-    // With a display, seed 1's run again, live: both images with the feature trajectories, and the image error.
-    app::LiveView view(world.rig.getWidth(), world.rig.getHeight(), options.display, 0, 0, true);
+    // With a display, seed 1's run again, live: both images with the feature trajectories, the error and the joints.
+    app::LiveView view(world.rig.getWidth(), world.rig.getHeight(), options.display, options.click);
     for (size_t it = 1; view.isOpen() && it <= run.q.size(); ++it) {
       view.show(run, it);
       vpTime::wait(100);

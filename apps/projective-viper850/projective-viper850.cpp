@@ -33,11 +33,12 @@
   ViSP's simulator moves the arm in a thread of its own, in real time by default. Here it runs in its constant
   sampling time mode and the program waits for each of its steps, so that two runs print the same numbers.
 
-  Usage: projective-viper850 [--eye-in-hand] [--seeds N] [--model FILE] [--no-display] [--help]
+  Usage: projective-viper850 [--eye-in-hand] [--seeds N] [--model FILE] [-d] [-c] [--help]
   With --model FILE, the first run acquires the arm and saves its model; later runs load it instead of acquiring
   (the multi-seed study always acquires anew, since it measures the acquisition's noise too). With a display (the
-  DISPLAY environment variable set and no --no-display), ViSP's external view shows the arm and two windows show the
-  camera images while seed 1 is servoed. The exit code is 0 only if every run converged.
+  DISPLAY environment variable set and no -d), ViSP's external view shows the arm, and a window both camera images
+  while seed 1 is servoed, with a vpPlot of the error and the joints; it waits for a click at the end (-c: not).
+  The exit code is 0 only if every run converged.
 
   The scenes are in eye-to-hand-world.h and eye-in-hand-world.h; the machinery they share (driving the simulator,
   acquisition, servo loop, study, table and live display) in viper850-experiment.h and viper850-robot.h.
@@ -62,7 +63,7 @@ int main(int argc, char **argv)
   cmd.flag("--eye-in-hand", eyeInHand, true, "the rig on the hand, looking at a static object (default: a fixed rig)")
       .add("--seeds", options.seeds, "N", "noise seeds of the study", 1)
       .add("--model", options.modelFile, "FILE", "model file (arm.json): acquired and saved once, loaded by later runs")
-      .flag("--no-display", options.display, false, "no window even if a display is available");
+      .displayOptions(options.display, options.click);
   int exitCode = EXIT_SUCCESS;
   if (!cmd.parse(argc, argv, exitCode)) {
     return exitCode;

@@ -238,7 +238,7 @@ int runExperiment(const World &world, vpSimulatorViper850 &robot, unsigned int s
 /*!
   Sets ViSP's simulated Viper850 up (its external view, a window of its own, only with a display), builds the scene
   World around it, opens the camera windows if there is a display, and runs the experiment with \e options (--seeds,
-  --model, --no-display). Returns the exit code.
+  --model, -d, -c). Returns the exit code.
 */
 template <class World> int run(const app::ServoOptions &options)
 {
@@ -249,7 +249,7 @@ template <class World> int run(const app::ServoOptions &options)
     setupRobot(robot, options.display);
     //! [Robot setup]
     const vpSimulatorStereoRig rig = world.rigAt(robot, degToRad(world.qRefDeg));
-    app::LiveView view(rig.getWidth(), rig.getHeight(), options.display, 660, 0);
+    app::LiveView view(rig.getWidth(), rig.getHeight(), options.display, options.click, 0, 520); // under ViSP's view
     return runExperiment(world, robot, options.seeds, options.modelFile, view);
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getStringMessage() << std::endl;
