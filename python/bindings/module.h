@@ -59,6 +59,21 @@ inline py::array_t<double> toArray(const Eigen::Matrix4d &M)
 }
 
 /*!
+  The images of a stereo pair that \e fill(left, right) gives, computed with the GIL released (rendering, reading
+  files): a (left, right) tuple of 2-D uint8 arrays, or None when \e fill returns false (no more images).
+*/
+template <typename Fill> py::object stereoPair(Fill fill)
+{
+  vpImage<unsigned char> left, right;
+  bool filled = false;
+  {
+    py::gil_scoped_release release;
+    filled = fill(left, right);
+  }
+  return filled ? py::object(py::make_tuple(left, right)) : py::object(py::none());
+}
+
+/*!
   A Python callable held by C++ code that may copy or destroy it without the GIL (a std::function in a C++ object
   whose method runs with the GIL released): the Python object is only touched with the GIL held, by call() and by
   the last owner's destruction.

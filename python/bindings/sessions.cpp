@@ -76,12 +76,10 @@ void bindSession(py::module_ &m)
       .def(
           "getImages",
           [](const vpProjectiveSession &s, unsigned int k) {
-            vpImage<unsigned char> left, right;
-            {
-              py::gil_scoped_release release;
+            return stereoPair([&](vpImage<unsigned char> &left, vpImage<unsigned char> &right) {
               s.getImages(k, left, right);
-            }
-            return py::make_tuple(left, right);
+              return true;
+            });
           },
           py::arg("k"), "(left, right): the grey images of frame k, 2-D uint8 arrays.")
       .def("getWidth", &vpProjectiveSession::getWidth)
@@ -128,14 +126,9 @@ void bindSource(py::module_ &m)
            py::arg("roles") = std::vector<Role>())
       .def(
           "acquire",
-          [](S &s) -> py::object {
-            vpImage<unsigned char> left, right;
-            bool more = false;
-            {
-              py::gil_scoped_release release;
-              more = s.acquire(left, right);
-            }
-            return more ? py::object(py::make_tuple(left, right)) : py::object(py::none());
+          [](S &s) {
+            return stereoPair(
+                [&](vpImage<unsigned char> &left, vpImage<unsigned char> &right) { return s.acquire(left, right); });
           },
           "(left, right) of the next frame, or None after the last one.")
       .def("getWidth", &S::getWidth)

@@ -216,12 +216,10 @@ void bindCell(py::module_ &m)
       .def(
           "render",
           [](vpSimulatorTagRenderer &r) {
-            vpImage<unsigned char> left, right;
-            {
-              py::gil_scoped_release release;
+            return stereoPair([&](vpImage<unsigned char> &left, vpImage<unsigned char> &right) {
               r.render(left, right);
-            }
-            return py::make_tuple(left, right);
+              return true;
+            });
           },
           "(left, right): both cameras' images, 2-D uint8 arrays.");
 
@@ -241,12 +239,9 @@ void bindCell(py::module_ &m)
       .def(
           "acquire",
           [](vpSimulatorStereoCell &cell) {
-            vpImage<unsigned char> left, right;
-            {
-              py::gil_scoped_release release;
-              cell.acquire(left, right);
-            }
-            return py::make_tuple(left, right);
+            return stereoPair([&](vpImage<unsigned char> &left, vpImage<unsigned char> &right) {
+              return cell.acquire(left, right); // always true: a rendered cell never runs out of images
+            });
           },
           "(left, right): the two cameras' images at the arm's current joints, 2-D uint8 arrays.")
       .def("getWidth", &vpSimulatorStereoCell::getWidth)

@@ -1,10 +1,8 @@
 """The Python tutorials run as a user runs them, headless (no DISPLAY, matplotlib's Agg): exit status 0 (each exits
-non-zero when its task did not converge) and the figures they promise, as PNG files; and the documentation's code."""
+non-zero when its task did not converge) and the figures they promise, as PNG files."""
 import os
 import subprocess
 import sys
-
-import numpy as np
 
 from conftest import TUTORIALS
 
@@ -37,15 +35,3 @@ def test_paper_figures_tutorial(tmp_path):
     for figure in ("fig2-features", "fig4-joints", "fig5-error"):
         assert is_png(tmp_path / f"projective-servo-{figure}.png")
 
-
-def test_documented_acquire_and_servo():
-    """The code of docs/python.dox, section python_acquire_servo, as it is written there."""
-    with open(os.path.join(TUTORIALS, os.pardir, os.pardir, "docs", "python.dox")) as f:
-        page = f.read()
-    section = page[page.index("\\section python_acquire_servo"):]
-    code = section[section.index("\\code{.py}") + len("\\code{.py}"):section.index("\\endcode")]
-    namespace = {}
-    exec(compile(code, "docs/python.dox", "exec"), namespace)
-    task = namespace["task"]
-    assert task.getStatus() == namespace["vpp"].ServoProjective.SERVO_RUNNING
-    assert np.sqrt(np.mean(task.getError() ** 2)) < 0.1  # pixels
