@@ -3,8 +3,8 @@
 # 12 ships 3.5), so the pattern is checked here, file by file:
 #  - every public header includes vpProjectiveConfig.h (which defines the macros on ViSP 3.5 and 3.6) and wraps its
 #    declarations in BEGIN_VISP_NAMESPACE / END_VISP_NAMESPACE;
-#  - every source, test, tutorial and app file, and every private header that includes a ViSP header, says
-#    "using namespace VISP_NAMESPACE_NAME;" under "#ifdef ENABLE_VISP_NAMESPACE".
+#  - every source, test, tutorial, app and Python binding file, and every private header that includes a ViSP header,
+#    says "using namespace VISP_NAMESPACE_NAME;" under "#ifdef ENABLE_VISP_NAMESPACE".
 #   cmake -DSOURCE_DIR=<repo> -P check-namespace-pattern.cmake
 if(NOT SOURCE_DIR)
   message(FATAL_ERROR "SOURCE_DIR is not set")
@@ -24,7 +24,7 @@ foreach(f ${public_headers})
 endforeach()
 file(GLOB_RECURSE sources "${SOURCE_DIR}/src/*.cpp" "${SOURCE_DIR}/src/*.h" "${SOURCE_DIR}/tests/*.cpp"
      "${SOURCE_DIR}/tests/*.h" "${SOURCE_DIR}/tutorials/*.cpp" "${SOURCE_DIR}/tutorials/*.h" "${SOURCE_DIR}/apps/*.cpp"
-     "${SOURCE_DIR}/apps/*.h")
+     "${SOURCE_DIR}/apps/*.h" "${SOURCE_DIR}/python/*.cpp" "${SOURCE_DIR}/python/*.h")
 foreach(f ${sources})
   file(READ "${f}" text)
   if(f MATCHES "\\.h$" AND NOT text MATCHES "#include <visp3/")

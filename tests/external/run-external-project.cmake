@@ -2,6 +2,7 @@
 # the external project of this directory against it.
 #   cmake -DBUILD_DIR=<plugin build> -DWORK_DIR=<scratch> -DGENERATOR=<generator> [-DCONFIG=<config>]
 #         [-DVISP_DIR=<the ViSP the plugin was built with>] [-DCXX_COMPILER=<the compiler the plugin was built with>]
+#         [-DPYTHON=<the Python of the module> -DPYTHON_INSTALL_DIR=<where the module is installed, prefix-relative>]
 #         -P run-external-project.cmake
 foreach(var BUILD_DIR WORK_DIR GENERATOR)
   if(NOT DEFINED ${var})
@@ -48,6 +49,16 @@ file(GLOB version "${prefix}/lib*/cmake/visp_projective/visp_projectiveConfigVer
                   "${prefix}/lib/*/cmake/visp_projective/visp_projectiveConfigVersion.cmake")
 if(NOT config OR NOT version)
   message(FATAL_ERROR "package configuration not installed under ${prefix}")
+endif()
+
+# The installed Python module imports from the prefix alone and uses the installed library (its RUNPATH, relative to
+# the module, finds the prefix's, not the build tree's): check-python-module.py.
+if(PYTHON)
+  run("python module" ${CMAKE_COMMAND} -E env "PYTHONPATH=${prefix}/${PYTHON_INSTALL_DIR}" "${PYTHON}"
+      "${CMAKE_CURRENT_LIST_DIR}/check-python-module.py" "${prefix}")
+  if(NOT last_output MATCHES "(^|\n)OK\n")
+    message(FATAL_ERROR "the installed Python module did not print OK")
+  endif()
 endif()
 
 run("configure" ${CMAKE_COMMAND} -S "${CMAKE_CURRENT_LIST_DIR}" -B "${build}" -G "${GENERATOR}"
