@@ -1,0 +1,268 @@
+/*
+ * visp_projective: non-metric stereo visual servoing for ViSP.
+ * Copyright (C) 2026 The visp_projective authors.
+ *
+ * This software is free software; you can redistribute it and/or modify it under the terms of the GNU General Public
+ * License as published by the Free Software Foundation; either version 2 of the License, or (at your option) any
+ * later version. See the file LICENSE at the root directory of this source distribution.
+ *
+ * This software is distributed in the hope that it will be useful, but WITHOUT ANY WARRANTY; without even the
+ * implied warranty of MERCHANTABILITY or FITNESS FOR A PARTICULAR PURPOSE. See the GNU General Public License for
+ * more details.
+ */
+
+/*
+  The real-cell program (vpProjectiveCell) on the rendered cell behind the arm adapter, end to end (acquisition, s*
+  taught by showing, the planned servo, the recording), and every way it ends leaving the arm stopped: each failure
+  injected (a camera that throws, a lost tag, a bumped camera, SIGINT, SIGTERM, an arm that refuses a command, the
+  end of the user's commands, a joint limit) and the simulated arm's velocity read afterwards.
+*/
+
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <visp3/core/vpMath.h>
+#include <visp3/projective/vpProjectiveCell.h>
+#include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpProjectiveSession.h>
+#include <visp3/projective/vpSimulatorStereoCell.h>
+
+#include "vpProjectiveTestTools.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
+using vpProjectiveTest::testLog;
+
+namespace
+{
+vpColVector degrees(std::initializer_list<double> values)
+{
+  vpColVector q(static_cast<unsigned int>(values.size()));
+  unsigned int i = 0;
+  for (double v : values) {
+    q[i++] = vpMath::rad(v);
+  }
+  return q;
+}
+
+const vpColVector kTarget = degrees({10, -8, 12, 15, -12, 20});
+const vpColVector kStart = degrees({-2, 2, 0, 27, -2, 8});
+
+//! The rendered cell of the tutorial: the PUMA-like arm, the paper's rig, three tags on the tool, 25 Hz.
+struct RenderedCell {
+  vpSimulatorStereoCell cell;
+  std::vector<vpProjectiveJoint::vpJointType> types;
+  explicit RenderedCell(long seed)
+      : cell(vpSimulatorArm::puma(vpSimulatorArm::paperBasePose()),
+             vpSimulatorStereoRig::paperRig(vpColVector(3, 0.0), 1.0), vpColVector(), seed),
+        types(6, vpProjectiveJoint::REVOLUTE)
+  {
+    cell.addToolTags(0.03);
+    cell.getRenderer().setNoise(1.0);
+    cell.getRenderer().setBlur(0.5);
+    cell.getRobot().setSamplingTime(0.04);
+    cell.setTiming(25.0);
+  }
+};
+
+/*!
+  The adapter of the simulated arm, with a fault to inject: the command number \e failAt throws (a controller that
+  refuses a command); it counts the stops and remembers whether a motion was sent after the last stop.
+*/
+class WatchedArm : public vpProjectiveCellViSPArm
+{
+public:
+  WatchedArm(vpSimulatorRobotArm &robot, const std::vector<vpProjectiveJoint::vpJointType> &types)
+      : vpProjectiveCellViSPArm(robot, types), m_robot(robot)
+  {
+  }
+  void setJointVelocities(const vpColVector &qdot) override
+  {
+    if (++commands == failAt) {
+      throw vpException(vpException::fatalError, "controller fault (injected)");
+    }
+    vpProjectiveCellViSPArm::setJointVelocities(qdot);
+    movingSinceStop = qdot.frobeniusNorm() > 0.0;
+  }
+  void stop() override
+  {
+    ++stops;
+    movingSinceStop = false;
+    vpProjectiveCellViSPArm::stop();
+  }
+  //! The simulated arm is still: zero velocity, stopped, and no motion commanded since the last stop.
+  bool still()
+  {
+    return m_robot.getVelocity(vpRobot::ARTICULAR_FRAME).frobeniusNorm() == 0.0 &&
+           m_robot.getRobotState() == vpRobot::STATE_STOP && !movingSinceStop && stops > 0;
+  }
+  unsigned int commands = 0, failAt = 0, stops = 0;
+  bool movingSinceStop = false;
+
+private:
+  vpSimulatorRobotArm &m_robot;
+};
+
+//! The rendered cameras, with a failure to inject from frame \e at on.
+class FaultyCameras : public vpStereoImageSource
+{
+public:
+  enum Fault { NONE, THROW, BLANK, SHIFT_RIGHT, SIGNAL_INT, SIGNAL_TERM };
+  explicit FaultyCameras(vpSimulatorStereoCell &cell) : m_cell(cell) {}
+  bool acquire(vpImage<unsigned char> &Ileft, vpImage<unsigned char> &Iright) override
+  {
+    m_cell.acquire(Ileft, Iright);
+    if (fault == NONE || ++frames < at) {
+      return true;
+    }
+    switch (fault) {
+    case THROW:
+      throw vpException(vpException::ioError, "the left camera was unplugged (injected)");
+    case BLANK: // a hand in front of the tags: nothing to detect
+      Ileft = 128;
+      Iright = 128;
+      break;
+    case SHIFT_RIGHT: { // the right camera bumped: its image shifted by 12 px
+      const vpImage<unsigned char> I = Iright;
+      for (unsigned int i = 0; i < I.getHeight(); ++i) {
+        for (unsigned int j = 0; j < I.getWidth(); ++j) {
+          Iright[i][j] = j >= 12 ? I[i][j - 12] : 128;
+        }
+      }
+      break;
+    }
+    default:
+      if (frames == at) {
+        std::raise(fault == SIGNAL_INT ? SIGINT : SIGTERM);
+      }
+    }
+    return true;
+  }
+  unsigned int getWidth() const override { return m_cell.getWidth(); }
+  unsigned int getHeight() const override { return m_cell.getHeight(); }
+  bool getTimestamps(double &left, double &right) const override { return m_cell.getTimestamps(left, right); }
+  Fault fault = NONE;
+  unsigned int at = 0, frames = 0;
+
+private:
+  vpSimulatorStereoCell &m_cell;
+};
+
+vpProjectiveCell::vpSettings testSettings()
+{
+  vpProjectiveCell::vpSettings settings;
+  settings.maxRotationSpeed = vpMath::rad(30.0);
+  settings.gain = 1.0;
+  settings.settleTime = 0.04;
+  settings.timeout = 20.0;
+  return settings;
+}
+
+std::string temporaryFolder(const std::string &name)
+{
+  const std::string folder = (std::filesystem::temp_directory_path() /
+                              ("visp-projective-cell-" + name + "-" + std::to_string(static_cast<long>(::getpid()))))
+                                 .string();
+  std::filesystem::remove_all(folder);
+  return folder;
+}
+
+//! The model of the rendered cell, acquired once for the suites that start at the servo.
+class ProjectiveCellServo : public ::testing::Test
+{
+protected:
+  static void SetUpTestSuite()
+  {
+    RenderedCell rendered(5);
+    WatchedArm arm(rendered.cell.getRobot(), rendered.types);
+    vpProjectiveCell cell(arm, rendered.cell, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), testSettings());
+    cell.acquire();
+    s_model = temporaryFolder("model") + ".json";
+    cell.saveModel(s_model);
+  }
+  static void TearDownTestSuite() { std::remove(s_model.c_str()); }
+
+  /*!
+    A cell from the suite's model, s* taught at the target, the arm at the start: \e fault injected from frame \e at
+    of the servo.
+  */
+  void prepare(FaultyCameras::Fault fault, unsigned int at)
+  {
+    m_rendered.reset(new RenderedCell(11));
+    m_arm.reset(new WatchedArm(m_rendered->cell.getRobot(), m_rendered->types));
+    m_cameras.reset(new FaultyCameras(m_rendered->cell));
+    m_cell.reset(new vpProjectiveCell(*m_arm, *m_cameras, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"),
+                                      testSettings()));
+    m_cell->setOutput(&testLog());
+    m_cell->loadModel(s_model);
+    m_cell->moveTo(kTarget);
+    m_cell->teachHere();
+    m_cell->moveTo(kStart);
+    m_cameras->frames = 0;
+    m_cameras->fault = fault;
+    m_cameras->at = at;
+  }
+
+  static std::string s_model;
+  std::unique_ptr<RenderedCell> m_rendered;
+  std::unique_ptr<WatchedArm> m_arm;
+  std::unique_ptr<FaultyCameras> m_cameras;
+  std::unique_ptr<vpProjectiveCell> m_cell;
+};
+std::string ProjectiveCellServo::s_model;
+} // namespace
+
+TEST(ProjectiveCell, EndToEndAcquisitionTeachingServoRecording)
+{
+  RenderedCell rendered(3);
+  WatchedArm arm(rendered.cell.getRobot(), rendered.types);
+  vpProjectiveCell cell(arm, rendered.cell, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), testSettings());
+  cell.setOutput(&testLog());
+  const std::string folder = temporaryFolder("session");
+  cell.setRecording(folder);
+  cell.acquire();
+  EXPECT_TRUE(arm.still());
+  EXPECT_LT(cell.getModel().getCalibrationResidual(), 0.5);
+  std::ostringstream script, prompt;
+  script << "move";
+  for (unsigned int i = 0; i < 6; ++i) {
+    script << " " << kTarget[i];
+  }
+  script << "\nthis is not a command\n\nmove";
+  for (unsigned int i = 0; i < 6; ++i) {
+    script << " " << kStart[i];
+  }
+  script << "\nok\n";
+  std::istringstream commands(script.str());
+  cell.teach(commands, prompt);
+  EXPECT_NE(prompt.str().find("not understood"), std::string::npos);
+  EXPECT_GE(cell.getTargetIds().size(), 8u);
+  EXPECT_TRUE(arm.still());
+  const vpProjectiveCell::vpServoResult result = cell.servo();
+  testLog() << "[ measured ] " << result.message << ", " << result.frames << " frames, " << result.seconds << " s\n";
+  EXPECT_EQ(result.end, vpProjectiveCell::SERVO_CONVERGED) << result.message;
+  EXPECT_LT(result.error, 0.5);
+  EXPECT_LT((result.q - kTarget).frobeniusNorm(), vpMath::rad(1.0));
+  EXPECT_TRUE(arm.still());
+  const vpProjectiveSession session = vpProjectiveSession::read(folder);
+  unsigned int roles[5] = {0, 0, 0, 0, 0};
+  for (unsigned int f = 0; f < session.getNumberOfFrames(); ++f) {
+    ++roles[session.getFrame(f).role];
+  }
+  EXPECT_EQ(roles[vpProjectiveSession::ZERO], 1u);
+  EXPECT_GE(roles[vpProjectiveSession::TRIAL], 12u);
+  EXPECT_EQ(roles[vpProjectiveSession::TARGET], testSettings().targetFrames);
+  EXPECT_EQ(roles[vpProjectiveSession::SERVO], result.frames);
+  std::filesystem::remove_all(folder);
+}
