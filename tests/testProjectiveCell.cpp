@@ -186,7 +186,9 @@ protected:
   {
     RenderedCell rendered(5);
     WatchedArm arm(rendered.cell.getRobot(), rendered.types);
-    vpProjectiveCell cell(arm, rendered.cell, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), testSettings());
+    vpProjectiveCell::vpSettings settings = testSettings();
+    settings.stepRotation = settings.amountRotation; // one trial each way per joint: a model in a few frames
+    vpProjectiveCell cell(arm, rendered.cell, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), settings);
     cell.acquire();
     s_model = temporaryFolder("model") + ".json";
     cell.saveModel(s_model);
@@ -265,4 +267,159 @@ TEST(ProjectiveCell, EndToEndAcquisitionTeachingServoRecording)
   EXPECT_EQ(roles[vpProjectiveSession::TARGET], testSettings().targetFrames);
   EXPECT_EQ(roles[vpProjectiveSession::SERVO], result.frames);
   std::filesystem::remove_all(folder);
+}
+
+TEST(ProjectiveCell, RefusesAnArmWithoutKnownLimitsUnlessTold)
+{
+  // An arm whose adapter knows no limits (most adapters of other arms): refused, nothing moved; moved when the user
+  // gives limits or says there are none.
+  struct Unlimited : public WatchedArm {
+    using WatchedArm::WatchedArm;
+    bool getJointLimits(vpColVector &, vpColVector &) override { return false; }
+  };
+  RenderedCell rendered(3);
+  Unlimited arm(rendered.cell.getRobot(), rendered.types);
+  vpProjectiveCell::vpSettings settings = testSettings();
+  try {
+    vpProjectiveCell cell(arm, rendered.cell, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), settings);
+    FAIL() << "an arm without known limits was accepted";
+  } catch (const vpProjectiveException &e) {
+    EXPECT_NE(e.getStringMessage().find("no joint limits"), std::string::npos) << e.getStringMessage();
+  }
+  EXPECT_EQ(arm.commands, 0u);
+  settings.noJointLimits = true;
+  EXPECT_NO_THROW(
+      vpProjectiveCell(arm, rendered.cell, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), settings));
+  settings.noJointLimits = false;
+  settings.qmin = vpColVector(6, -1.0);
+  settings.qmax = vpColVector(6, 1.0);
+  vpProjectiveCell cell(arm, rendered.cell, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), settings);
+  // A move outside the safe range (the limits less 5 deg) is refused before the arm moves.
+  vpColVector q(6, 0.0);
+  q[2] = 0.95;
+  EXPECT_THROW(cell.moveTo(q), vpProjectiveException);
+  EXPECT_EQ(arm.commands, 0u);
+}
+
+TEST(ProjectiveCell, AcquisitionStopsTheArmOnACameraError)
+{
+  RenderedCell rendered(3);
+  WatchedArm arm(rendered.cell.getRobot(), rendered.types);
+  FaultyCameras cameras(rendered.cell);
+  cameras.fault = FaultyCameras::THROW;
+  cameras.at = 20; // during joint 1's trials
+  vpProjectiveCell cell(arm, cameras, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), testSettings());
+  EXPECT_THROW(cell.acquire(), vpException);
+  EXPECT_GT(arm.commands, 10u); // the arm was moving
+  EXPECT_TRUE(arm.still());
+  EXPECT_TRUE(cell.getRobot().isHalted());
+  EXPECT_THROW(cell.moveTo(kTarget), vpProjectiveException); // latched: no motion after a fault
+  EXPECT_TRUE(arm.still());
+}
+
+TEST(ProjectiveCell, AcquisitionStopsTheArmOnSigint)
+{
+  vpProjectiveCellRobot::installSignalHandlers();
+  RenderedCell rendered(3);
+  WatchedArm arm(rendered.cell.getRobot(), rendered.types);
+  FaultyCameras cameras(rendered.cell);
+  cameras.fault = FaultyCameras::SIGNAL_INT;
+  cameras.at = 8;
+  vpProjectiveCell cell(arm, cameras, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), testSettings());
+  try {
+    cell.acquire();
+    ADD_FAILURE() << "the acquisition went on after SIGINT";
+  } catch (const vpException &e) {
+    EXPECT_NE(cell.getRobot().getHaltReason().find("SIGINT"), std::string::npos) << e.getStringMessage();
+  }
+  const unsigned int commands = arm.commands;
+  EXPECT_TRUE(arm.still());
+  EXPECT_THROW(cell.moveTo(kTarget), vpProjectiveException);
+  EXPECT_EQ(arm.commands, commands); // nothing sent after the signal
+  vpProjectiveCellRobot::clearSignal();
+  vpProjectiveCellRobot::installSignalHandlers(); // the handler resets itself when it runs
+}
+
+TEST(ProjectiveCell, TeachingStopsTheArmWhenTheCommandsEnd)
+{
+  RenderedCell rendered(3);
+  WatchedArm arm(rendered.cell.getRobot(), rendered.types);
+  vpProjectiveCell cell(arm, rendered.cell, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), testSettings());
+  std::ostringstream script, prompt;
+  script << "jog 3 0.2\n"; // moves joint 3, then no confirmation: the input ends
+  std::istringstream commands(script.str());
+  EXPECT_THROW(cell.teach(commands, prompt), vpProjectiveException);
+  EXPECT_GT(arm.commands, 0u);
+  EXPECT_TRUE(arm.still());
+  std::istringstream quit("quit\n");
+  EXPECT_THROW(cell.teach(quit, prompt), vpProjectiveException);
+  EXPECT_TRUE(arm.still());
+}
+
+TEST_F(ProjectiveCellServo, CameraErrorStopsTheArm)
+{
+  prepare(FaultyCameras::THROW, 6);
+  EXPECT_THROW(m_cell->servo(), vpException);
+  EXPECT_TRUE(m_arm->still());
+}
+
+TEST_F(ProjectiveCellServo, LostTagStopsTheArm)
+{
+  prepare(FaultyCameras::BLANK, 6);
+  const vpProjectiveCell::vpServoResult result = m_cell->servo();
+  EXPECT_EQ(result.end, vpProjectiveCell::SERVO_TAGS_LOST) << result.message;
+  EXPECT_TRUE(m_arm->still());
+}
+
+TEST_F(ProjectiveCellServo, ModelMismatchStopsTheArm)
+{
+  prepare(FaultyCameras::SHIFT_RIGHT, 4);
+  const vpProjectiveCell::vpServoResult result = m_cell->servo();
+  EXPECT_EQ(result.end, vpProjectiveCell::SERVO_STATUS) << result.message;
+  EXPECT_NE(result.message.find("SERVO_MODEL_MISMATCH"), std::string::npos) << result.message;
+  EXPECT_TRUE(m_arm->still());
+}
+
+TEST_F(ProjectiveCellServo, SigtermStopsTheArm)
+{
+  vpProjectiveCellRobot::installSignalHandlers();
+  prepare(FaultyCameras::SIGNAL_TERM, 5);
+  EXPECT_THROW(m_cell->servo(), vpProjectiveException);
+  EXPECT_NE(m_cell->getRobot().getHaltReason().find("SIGTERM"), std::string::npos);
+  EXPECT_TRUE(m_arm->still());
+  vpProjectiveCellRobot::clearSignal();
+  vpProjectiveCellRobot::installSignalHandlers();
+}
+
+TEST_F(ProjectiveCellServo, ArmFaultStopsTheArm)
+{
+  prepare(FaultyCameras::NONE, 0);
+  m_arm->failAt = m_arm->commands + 5; // the fifth command of the servo
+  EXPECT_THROW(m_cell->servo(), vpException);
+  EXPECT_NE(m_cell->getRobot().getHaltReason().find("controller fault"), std::string::npos);
+  EXPECT_TRUE(m_arm->still());
+}
+
+TEST_F(ProjectiveCellServo, JointLimitHaltsTheArm)
+{
+  // The safety layer's own check, under whatever the task does: a command beyond a limit halts the robot.
+  prepare(FaultyCameras::NONE, 0);
+  vpProjectiveCellRobot &robot = m_cell->getRobot();
+  robot.setRobotState(vpRobot::STATE_VELOCITY_CONTROL);
+  vpColVector q;
+  robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
+  vpProjectiveCellRobot tight(*m_arm, q - vpColVector(6, 0.01), q + vpColVector(6, 1e-6), vpColVector(6, 0.5));
+  tight.setRobotState(vpRobot::STATE_VELOCITY_CONTROL);
+  vpColVector qdot(6, 0.0);
+  qdot[1] = 0.2;
+  for (int k = 0; k < 5 && !tight.isHalted(); ++k) {
+    try {
+      tight.setVelocity(vpRobot::ARTICULAR_FRAME, qdot);
+    } catch (const vpProjectiveException &) {
+    }
+  }
+  EXPECT_TRUE(tight.isHalted());
+  EXPECT_NE(tight.getHaltReason().find("joint 1"), std::string::npos) << tight.getHaltReason();
+  EXPECT_TRUE(m_arm->still());
+  EXPECT_THROW(tight.setVelocity(vpRobot::ARTICULAR_FRAME, qdot), vpProjectiveException);
 }

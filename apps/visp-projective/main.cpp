@@ -17,6 +17,7 @@
     visp-projective calibrate SESSION --output MODEL.json [--family 36h11] [options]
     visp-projective check MODEL.json SESSION [--family 36h11] [--threshold PX]
     visp-projective report MODEL.json
+    visp-projective servo SESSION --robot KIND [--left DEV --right DEV] [options]
 
   Exit status: 0 on success (check: the model fits every frame), 1 on bad input or any error (one line on stderr
   that says what was wrong and what to do; calibrate then leaves no model file), 2 on a usage mistake, 3 when check
@@ -44,6 +45,7 @@
 #include "visp-projective-options.h"
 #include "visp-projective-plots.h"
 #include "visp-projective-record.h"
+#include "visp-projective-servo.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -65,10 +67,14 @@ const char *const kMainUsage =
     "  report MODEL.json                       joints, residuals, the metric self-calibration K, R, t\n"
     "  record SESSION                          a session from two cameras and typed-in joint readings, or the\n"
     "                                          acquisition of the rendered tag cell (no camera needed)\n"
+    "  servo SESSION --robot KIND              a real cell end to end: acquisition, s* taught by showing, the\n"
+    "                                          planned servo, the session recorded; the arm stopped on every exit "
+    "path\n"
     "\n"
     "'visp-projective COMMAND --help' describes each command. A SESSION is a folder holding session.json\n"
     "(format visp-projective-session, version 1) and its PNG images.\n"
-    "Exit status: 0 success, 1 bad input or error (one line on stderr), 2 usage, 3 check: the model does not fit.\n";
+    "Exit status: 0 success, 1 bad input or error (one line on stderr), 2 usage, 3 check: the model does not fit,\n"
+    "4 servo: not converged (the arm stopped).\n";
 
 const char *const kRecordUsage =
     "Usage: visp-projective record SESSION --left DEV --right DEV --joints FILE [--joint-types TYPES] [--scale N]\n"
@@ -432,6 +438,9 @@ int main(int argc, char **argv)
     if (command == "record") {
       return record(argc, argv);
     }
+    if (command == "servo") {
+      return vispProjective::servoCommand(argc, argv);
+    }
   } catch (const vpException &e) {
     std::cerr << "visp-projective " << command << ": " << oneLine(e.getStringMessage()) << std::endl;
     return EXIT_FAILURE;
@@ -439,7 +448,8 @@ int main(int argc, char **argv)
     std::cerr << "visp-projective " << command << ": " << oneLine(e.what()) << std::endl;
     return EXIT_FAILURE;
   }
-  std::cerr << "visp-projective: unknown command '" << command << "'; use calibrate, check, report or record (see "
+  std::cerr << "visp-projective: unknown command '" << command
+            << "'; use calibrate, check, report, record or servo (see "
             << "'visp-projective --help')" << std::endl;
   return kUsageError;
 }

@@ -28,6 +28,7 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 #include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpProjectiveModelFile.h>
 
 #include "cell/vpProjectiveCellInternal.h"
 #include "core/vpProjectiveErrors.h"
@@ -62,8 +63,8 @@ vpProjectiveCell::vpProjectiveCell(vpProjectiveCellArm &arm, vpStereoImageSource
                                    const vpProjectiveSessionCalibration::vpMarkerExtractor &markers,
                                    const vpSettings &settings)
     : m_arm(arm), m_cameras(cameras), m_markers(markers), m_settings(settings), m_types(arm.getJointTypes()), m_lower(),
-      m_upper(), m_robot(), m_model(m_types), m_targetIds(), m_targetLeft(), m_targetRight(), m_writer(), m_recording(),
-      m_os(nullptr), m_Ileft(), m_Iright(), m_history()
+      m_upper(), m_robot(), m_model(m_types), m_markerIds(), m_targetIds(), m_targetLeft(), m_targetRight(), m_writer(),
+      m_recording(), m_os(nullptr), m_Ileft(), m_Iright(), m_history()
 {
   const unsigned int n = static_cast<unsigned int>(m_types.size());
   if (!m_markers) {
@@ -279,6 +280,7 @@ void vpProjectiveCell::acquire()
   vpProjectiveRobot model(m_types);
   procedure.run(*m_robot, model);
   m_model = model;
+  m_markerIds = model.getAcquisition().getMarkerIds();
   if (m_writer) {
     m_writer->save();
   }
@@ -297,12 +299,15 @@ void vpProjectiveCell::loadModel(const std::string &file)
          "the model '" + file + "' has " + std::to_string(model.getNumberOfJoints()) + " joints, the arm " +
              std::to_string(m_types.size()) + ": give the model of this arm");
   }
+  vpProjectiveModelFile::load(file, nullptr, nullptr, &m_markerIds);
   m_model = model;
 }
 
 void vpProjectiveCell::saveModel(const std::string &file) const
 {
-  m_model.saveModel(file);
+  // With the markers' ids (AprilTag corners), so that visp-projective check compares it with recorded sessions.
+  vpProjectiveModelFile::save(file, m_model.getModel(), m_model.getCalibrationResidual(),
+                              m_model.getAlgebraicResidual(), m_markerIds);
 }
 
 void vpProjectiveCell::moveTo(const vpColVector &target)

@@ -77,6 +77,7 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
   task.setImageSize(m_cameras.getWidth(), m_cameras.getHeight(), m_settings.imageBorder);
   task.setPathPlanning(m_settings.planning);
   task.setSettling(true);
+  task.setMaxOpenLoopTime(m_settings.maxLostTime);  // blind along the plan no longer than the arm may go without tags
   std::map<int, std::vector<unsigned int>> corners; // of each tag: a planar group, kept facing the cameras
   for (unsigned int k = 0; k < N; ++k) {
     sStar[k].buildFrom(m_targetLeft[k], m_targetRight[k]);
@@ -116,7 +117,9 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
       period = estimate;
     }
     tPrev = t;
-    record(vpProjectiveSession::SERVO, q, t);
+    // Recorded with the readings of when the images were taken (the left one's; between the two, a skewed right
+    // image shows the arm where it was then): check and calibrate pair each image with its joints.
+    record(vpProjectiveSession::SERVO, frame.stamped ? jointsAt(frame.tLeft) : q, frame.stamped ? frame.tLeft : t);
     // The features at the readings' time: each image's pixels moved by the model's motion since it was taken.
     const bool align = m_settings.latencyCompensation && frame.stamped;
     const vpColVector dLeft = align ? vpColVector(q - jointsAt(frame.tLeft)) : vpColVector(q.size(), 0.0);
@@ -153,7 +156,8 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
                     "or acquire again"
                   : "; teach a target reachable within the joint limits, the tags in view");
     }
-    lostSince = status == vpServoProjective::SERVO_STOPPED ? (lostSince < 0.0 ? t : lostSince) : -1.0;
+    const bool lost = status == vpServoProjective::SERVO_STOPPED || status == vpServoProjective::SERVO_OPEN_LOOP;
+    lostSince = lost ? (lostSince < 0.0 ? t : lostSince) : -1.0;
     if (lostSince >= 0.0 && t - lostSince > m_settings.maxLostTime) {
       result.end = SERVO_TAGS_LOST;
       why << "too few of the " << N << " corners of s* seen (" << seen << " now) for " << t - lostSince

@@ -120,7 +120,7 @@ public:
     double timeout = 60.0;             //!< Longest servo (s, the arm's clock).
     double convergedError = 0.5;       //!< Image error (px RMS) under which the task has converged...
     unsigned int convergedFrames = 10; //!< ... for this many frames in a row.
-    double maxLostTime = 0.5;          //!< Longest time (s) with too few features (SERVO_STOPPED) before the arm stops.
+    double maxLostTime = 0.5; //!< Longest time (s) with too few features seen (SERVO_OPEN_LOOP, SERVO_STOPPED).
     //@}
     vpSettings();
   };
@@ -171,7 +171,10 @@ public:
   void acquire();
   //! The model of a previous acquisition (vpProjectiveRobot::loadModel()) in place of acquire().
   void loadModel(const std::string &file);
-  //! Writes the model (vpProjectiveRobot::saveModel()).
+  /*!
+    Writes the model with its markers' ids (vpProjectiveModelFile::save()): vpProjectiveRobot::loadModel() reads it,
+    and `visp-projective check MODEL SESSION` checks it against a recorded session.
+  */
   void saveModel(const std::string &file) const;
   //! The model (calibrated after acquire() or loadModel()).
   const vpProjectiveRobot &getModel() const { return m_model; }
@@ -233,6 +236,7 @@ private:
   vpColVector m_lower, m_upper; // the safe range (empty: none)
   std::unique_ptr<vpProjectiveCellRobot> m_robot;
   vpProjectiveRobot m_model;
+  std::vector<int> m_markerIds; // of the model's markers (corner ids)
   std::vector<int> m_targetIds;
   std::vector<vpImagePoint> m_targetLeft, m_targetRight;
   std::unique_ptr<vpProjectiveSessionWriter> m_writer;
