@@ -18,6 +18,7 @@
   end of the user's commands, a joint limit) and the simulated arm's velocity read afterwards.
 */
 
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -422,4 +423,85 @@ TEST_F(ProjectiveCellServo, JointLimitHaltsTheArm)
   EXPECT_NE(tight.getHaltReason().find("joint 1"), std::string::npos) << tight.getHaltReason();
   EXPECT_TRUE(m_arm->still());
   EXPECT_THROW(tight.setVelocity(vpRobot::ARTICULAR_FRAME, qdot), vpProjectiveException);
+}
+
+TEST(ProjectiveCell, ArrivalToleranceFollowsTheEncodersNoise)
+{
+  // Encoders 10 times noisier than the procedure's 1e-5 rad tolerance: the noise measured at rest sets the
+  // tolerance (4 sigma), the moves arrive and the model is as good as with exact readings.
+  RenderedCell rendered(3);
+  rendered.cell.getRobot().setEncoderNoise(1e-4, 7);
+  WatchedArm arm(rendered.cell.getRobot(), rendered.types);
+  vpProjectiveCell::vpSettings settings = testSettings();
+  settings.stepRotation = settings.amountRotation;
+  vpProjectiveCell cell(arm, rendered.cell, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), settings);
+  std::ostringstream progress;
+  cell.setOutput(&progress);
+  ASSERT_NO_THROW(cell.acquire()) << progress.str();
+  EXPECT_NE(progress.str().find("(4 times the noise)"), std::string::npos) << progress.str();
+  EXPECT_LT(cell.getModel().getCalibrationResidual(), 0.1);
+  EXPECT_TRUE(arm.still());
+}
+
+TEST(ProjectiveCell, RenderedCamerasTiming)
+{
+  // 10 Hz, the right image 20 ms after the left, delivered 100 ms after it: the stamps are frame instants, the
+  // images show the arm then, acquire() waits for a frame (the arm moving on), and a lost frame lengthens the gap.
+  RenderedCell rendered(3);
+  vpSimulatorStereoCell &cell = rendered.cell;
+  vpSimulatorRobotArm &robot = cell.getRobot();
+  cell.setTiming(10.0, 0.1, 0.02, 0.5, 4);
+  robot.setRobotState(vpRobot::STATE_VELOCITY_CONTROL);
+  vpColVector qdot(6, 0.0);
+  qdot[0] = vpMath::rad(20.0);
+  vpImage<unsigned char> Il, Ir;
+  double previous = -1.0;
+  bool gap = false;
+  for (int k = 0; k < 8; ++k) {
+    robot.setVelocity(vpRobot::ARTICULAR_FRAME, qdot);
+    const double called = robot.getTime();
+    cell.acquire(Il, Ir);
+    double tl = 0.0, tr = 0.0;
+    ASSERT_TRUE(cell.getTimestamps(tl, tr));
+    EXPECT_NEAR(tr - tl, 0.02, 1e-12);
+    EXPECT_NEAR(std::remainder(tl, 0.1), 0.0, 1e-9);               // a frame instant
+    EXPECT_GE(robot.getTime() + 1e-12, tr + 0.1);                  // delivered after the latency
+    EXPECT_LT(robot.getTime(), std::max(called, tr + 0.1) + 1e-9); // waited no longer than for it
+    EXPECT_GT(tl, previous);                                       // never the same frame twice
+    gap = gap || (previous >= 0.0 && tl - previous > 0.15);
+    previous = tl;
+    // The arm's history: joint 0 moved at 20 deg/s since it started (time 0), so the joints at tl are behind.
+    EXPECT_NEAR(robot.getArmJoints()[0] - robot.getArmJointsAt(tl)[0],
+                vpMath::rad(20.0) * (robot.getTime() - std::max(tl, 0.0)), 1e-9);
+  }
+  EXPECT_TRUE(gap); // half the frames lost: some gaps of two periods or more
+  // The images show the arm when they were taken: off the arm's corners now while it moves, on them once it rested
+  // for longer than the latency.
+  const auto offNow = [&]() {
+    const vpProjectiveSessionCalibration::vpMarkerExtractor tags =
+        vpProjectiveSessionCalibration::aprilTagMarkers("36h11");
+    std::vector<int> ids, trueIds;
+    std::vector<vpImagePoint> l, r, trueL, trueR;
+    cell.acquire(Il, Ir);
+    tags(Il, Ir, ids, l, r);
+    cell.getTrueCorners(trueIds, trueL, trueR);
+    double worst = 0.0;
+    for (size_t j = 0; j < ids.size(); ++j) {
+      for (size_t k = 0; k < trueIds.size(); ++k) {
+        if (trueIds[k] == ids[j]) {
+          worst =
+              std::max(worst, std::max(vpImagePoint::distance(l[j], trueL[k]), vpImagePoint::distance(r[j], trueR[k])));
+        }
+      }
+    }
+    EXPECT_GE(ids.size(), 8u);
+    return worst;
+  };
+  robot.setVelocity(vpRobot::ARTICULAR_FRAME, qdot);
+  EXPECT_GT(offNow(), 3.0);
+  robot.setVelocity(vpRobot::ARTICULAR_FRAME, vpColVector(6, 0.0));
+  robot.wait(0.5);
+  EXPECT_LT(offNow(), 0.5);
+  EXPECT_THROW(cell.setTiming(10.0, -0.1), vpProjectiveException);
+  EXPECT_THROW(cell.setTiming(10.0, 0.0, 0.0, 0.95), vpProjectiveException);
 }

@@ -98,6 +98,9 @@ const char *const kServoUsage =
     "  --converged PX                 image error (RMS) of convergence (default 0.5), --converged-frames N (10)\n"
     "  --max-lost S                   longest time with too few corners seen before the arm stops (default 0.5)\n"
     "  --period S                     control period until measured (default 0.04)\n"
+    "  --max-skew S, --max-latency S  frames whose right image is further from the left, or older than the readings,\n"
+    "                                 are not used (default 0.04, 0.3; docs: the timing study)\n"
+    "  --min-fps HZ                   a frame later than 1/HZ after the last is not used (default 4)\n"
     "  --no-planning                  law (47) alone, no path planning\n"
     "  --no-latency-compensation      use the features as seen, not predicted to the joint readings' time\n"
     "Rendered cell only: --fps HZ (default 25), --latency S (0), --skew S (0), --drop P (0), --encoder-noise RAD\n"
@@ -147,16 +150,16 @@ namespace vispProjective
 {
 int servoCommand(int argc, char **argv)
 {
-  Arguments args("visp-projective servo", {"SESSION"},
-                 {"--robot",        "--left",          "--right",        "--scale",     "--joint-types",
-                  "--qmin",         "--qmax",          "--margin-deg",   "--margin-m",  "--speed-deg",
-                  "--speed-m",      "--amount-deg",    "--amount-m",     "--step-deg",  "--step-m",
-                  "--image-margin", "--tolerance",     "--move-timeout", "--settle",    "--discard",
-                  "--model",        "--save-model",    "--family",       "--commands",  "--target-frames",
-                  "--tags",         "--gain",          "--timeout",      "--converged", "--converged-frames",
-                  "--max-lost",     "--period",        "--fps",          "--latency",   "--skew",
-                  "--drop",         "--encoder-noise", "--noise",        "--seed"},
-                 {"--no-joint-limits", "--no-planning", "--no-latency-compensation"});
+  Arguments args(
+      "visp-projective servo", {"SESSION"},
+      {"--robot",         "--left",       "--right",    "--scale",         "--joint-types", "--qmin",
+       "--qmax",          "--margin-deg", "--margin-m", "--speed-deg",     "--speed-m",     "--amount-deg",
+       "--amount-m",      "--step-deg",   "--step-m",   "--image-margin",  "--tolerance",   "--move-timeout",
+       "--settle",        "--discard",    "--model",    "--save-model",    "--family",      "--commands",
+       "--target-frames", "--tags",       "--gain",     "--timeout",       "--converged",   "--converged-frames",
+       "--max-lost",      "--period",     "--max-skew", "--max-latency",   "--min-fps",     "--fps",
+       "--latency",       "--skew",       "--drop",     "--encoder-noise", "--noise",       "--seed"},
+      {"--no-joint-limits", "--no-planning", "--no-latency-compensation"});
   bool help = false;
   std::string error;
   if (!args.parse(argc, argv, 2, help, error)) {
@@ -186,11 +189,14 @@ int servoCommand(int argc, char **argv)
       !args.number("--converged", 0.5, 1e-9, s.convergedError, error) ||
       !args.number("--converged-frames", 10, 1, convergedFrames, error) ||
       !args.number("--max-lost", 0.5, 1e-3, s.maxLostTime, error) ||
-      !args.number("--period", 0.04, 1e-4, s.period, error) || !args.number("--fps", 25, 0, fps, error) ||
-      !args.number("--latency", 0, 0, latency, error) || !args.number("--skew", -10, -10, skew, error) ||
-      !args.number("--drop", 0, 0, drop, error) || !args.number("--encoder-noise", 0, 0, encoderNoise, error) ||
-      !args.number("--noise", 1, 0, noise, error) || !args.number("--seed", 1, 0, seed, error) ||
-      !args.number("--scale", 1, 1, scale, error)) {
+      !args.number("--period", 0.04, 1e-4, s.period, error) ||
+      !args.number("--max-skew", s.maxSkew, 1e-6, s.maxSkew, error) ||
+      !args.number("--max-latency", s.maxLatency, 1e-6, s.maxLatency, error) ||
+      !args.number("--min-fps", s.minFrameRate, 1e-6, s.minFrameRate, error) ||
+      !args.number("--fps", 25, 0, fps, error) || !args.number("--latency", 0, 0, latency, error) ||
+      !args.number("--skew", -10, -10, skew, error) || !args.number("--drop", 0, 0, drop, error) ||
+      !args.number("--encoder-noise", 0, 0, encoderNoise, error) || !args.number("--noise", 1, 0, noise, error) ||
+      !args.number("--seed", 1, 0, seed, error) || !args.number("--scale", 1, 1, scale, error)) {
     return usage(error);
   }
   skew = args.has("--skew") ? skew : 0.0;

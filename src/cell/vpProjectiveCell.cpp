@@ -80,7 +80,9 @@ vpProjectiveCell::vpProjectiveCell(vpProjectiveCellArm &arm, vpStereoImageSource
         std::make_pair(s.stepRotation, "stepRotation"), std::make_pair(s.stepTranslation, "stepTranslation"),
         std::make_pair(s.arrivalTolerance, "arrivalTolerance"), std::make_pair(s.gain, "gain"),
         std::make_pair(s.period, "period"), std::make_pair(s.timeout, "timeout"),
-        std::make_pair(s.convergedError, "convergedError"), std::make_pair(s.maxLostTime, "maxLostTime")}) {
+        std::make_pair(s.convergedError, "convergedError"), std::make_pair(s.maxLostTime, "maxLostTime"),
+        std::make_pair(s.maxSkew, "maxSkew"), std::make_pair(s.maxLatency, "maxLatency"),
+        std::make_pair(s.minFrameRate, "minFrameRate")}) {
     requirePositive(setting.first, setting.second);
   }
   for (const double x : {s.imageMargin, s.imageBorder, s.moveTimeout, s.settleTime}) {

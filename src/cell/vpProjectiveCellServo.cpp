@@ -100,6 +100,7 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
   result.error = std::numeric_limits<double>::quiet_NaN();
   double t0 = 0.0, tPrev = 0.0, period = m_settings.period, lostSince = -1.0, shown = -1.0;
   unsigned int converged = 0;
+  std::string timing; // the last timing limit a frame passed
   vpColVector q;
   double t = 0.0;
   for (result.frames = 1;; ++result.frames) {
@@ -116,11 +117,30 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
       }
       period = estimate;
     }
+    const double tPrevious = tPrev;
     tPrev = t;
     // Recorded with the readings of when the images were taken (the left one's; between the two, a skewed right
     // image shows the arm where it was then): check and calibrate pair each image with its joints.
     record(vpProjectiveSession::SERVO, frame.stamped ? jointsAt(frame.tLeft) : q, frame.stamped ? frame.tLeft : t);
     // The features at the readings' time: each image's pixels moved by the model's motion since it was taken.
+    // A frame beyond the timing limits is not used: its features count as lost (the arm stops if that lasts).
+    std::ostringstream late;
+    if (frame.stamped && std::abs(frame.tRight - frame.tLeft) > m_settings.maxSkew) {
+      late << "the right image taken " << 1000.0 * (frame.tRight - frame.tLeft) << " ms after the left (limit "
+           << 1000.0 * m_settings.maxSkew << " ms, maxSkew)";
+    } else if (frame.stamped && t - std::min(frame.tLeft, frame.tRight) > m_settings.maxLatency) {
+      late << "images " << 1000.0 * (t - std::min(frame.tLeft, frame.tRight)) << " ms older than the readings (limit "
+           << 1000.0 * m_settings.maxLatency << " ms, maxLatency)";
+    } else if (result.frames > 1 && t - tPrevious > 1.0 / m_settings.minFrameRate) {
+      late << "a frame " << 1000.0 * (t - tPrevious) << " ms after the last (limit " << 1000.0 / m_settings.minFrameRate
+           << " ms, minFrameRate)";
+    }
+    if (!late.str().empty()) {
+      timing = late.str();
+      frame.ids.clear();
+    } else if (!frame.ids.empty()) {
+      timing.clear();
+    }
     const bool align = m_settings.latencyCompensation && frame.stamped;
     const vpColVector dLeft = align ? vpColVector(q - jointsAt(frame.tLeft)) : vpColVector(q.size(), 0.0);
     const vpColVector dRight = align ? vpColVector(q - jointsAt(frame.tRight)) : vpColVector(q.size(), 0.0);
@@ -160,8 +180,9 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
     lostSince = lost ? (lostSince < 0.0 ? t : lostSince) : -1.0;
     if (lostSince >= 0.0 && t - lostSince > m_settings.maxLostTime) {
       result.end = SERVO_TAGS_LOST;
-      why << "too few of the " << N << " corners of s* seen (" << seen << " now) for " << t - lostSince
-          << " s: bring the tags back in view (occlusion, lighting, the tags out of the images)";
+      why << "too few of the " << N << " corners of s* seen (" << seen << " now) for " << t - lostSince << " s: "
+          << (timing.empty() ? "bring the tags back in view (occlusion, lighting, the tags out of the images)"
+                             : "the cameras' timing is out of the limits, " + timing);
     }
     converged = seen == N && result.error < m_settings.convergedError ? converged + 1 : 0;
     if (converged >= m_settings.convergedFrames) {

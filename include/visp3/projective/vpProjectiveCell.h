@@ -66,8 +66,10 @@ BEGIN_VISP_NAMESPACE
   and \f$ t_r \f$ (right) with the joints read at \f$ t \f$ becomes \f$ s + [J_l\,(q(t) - q(t_l));
   J_r\,(q(t) - q(t_r))] \f$, \f$ J \f$ the stereo image Jacobian at \f$ q(t) \f$ and \f$ q(\cdot) \f$ the joint
   readings interpolated (vpSettings::latencyCompensation). The control period of the task follows the time between
-  two readings of the loop (vpServoProjective::setControlPeriod()). docs/cell-timing.dox gives what skew, latency and
-  frame rate the servo stands with and without.
+  two readings of the loop (vpServoProjective::setControlPeriod()). A frame whose timing is beyond the limits
+  (vpSettings::maxSkew, maxLatency, minFrameRate) is not used: its features count as lost, so that cameras that stall
+  or lag stop the arm after vpSettings::maxLostTime, with a message that says which limit. \ref page_cell_timing
+  gives what skew, latency and frame rate the servo stands, and where these defaults come from.
 
   \code
   vpStereoGrabberSource cameras("/dev/video0", "/dev/video2");
@@ -120,7 +122,10 @@ public:
     double timeout = 60.0;             //!< Longest servo (s, the arm's clock).
     double convergedError = 0.5;       //!< Image error (px RMS) under which the task has converged...
     unsigned int convergedFrames = 10; //!< ... for this many frames in a row.
-    double maxLostTime = 0.5; //!< Longest time (s) with too few features seen (SERVO_OPEN_LOOP, SERVO_STOPPED).
+    double maxLostTime = 0.5;  //!< Longest time (s) with too few features seen (SERVO_OPEN_LOOP, SERVO_STOPPED).
+    double maxSkew = 0.04;     //!< Stamped images: a frame whose two images are further apart (s) is not used.
+    double maxLatency = 0.3;   //!< Stamped images: a frame older than this (s) at the readings is not used.
+    double minFrameRate = 4.0; //!< A frame that comes later than 1 / minFrameRate (s) after the last is not used.
     //@}
     vpSettings();
   };
