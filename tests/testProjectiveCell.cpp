@@ -505,3 +505,15 @@ TEST(ProjectiveCell, RenderedCamerasTiming)
   EXPECT_THROW(cell.setTiming(10.0, -0.1), vpProjectiveException);
   EXPECT_THROW(cell.setTiming(10.0, 0.0, 0.0, 0.95), vpProjectiveException);
 }
+
+TEST_F(ProjectiveCellServo, LateImagesStopTheArm)
+{
+  // Cameras that fall 300 ms behind the readings (the default limit is 200 ms): their frames are not used, and the
+  // arm stops after maxLostTime with the limit named.
+  prepare(FaultyCameras::NONE, 0);
+  m_rendered->cell.setTiming(25.0, 0.3);
+  const vpProjectiveCell::vpServoResult result = m_cell->servo();
+  EXPECT_EQ(result.end, vpProjectiveCell::SERVO_TAGS_LOST) << result.message;
+  EXPECT_NE(result.message.find("maxLatency"), std::string::npos) << result.message;
+  EXPECT_TRUE(m_arm->still());
+}

@@ -28,11 +28,14 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpUniRand.h>
@@ -134,7 +137,10 @@ int main(int argc, char **argv)
     Cell cell(conditions[0], static_cast<long>(s));
     vpProjectiveCell run(cell.arm, cell.cell, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), settings);
     run.acquire();
-    models[s] = "/tmp/projective-cell-timing-model-" + std::to_string(s) + ".json";
+    models[s] = (std::filesystem::temp_directory_path() /
+                 ("projective-cell-timing-" + std::to_string(static_cast<long>(::getpid())) + "-" + std::to_string(s) +
+                  ".json"))
+                    .string();
     run.saveModel(models[s]);
   }
   for (const Condition &c : conditions) {
@@ -210,6 +216,11 @@ int main(int argc, char **argv)
       }
     }
     std::cout << row.str() << " |" << std::endl;
+  }
+  for (const std::string &model : models) {
+    if (!model.empty()) {
+      std::filesystem::remove(model);
+    }
   }
   return EXIT_SUCCESS;
 }

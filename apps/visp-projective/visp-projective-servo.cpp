@@ -99,7 +99,7 @@ const char *const kServoUsage =
     "  --max-lost S                   longest time with too few corners seen before the arm stops (default 0.5)\n"
     "  --period S                     control period until measured (default 0.04)\n"
     "  --max-skew S, --max-latency S  frames whose right image is further from the left, or older than the readings,\n"
-    "                                 are not used (default 0.04, 0.3; docs: the timing study)\n"
+    "                                 are not used (default 0.04, 0.2; docs: the timing study)\n"
     "  --min-fps HZ                   a frame later than 1/HZ after the last is not used (default 4)\n"
     "  --no-planning                  law (47) alone, no path planning\n"
     "  --no-latency-compensation      use the features as seen, not predicted to the joint readings' time\n"

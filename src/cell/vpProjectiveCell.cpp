@@ -30,19 +30,13 @@
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
 
-#include "cell/vpProjectiveCellInternal.h"
-#include "core/vpProjectiveErrors.h"
-
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
+#include "cell/vpProjectiveCellInternal.h" // ViSP's namespace, the errors' site
 
 using namespace vpProjectiveInternal;
+using vpProjectiveCellInternal::at;
 
 namespace
 {
-const vpErrorSite at("vpProjectiveCell");
-
 void requirePositive(double x, const char *name)
 {
   if (!std::isfinite(x) || !(x > 0.0)) {

@@ -22,9 +22,17 @@
 
 #include <visp3/projective/vpProjectiveCellRobot.h>
 
+#include "core/vpProjectiveErrors.h"
+
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
 #endif
+
+namespace vpProjectiveCellInternal
+{
+//! Where vpProjectiveCell's errors come from.
+const vpProjectiveInternal::vpErrorSite at("vpProjectiveCell");
+} // namespace vpProjectiveCellInternal
 
 /*!
   Stops the arm when a public call of vpProjectiveCell ends, whatever the way: returned, or left by an exception

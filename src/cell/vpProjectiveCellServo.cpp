@@ -29,19 +29,13 @@
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpServoProjective.h>
 
-#include "cell/vpProjectiveCellInternal.h"
-#include "core/vpProjectiveErrors.h"
-
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
+#include "cell/vpProjectiveCellInternal.h" // ViSP's namespace, the errors' site
 
 using namespace vpProjectiveInternal;
+using vpProjectiveCellInternal::at;
 
 namespace
 {
-const vpErrorSite at("vpProjectiveCell");
-
 //! \e ip moved by the rows \e r, \e r + 1 of \e J times \e dq (a first-order prediction of its motion).
 vpImagePoint moved(const vpImagePoint &ip, const vpMatrix &J, unsigned int r, const vpColVector &dq)
 {

@@ -26,19 +26,10 @@
 
 #include <visp3/projective/vpProjectiveException.h>
 
-#include "cell/vpProjectiveCellInternal.h"
-#include "core/vpProjectiveErrors.h"
-
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
+#include "cell/vpProjectiveCellInternal.h" // ViSP's namespace, the errors' site
 
 using namespace vpProjectiveInternal;
-
-namespace
-{
-const vpErrorSite at("vpProjectiveCell");
-}
+using vpProjectiveCellInternal::at;
 
 void vpProjectiveCell::ask(std::istream &commands, std::ostream &prompt, const std::string &question)
 {

@@ -124,9 +124,10 @@ public:
     unsigned int convergedFrames = 10; //!< ... for this many frames in a row.
     double maxLostTime = 0.5;  //!< Longest time (s) with too few features seen (SERVO_OPEN_LOOP, SERVO_STOPPED).
     double maxSkew = 0.04;     //!< Stamped images: a frame whose two images are further apart (s) is not used.
-    double maxLatency = 0.3;   //!< Stamped images: a frame older than this (s) at the readings is not used.
+    double maxLatency = 0.2;   //!< Stamped images: a frame older than this (s) at the readings is not used.
     double minFrameRate = 4.0; //!< A frame that comes later than 1 / minFrameRate (s) after the last is not used.
     //@}
+    //! The defaults (those of the members in degrees are set here, in radians).
     vpSettings();
   };
 
