@@ -169,6 +169,9 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
                   ? "; run visp-projective check on the recorded session: if a camera moved, re-register the rig "
                     "or acquire again"
                   : "; teach a target reachable within the joint limits, the tags in view");
+      if (!timing.empty()) { // no frame used: the cause is the cameras', not the target's
+        why << "; no frame was used: the cameras' timing is out of the limits, " << timing;
+      }
     }
     const bool lost = status == vpServoProjective::SERVO_STOPPED || status == vpServoProjective::SERVO_OPEN_LOOP;
     lostSince = lost ? (lostSince < 0.0 ? t : lostSince) : -1.0;
