@@ -26,7 +26,11 @@
 
 #include <visp3/projective/vpProjectiveException.h>
 
-#include "cell/vpProjectiveCellInternal.h" // ViSP's namespace, the errors' site
+#include "cell/vpProjectiveCellInternal.h"
+
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
 
 using namespace vpProjectiveInternal;
 using vpProjectiveCellInternal::at;
