@@ -17,6 +17,7 @@
     visp-projective calibrate SESSION --output MODEL.json [--family 36h11] [options]
     visp-projective check MODEL.json SESSION [--family 36h11] [--threshold PX]
     visp-projective report MODEL.json
+    visp-projective servo SESSION --robot KIND [--left DEV --right DEV] [options]
 
   Exit status: 0 on success (check: the model fits every frame), 1 on bad input or any error (one line on stderr
   that says what was wrong and what to do; calibrate then leaves no model file), 2 on a usage mistake, 3 when check
@@ -28,6 +29,7 @@
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -44,6 +46,7 @@
 #include "visp-projective-options.h"
 #include "visp-projective-plots.h"
 #include "visp-projective-record.h"
+#include "visp-projective-servo.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -65,10 +68,14 @@ const char *const kMainUsage =
     "  report MODEL.json                       joints, residuals, the metric self-calibration K, R, t\n"
     "  record SESSION                          a session from two cameras and typed-in joint readings, or the\n"
     "                                          acquisition of the rendered tag cell (no camera needed)\n"
+    "  servo SESSION --robot KIND              a real cell end to end: acquisition, s* taught by showing, the\n"
+    "                                          planned servo, the session recorded; the arm stopped on every exit "
+    "path\n"
     "\n"
     "'visp-projective COMMAND --help' describes each command. A SESSION is a folder holding session.json\n"
     "(format visp-projective-session, version 1) and its PNG images.\n"
-    "Exit status: 0 success, 1 bad input or error (one line on stderr), 2 usage, 3 check: the model does not fit.\n";
+    "Exit status: 0 success, 1 bad input or error (one line on stderr), 2 usage, 3 check: the model does not fit,\n"
+    "4 servo: not converged (the arm stopped).\n";
 
 const char *const kRecordUsage =
     "Usage: visp-projective record SESSION --left DEV --right DEV --joints FILE [--joint-types TYPES] [--scale N]\n"
@@ -135,16 +142,24 @@ const char *const kCheckUsage =
     "  -h, --help                     this help\n";
 
 const char *const kReportUsage =
-    "Usage: visp-projective report MODEL.json [--plots DIR] [--range DEG] [--travel M]\n"
+    "Usage: visp-projective report MODEL.json [--plots DIR [--session SESSION] [--range DEG] [--travel M]]\n"
     "Prints what the model says about the cell: the joints (kind, axis in the left camera's frame), the residuals\n"
     "of its calibration, its markers, and the metric self-calibration of the rig (intrinsics K of both cameras, the\n"
     "right camera's pose R, t in the left one; t in the prismatic joints' unit, or a unit baseline without one).\n"
     "\n"
     "Options:\n"
-    "  --plots DIR                    write DIR/joint-paths-left.png and -right.png: the marker paths the model\n"
-    "                                 predicts when each joint moves alone (one colour per joint)\n"
-    "  --range DEG                    a revolute joint's motion either way for the plots (default 30)\n"
-    "  --travel M                     a prismatic joint's motion either way for the plots (default 0.05)\n"
+    "  --plots DIR                    write DIR/joint-paths-left.png and -right.png (gnuplot): the marker paths the\n"
+    "                                 model predicts when each joint moves alone, one colour and legend per joint,\n"
+    "                                 axes in pixels\n"
+    "  --session SESSION              the model's session: the paths over its zero frame's images and their border,\n"
+    "                                 solid within the range its trials acquired, dashed beyond, and the markers\n"
+    "                                 measured in each trial beside the model's prediction there\n"
+    "  --range DEG                    a revolute joint's motion either way (default: 1.5 times the acquired range\n"
+    "                                 with --session, else 30)\n"
+    "  --travel M                     a prismatic joint's motion either way (default: 1.5 times the acquired range\n"
+    "                                 with --session, else 0.05)\n"
+    "  --family NAME                  AprilTag family of the session's markers (default 36h11; a frame's recorded\n"
+    "                                 markers are used when it has them)\n"
     "  -h, --help                     this help\n";
 
 //! One line: a message with its line breaks replaced.
@@ -331,21 +346,36 @@ int record(int argc, char **argv)
 
 int report(int argc, char **argv)
 {
-  vispProjective::Arguments args("visp-projective report", {"MODEL.json"}, {"--plots", "--range", "--travel"}, {});
+  vispProjective::Arguments args("visp-projective report", {"MODEL.json"},
+                                 {"--plots", "--range", "--travel", "--session", "--family"}, {});
   const int parsed = parseArguments(args, argc, argv, "report", kReportUsage);
   if (parsed >= 0) {
     return parsed;
   }
-  double range = 30.0, travel = 0.05;
+  double range = 0.0, travel = 0.0; // 0: told by the session's trials (or 30 deg, 5 cm)
   std::string error;
-  if (!args.number("--range", 30.0, 1e-9, range, error) || !args.number("--travel", 0.05, 1e-9, travel, error)) {
+  if (!args.number("--range", 0.0, 1e-9, range, error) || !args.number("--travel", 0.0, 1e-9, travel, error)) {
     return usageError("report", error);
+  }
+  if (args.has("--session") && !args.has("--plots")) {
+    return usageError("report", "--session is for the plots: give --plots DIR too");
   }
   std::vector<int> ids;
   double residual = 0.0, algebraic = 0.0;
   const vpProjectiveArmModel model = loadModel(args.positional(0), ids, residual, algebraic);
   if (args.has("--plots")) {
-    for (const std::string &file : vispProjective::writeJointPathPlots(model, range, travel, args.value("--plots"))) {
+    std::unique_ptr<vpProjectiveSession> session;
+    if (args.has("--session")) {
+      session.reset(new vpProjectiveSession(vpProjectiveSession::read(args.value("--session"))));
+      if (ids.size() != model.markers().size()) {
+        throw vpException(vpException::badValue, "the model '" + args.positional(0) +
+                                                     "' has no marker identifiers: its markers cannot be found in "
+                                                     "the session; calibrate it with 'visp-projective calibrate'");
+      }
+    }
+    for (const std::string &file :
+         vispProjective::writeJointPathPlots(model, ids, range, travel, args.value("--plots"), session.get(),
+                                             vispProjective::markerExtractor(args.value("--family", "36h11")))) {
       std::cout << "plot: " << file << std::endl;
     }
   }
@@ -432,6 +462,9 @@ int main(int argc, char **argv)
     if (command == "record") {
       return record(argc, argv);
     }
+    if (command == "servo") {
+      return vispProjective::servoCommand(argc, argv);
+    }
   } catch (const vpException &e) {
     std::cerr << "visp-projective " << command << ": " << oneLine(e.getStringMessage()) << std::endl;
     return EXIT_FAILURE;
@@ -439,7 +472,8 @@ int main(int argc, char **argv)
     std::cerr << "visp-projective " << command << ": " << oneLine(e.what()) << std::endl;
     return EXIT_FAILURE;
   }
-  std::cerr << "visp-projective: unknown command '" << command << "'; use calibrate, check, report or record (see "
+  std::cerr << "visp-projective: unknown command '" << command
+            << "'; use calibrate, check, report, record or servo (see "
             << "'visp-projective --help')" << std::endl;
   return kUsageError;
 }

@@ -87,6 +87,41 @@ void vpProjectiveAcquisitionProcedure::stopRobot(vpRobot &robot) const
   }
 }
 
+void vpProjectiveAcquisitionProcedure::measureEncoderNoise(vpRobot &robot)
+{
+  // Readings at rest, spread over 50 ms: a controller that refreshes its readings every few milliseconds shows its
+  // noise; their standard deviation per joint sets how close a move can be asked to arrive.
+  const unsigned int readings = 10;
+  std::vector<vpColVector> q(readings);
+  for (unsigned int k = 0; k < readings; ++k) {
+    if (k > 0) {
+      sleepSeconds(0.005);
+    }
+    robot.getPosition(vpRobot::ARTICULAR_FRAME, q[k]);
+  }
+  const unsigned int n = q[0].size();
+  vpColVector mean(n, 0.0);
+  m_encoderNoise.resize(n, true);
+  for (unsigned int k = 0; k < readings; ++k) {
+    mean += q[k] / static_cast<double>(readings);
+  }
+  double largest = 0.0;
+  for (unsigned int i = 0; i < n; ++i) {
+    double sum = 0.0;
+    for (unsigned int k = 0; k < readings; ++k) {
+      sum += (q[k][i] - mean[i]) * (q[k][i] - mean[i]);
+    }
+    m_encoderNoise[i] = std::sqrt(sum / (readings - 1));
+    largest = std::max(largest, m_encoderNoise[i]);
+  }
+  m_tolerance = std::max(m_minTolerance, 4.0 * largest);
+  std::ostringstream os;
+  os << "encoder noise at rest: " << largest << " (rad or m, the largest standard deviation of 10 readings); arrival "
+     << "tolerance " << m_tolerance
+     << (m_tolerance > m_minTolerance ? " (4 times the noise)" : " (setArrivalTolerance())");
+  progress(os.str());
+}
+
 void vpProjectiveAcquisitionProcedure::checkArrival(vpRobot &robot, const vpColVector &q, double tolerance,
                                                     const char *how) const
 {

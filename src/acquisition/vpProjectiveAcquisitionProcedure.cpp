@@ -31,12 +31,10 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpSimulatorRobotArm.h>
-#include <visp3/robot/vpAfma4.h>
-#include <visp3/robot/vpAfma6.h>
-#include <visp3/robot/vpViper.h>
 
 #include "core/vpImageWindow.h"
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
+#include "acquisition/vpRobotJointLimits.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -168,20 +166,7 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
     limitsFrom = "setJointLimits()";
   } else {
     vpColVector qmin, qmax;
-    if (const vpViper *viper = dynamic_cast<const vpViper *>(&robot)) {
-      qmin = viper->getJointMin();
-      qmax = viper->getJointMax();
-    } else if (const vpAfma6 *afma6 = dynamic_cast<const vpAfma6 *>(&robot)) {
-      qmin = afma6->getJointMin();
-      qmax = afma6->getJointMax();
-    } else if (const vpAfma4 *afma4 = dynamic_cast<const vpAfma4 *>(&robot)) {
-      qmin = afma4->getJointMin();
-      qmax = afma4->getJointMax();
-    } else if (const vpSimulatorRobotArm *arm = dynamic_cast<const vpSimulatorRobotArm *>(&robot)) {
-      qmin = arm->getJointMin(); // in encoder readings
-      qmax = arm->getJointMax();
-    }
-    if (qmin.size() == n && qmax.size() == n) {
+    if (vpProjectiveInternal::robotJointLimits(robot, qmin, qmax) && qmin.size() == n && qmax.size() == n) {
       m_lower = qmin;
       m_upper = qmax;
       for (unsigned int k = 0; k < n; ++k) {
@@ -192,6 +177,7 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
       limitsFrom = "the robot's own, less 2 deg or 1 cm";
     }
   }
+  measureEncoderNoise(robot);
   std::vector<int> ids;
   std::vector<vpImagePoint> left, right;
   m_dropped.clear();

@@ -259,14 +259,21 @@ public:
   */
   void setMoveTimeout(double seconds);
   /*!
-    How close (rad or m, > 0) a velocity move brings the joints back to the zero reference (default 1e-5): the other
+    The smallest tolerance (rad or m, > 0; default 1e-5) of a velocity move back to the zero reference: the other
     joints stay there while one joint's trials are imaged, and an offset of \e tolerance moves the markers by about
     \e tolerance times their pixels per joint unit (1e-5 rad: about a hundredth of a pixel at 1,000 px per radian).
-    It must exceed the encoders' resolution and noise, or the moves time out. The steps in between only need a
-    reading: they stop within a twentieth of the step.
+    A tolerance below the encoders' noise would make the moves time out, so run() first reads the joints 10 times at
+    rest, 5 ms apart (getEncoderNoise()), and uses the larger of \e tolerance and 4 times the largest standard
+    deviation it measured (the progress says which). The steps in between only need a reading: they stop within a
+    twentieth of the step.
     \exception vpProjectiveException (invalidValueError) if not positive or not finite.
   */
   void setArrivalTolerance(double tolerance);
+  /*!
+    The standard deviation (n x 1, rad or m) of each joint's readings at rest, measured at the start of the last
+    run() (see setArrivalTolerance()); empty before.
+  */
+  const vpColVector &getEncoderNoise() const { return m_encoderNoise; }
   /*!
     A motion of the caller's: empty (default) for setMotionControl()'s; otherwise \e motion moves the robot (and
     run() leaves the robot's state to it). getPosition() must then read the target within a tenth of the step.
@@ -356,6 +363,7 @@ private:
   void moveByVelocity(vpRobot &robot, const vpColVector &q, double tolerance);
   void checkArrival(vpRobot &robot, const vpColVector &q, double tolerance, const char *how) const;
   void stopRobot(vpRobot &robot) const;
+  void measureEncoderNoise(vpRobot &robot);
   void checkZeroReference(const vpProjectiveArmAcquisition &acquisition, const std::vector<vpImagePoint> &left,
                           const std::vector<vpImagePoint> &right);
   void checkGeneralPosition(const vpProjectiveStereoRig &rig, const std::vector<vpImagePoint> &left,
@@ -382,7 +390,10 @@ private:
   vpColVector m_maxAmounts, m_steps, m_minAmounts, m_qmin, m_qmax;
   double m_limitMargin, m_imageMargin, m_rotationSpeed, m_translationSpeed, m_epipolarThreshold;
   vpMotionControl m_control;
-  double m_moveTimeout, m_tolerance, m_coplanarity;
+  double m_moveTimeout;
+  double m_minTolerance; // setArrivalTolerance()
+  double m_tolerance;    // the run's: m_minTolerance, or more when the encoders are noisier
+  double m_coplanarity;
   bool m_detectMounting;
   std::ostream *m_os;
   vpStepCallback m_callback;
@@ -395,6 +406,7 @@ private:
   double m_wallPeriod;    // wall-clock seconds from a velocity command to a new reading
   std::vector<vpProjectiveJoint::vpJointType> m_types; // of the acquisition being run
   vpColVector m_lower, m_upper;                        // the joint range of the run (empty: no limits)
+  vpColVector m_encoderNoise;                          // of the last run (getEncoderNoise())
 };
 
 END_VISP_NAMESPACE

@@ -55,6 +55,19 @@ public:
   virtual unsigned int getWidth() const = 0;
   //! Height of the images (pixels).
   virtual unsigned int getHeight() const = 0;
+  /*!
+    The instants (seconds) the images of the last acquire() were taken, left and right, on the clock of the robot's
+    encoder readings (vpProjectiveCellArm::getJoints(): CLOCK_MONOTONIC, std::chrono::steady_clock, for a real cell;
+    the simulated time for a rendered one); false if the source does not know them (the default). A servo loop aligns
+    each image's features to the time of the readings with them (vpProjectiveCell), and an acquisition waits for
+    images taken after the arm stopped.
+  */
+  virtual bool getTimestamps(double &left, double &right) const
+  {
+    (void)left;
+    (void)right;
+    return false;
+  }
 };
 
 END_VISP_NAMESPACE
