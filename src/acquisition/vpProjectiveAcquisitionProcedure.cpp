@@ -31,9 +31,11 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpSimulatorRobotArm.h>
-#include <visp3/robot/vpAfma4.h>
 #include <visp3/robot/vpAfma6.h>
 #include <visp3/robot/vpViper.h>
+#if VISP_VERSION_INT < VP_VERSION_INT(3, 7, 0) // ViSP 3.7.0 removed vpAfma4 and vpRobotAfma4
+#include <visp3/robot/vpAfma4.h>
+#endif
 
 #include "core/vpImageWindow.h"
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
@@ -158,7 +160,7 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
                                     " joints, the robot " + std::to_string(n) + ": give the robot's joint types.");
   }
   // The joint range the trials stay in: the limits given, else those of ViSP's arms that know theirs (Viper650/850,
-  // Afma4/6, real or simulated, and vpSimulatorRobotArm) less 2 deg or 1 cm, else none.
+  // Afma6 and, before ViSP 3.7, Afma4, real or simulated, and vpSimulatorRobotArm) less 2 deg or 1 cm, else none.
   m_lower = vpColVector();
   m_upper = vpColVector();
   std::string limitsFrom = "none";
@@ -174,9 +176,11 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
     } else if (const vpAfma6 *afma6 = dynamic_cast<const vpAfma6 *>(&robot)) {
       qmin = afma6->getJointMin();
       qmax = afma6->getJointMax();
+#if VISP_VERSION_INT < VP_VERSION_INT(3, 7, 0)
     } else if (const vpAfma4 *afma4 = dynamic_cast<const vpAfma4 *>(&robot)) {
       qmin = afma4->getJointMin();
       qmax = afma4->getJointMax();
+#endif
     } else if (const vpSimulatorRobotArm *arm = dynamic_cast<const vpSimulatorRobotArm *>(&robot)) {
       qmin = arm->getJointMin(); // in encoder readings
       qmax = arm->getJointMax();
