@@ -21,7 +21,9 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpConfig.h>
 #include <visp3/projective/vpSimulatorRobotArm.h>
+#if VISP_VERSION_INT < VP_VERSION_INT(3, 7, 0) // ViSP 3.7.0 removed vpAfma4 and vpRobotAfma4
 #include <visp3/robot/vpAfma4.h>
+#endif
 #include <visp3/robot/vpAfma6.h>
 #include <visp3/robot/vpRobot.h>
 #include <visp3/robot/vpViper.h>
@@ -47,9 +49,11 @@ inline bool robotJointLimits(const vpRobot &robot, vpColVector &qmin, vpColVecto
   } else if (const vpAfma6 *afma6 = dynamic_cast<const vpAfma6 *>(&robot)) {
     qmin = afma6->getJointMin();
     qmax = afma6->getJointMax();
+#if VISP_VERSION_INT < VP_VERSION_INT(3, 7, 0)
   } else if (const vpAfma4 *afma4 = dynamic_cast<const vpAfma4 *>(&robot)) {
     qmin = afma4->getJointMin();
     qmax = afma4->getJointMax();
+#endif
   } else if (const vpSimulatorRobotArm *arm = dynamic_cast<const vpSimulatorRobotArm *>(&robot)) {
     qmin = arm->getJointMin(); // in encoder readings
     qmax = arm->getJointMax();

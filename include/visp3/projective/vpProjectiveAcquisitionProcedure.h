@@ -222,8 +222,8 @@ public:
   /*!
     Joint limits (n x 1 each, rad or m, \e qmin < \e qmax) and the margin kept from them (>= 0, rad or m). Default:
     the robot's own limits less 2 deg (revolute) or 1 cm (prismatic) when it knows them (vpViper: vpRobotViper650,
-    vpRobotViper850, vpSimulatorViper850; vpAfma6: vpRobotAfma6, vpSimulatorAfma6; vpAfma4; vpSimulatorRobotArm),
-    otherwise none.
+    vpRobotViper850, vpSimulatorViper850; vpAfma6: vpRobotAfma6, vpSimulatorAfma6; vpAfma4 before ViSP 3.7, which
+    removed it; vpSimulatorRobotArm), otherwise none.
     \exception vpProjectiveException (dimensionError, invalidValueError, nonFiniteValueError) on mismatched sizes,
     qmin >= qmax, a negative margin or non-finite values.
   */
