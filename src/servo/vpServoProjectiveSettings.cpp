@@ -105,6 +105,7 @@ void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
   if (m_link.robot != &robot) {
     m_mismatch.reset(); // memories of another robot's model
   }
+  m_follow.reset();   // another arm (or the same, set again after the user fixed it)
   m_link.set(&robot); // the robot now tells this task of a new model or rig
   m_link.modifiable = nullptr;
   for (vpTarget &t : m_targets) {
@@ -208,6 +209,7 @@ void vpServoProjective::setControlPeriod(double seconds)
   // Inside, the law works per call (a joint step, as the planner's paths and rehearsals do); the user's gain and
   // saturation are per second.
   m_law.setMaxJointVelocity(m_qdotMax * seconds);
+  m_follow.setControlPeriod(seconds); // the arm's motion per call is judged against it
   m_period = seconds;
 }
 
