@@ -77,14 +77,11 @@ double predictionResidual(const ArmCalibrationData &data, const std::vector<Eige
   return count > 0 ? std::sqrt(sum / static_cast<double>(count)) : 0.0;
 }
 
-void algebraicGenerators(ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,
-                         std::vector<Eigen::Matrix4d> &Hhat)
+std::vector<Eigen::Matrix4d> trialDisplacements(ArmCalibrationData &data)
 {
   const std::string where = "vpProjectiveArmAcquisition::calibrate()";
-  const size_t n = data.types.size();
-  // Candidate generators of each joint: the logarithm of each of its trials, and their projected mean.
-  std::vector<std::vector<Eigen::Matrix4d>> candidates(n);
-  std::vector<unsigned int> trialCount(n, 0);
+  std::vector<Eigen::Matrix4d> displacements(data.trials.size(),
+                                             Eigen::Matrix4d::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (size_t k = 0; k < data.trials.size(); ++k) {
     const ArmTrial &trial = data.trials[k];
     // A blocked joint or a tiny trial leaves the markers where they were: H = I has no logarithm to speak of.
@@ -108,31 +105,52 @@ void algebraicGenerators(ArmCalibrationData &data, const std::vector<Eigen::Vect
     // Maximum-likelihood displacement: the linear one from 7 noisy markers is too poor a start for the upgrade. 12
     // Levenberg-Marquardt iterations (of about 25 to full convergence) are enough for a start: the bundle adjustment
     // refines everything, and at 1 px noise no acquisition of 300 failed with 12 (one failed with 8).
-    ++trialCount[trial.joint];
     try {
       // With an outlier threshold, mismatched markers are found by the 5-point consensus of estimateRobust() and
       // left out of everything that follows (the candidates' scores, the rigid motions, the bundle adjustment).
-      Eigen::Matrix4d H;
       if (data.outlierThreshold > 0.0) {
         std::vector<bool> inlier;
-        H = vpProjectiveDisplacement::estimateRobust(data.rig, all ? data.zeroImages : s0, all ? trial.s : s1,
-                                                     data.outlierThreshold, inlier);
+        displacements[k] = vpProjectiveDisplacement::estimateRobust(data.rig, all ? data.zeroImages : s0,
+                                                                    all ? trial.s : s1, data.outlierThreshold, inlier);
         for (size_t j = 0, m = 0; j < trial.s.size(); ++j) {
           data.inlier[k][j] = trial.seen[j] && inlier[m++];
         }
       } else {
-        H = vpProjectiveDisplacement::estimateFromImages(data.rig, all ? data.zeroImages : s0, all ? trial.s : s1, 12);
+        displacements[k] =
+            vpProjectiveDisplacement::estimateFromImages(data.rig, all ? data.zeroImages : s0, all ? trial.s : s1, 12);
       }
-      candidates[trial.joint].push_back(
-          vpProjectiveJoint::log(data.types[trial.joint], vpProjectiveDisplacement(H), trial.amount));
     } catch (const vpProjectiveException &) {
-      // A noisy homography so far off that it is singular or has no logarithm gives no candidate; the joint's other
-      // trials, or the rigid motions of its markers in the metric frame (initialTwists()), still do. A trial where
-      // too few markers agree on one displacement stays out of the initial model: the model of the other trials
-      // decides which of its observations to keep.
+      // A noisy homography so far off that it is singular gives no candidate; the joint's other trials, or the rigid
+      // motions of its markers in the metric frame (initialTwists()), still do. A trial where too few markers agree on
+      // one displacement stays out of the initial model: the model of the other trials decides which of its
+      // observations to keep.
       if (data.outlierThreshold > 0.0) {
         data.inlier[k].assign(data.inlier[k].size(), false);
       }
+    }
+  }
+  return displacements;
+}
+
+void algebraicGenerators(const ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,
+                         const std::vector<Eigen::Matrix4d> &displacements, std::vector<Eigen::Matrix4d> &Hhat)
+{
+  const std::string where = "vpProjectiveArmAcquisition::calibrate()";
+  const size_t n = data.types.size();
+  // Candidate generators of each joint: the logarithm of each of its trials, and their projected mean.
+  std::vector<std::vector<Eigen::Matrix4d>> candidates(n);
+  std::vector<unsigned int> trialCount(n, 0);
+  for (size_t k = 0; k < data.trials.size(); ++k) {
+    const ArmTrial &trial = data.trials[k];
+    ++trialCount[trial.joint];
+    if (!displacements[k].allFinite()) {
+      continue; // no displacement: no candidate
+    }
+    try {
+      candidates[trial.joint].push_back(
+          vpProjectiveJoint::log(data.types[trial.joint], vpProjectiveDisplacement(displacements[k]), trial.amount));
+    } catch (const vpProjectiveException &) {
+      // A displacement without a logarithm of this joint's kind gives no candidate.
     }
   }
   // A single trial's homography occasionally lands far off (a small marker set gives a poorly conditioned 15-dof

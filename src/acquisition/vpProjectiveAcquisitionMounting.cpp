@@ -28,6 +28,7 @@
 #include <Eigen/Dense>
 
 #include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpProjectiveNotices.h>
 
 #include "core/vpImageWindow.h"
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
@@ -235,6 +236,11 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::tellMounting(vpRobot &rob
   if (report.kept != report.set) {
     os << "; the acquisition was set to " << mountingName(report.set) << ": the model uses "
        << mountingName(report.kept) << " (call setRigMounting(" << mountingName(report.kept) << ") to say so)";
+    vpProjectiveNotices::tell(NOTICE_MOUNTING_REPLACED,
+                              at("run") + ": the rig's mounting was set to " + mountingName(report.set) +
+                                  ", but a motion of two joints shows " + mountingName(report.kept) +
+                                  ": the model uses " + mountingName(report.kept) + "; call setRigMounting(" +
+                                  mountingName(report.kept) + ") to say so");
   }
   progress(os.str());
   return report.kept == model.getRigMounting() ? model : other;

@@ -147,7 +147,8 @@ private:
 } // namespace
 
 std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, double calibrationResidual,
-                                            double algebraicResidual, const std::vector<int> &markerIds)
+                                            double algebraicResidual, const std::vector<int> &markerIds,
+                                            const vpProjectiveModelCheck *check)
 {
   if (model.getNumberOfJoints() == 0) {
     fail(vpProjectiveException::notInitializedError, "vpProjectiveModelFile::save()",
@@ -193,6 +194,22 @@ std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, d
     }
     m["marker_ids"] = markerIds;
   }
+  if (check != nullptr && check->isChecked()) {
+    json joints = json::array();
+    bool identified = false;
+    for (const vpProjectiveModelCheck::vpJointTypeFit &j : check->getJoints()) {
+      auto finite = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
+      joints.push_back(json{{"turn", finite(j.turn)},
+                            {"residual_revolute", finite(j.residualRevolute)},
+                            {"residual_prismatic", finite(j.residualPrismatic)}});
+      identified = identified || !j.declared;
+    }
+    m["model_check"] =
+        json{{"joint_types", identified ? "identified" : "declared"},
+             {"image_noise", check->getNoise()},
+             {"residual_limit", std::isfinite(check->getLimit()) ? json(check->getLimit()) : json(nullptr)},
+             {"joints", joints}};
+  }
   json file;
   file["format"] = kFormat;
   file["version"] = version;
@@ -211,8 +228,15 @@ void vpProjectiveModelFile::save(const std::string &filename, const vpProjective
                                  double calibrationResidual, double algebraicResidual,
                                  const std::vector<int> &markerIds)
 {
+  save(filename, model, calibrationResidual, algebraicResidual, markerIds, nullptr);
+}
+
+void vpProjectiveModelFile::save(const std::string &filename, const vpProjectiveArmModel &model,
+                                 double calibrationResidual, double algebraicResidual,
+                                 const std::vector<int> &markerIds, const vpProjectiveModelCheck *check)
+{
   const std::string where = "vpProjectiveModelFile::save()";
-  const std::string text = toString(model, calibrationResidual, algebraicResidual, markerIds);
+  const std::string text = toString(model, calibrationResidual, algebraicResidual, markerIds, check);
   std::ofstream file(filename.c_str(), std::ios::binary);
   if (!file) {
     fail(vpProjectiveException::fileError, where, "cannot open '" + filename + "' for writing");

@@ -24,6 +24,7 @@
 
 #include <Eigen/Dense>
 
+#include "core/vpJointUnits.h"
 #include "core/vpProjectiveErrors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -273,6 +274,15 @@ void vpServoProjective::setJointLimits(const vpColVector &qmin, const vpColVecto
        << m_link.robot->getNumberOfJoints() << " joints";
     fail(vpProjectiveException::dimensionError, at("setJointLimits()"), os.str());
   }
+  // Radians and metres: a revolute joint's limit beyond 2 pi, or any beyond 10, is probably in degrees or millimetres.
+  std::vector<bool> revolute;
+  for (unsigned int i = 0; m_link.robot != nullptr && i < m_link.robot->getNumberOfJoints(); ++i) {
+    if (m_link.robot->isCalibrated() || m_link.robot->getAcquisition().hasDeclaredJointTypes()) {
+      revolute.push_back(m_link.robot->getJointType(i) == vpProjectiveRobot::REVOLUTE);
+    }
+  }
+  requireJointUnits(qmin, revolute, at("setJointLimits()"), "qmin");
+  requireJointUnits(qmax, revolute, at("setJointLimits()"), "qmax");
   m_jointLimits = limits;
 }
 
