@@ -18,9 +18,7 @@
   thread; the runs are kept short (a few seconds each: 4 deg or 1 cm steps, 3 times ViSP's default speeds). A stereo rig
   of paper cameras watches markers on the tool (eye-to-hand) or rides on the flange looking at static markers
   (eye-in-hand, the mounting left at its default EYE_TO_HAND: the procedure must tell it). The model must fit at the
-  noise level, the mounting be found, the robot end at the zero reference. And the trial of issue 30: the Afma6 ported
-  as a new user would, its 3 slides declared revolute (copied from a Viper850 program), with the procedure's defaults:
-  the calibration is refused with the slides named; from the joint count alone, the types are identified.
+  noise level, the mounting be found, the robot end at the zero reference.
 */
 
 #include <gtest/gtest.h>
@@ -35,7 +33,6 @@
 
 #include <visp3/core/vpGaussRand.h>
 #include <visp3/core/vpMath.h>
-#include <visp3/projective/vpProjectiveNotices.h>
 #include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpSimulatorArm.h>
@@ -155,17 +152,9 @@ template <class Robot, class Kinematics> struct Cell {
   }
 };
 
-//! The procedure's notices silenced while alive: the eye-in-hand runs make it replace the mounting on purpose.
-struct QuietNotices {
-  bool enabled;
-  QuietNotices() : enabled(vpProjectiveNotices::isEnabled()) { vpProjectiveNotices::setEnabled(false); }
-  ~QuietNotices() { vpProjectiveNotices::setEnabled(enabled); }
-};
-
 template <class Robot, class Kinematics> void acquire(Robot &robot, bool eyeInHand, const std::string &name)
 {
   QuietCout quiet;
-  QuietNotices silent;
   Cell<Robot, Kinematics> cell(robot, eyeInHand);
   std::vector<vpProjectiveRobot::vpJointType> types(6, vpProjectiveRobot::REVOLUTE);
   vpColVector steps(6, vpMath::rad(4.0)), amounts(6, vpMath::rad(12.0)), minimum(6, vpMath::rad(2.0));
@@ -250,57 +239,3 @@ TEST(ProjectiveAcquisitionViSPRobots, Afma6ConstantSamplingEyeToHand)
   acquire<vpSimulatorAfma6, vpAfma6>(robot, false, "Afma6, constant sampling time, eye-to-hand");
 }
 } // namespace
-
-namespace
-{
-//! The issue's port: the Afma6 (constant sampling time) eye-to-hand with the procedure's defaults and \e robot's types.
-std::string runAfma6WithDefaults(vpProjectiveRobot &model, double &residual)
-{
-  QuietCout quiet;
-  vpSimulatorAfma6 robot(false);
-  robot.setConstantSamplingTimeMode(true);
-  Cell<vpSimulatorAfma6, vpAfma6> cell(robot, false);
-  vpProjectiveAcquisitionProcedure procedure(cell.source(), cell.rig0.getWidth(), cell.rig0.getHeight());
-  procedure.setOutput(nullptr);
-  procedure.setSpeed(vpMath::rad(120.0), 0.3); // a short test
-  model.setStereoRig([&cell]() {
-    vpProjectiveStereoRig r;
-    r.setFundamentalMatrix(cell.rig0.getFundamentalMatrix());
-    return r;
-  }());
-  try {
-    procedure.run(robot, model);
-  } catch (const vpProjectiveException &e) {
-    residual = -1.0;
-    return std::to_string(e.getCode()) + ": " + e.getStringMessage();
-  }
-  residual = model.getCalibrationResidual();
-  return "";
-}
-} // namespace
-
-TEST(ProjectiveAcquisitionViSPRobots, Afma6DeclaredRevoluteIsRefusedWithTheSlidesNamed)
-{
-  vpProjectiveRobot model(std::vector<vpProjectiveRobot::vpJointType>(6, vpProjectiveRobot::REVOLUTE));
-  double residual = 0.0;
-  const std::string message = runAfma6WithDefaults(model, residual);
-  EXPECT_FALSE(model.isCalibrated());
-  EXPECT_EQ(message.find(std::to_string(vpProjectiveException::modelRejectedError) + ": "), 0u) << message;
-  EXPECT_NE(message.find("Probable causes, likeliest first: (1) joint types"), std::string::npos) << message;
-  for (unsigned int i = 0; i < 3; ++i) {
-    EXPECT_NE(message.find("joint " + std::to_string(i) + " (declared revolute) slides"), std::string::npos) << message;
-  }
-  EXPECT_NE(message.find("joint 0 PRISMATIC, joint 1 PRISMATIC, joint 2 PRISMATIC"), std::string::npos) << message;
-}
-
-TEST(ProjectiveAcquisitionViSPRobots, Afma6OfAJointCountIsIdentified)
-{
-  vpProjectiveRobot model(6u);
-  double residual = 0.0;
-  const std::string message = runAfma6WithDefaults(model, residual);
-  ASSERT_TRUE(model.isCalibrated()) << message;
-  for (unsigned int i = 0; i < 6; ++i) {
-    EXPECT_EQ(model.getJointType(i), i < 3 ? vpProjectiveRobot::PRISMATIC : vpProjectiveRobot::REVOLUTE) << i;
-  }
-  EXPECT_LT(residual, 2.0 * 0.2); // the cell's noise: 0.2 px
-}

@@ -141,14 +141,13 @@ ArmFit refitHypothesis(const ArmCheckInput &in, const ArmFit &from,
   return refitData(from, data);
 }
 
-ArmFit refitData(const ArmFit &from, const ArmCalibrationData &data, bool quick)
+ArmFit refitData(const ArmFit &from, const ArmCalibrationData &data)
 {
   ArmFit fit;
   fit.data = data;
-  fit.quick = quick;
   fit.algebraicResidual = from.algebraicResidual;
   attempt(fit, [&]() {
-    fit.model = refitArmModel(fit.data, from.model, fit.residual, quick);
+    fit.model = refitArmModel(fit.data, from.model, fit.residual);
     fit.data.rig = fit.model.getStereoRig();
   });
   return fit;
