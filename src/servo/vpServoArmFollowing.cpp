@@ -77,30 +77,29 @@ vpServoArmFollowing::vpJointFollowing jointFollowing(double d, double c, double 
 }
 
 //! Every joint's state against the time scale \e scale (seconds), judged over \e reach (jointFollowing()). Returns
-//! how well the joints agree with it: fewer judged joints that do not follow first, then more that follow.
-int classifyJoints(const vpServoArmFollowing::JointVector &d, const vpServoArmFollowing::JointVector &c,
-                   const vpServoArmFollowing::JointMatrix &G, double scale, double reach,
-                   vpServoArmFollowing::vpJointFollowing *states, double *ratios)
+//! the number of joints that follow.
+unsigned int classifyJoints(const vpServoArmFollowing::JointVector &d, const vpServoArmFollowing::JointVector &c,
+                            const vpServoArmFollowing::JointMatrix &G, double scale, double reach,
+                            vpServoArmFollowing::vpJointFollowing *states, double *ratios)
 {
-  int follows = 0, others = 0;
+  unsigned int follows = 0;
   for (Eigen::Index i = 0; i < d.size(); ++i) {
     states[i] = jointFollowing(d(i), c(i), scale, reach, std::sqrt(std::max(0.0, G(i, i))), ratios[i]);
     follows += states[i] == vpServoArmFollowing::JOINT_FOLLOWS ? 1 : 0;
-    others += states[i] != vpServoArmFollowing::JOINT_FOLLOWS && states[i] != vpServoArmFollowing::JOINT_NOT_JUDGED;
   }
-  return follows - static_cast<int>(vpProjectiveArmModel::maxJoints + 1) * others;
+  return follows;
 }
 
 /*!
   The joints' states for the command \e c as the arm received it (per second), against the others' time scale, the
   median of d_i / c_i over the joints judged (jointFollowing(): over \e reference, the measured motion only without
   one), written to \e duration (without such a joint, the least-squares scale of d on c in the metric G), and, when it
-  is below half of \e reference, against the reference: the comparison where the joints agree best. Returns that
-  agreement (classifyJoints()).
+  is below half of \e reference, against the reference: the comparison where more joints follow. Returns the number
+  of joints that follow.
 */
-int judgeJoints(const vpServoArmFollowing::JointVector &d, const vpServoArmFollowing::JointVector &c,
-                const vpServoArmFollowing::JointMatrix &G, double reference,
-                vpServoArmFollowing::vpJointFollowing *states, double *ratios, double &duration)
+unsigned int judgeJoints(const vpServoArmFollowing::JointVector &d, const vpServoArmFollowing::JointVector &c,
+                         const vpServoArmFollowing::JointMatrix &G, double reference,
+                         vpServoArmFollowing::vpJointFollowing *states, double *ratios, double &duration)
 {
   double timeScales[vpProjectiveArmModel::maxJoints];
   unsigned int commanded = 0;
@@ -119,18 +118,18 @@ int judgeJoints(const vpServoArmFollowing::JointVector &d, const vpServoArmFollo
     duration = cc > 0.0 ? d.dot(Gc) / cc : 0.0;
   }
   const double scale = duration > 0.0 ? duration : reference;
-  int agreement = classifyJoints(d, c, G, scale, reference, states, ratios);
+  unsigned int follows = classifyJoints(d, c, G, scale, reference, states, ratios);
   if (reference > 0.0 && scale != reference && duration < kSlower * reference) {
     vpServoArmFollowing::vpJointFollowing other[vpProjectiveArmModel::maxJoints];
     double otherRatios[vpProjectiveArmModel::maxJoints];
-    const int otherAgreement = classifyJoints(d, c, G, reference, reference, other, otherRatios);
-    if (otherAgreement > agreement) {
+    const unsigned int otherFollows = classifyJoints(d, c, G, reference, reference, other, otherRatios);
+    if (otherFollows > follows) {
       std::copy(other, other + d.size(), states);
       std::copy(otherRatios, otherRatios + d.size(), ratios);
-      agreement = otherAgreement;
+      follows = otherFollows;
     }
   }
-  return agreement;
+  return follows;
 }
 } // namespace
 
@@ -221,14 +220,13 @@ bool vpServoArmFollowing::evaluate(const JointVector &q, const JointMatrix &JtJ,
     }
   }
   // The command as the arm received it, c = alpha qdot_{k-1} + (1 - alpha) qdot_{k-2}: the least-squares mix, no
-  // latency or one call of it, whichever the joints agree with best (a joint held at a limit can bend the least-squares
-  // mix where it dominates the images' motion).
+  // latency or one call of it, whichever most joints follow (a joint held at a limit can bend the least-squares mix
+  // where it dominates the images' motion).
   v.joints = static_cast<unsigned int>(n);
   v.reference = getReferenceDuration();
   const double mixes[3] = {a + b > 0.0 ? a / (a + b) : 1.0, 1.0, 0.0};
   double commandNorm = 0.0;
-  int best = 0;
-  bool chosen = false;
+  int best = -1;
   for (int k = 0; k < (bb > 0.0 ? 3 : 2); ++k) {
     if (k > 0 && mixes[k] == mixes[0]) {
       continue;
@@ -237,10 +235,9 @@ bool vpServoArmFollowing::evaluate(const JointVector &q, const JointMatrix &JtJ,
     const double norm = std::sqrt(std::max(0.0, c.dot(G * c)));
     vpJointFollowing states[vpProjectiveArmModel::maxJoints];
     double jointRatios[vpProjectiveArmModel::maxJoints], duration = 0.0;
-    const int agreement = judgeJoints(d, c, G, v.reference, states, jointRatios, duration);
-    if (norm > 0.0 && (!chosen || agreement > best)) {
-      best = agreement;
-      chosen = true;
+    const int follows = static_cast<int>(judgeJoints(d, c, G, v.reference, states, jointRatios, duration));
+    if (norm > 0.0 && follows > best) {
+      best = follows;
       commandNorm = norm;
       v.duration = duration;
       std::copy(states, states + n, v.states);

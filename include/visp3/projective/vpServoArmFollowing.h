@@ -50,25 +50,21 @@ BEGIN_VISP_NAMESPACE
   features): \f$ \|x\|_G \f$ is the RMS image motion (pixels) of a joint motion \f$ x \f$, so that every threshold
   is in pixels whatever the joint units (radians, metres, millimetres). The command as the arm received it,
   \f$ c = \alpha \dot q_{k-1} + (1 - \alpha) \dot q_{k-2} \f$, is the one of three mixes (the least-squares one
-  \f$ \alpha = a / (a + b) \f$, no latency \f$ \alpha = 1 \f$, one call of latency \f$ \alpha = 0 \f$) that the
-  joints agree with best (fewest judged joints that do not follow, then most that do; a joint held at a limit can
-  bend the least-squares mix where it dominates the image motion), and the
+  \f$ \alpha = a / (a + b) \f$, no latency \f$ \alpha = 1 \f$, one call of latency \f$ \alpha = 0 \f$) that most
+  joints follow (a joint held at a limit can bend the least-squares mix where it dominates the image motion), and the
   time it acted
   \f[ \tau_k = \mathrm{median}_i \; d_{k,i} / c_i \f]
-  over the joints whose motion, measured or commanded over the reference, is measurable (\f$ s_i \max(|d_{k,i}|,
-  \tau_{ref} |c_i|) \ge \f$ 0.1 px, \f$ s_i = \sqrt{G_{ii}} \f$ the image motion of one unit of joint \e i): a median,
-  so that a joint that does not follow does not drag the others' scale (without such a joint, the least-squares \f$
-  \tau_k = d_k^T G c / c^T G c \f$: small joint motions that add up).
+  over the commanded joints (\f$ s_i |c_i| \tau_{ref} \ge \f$ 0.1 px, \f$ s_i = \sqrt{G_{ii}} \f$ the image motion
+  of one unit of joint \e i): a median, so that a joint that does not follow does not drag the others' scale
+  (without such a joint, the least-squares \f$ \tau_k = d_k^T G c / c^T G c \f$: small joint motions that add up).
 
-  <b>Shape</b> (which joints follow; needs no period): joint \e i is judged when its motion is measurable (as above;
-  without a reference, the measured motion alone: \f$ \tau_k \f$, which noise sets when the command hardly moves the
-  images, never makes a joint judged), and follows when \f$ 0.5 \le d_{k,i} / (\tau_k c_i) \le
+  <b>Shape</b> (which joints follow; needs no period): joint \e i is judged when \f$ s_i \max(\tau_k |c_i|,
+  |d_{k,i}|) \ge \f$ 0.1 px (its motion is measurable), and follows when \f$ 0.5 \le d_{k,i} / (\tau_k c_i) \le
   2 \f$. Otherwise it is still (ratio within \f$ \pm 0.1 \f$), slower (below 0.5), faster (above 2), reversed
-  (negative), or uncommanded (\f$ s_i \tau_k |c_i| < 0.05 \f$ px while \f$ s_i |d_{k,i}| \ge \f$ 0.1 px: it moves
-  without a command). When no joint moves
+  (negative), or uncommanded (\f$ s_i \tau_k |c_i| < 0.05 \f$ px: it moves without a command). When no joint moves
   along the command (\f$ \tau_k \le 0 \f$), the joints are compared with \f$ \tau_{ref} c \f$; when the median
-  joint moved less than half of it (\f$ \tau_k < 0.5\, \tau_{ref} \f$), with both, and the comparison where the
-  joints agree best is kept (two of three moving joints held at their limits make the median one of them).
+  joint moved less than half of it (\f$ \tau_k < 0.5\, \tau_{ref} \f$), with both, and the comparison where more
+  joints follow is kept (two of three moving joints held at their limits make the median one of them).
 
   <b>Scale</b> (whether the arm moves as far as commanded), against the reference duration \f$ \tau_{ref} \f$: the
   period of setControlPeriod() (vpServoProjective::setControlPeriod() sets it) or, when it was never given, one
