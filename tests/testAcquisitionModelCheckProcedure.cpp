@@ -42,11 +42,6 @@ using namespace vpProjectiveTest;
 
 namespace
 {
-bool contains(const std::string &text, const std::string &word)
-{
-  return text.find(word) != std::string::npos;
-}
-
 //! A setup's arm driven as a vpRobot from its zero reference, and the markers' images at its joints.
 struct Cell {
   ArmSetup s;
@@ -176,6 +171,8 @@ TEST(AcquisitionModelCheckProcedure, TellsOnStderrThatItReplacedTheMounting)
   Cell cell(pumaEyeInHand());
   vpProjectiveAcquisitionProcedure procedure(cell.source(), cell.s.width, cell.s.height);
   procedure.setOutput(nullptr);
+  procedure.setSteps(vpColVector(6, vpMath::rad(1.0))); // the cameras on the tool: the markers leave the view within
+  procedure.setMinAmounts(vpColVector(6, vpMath::rad(2.0))); // about 4 deg of the shoulder's motion
   vpProjectiveRobot robot(cell.s.jointTypes());
   robot.setStereoRig(cell.rig());
   const bool enabled = vpProjectiveNotices::isEnabled();
