@@ -27,6 +27,9 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveModelCheck.h>
 #include <visp3/projective/vpProjectiveRobot.h>
+#include <visp3/projective/vpProjectiveSession.h>
+#include <visp3/projective/vpProjectiveSessionCalibration.h>
+#include <visp3/projective/vpProjectiveSessionWriter.h>
 
 #include "vpModelCheckTestTools.h"
 
@@ -283,4 +286,31 @@ TEST(AcquisitionModelCheck, RobotOfJointCountTakesAnIdentifiedCalibration)
   EXPECT_EQ(robot.getJointType(2), vpProjectiveRobot::PRISMATIC);
   vpProjectiveRobot declared(std::vector<vpProjectiveRobot::vpJointType>(6, vpProjectiveRobot::REVOLUTE));
   EXPECT_THROW(declared.setCalibration(acquisition, model, 0.1), vpProjectiveException);
+}
+
+//! The session path (visp-projective calibrate): a gantry session recorded with 6 revolute joints is refused likewise.
+TEST(AcquisitionModelCheck, SessionCalibrationGoesThroughTheSameGate)
+{
+  const ArmSetup s = gantryEyeToHand();
+  TemporaryFolder tmp;
+  Recording rec;
+  {
+    vpProjectiveSessionWriter writer(tmp / "session",
+                                     std::vector<vpProjectiveJoint::vpJointType>(6, vpProjectiveJoint::REVOLUTE));
+    vpGaussRand noise(1.0, 0.0, 37);
+    ASSERT_TRUE(recordFrame(s, writer, rec, vpProjectiveSession::ZERO, s.qRef, 0.3, noise));
+    for (unsigned int i = 0; i < s.n(); ++i) {
+      for (int sign = -1; sign <= 1; sign += 2) {
+        vpColVector q = s.qRef;
+        q[i] += sign * s.trialAmounts[i];
+        ASSERT_TRUE(recordFrame(s, writer, rec, vpProjectiveSession::TRIAL, q, 0.3, noise));
+      }
+    }
+  }
+  vpProjectiveSessionCalibration calibration(recordedMarkers(std::make_shared<Recording>(rec)));
+  std::string message;
+  EXPECT_EQ(codeOf([&]() { calibration.calibrate(vpProjectiveSession::read(tmp / "session")); }, message),
+            vpProjectiveException::modelRejectedError);
+  EXPECT_TRUE(contains(message, "joint 1 (declared revolute) slides")) << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos); // one line for the command-line tool
 }

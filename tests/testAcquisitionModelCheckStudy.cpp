@@ -43,15 +43,17 @@ using namespace vpProjectiveTest;
 namespace
 {
 const double kNoise[] = {0.1, 0.3, 0.5, 1.0};
-const unsigned int kRightCases = 30; // per arm and noise: 120 per arm
-const unsigned int kTypeCases = 10;  // per arm and noise: 40 per arm, each way
+const unsigned int kRightCases = 25; // per arm and noise: 100 per arm
+const unsigned int kTypeCases = 6;   // per arm and noise: 24 per arm, each way, every joint once per noise level
 
 struct Tally {
   unsigned int cases = 0, passed = 0;
   double worstRatio = 0.0;                                         // residual / limit of the right models
   double smallestMargin = std::numeric_limits<double>::infinity(); // evidence of the identified types
-  unsigned int identified = 0, named = 0, wrongCases = 0;
-  double wrongResidual = 0.0, rightResidual = 0.0; // the wrong joint's trials: mean RMS with each type
+  unsigned int identified = 0;
+  // A wrong declared type, [0]: a slide declared revolute, [1]: a revolute joint declared prismatic.
+  unsigned int named[2] = {0, 0}, wrongCases[2] = {0, 0};
+  double wrongResidual[2] = {0.0, 0.0}, rightResidual[2] = {0.0, 0.0}; // the wrong joint's trials: RMS, summed
 };
 } // namespace
 
@@ -60,7 +62,8 @@ TEST(AcquisitionModelCheckStudy, GateAndJointTypesOnFourArms)
   unsigned int refusedRight = 0, rightTotal = 0;
   for (const ArmCase &arm : kCheckArms) {
     const ArmSetup s = arm.make();
-    for (double sigma : kNoise) {
+    for (unsigned int level = 0; level < 4; ++level) {
+      const double sigma = kNoise[level];
       Tally t;
       for (unsigned int c = 0; c < kRightCases; ++c) {
         const long seed = static_cast<long>(1000 + 97 * c);
@@ -94,10 +97,11 @@ TEST(AcquisitionModelCheckStudy, GateAndJointTypesOnFourArms)
         } catch (const vpProjectiveException &) {
         }
         // One joint declared of the other type.
-        const unsigned int wrong = c % s.n();
+        const unsigned int wrong = (c + level) % s.n();
+        const int kind = s.jointTypes()[wrong] == vpProjectiveRobot::PRISMATIC ? 0 : 1;
         vpProjectiveRobot declared(withOtherType(s, wrong));
         ASSERT_TRUE(acquireWithMistakes(s, declared, sigma, seed)) << arm.label;
-        ++t.wrongCases;
+        ++t.wrongCases[kind];
         try {
           declared.calibrate();
         } catch (const vpProjectiveException &) {
@@ -105,26 +109,32 @@ TEST(AcquisitionModelCheckStudy, GateAndJointTypesOnFourArms)
           const bool first = !check.getCauses().empty() &&
                              check.getCauses().front().cause == vpProjectiveModelCheck::CAUSE_JOINT_TYPE &&
                              check.getCauses().front().joint == static_cast<int>(wrong);
-          t.named += first ? 1 : 0;
+          t.named[kind] += first ? 1 : 0;
         }
         const vpProjectiveModelCheck::vpJointTypeFit &j = declared.getAcquisition().getModelCheck().getJoints()[wrong];
         const bool declaredRevolute = j.type == vpProjectiveJoint::REVOLUTE;
-        t.wrongResidual += (declaredRevolute ? j.residualRevolute : j.residualPrismatic) / kTypeCases;
-        t.rightResidual += (declaredRevolute ? j.residualPrismatic : j.residualRevolute) / kTypeCases;
+        t.wrongResidual[kind] += declaredRevolute ? j.residualRevolute : j.residualPrismatic;
+        t.rightResidual[kind] += declaredRevolute ? j.residualPrismatic : j.residualRevolute;
       }
       refusedRight += t.cases - t.passed;
       rightTotal += t.cases;
       testLog() << "[ measured ] " << arm.label << " at " << sigma << " px: right models passed " << t.passed << "/"
                 << t.cases << " (worst residual / limit " << t.worstRatio << "); types identified from the joint count "
-                << t.identified << "/" << kTypeCases << " (smallest margin " << t.smallestMargin
-                << " sigma^2); a wrong declared type named first " << t.named << "/" << t.wrongCases
-                << " (its trials: " << t.wrongResidual << " px as declared, " << t.rightResidual
-                << " px with the right type, mean)" << std::endl;
-      // Identification and naming: every arm at 0.5 px or less; at 1 px the 4-5 cm slides may pass as revolute.
-      if (sigma <= 0.5) {
-        EXPECT_GE(t.identified, kTypeCases - 1) << arm.label << " at " << sigma << " px";
-        EXPECT_GE(t.named, t.wrongCases - 1) << arm.label << " at " << sigma << " px";
+                << t.identified << "/" << kTypeCases << " (smallest margin " << t.smallestMargin << " sigma^2)";
+      const char *kinds[2] = {"a slide declared revolute", "a revolute joint declared prismatic"};
+      for (int kind = 0; kind < 2; ++kind) {
+        if (t.wrongCases[kind] > 0) {
+          testLog() << "; " << kinds[kind] << " named first " << t.named[kind] << "/" << t.wrongCases[kind]
+                    << " (its trials: " << t.wrongResidual[kind] / t.wrongCases[kind] << " px as declared, "
+                    << t.rightResidual[kind] / t.wrongCases[kind] << " px with the right type, mean)";
+        }
       }
+      testLog() << std::endl;
+      // Identification and naming at every level (measured: no miss; the 1 px margin of the R-R-P-R-R-R slide, 28
+      // sigma^2 at the smallest, is near the 16 sigma^2 of a contradiction: one miss per level is allowed).
+      EXPECT_GE(t.identified, kTypeCases - 1) << arm.label << " at " << sigma << " px";
+      EXPECT_GE(t.named[0] + t.named[1], t.wrongCases[0] + t.wrongCases[1] - 1)
+          << arm.label << " at " << sigma << " px";
     }
   }
   testLog() << "[ measured ] right models refused: " << refusedRight << " of " << rightTotal << std::endl;

@@ -124,12 +124,13 @@ MetricModel initialMetricModel(const ArmCalibrationData &data, const std::vector
   Bundle adjustment over \f$ G^{-1} \f$ (unit sphere of R^16), the twists (revolute axes on the unit sphere) and the
   marker points (unit sphere of R^4), on the pixel error of the zero reference and of the inlier trial observations,
   or, with \e robustLoss, of every trial observation under a Cauchy loss at the outlier threshold. Returns the model
-  (its markers of unit norm, its zero-reference joints \e qRef) and the RMS residual per pixel coordinate. Throws
+  (its markers of unit norm, its zero-reference joints \e qRef) and the RMS residual per pixel coordinate; \e quick
+  stops earlier (50 iterations, 1e-8 relative changes instead of 200 and 1e-12: to compare hypotheses). Throws
   (estimationFailedError) if Ceres gives no usable solution.
 */
 vpProjectiveArmModel bundleAdjust(const ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,
                                   const MetricModel &start, bool robustLoss,
-                                  const vpProjectiveArmModel::JointVector &qRef, double &residual);
+                                  const vpProjectiveArmModel::JointVector &qRef, double &residual, bool quick = false);
 
 //! The metric model (G, axes, points) of \e model: the start of another adjustment.
 MetricModel metricModelOf(const vpProjectiveArmModel &model);
@@ -151,9 +152,10 @@ vpProjectiveArmModel fitArmModel(ArmCalibrationData &data, const std::vector<Eig
   data.types, started from \e from: a joint whose type differs from the model's starts from the motion of the other
   type that moves the markers' centroid alike (a revolute axis at the distance that turns the reading into the
   prismatic joint's motion, perpendicular to it and to the line of sight; a prismatic direction along the revolute
-  motion of the centroid). Throws (estimationFailedError) if the adjustment fails.
+  motion of the centroid). \e quick: see bundleAdjust(). Throws (estimationFailedError) if the adjustment fails.
 */
-vpProjectiveArmModel refitArmModel(const ArmCalibrationData &data, const vpProjectiveArmModel &from, double &residual);
+vpProjectiveArmModel refitArmModel(const ArmCalibrationData &data, const vpProjectiveArmModel &from, double &residual,
+                                   bool quick);
 
 /*!
   Squared pixel error (summed over u, v, u', v') of each observation of \e data predicted by \e model: zero[j] at the

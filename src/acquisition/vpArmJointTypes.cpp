@@ -71,13 +71,13 @@ std::vector<JointMotion> jointMotions(const ArmCheckInput &in)
 }
 
 /*!
-  The trials turn the markers by their readings, as a revolute joint does, by more than the noise of the turn can
-  fake (at 1 px of image noise the displacements of a prismatic joint turn by up to 0.12 rad): no need to try the
-  other type.
+  The trials turn the markers by more than the noise of the turn can fake (at 1 px of image noise the displacements
+  of a prismatic joint turn by up to 0.12 rad): by their readings and 0.2 rad, or by 0.3 rad whatever the readings say
+  (readings in other units: a revolute joint all the same). No need to try the other type.
 */
 bool clearlyTurns(const JointMotion &m)
 {
-  return m.turn >= 0.2 && std::abs(m.turn - m.angle) <= 0.25 * m.angle + 0.05;
+  return m.turn >= 0.3 || (m.turn >= 0.2 && std::abs(m.turn - m.angle) <= 0.25 * m.angle + 0.05);
 }
 
 //! The first guess of an unknown type: the turn nearer the reading's angle than zero.
@@ -155,44 +155,58 @@ void settleJointTypes(const ArmCheckInput &in, ArmCheck &check)
     const bool worse = r > 0.05 && (r > 1.25 * check.noise || r > 1.25 * base.otherJointsResidual(i));
     test[i] = in.identify || refused || looksOther || worse;
   }
+  // Rounds: each doubtful joint fitted with the other type against the current types; the joints whose other type fits
+  // better (unknown types), or decisively better (declared ones: by 16 sigma^2 and 10 %), change together; again
+  // against the new types, until no joint changes (several wrong types spoil each other's single changes).
   std::vector<ArmFit> other(n);
-  for (unsigned int i = 0; i < n; ++i) {
-    if (test[i]) {
-      other[i] = refitHypothesis(in, base, flipped(base.data.types, {i}));
+  std::vector<unsigned int> changed;
+  ArmFit current = base;
+  for (size_t round = 0; round < n; ++round) {
+    std::vector<unsigned int> improving;
+    const ArmFit *bestSingle = &current;
+    for (unsigned int i = 0; i < n; ++i) {
+      if (!test[i]) {
+        continue;
+      }
+      other[i] = refitHypothesis(in, current, flipped(current.data.types, {i}));
+      const bool changes = in.identify ? other[i].squaredError < current.squaredError
+                                       : current.squaredError - other[i].squaredError > 16.0 * sigma * sigma &&
+                                             other[i].squaredError < 0.9 * current.squaredError;
+      if (changes) {
+        improving.push_back(i);
+        bestSingle = &better(*bestSingle, other[i]);
+      }
+    }
+    if (improving.empty()) {
+      break;
+    }
+    current = better(*bestSingle, combined(in, current, *bestSingle, improving));
+    for (unsigned int i : improving) {
+      const std::vector<unsigned int>::iterator it = std::find(changed.begin(), changed.end(), i);
+      if (it == changed.end()) {
+        changed.push_back(i);
+      } else {
+        changed.erase(it); // changed back
+      }
+    }
+    for (unsigned int i = 0; i < n; ++i) {
+      other[i] = ArmFit(); // of the previous types
     }
   }
-  ArmFit kept = base;
-  if (in.identify) {
-    // Each joint takes the type that fits better; several changes are fitted together.
-    std::vector<unsigned int> changed;
-    const ArmFit *bestSingle = &base;
-    for (unsigned int i = 0; i < n; ++i) {
-      if (test[i] && other[i].squaredError < base.squaredError) {
-        changed.push_back(i);
-        bestSingle = &better(*bestSingle, other[i]);
-      }
+  // The other type of each doubtful joint against the types kept, for the report.
+  for (unsigned int i = 0; i < n; ++i) {
+    if (test[i] && !other[i].ok && current.ok) {
+      other[i] = refitHypothesis(in, current, flipped(current.data.types, {i}));
     }
-    if (!changed.empty()) {
-      kept = better(*bestSingle, combined(in, base, *bestSingle, changed));
-      for (unsigned int i = 0; i < n; ++i) {
-        if (test[i]) { // the other type of each doubtful joint, against the types kept
-          other[i] = refitHypothesis(in, kept, flipped(kept.data.types, {i}));
-        }
-      }
-    }
-  } else {
-    // A declared type is contradicted when the other type fits decisively better.
-    const ArmFit *bestSingle = &base;
-    for (unsigned int i = 0; i < n; ++i) {
-      if (test[i] && base.squaredError - other[i].squaredError > 16.0 * sigma * sigma &&
-          other[i].squaredError < 0.9 * base.squaredError) {
-        check.contradicted.push_back(i);
-        bestSingle = &better(*bestSingle, other[i]);
-      }
-    }
-    if (!check.contradicted.empty()) {
-      check.typesFixed = combined(in, base, *bestSingle, check.contradicted);
-    }
+  }
+  std::sort(changed.begin(), changed.end());
+  if (in.identify && current.quick) {
+    current = refitData(current, current.data, false); // the model kept: a full adjustment
+  }
+  ArmFit kept = in.identify ? current : base;
+  if (!in.identify && !changed.empty()) {
+    check.contradicted = changed;
+    check.typesFixed = current;
   }
   check.fit = kept;
   check.joints.resize(n);
@@ -204,10 +218,13 @@ void settleJointTypes(const ArmCheckInput &in, ArmCheck &check)
     joint.turn = motion[i].turn;
     joint.reading = motion[i].reading;
     joint.residual = kept.ok ? kept.jointResidual(i) : kNaN;
-    const double otherResidual = other[i].ok ? other[i].jointResidual(i) : kNaN;
+    // The other type: the types fixed for a contradicted joint, else the refit with this joint changed.
+    const ArmFit &otherFit = joint.contradicted ? check.typesFixed : other[i];
+    const double otherResidual = otherFit.ok ? otherFit.jointResidual(i) : kNaN;
     joint.residualRevolute = joint.type == vpProjectiveJoint::REVOLUTE ? joint.residual : otherResidual;
     joint.residualPrismatic = joint.type == vpProjectiveJoint::PRISMATIC ? joint.residual : otherResidual;
-    joint.evidence = test[i] && kept.ok ? (other[i].squaredError - kept.squaredError) / (sigma * sigma) : kNaN;
+    joint.evidence =
+        test[i] && (kept.ok || otherFit.ok) ? (otherFit.squaredError - kept.squaredError) / (sigma * sigma) : kNaN;
   }
 }
 } // namespace vpProjectiveInternal

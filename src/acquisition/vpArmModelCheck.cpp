@@ -141,13 +141,14 @@ ArmFit refitHypothesis(const ArmCheckInput &in, const ArmFit &from,
   return refitData(from, data);
 }
 
-ArmFit refitData(const ArmFit &from, const ArmCalibrationData &data)
+ArmFit refitData(const ArmFit &from, const ArmCalibrationData &data, bool quick)
 {
   ArmFit fit;
   fit.data = data;
+  fit.quick = quick;
   fit.algebraicResidual = from.algebraicResidual;
   attempt(fit, [&]() {
-    fit.model = refitArmModel(fit.data, from.model, fit.residual);
+    fit.model = refitArmModel(fit.data, from.model, fit.residual, quick);
     fit.data.rig = fit.model.getStereoRig();
   });
   return fit;

@@ -43,6 +43,7 @@ struct ArmFit {
   ObservationErrors errors;  // of every observation
   double squaredError = 0.0; // S: the sum of the squared errors (px^2), infinite if not ok
   size_t coordinates = 0;    // the number of coordinates (4 per observation)
+  bool quick = false;        // from a quick adjustment (see bundleAdjust())
 
   //! RMS (px per coordinate) of joint \e i's trial observations (NaN if none).
   double jointResidual(unsigned int i) const;
@@ -81,8 +82,9 @@ ArmFit fitHypothesis(const ArmCheckInput &in, const ArmCalibrationData &data);
 //! The fit of the types \e types started from \e from (refitArmModel()), or from scratch if \e from is not ok.
 ArmFit refitHypothesis(const ArmCheckInput &in, const ArmFit &from,
                        const std::vector<vpProjectiveJoint::vpJointType> &types);
-//! The fit of \e data (the data of \e from changed: types, trials) started from \e from, which must be ok.
-ArmFit refitData(const ArmFit &from, const ArmCalibrationData &data);
+//! The fit of \e data (the data of \e from changed: types, trials) started from \e from, which must be ok; a quick
+//! adjustment (bundleAdjust()) unless \e quick is false.
+ArmFit refitData(const ArmFit &from, const ArmCalibrationData &data, bool quick = true);
 
 /*!
   The image noise (px per coordinate) of the acquisition's images against the rig's epipolar geometry: each

@@ -98,7 +98,8 @@ vpProjectiveArmModel fitArmModel(ArmCalibrationData &data, const std::vector<Eig
   return model;
 }
 
-vpProjectiveArmModel refitArmModel(const ArmCalibrationData &data, const vpProjectiveArmModel &from, double &residual)
+vpProjectiveArmModel refitArmModel(const ArmCalibrationData &data, const vpProjectiveArmModel &from, double &residual,
+                                   bool quick)
 {
   MetricModel start = metricModelOf(from);
   // The markers' centroid and the left camera's centre in the metric frame of G, where points are finite (w != 0).
@@ -134,7 +135,7 @@ vpProjectiveArmModel refitArmModel(const ArmCalibrationData &data, const vpProje
   }
   ArmCalibrationData refit = data;
   refit.rig = from.getStereoRig();
-  return bundleAdjust(refit, from.markers(), start, false, from.zeroReferenceJoints(), residual);
+  return bundleAdjust(refit, from.markers(), start, false, from.zeroReferenceJoints(), residual, quick);
 }
 
 ObservationErrors observationErrors(const vpProjectiveArmModel &model, const ArmCalibrationData &data)

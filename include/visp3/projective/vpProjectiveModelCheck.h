@@ -60,7 +60,8 @@ class vpProjectiveArmAcquisition;
   compares the squared errors \f$ S \f$ of all the observations: vpJointTypeFit::evidence \f$ = (S_{other} - S_{model})
   / \sigma^2 \f$. A joint is refitted when its type is in doubt: its turn does not match its reading as a revolute
   joint, its trials' residual exceeds 1.25 times the noise or the other joints' residual, or the model is refused;
-  joints that clearly turn by their reading are not. A declared type is contradicted when the other type lowers
+  joints whose trials clearly turn (by their reading and over 0.2 rad, or
+  by over 0.3 rad whatever the reading) are not. A declared type is contradicted when the other type lowers
   \f$ S \f$ by more than \f$ 16 \sigma^2 \f$ and at least 10 %: the model is then refused and the joint named. With
   unknown types (vpProjectiveArmAcquisition(unsigned int)), each joint takes the type with the lower \f$ S \f$.
 
