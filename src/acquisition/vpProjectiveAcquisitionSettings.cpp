@@ -78,8 +78,9 @@ vpProjectiveAcquisitionProcedure::vpProjectiveAcquisitionProcedure(const vpImage
       m_width(width), m_height(height), m_maxAmounts(), m_steps(), m_minAmounts(), m_qmin(), m_qmax(),
       m_limitMargin(0.0), m_imageMargin(10.0), m_rotationSpeed(0.0), m_translationSpeed(0.0), m_epipolarThreshold(2.0),
       m_control(VELOCITY_CONTROL), m_moveTimeout(0.0), m_minTolerance(1e-5), m_tolerance(1e-5), m_coplanarity(2.0),
-      m_detectMounting(true), m_os(&std::cout), m_callback(), m_motion(), m_reports(), m_mountingReport(), m_residual(0.0),
-      m_parallax(-1.0), m_commandPeriod(0.0), m_wallPeriod(0.0), m_types(), m_lower(), m_upper(), m_encoderNoise()
+      m_detectMounting(true), m_os(&std::cout), m_callback(), m_motion(), m_reports(), m_mountingReport(),
+      m_residual(0.0), m_parallax(-1.0), m_commandPeriod(0.0), m_wallPeriod(0.0), m_types(), m_lower(), m_upper(),
+      m_encoderNoise()
 {
   if (!m_source) {
     throw vpProjectiveException(vpProjectiveException::invalidValueError,
