@@ -47,22 +47,13 @@ vpProjectiveArmAcquisition::vpProjectiveArmAcquisition(const vpProjectiveArmMode
 void vpProjectiveArmAcquisition::addCalibrationFrame(const vpColVector &q, const std::vector<vpImagePoint> &left,
                                                      const std::vector<vpImagePoint> &right)
 {
-  const std::string where = at("addCalibrationFrame()");
-  if (m_ids.empty()) {
-    fail(vpProjectiveException::notInitializedError, where,
-         "call setZeroReference() before adding calibration frames: their markers are the zero reference's");
-  }
-  vpFrame frame;
-  frame.q = toEigenVector<vpProjectiveArmModel::JointVector>(q, m_types.size(), where, "the joint readings");
-  frame.s = stackStereoImages(left, right, where);
-  if (frame.s.size() != m_ids.size()) {
+  if (!m_ids.empty() && left.size() == right.size() && left.size() != m_ids.size()) {
     std::ostringstream os;
-    os << "the frame shows " << frame.s.size() << " markers but the zero reference " << m_ids.size()
+    os << "the frame shows " << left.size() << " markers but the zero reference " << m_ids.size()
        << "; pass the same markers in the same order";
-    fail(vpProjectiveException::dimensionError, where, os.str());
+    fail(vpProjectiveException::dimensionError, at("addCalibrationFrame()"), os.str());
   }
-  frame.seen.assign(frame.s.size(), true);
-  m_frames.push_back(std::move(frame));
+  addCalibrationFrame(q, m_ids, left, right); // every marker, in the zero reference's order
 }
 
 void vpProjectiveArmAcquisition::addCalibrationFrame(const vpColVector &q, const std::vector<int> &ids,

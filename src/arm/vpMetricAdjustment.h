@@ -21,6 +21,7 @@
 #ifndef _vpMetricAdjustment_h_
 #define _vpMetricAdjustment_h_
 
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -30,6 +31,15 @@
 
 namespace vpProjectiveInternal
 {
+/*
+  The self-calibration's products of dynamic matrices (covariances, Jacobians) are lazyProduct()s: Eigen's blocked
+  product would spread these small ones over OpenMP threads (the library is built with OpenMP), which cost more than
+  they save and belong to the caller's loop.
+*/
+
+//! An undetermined deviation.
+const double kInfinity = std::numeric_limits<double>::infinity();
+
 /*!
   The metric cameras and arm, in the left camera's frame at the zero reference (lengths in the prismatic joints'
   unit, or with a unit baseline when the arm has none). The markers seen at joint readings q are at

@@ -21,7 +21,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <limits>
 #include <sstream>
 
 #include <Eigen/Dense>
@@ -40,9 +39,6 @@ using namespace vpProjectiveInternal;
 namespace
 {
 const vpErrorSite at("vpProjectiveSelfCalibration");
-const double kInfinity = std::numeric_limits<double>::infinity();
-// The products below are lazyProduct()s: Eigen's blocked product would spread these small ones over OpenMP threads
-// (the library is built with OpenMP), which cost more than they save and belong to the caller's loop.
 Eigen::Matrix3d intrinsicMatrix(const Eigen::Matrix<double, 5, 1> &k)
 {
   Eigen::Matrix3d K;

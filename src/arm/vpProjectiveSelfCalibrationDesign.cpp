@@ -20,7 +20,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
-#include <limits>
 
 #include <Eigen/Dense>
 
@@ -38,9 +37,6 @@ using namespace vpProjectiveInternal;
 namespace
 {
 const vpErrorSite at("vpProjectiveSelfCalibration");
-const double kInfinity = std::numeric_limits<double>::infinity();
-// The products below are lazyProduct()s: Eigen's blocked product would spread these small ones over OpenMP threads
-// (the library is built with OpenMP), which cost more than they save and belong to the caller's loop.
 
 /*!
   The dimensionless deviations of the rig (see getLargestUncertainty()) from the covariance \e S of the layout and
