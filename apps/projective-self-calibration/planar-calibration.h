@@ -27,6 +27,10 @@
 
 #include "calibration-world.h"
 
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
 namespace selfcal
 {
 /*!

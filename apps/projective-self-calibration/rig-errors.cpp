@@ -23,6 +23,10 @@
 
 #include <Eigen/Geometry>
 
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
 namespace selfcal
 {
 RigErrors compare(const Eigen::Matrix3d &Kl, const Eigen::Matrix3d &Kr, const Eigen::Matrix4d &lMr,

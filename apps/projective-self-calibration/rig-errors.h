@@ -26,6 +26,10 @@
 
 #include "calibration-world.h"
 
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
 namespace selfcal
 {
 //! The parameters a calibration is judged on (columns of the study's table).

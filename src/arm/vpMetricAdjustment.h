@@ -29,6 +29,10 @@
 
 #include <visp3/projective/vpProjectiveArmModel.h>
 
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
 namespace vpProjectiveInternal
 {
 /*
