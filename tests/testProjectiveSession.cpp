@@ -408,6 +408,9 @@ TEST(ProjectiveSession, AMissingCameraDeviceGivesAClearError)
   EXPECT_EQ(Il[0][0], 10);
   EXPECT_EQ(Ir[0][0], 20);
   EXPECT_EQ(left.acquisitions, 1u);
+  double tLeft = -1.0, tRight = -1.0; // grabbers other than V4L2 give no stamps: the cell then waits and discards
+  EXPECT_FALSE(pair.getTimestamps(tLeft, tRight));
+  EXPECT_EQ(tLeft, -1.0);
   FixedGrabber unopened(0, 0, 0);
   EXPECT_THROW(vpStereoGrabberSource(left, unopened), vpProjectiveException);
 }

@@ -28,6 +28,7 @@
 #include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
 #include <visp3/projective/vpProjectiveRobot.h>
+#include <visp3/projective/vpProjectiveSelfCalibration.h>
 
 #include "vpProjectiveSessionTestTools.h"
 
@@ -130,6 +131,39 @@ TEST(ProjectiveSessionCalibration, Viper850SessionPredictsRandomConfigurationsWi
 TEST(ProjectiveSessionCalibration, PrismaticArmSessionPredictsRandomConfigurationsWithinAThirdOfAPixel)
 {
   expectCalibrated(rrprrrEyeToHand());
+}
+
+/*
+  The observation and servo frames join the metric self-calibration: the model file holds every frame (1 zero, 12
+  trials, 2 observations, 5 servo frames but one that shows no marker, which is left out with a progress line), the
+  robot that loads it takes them as calibration frames, and its self-calibration is over all of them.
+*/
+TEST(ProjectiveSessionCalibration, ServoFramesJoinTheSelfCalibration)
+{
+  TemporaryFolder tmp;
+  const ArmSetup s = viperEyeToHand();
+  auto rec = std::make_shared<Recording>();
+  ASSERT_TRUE(recordCalibrationSession(s, tmp / "session", *rec, kSigma, 3, 2, 5));
+  rec->keep.back() = 0; // the last servo frame's tags were lost
+  vpProjectiveSessionCalibration calibration(recordedMarkers(rec));
+  std::ostringstream os;
+  calibration.setOutput(&os);
+  calibration.calibrate(vpProjectiveSession::read(tmp / "session"));
+  calibration.saveModel(tmp / "model.json");
+  EXPECT_NE(os.str().find("left out of the metric self-calibration"), std::string::npos) << os.str();
+  EXPECT_NE(os.str().find("metric self-calibration: 19 frames (6 observation, target and servo frames)"),
+            std::string::npos)
+      << os.str();
+  std::vector<vpProjectiveArmAcquisition::vpFrame> frames;
+  const vpProjectiveArmModel model =
+      vpProjectiveModelFile::load(tmp / "model.json", nullptr, nullptr, nullptr, &frames);
+  ASSERT_EQ(frames.size(), 19u);
+  vpProjectiveRobot robot;
+  robot.loadModel(tmp / "model.json");
+  EXPECT_EQ(robot.getAcquisition().getNumberOfCalibrationFrames(), 19u);
+  const vpProjectiveSelfCalibration selfCalibration(model, frames);
+  EXPECT_EQ(selfCalibration.getNumberOfFrames(), 19u);
+  EXPECT_NEAR(selfCalibration.getNoiseLevel(), kSigma, 0.2 * kSigma);
 }
 
 TEST(ProjectiveSessionCalibration, CheckPassesTheUnmovedRigAndNamesTheBumpedCamera)

@@ -230,9 +230,8 @@ TEST_F(ProjectiveTool, RecordCalibrateCheckAndReportTheRenderedCell)
   unsigned int drawn[2][2] = {{0, 0}, {0, 0}}; // [session][side]: pixels that are not the white background
   for (int withSession = 0; withSession < 2; ++withSession) {
     const std::string folder = tmp / (withSession ? "plots-session" : "plots");
-    const ToolRun report =
-        runTool(tmp, "report '" + (tmp / "model.json") + "' --plots '" + folder + "'" +
-                         (withSession ? " --session '" + (tmp / "cell") + "'" : std::string()));
+    const ToolRun report = runTool(tmp, "report '" + (tmp / "model.json") + "' --plots '" + folder + "'" +
+                                            (withSession ? " --session '" + (tmp / "cell") + "'" : std::string()));
     ASSERT_EQ(report.status, 0) << report.err;
     for (int side = 0; side < 2; ++side) {
       vpImage<vpRGBa> I;

@@ -142,11 +142,11 @@ inline bool recordFrame(const ArmSetup &s, vpProjectiveSessionWriter &writer, Re
 
 /*!
   The acquisition session of \e s in \e folder: the zero frame at its zero reference, each joint's trial both ways
-  (13 frames for 6 joints), then \e observations frames at random configurations in view. False if a frame is out
-  of view.
+  (13 frames for 6 joints), then \e observations frames and \e servo servo frames at random configurations in view.
+  False if a frame is out of view.
 */
 inline bool recordCalibrationSession(const ArmSetup &s, const std::string &folder, Recording &rec, double sigma,
-                                     long seed, unsigned int observations = 2)
+                                     long seed, unsigned int observations = 2, unsigned int servo = 0)
 {
   vpProjectiveSessionWriter writer(folder, s.jointTypes());
   vpGaussRand noise(1.0, 0.0, seed);
@@ -163,10 +163,11 @@ inline bool recordCalibrationSession(const ArmSetup &s, const std::string &folde
     }
   }
   vpUniRand rng(static_cast<long>(seed + 17));
-  for (unsigned int k = 0; k < observations; ++k) {
+  for (unsigned int k = 0; k < observations + servo; ++k) {
     const vpColVector q = s.randomVisibleJoints(rng, s.trialAmounts);
-    if (q.getRows() != s.n() ||
-        !recordFrame(s, writer, rec, vpProjectiveSession::OBSERVATION, s.armJoints(q), sigma, noise)) {
+    const vpProjectiveSession::vpFrameRole role =
+        k < observations ? vpProjectiveSession::OBSERVATION : vpProjectiveSession::SERVO;
+    if (q.getRows() != s.n() || !recordFrame(s, writer, rec, role, s.armJoints(q), sigma, noise)) {
       return false;
     }
   }

@@ -35,7 +35,6 @@
 
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpMath.h>
-#include <visp3/core/vpThetaUVector.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
 #include <visp3/projective/vpProjectiveSelfCalibration.h>
 #include <visp3/projective/vpProjectiveSession.h>
@@ -143,9 +142,11 @@ const char *const kCheckUsage =
 
 const char *const kReportUsage =
     "Usage: visp-projective report MODEL.json [--plots DIR [--session SESSION] [--range DEG] [--travel M]]\n"
-    "Prints what the model says about the cell: the joints (kind, axis in the left camera's frame), the residuals\n"
-    "of its calibration, its markers, and the metric self-calibration of the rig (intrinsics K of both cameras, the\n"
-    "right camera's pose R, t in the left one; t in the prismatic joints' unit, or a unit baseline without one).\n"
+    "Prints what the model says about the cell: the joints, the residuals of its calibration, its markers, and the\n"
+    "metric self-calibration over the frames the model file holds (the acquisition's, and the observation, target\n"
+    "and servo frames of its session): intrinsics K of both cameras, the right camera's pose R, t in the left one (t\n"
+    "in the prismatic joints' unit, or a unit baseline without one), the joints' axes in the left camera's frame,\n"
+    "each with its standard deviation, and the largest uncertainty.\n"
     "\n"
     "Options:\n"
     "  --plots DIR                    write DIR/joint-paths-left.png and -right.png (gnuplot): the marker paths the\n"
@@ -287,13 +288,6 @@ int check(int argc, char **argv)
   return calibration.getRigState() == vpProjectiveSessionCalibration::RIG_UNCHANGED ? EXIT_SUCCESS : kMismatch;
 }
 
-std::string vectorText(const Eigen::Vector3d &v, int precision)
-{
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(precision) << "(" << v(0) << ", " << v(1) << ", " << v(2) << ")";
-  return os.str();
-}
-
 int record(int argc, char **argv)
 {
   vispProjective::Arguments args("visp-projective record", {"SESSION"},
@@ -362,7 +356,9 @@ int report(int argc, char **argv)
   }
   std::vector<int> ids;
   double residual = 0.0, algebraic = 0.0;
-  const vpProjectiveArmModel model = loadModel(args.positional(0), ids, residual, algebraic);
+  std::vector<vpProjectiveArmAcquisition::vpFrame> frames;
+  const vpProjectiveArmModel model =
+      vpProjectiveModelFile::load(args.positional(0), &residual, &algebraic, &ids, &frames);
   if (args.has("--plots")) {
     std::unique_ptr<vpProjectiveSession> session;
     if (args.has("--session")) {
@@ -386,58 +382,20 @@ int report(int argc, char **argv)
             << std::endl;
   std::cout << std::setprecision(3) << "residuals: bundle adjustment " << residual << " px RMS, algebraic generators "
             << algebraic << " px RMS" << std::endl;
-  bool metric = true;
-  std::vector<Eigen::Vector3d> direction, point;
-  Eigen::Matrix3d Kl, Kr;
-  Eigen::Matrix4d lMr;
-  std::string why;
-  try {
-    vpProjectiveSelfCalibration::metricStereoRig(model, Kl, Kr, lMr);
-    vpProjectiveSelfCalibration::jointAxes(model, direction, point);
-  } catch (const vpException &e) {
-    metric = false;
-    why = oneLine(e.getStringMessage());
-  }
-  bool prismatic = false;
   for (unsigned int i = 0; i < model.getNumberOfJoints(); ++i) {
     const bool revolute = model.jointType(i) == vpProjectiveJoint::REVOLUTE;
-    prismatic = prismatic || !revolute;
     std::cout << "joint " << i << " (" << vpProjectiveJoint::name(model.jointType(i)) << "), zero reference at "
               << std::setprecision(6)
               << (revolute ? vpMath::deg(model.zeroReferenceJoints()(i)) : model.zeroReferenceJoints()(i))
-              << (revolute ? " deg" : " m");
-    if (metric) {
-      std::cout << ": direction " << vectorText(direction[i], 4);
-      if (revolute) {
-        std::cout << " through " << vectorText(point[i], 4);
-      }
-    }
-    std::cout << std::endl;
+              << (revolute ? " deg" : " m") << std::endl;
   }
-  if (!metric) {
-    std::cout << "metric self-calibration: not available (" << why << ")" << std::endl;
-    return EXIT_SUCCESS;
+  try {
+    // The metric bundle adjustment over the frames the model file holds (none in a file of an older version: the
+    // read-out of the model's upgrade, without uncertainty).
+    vpProjectiveSelfCalibration(model, frames).print(std::cout);
+  } catch (const vpException &e) {
+    std::cout << "metric self-calibration: not available (" << oneLine(e.getStringMessage()) << ")" << std::endl;
   }
-  const char *unit = prismatic ? "prismatic joints' unit" : "unit baseline: no prismatic joint fixes the scale";
-  std::cout << "metric self-calibration (axes and t in the left camera's frame, lengths in the " << unit
-            << "):" << std::endl;
-  for (int c = 0; c < 2; ++c) {
-    const Eigen::Matrix3d &K = c == 0 ? Kl : Kr;
-    std::cout << std::fixed << std::setprecision(2) << (c == 0 ? "  left K:  " : "  right K: ") << "fx " << K(0, 0)
-              << ", fy " << K(1, 1) << ", skew " << K(0, 1) << ", u0 " << K(0, 2) << ", v0 " << K(1, 2) << std::endl;
-  }
-  vpRotationMatrix R;
-  for (unsigned int i = 0; i < 3; ++i) {
-    for (unsigned int j = 0; j < 3; ++j) {
-      R[i][j] = lMr(i, j);
-    }
-  }
-  const vpThetaUVector tu(R);
-  std::cout << std::fixed << std::setprecision(3) << "  right camera in the left one: R (theta-u, deg) ("
-            << vpMath::deg(tu[0]) << ", " << vpMath::deg(tu[1]) << ", " << vpMath::deg(tu[2]) << "), t "
-            << vectorText(lMr.block<3, 1>(0, 3), 4) << ", baseline " << std::setprecision(4)
-            << lMr.block<3, 1>(0, 3).norm() << std::endl;
-  std::cout.unsetf(std::ios::floatfield);
   return EXIT_SUCCESS;
 }
 } // namespace

@@ -32,7 +32,7 @@ const vpErrorSite at("vpProjectiveArmAcquisition");
 
 vpProjectiveArmAcquisition::vpProjectiveArmAcquisition()
     : m_types(), m_mounting(vpProjectiveArmModel::EYE_TO_HAND), m_rig(), m_zeroImages(), m_qRef(), m_trials(), m_ids(),
-      m_outlierThreshold(0.0), m_inlier(), m_residual(0.0), m_algebraicResidual(0.0)
+      m_frames(), m_outlierThreshold(0.0), m_inlier(), m_residual(0.0), m_algebraicResidual(0.0)
 {
 }
 
@@ -64,6 +64,8 @@ void vpProjectiveArmAcquisition::setStereoRig(const vpProjectiveStereoRig &rig)
   m_zeroImages.clear();
   m_ids.clear();
   m_trials.clear();
+  m_inlier.clear(); // the last calibrate()'s flags were of those trials
+  m_frames.clear();
 }
 
 void vpProjectiveArmAcquisition::setZeroReference(const std::vector<vpImagePoint> &left0,
@@ -96,6 +98,8 @@ void vpProjectiveArmAcquisition::setZeroReference(const vpColVector &qRef, const
   }
   m_qRef = q;
   m_trials.clear();
+  m_inlier.clear(); // the last calibrate()'s flags were of those trials
+  m_frames.clear();
 }
 
 namespace
@@ -149,29 +153,22 @@ void vpProjectiveArmAcquisition::setZeroReference(const vpColVector &qRef, const
 std::vector<Eigen::Vector4d> vpProjectiveArmAcquisition::matchByIds(const std::vector<int> &ids,
                                                                     const std::vector<vpImagePoint> &left,
                                                                     const std::vector<vpImagePoint> &right,
-                                                                    const std::string &where,
-                                                                    std::vector<bool> &seen) const
+                                                                    const std::string &where, std::vector<bool> &seen,
+                                                                    unsigned int &shown) const
 {
   const std::vector<Eigen::Vector4d> t = stackStereoImages(left, right, where);
   ascendingIds(ids, t.size(), where); // the checks
   std::vector<Eigen::Vector4d> s(m_ids.size(), Eigen::Vector4d::Constant(std::numeric_limits<double>::quiet_NaN()));
   seen.assign(m_ids.size(), false);
-  unsigned int common = 0;
+  shown = 0;
   for (size_t k = 0; k < ids.size(); ++k) {
     const std::vector<int>::const_iterator it = std::lower_bound(m_ids.begin(), m_ids.end(), ids[k]);
     if (it != m_ids.end() && *it == ids[k]) { // others: not a zero-reference marker, ignored
       const size_t j = static_cast<size_t>(it - m_ids.begin());
       s[j] = t[k];
       seen[j] = true;
-      ++common;
+      ++shown;
     }
-  }
-  if (common < 5) {
-    std::ostringstream os;
-    os << "the trial shows " << common << " of the zero reference's " << m_ids.size()
-       << " markers (matched by id); a trial's displacement needs at least 5 of them: leave it out, or move the "
-          "joint less so that more markers stay in view";
-    fail(vpProjectiveException::notEnoughPointsError, where, os.str());
   }
   return s;
 }
@@ -225,7 +222,15 @@ void vpProjectiveArmAcquisition::addIdentifiedTrial(
     fail(vpProjectiveException::notInitializedError, where, "call setZeroReference() before adding trial motions");
   }
   std::vector<bool> seen;
-  const std::vector<Eigen::Vector4d> s = matchByIds(ids, left, right, where, seen);
+  unsigned int shown = 0;
+  const std::vector<Eigen::Vector4d> s = matchByIds(ids, left, right, where, seen, shown);
+  if (shown < 5) {
+    std::ostringstream os;
+    os << "the trial shows " << shown << " of the zero reference's " << m_ids.size()
+       << " markers (matched by id); a trial's displacement needs at least 5 of them: leave it out, or move the "
+          "joint less so that more markers stay in view";
+    fail(vpProjectiveException::notEnoughPointsError, where, os.str());
+  }
   // The checks of the joint and the amount, on the zero reference's images; then this trial's.
   std::vector<vpImagePoint> l0(m_zeroImages.size()), r0(m_zeroImages.size());
   for (size_t j = 0; j < m_zeroImages.size(); ++j) {

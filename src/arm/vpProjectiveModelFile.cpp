@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -141,13 +142,59 @@ public:
     return value;
   }
 
+  //! The self-calibration's frames of a model of \e n joints and \e K markers.
+  std::vector<vpProjectiveArmAcquisition::vpFrame> frames(const json &value, size_t n, size_t K) const
+  {
+    std::vector<vpProjectiveArmAcquisition::vpFrame> list;
+    for (const json &f : array(value, "the frames", 0, 10000000)) {
+      const std::string what = "frame " + std::to_string(list.size());
+      vpProjectiveArmAcquisition::vpFrame frame;
+      const json &q = array(member(f, "q"), what + "'s readings", n, n);
+      frame.q.resize(static_cast<Eigen::Index>(n));
+      for (size_t i = 0; i < n; ++i) {
+        frame.q(static_cast<Eigen::Index>(i)) = number(q[i], what + "'s readings");
+      }
+      for (const json &s : array(member(f, "s"), what + "'s marker images", K, K)) {
+        frame.seen.push_back(!s.is_null());
+        frame.s.push_back(s.is_null() ? Eigen::Vector4d::Constant(std::numeric_limits<double>::quiet_NaN())
+                                      : vector<4>(s, what + "'s marker images"));
+      }
+      list.push_back(std::move(frame));
+    }
+    return list;
+  }
+
 private:
   std::string m_name;
 };
+
+//! The frames as JSON, checked against \e model's joints and markers.
+json framesToJson(const vpProjectiveArmModel &model, const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames)
+{
+  json list = json::array();
+  for (const vpProjectiveArmAcquisition::vpFrame &frame : frames) {
+    if (frame.q.size() != static_cast<Eigen::Index>(model.getNumberOfJoints()) ||
+        frame.s.size() != model.markers().size() || frame.seen.size() != model.markers().size()) {
+      fail(vpProjectiveException::dimensionError, "vpProjectiveModelFile::save()",
+           "a frame has not the model's joints and markers; give each frame n readings and one image per marker");
+    }
+    json images = json::array();
+    for (size_t j = 0; j < frame.s.size(); ++j) {
+      if (frame.seen[j] && !frame.s[j].allFinite()) {
+        fail(vpProjectiveException::invalidValueError, "vpProjectiveModelFile::save()",
+             "a frame's marker image is not finite; mark the marker not seen");
+      }
+      images.push_back(frame.seen[j] ? vectorToJson(frame.s[j]) : json());
+    }
+    list.push_back(json{{"q", vectorToJson(frame.q)}, {"s", images}});
+  }
+  return list;
+}
 } // namespace
 
 std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, double calibrationResidual,
                                             double algebraicResidual, const std::vector<int> &markerIds,
+                                            const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames,
                                             const vpProjectiveModelCheck *check)
 {
   if (model.getNumberOfJoints() == 0) {
@@ -210,6 +257,9 @@ std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, d
              {"residual_limit", std::isfinite(check->getLimit()) ? json(check->getLimit()) : json(nullptr)},
              {"joints", joints}};
   }
+  if (!frames.empty()) {
+    m["frames"] = framesToJson(model, frames);
+  }
   json file;
   file["format"] = kFormat;
   file["version"] = version;
@@ -226,17 +276,12 @@ void vpProjectiveModelFile::save(const std::string &filename, const vpProjective
 
 void vpProjectiveModelFile::save(const std::string &filename, const vpProjectiveArmModel &model,
                                  double calibrationResidual, double algebraicResidual,
-                                 const std::vector<int> &markerIds)
-{
-  save(filename, model, calibrationResidual, algebraicResidual, markerIds, nullptr);
-}
-
-void vpProjectiveModelFile::save(const std::string &filename, const vpProjectiveArmModel &model,
-                                 double calibrationResidual, double algebraicResidual,
-                                 const std::vector<int> &markerIds, const vpProjectiveModelCheck *check)
+                                 const std::vector<int> &markerIds,
+                                 const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames,
+                                 const vpProjectiveModelCheck *check)
 {
   const std::string where = "vpProjectiveModelFile::save()";
-  const std::string text = toString(model, calibrationResidual, algebraicResidual, markerIds, check);
+  const std::string text = toString(model, calibrationResidual, algebraicResidual, markerIds, frames, check);
   std::ofstream file(filename.c_str(), std::ios::binary);
   if (!file) {
     fail(vpProjectiveException::fileError, where, "cannot open '" + filename + "' for writing");
@@ -248,7 +293,8 @@ void vpProjectiveModelFile::save(const std::string &filename, const vpProjective
 }
 
 vpProjectiveArmModel vpProjectiveModelFile::load(const std::string &filename, double *calibrationResidual,
-                                                 double *algebraicResidual, std::vector<int> *markerIds)
+                                                 double *algebraicResidual, std::vector<int> *markerIds,
+                                                 std::vector<vpProjectiveArmAcquisition::vpFrame> *frames)
 {
   std::ifstream file(filename.c_str(), std::ios::binary);
   if (!file) {
@@ -257,12 +303,13 @@ vpProjectiveArmModel vpProjectiveModelFile::load(const std::string &filename, do
   }
   std::ostringstream text;
   text << file.rdbuf();
-  return fromString(text.str(), filename, calibrationResidual, algebraicResidual, markerIds);
+  return fromString(text.str(), filename, calibrationResidual, algebraicResidual, markerIds, frames);
 }
 
 vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, const std::string &name,
                                                        double *calibrationResidual, double *algebraicResidual,
-                                                       std::vector<int> *markerIds)
+                                                       std::vector<int> *markerIds,
+                                                       std::vector<vpProjectiveArmAcquisition::vpFrame> *frames)
 {
   const Reader reader(name);
   json file;
@@ -353,6 +400,11 @@ vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, 
     }
   }
 
+  std::vector<vpProjectiveArmAcquisition::vpFrame> framesRead;
+  if (m.contains("frames")) {
+    framesRead = reader.frames(m["frames"], n, markers.size());
+  }
+
   vpProjectiveArmModel model;
   try {
     vpProjectiveStereoRig rig;
@@ -375,6 +427,9 @@ vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, 
   }
   if (markerIds != nullptr) {
     *markerIds = ids;
+  }
+  if (frames != nullptr) {
+    *frames = std::move(framesRead);
   }
   return model;
 }

@@ -57,6 +57,11 @@ vpProjectiveCell::vpSettings::vpSettings()
 {
 }
 
+vpProjectiveCell::vpSettings::vpSettings(const vpSettings &other) : vpSettings()
+{
+  *this = other;
+}
+
 vpProjectiveCell::vpProjectiveCell(vpProjectiveCellArm &arm, vpStereoImageSource &cameras,
                                    const vpProjectiveSessionCalibration::vpMarkerExtractor &markers,
                                    const vpSettings &settings)
@@ -106,7 +111,9 @@ vpProjectiveCell::vpProjectiveCell(vpProjectiveCellArm &arm, vpStereoImageSource
     speeds[i] = armSpeeds[i] > 0.0 ? std::min(mine, armSpeeds[i]) : mine;
   }
   // The limits: the user's, else the arm's; none only when the user says so.
-  vpColVector qmin = s.qmin, qmax = s.qmax;
+  vpColVector qmin, qmax; // assigned, not copy-constructed: ViSP 3.5 copies an empty vector by memcpy from null
+  qmin = s.qmin;
+  qmax = s.qmax;
   std::string from = "the settings";
   if (qmin.size() == 0 && qmax.size() == 0) {
     from = "the arm";

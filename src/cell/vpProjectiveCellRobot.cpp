@@ -57,7 +57,7 @@ std::string jointValue(double v, bool revolute)
 
 vpProjectiveCellRobot::vpProjectiveCellRobot(vpProjectiveCellArm &arm, const vpColVector &qmin, const vpColVector &qmax,
                                              const vpColVector &maxVelocity)
-    : vpRobot(), m_arm(arm), m_types(arm.getJointTypes()), m_qmin(qmin), m_qmax(qmax), m_maxVelocity(maxVelocity),
+    : vpRobot(), m_arm(arm), m_types(arm.getJointTypes()), m_qmin(), m_qmax(), m_maxVelocity(maxVelocity),
       m_command(static_cast<unsigned int>(m_types.size()), 0.0), m_haltReason(), m_stopError(), m_restTime(0.0),
       m_stops(0)
 {
@@ -69,6 +69,8 @@ vpProjectiveCellRobot::vpProjectiveCellRobot(vpProjectiveCellArm &arm, const vpC
        << maxVelocity.size() << " speeds and " << qmin.size() << " and " << qmax.size() << " limits";
     fail(vpProjectiveException::dimensionError, at("vpProjectiveCellRobot()"), os.str());
   }
+  m_qmin = qmin; // assigned, not copy-constructed: ViSP 3.5 copies an empty vector (no limits) by memcpy from null
+  m_qmax = qmax;
   double rotation = 0.0, translation = 0.0;
   for (unsigned int i = 0; i < n; ++i) {
     const bool revolute = m_types[i] == vpProjectiveJoint::REVOLUTE;

@@ -31,6 +31,7 @@
 #include <visp3/core/vpTime.h>
 #include <visp3/projective/vpProjectiveArmAcquisition.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
+#include <visp3/projective/vpProjectiveSelfCalibration.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
@@ -337,6 +338,46 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
              " RMS; the other mounting: " + pixels(error[1 - kept]) + ")");
   }
 
+  // The metric self-calibration's frames: the acquisition's, and the observation, target and servo frames (views of
+  // the markers at known readings). One that shows none of the model's markers is left out, and said so.
+  unsigned int views = 0;
+  for (unsigned int k = 0; k < session.getNumberOfFrames(); ++k) {
+    const vpProjectiveSession::vpFrameRole role = session.getFrame(k).role;
+    if (role != vpProjectiveSession::OBSERVATION && role != vpProjectiveSession::TARGET &&
+        role != vpProjectiveSession::SERVO) {
+      continue;
+    }
+    try {
+      if (markers.find(k) == markers.end()) {
+        markers[k] = extract(session, k, m_extractor, m_recorded, where);
+      }
+      std::vector<int> seen;
+      std::vector<vpImagePoint> l, r;
+      for (const std::pair<unsigned int, Eigen::Vector4d> &p : pairsOf(k)) {
+        seen.push_back(ids[p.first]);
+        l.push_back(vpImagePoint(p.second(1), p.second(0)));
+        r.push_back(vpImagePoint(p.second(3), p.second(2)));
+      }
+      acquisition.addCalibrationFrame(session.getFrame(k).q, seen, l, r);
+      ++views;
+    } catch (const vpException &e) {
+      progress(frameLabel(session, k) + ": left out of the metric self-calibration (" + e.getStringMessage() + ")");
+    }
+  }
+  const std::vector<vpProjectiveArmAcquisition::vpFrame> frames = acquisition.getFrames();
+  try {
+    const vpProjectiveSelfCalibration selfCalibration(model, frames);
+    std::string what;
+    const double largest = selfCalibration.getLargestUncertainty(&what);
+    std::ostringstream os;
+    os << "metric self-calibration: " << selfCalibration.getNumberOfFrames() << " frames (" << views
+       << " observation, target and servo frames), noise " << pixels(selfCalibration.getNoiseLevel())
+       << ", largest uncertainty " << what << " (" << std::setprecision(3) << largest * 180.0 / M_PI << " deg)";
+    progress(os.str());
+  } catch (const vpException &e) {
+    progress("metric self-calibration: not available (" + e.getStringMessage() + ")");
+  }
+
   // Per-joint summary.
   std::vector<vpJointSummary> joints(n);
   std::vector<double> sums(n, 0.0);
@@ -373,6 +414,7 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
 
   m_model = model;
   m_ids = ids;
+  m_frames = frames;
   m_residual = acquisition.getCalibrationResidual();
   m_algebraicResidual = acquisition.getAlgebraicResidual();
   m_joints = joints;

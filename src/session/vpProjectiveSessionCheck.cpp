@@ -60,7 +60,7 @@ void vpProjectiveSessionCalibration::saveModel(const std::string &filename) cons
          "no model yet; call calibrate() first");
   }
   vpProjectiveSessionInternal::writeAtomically(
-      filename, vpProjectiveModelFile::toString(m_model, m_residual, m_algebraicResidual, m_ids),
+      filename, vpProjectiveModelFile::toString(m_model, m_residual, m_algebraicResidual, m_ids, m_frames),
       calibrationAt("saveModel()"));
 }
 

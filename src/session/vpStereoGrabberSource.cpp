@@ -13,6 +13,7 @@
 
 #include <visp3/projective/vpStereoGrabberSource.h>
 
+#include <chrono>
 #include <filesystem>
 
 #include <visp3/core/vpConfig.h>
@@ -89,7 +90,8 @@ std::unique_ptr<vpFrameGrabber> openV4l2(const std::string &device, unsigned int
 
 vpStereoGrabberSource::vpStereoGrabberSource(const std::string &leftDevice, const std::string &rightDevice,
                                              unsigned int scale)
-    : m_ownedLeft(), m_ownedRight(), m_left(nullptr), m_right(nullptr), m_leftName(leftDevice), m_rightName(rightDevice)
+    : m_ownedLeft(), m_ownedRight(), m_left(nullptr), m_right(nullptr), m_leftName(leftDevice),
+      m_rightName(rightDevice), m_stamps{0.0, 0.0}, m_stamped(false)
 {
 #if defined(VISP_HAVE_MODULE_SENSOR) && defined(VISP_HAVE_V4L2)
   if (scale == 0) {
@@ -111,7 +113,7 @@ vpStereoGrabberSource::vpStereoGrabberSource(const std::string &leftDevice, cons
 
 vpStereoGrabberSource::vpStereoGrabberSource(vpFrameGrabber &left, vpFrameGrabber &right)
     : m_ownedLeft(), m_ownedRight(), m_left(&left), m_right(&right), m_leftName("left grabber"),
-      m_rightName("right grabber")
+      m_rightName("right grabber"), m_stamps{0.0, 0.0}, m_stamped(false)
 {
   if (left.getWidth() == 0 || left.getHeight() == 0 || right.getWidth() == 0 || right.getHeight() == 0) {
     fail(vpProjectiveException::notInitializedError, at("vpStereoGrabberSource()"),
@@ -123,9 +125,25 @@ vpStereoGrabberSource::~vpStereoGrabberSource() {}
 
 bool vpStereoGrabberSource::acquire(vpImage<unsigned char> &Ileft, vpImage<unsigned char> &Iright)
 {
+  m_stamped = false;
+  bool stamped = true;
   for (int camera = 0; camera < 2; ++camera) {
+    vpFrameGrabber *grabber = camera == 0 ? m_left : m_right;
+    vpImage<unsigned char> &I = camera == 0 ? Ileft : Iright;
     try {
-      (camera == 0 ? m_left : m_right)->acquire(camera == 0 ? Ileft : Iright);
+#if defined(VISP_HAVE_MODULE_SENSOR) && defined(VISP_HAVE_V4L2)
+      if (vpV4l2Grabber *v4l2 = dynamic_cast<vpV4l2Grabber *>(grabber)) {
+        timeval stamp{};
+        v4l2->acquire(I, stamp);
+        const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+        m_stamps[camera] = static_cast<double>(stamp.tv_sec) + 1e-6 * static_cast<double>(stamp.tv_usec);
+        // A driver stamping on the wall clock gives an instant decades away from the monotonic one: no stamp then.
+        stamped = stamped && m_stamps[camera] <= now + 1e-3 && m_stamps[camera] > now - 10.0;
+        continue;
+      }
+#endif
+      grabber->acquire(I);
+      stamped = false;
     } catch (const vpException &e) {
       fail(vpProjectiveException::fileError, at("acquire()"),
            "the " + std::string(camera == 0 ? "left" : "right") + " camera '" +
@@ -133,5 +151,15 @@ bool vpStereoGrabberSource::acquire(vpImage<unsigned char> &Ileft, vpImage<unsig
                "); check its cable and that no other program uses it");
     }
   }
+  m_stamped = stamped;
   return true;
+}
+
+bool vpStereoGrabberSource::getTimestamps(double &left, double &right) const
+{
+  if (m_stamped) {
+    left = m_stamps[0];
+    right = m_stamps[1];
+  }
+  return m_stamped;
 }

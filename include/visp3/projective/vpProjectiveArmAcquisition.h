@@ -90,6 +90,12 @@ public:
     \exception vpProjectiveException (dimensionError) if \e n is 0 or above vpProjectiveArmModel::maxJoints.
   */
   explicit vpProjectiveArmAcquisition(unsigned int n);
+  /*!
+    The acquisition of a model computed elsewhere (read from a file): its joints, mounting, rig, zero-reference joints
+    and markers (ids 0 to K-1), without images. Calibration frames can be added (addCalibrationFrame()); calibrate()
+    needs a zero reference and trials.
+  */
+  explicit vpProjectiveArmAcquisition(const vpProjectiveArmModel &model);
 
   //! Number of joints \e n.
   unsigned int getNumberOfJoints() const { return static_cast<unsigned int>(m_types.size()); }
@@ -196,6 +202,46 @@ public:
   //! Number of markers of the zero reference.
   unsigned int getNumberOfMarkers() const { return static_cast<unsigned int>(m_zeroImages.size()); }
 
+  /*! \name Frames for the metric self-calibration (vpProjectiveSelfCalibration) */
+  //@{
+  /*!
+    Images of the zero reference's markers, in its order, at any configuration: the joints' encoder readings \e q
+    (n x 1, as addTrialMotion(const vpColVector &, ...) takes them): a servo's or an observation's frame. calibrate()
+    does not use them; the metric self-calibration adjusts the cameras and the arm over the zero reference, the trials
+    and every such frame. They are kept until the zero reference or the rig is set again.
+    \exception vpProjectiveException (notInitializedError) without a zero reference (or a model, see the constructor
+    from a model); (dimensionError, nonFiniteValueError) if \e q has not n finite entries, or the images are not one
+    finite pair per marker. Nothing is recorded on error.
+  */
+  void addCalibrationFrame(const vpColVector &q, const std::vector<vpImagePoint> &left,
+                           const std::vector<vpImagePoint> &right);
+  /*!
+    The same with identified markers (\e ids[j] names left[j] and right[j], in any order, as the identified trials):
+    the frame may miss some of the zero reference's markers.
+    \exception vpProjectiveException as the other overload, (dimensionError, invalidValueError) if \e ids has not one
+    id per marker or repeats one, and (notEnoughPointsError) if the frame shows none of the zero reference's markers.
+  */
+  void addCalibrationFrame(const vpColVector &q, const std::vector<int> &ids, const std::vector<vpImagePoint> &left,
+                           const std::vector<vpImagePoint> &right);
+  //! Number of calibration frames added since the zero reference.
+  unsigned int getNumberOfCalibrationFrames() const { return static_cast<unsigned int>(m_frames.size()); }
+  //! Forgets the calibration frames (the zero reference and the trials stay).
+  void clearCalibrationFrames() { m_frames.clear(); }
+
+  //! One stereo image of the markers at known joint readings.
+  struct vpFrame {
+    vpProjectiveArmModel::JointVector q; //!< The joints' encoder readings (n x 1).
+    std::vector<Eigen::Vector4d> s;      //!< (u, v, u', v') of each zero-reference marker, pixels (NaN if not seen).
+    std::vector<bool> seen;              //!< Marker j is observed (shown, and not an outlier of calibrate()).
+  };
+  /*!
+    Every stereo image of the acquisition at its readings: the zero reference, each trial (the zero reference's
+    readings with the trial's amount added; the observations the last calibrate() left out as outliers not seen),
+    then the calibration frames. Empty without a zero reference but for the calibration frames.
+  */
+  std::vector<vpFrame> getFrames() const;
+  //@}
+
   /*!
     Mismatched markers in the acquisition images (a wrong blob tracked, two markers swapped): with \e pixels > 0,
     calibrate() finds them in each trial by the 5-point consensus of vpProjectiveDisplacement::estimateRobust(),
@@ -272,16 +318,19 @@ private:
     std::vector<Eigen::Vector4d> s; // (u, v, u', v') of each marker (NaN where not seen)
     std::vector<bool> seen;         // [marker]: the trial shows it
   };
+  // The images of the zero reference's markers among identified ones (NaN where not shown, seen[j] false), and how
+  // many are shown.
   std::vector<Eigen::Vector4d> matchByIds(const std::vector<int> &ids, const std::vector<vpImagePoint> &left,
                                           const std::vector<vpImagePoint> &right, const std::string &where,
-                                          std::vector<bool> &seen) const;
+                                          std::vector<bool> &seen, unsigned int &shown) const;
   // The trial of identified markers: the plain overload \e addPlainTrial checks the joint and the amount on the zero
   // reference's images, then this trial's matched images replace them.
   void addIdentifiedTrial(
       const std::vector<int> &ids, const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right,
       const std::function<void(const std::vector<vpImagePoint> &, const std::vector<vpImagePoint> &)> &addPlainTrial);
   std::vector<vpTrial> m_trials;
-  std::vector<int> m_ids; // of the zero reference's markers, ascending
+  std::vector<int> m_ids;        // of the zero reference's markers, ascending
+  std::vector<vpFrame> m_frames; // calibration frames
   double m_outlierThreshold;
   std::vector<std::vector<bool>> m_inlier; // [trial][marker]: used by the last calibrate() (false where not seen)
   double m_residual;

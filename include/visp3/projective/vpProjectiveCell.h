@@ -129,6 +129,11 @@ public:
     //@}
     //! The defaults (those of the members in degrees are set here, in radians).
     vpSettings();
+    /*! A copy made by assignment: ViSP 3.5's vpArray2D copy constructor passes a null pointer to memcpy for an
+        empty vector (qmin and qmax by default), which UBSan reports; its assignment does not. */
+    vpSettings(const vpSettings &other);
+    //! Every member of \e other copied (the vectors by assignment, which ViSP 3.5 does safely when empty).
+    vpSettings &operator=(const vpSettings &other) = default;
   };
 
   //! How a servo ended (the arm stopped in every case).

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include <visp3/projective/vpProjectiveArmAcquisition.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
 #include <visp3/projective/vpProjectiveModelCheck.h>
 
@@ -80,6 +81,11 @@ BEGIN_VISP_NAMESPACE
   under the checksum), <tt>"marker_ids": [ ... ]</tt>: the identifier of each marker (e.g. 4 * AprilTag id + corner),
   so that the markers are found again in new images by their identifiers. The entry is optional: a file without it
   reads as before, and a reader of this version that does not ask for it ignores it.
+
+  Likewise optional, <tt>"frames": [ { "q": [...], "s": [ [u, v, u', v'] or null, ... ] }, ... ]</tt>: the stereo
+  images the model's metric self-calibration adjusts over (vpProjectiveArmAcquisition::getFrames(): the encoder
+  readings q, and per marker its pixels in both images, null where the frame does not show it), so that the
+  self-calibration and its uncertainty (vpProjectiveSelfCalibration) can be computed again from the file.
 */
 class VISP_EXPORT vpProjectiveModelFile
 {
@@ -94,38 +100,42 @@ public:
   static void save(const std::string &filename, const vpProjectiveArmModel &model, double calibrationResidual,
                    double algebraicResidual);
   /*!
-    The same with the markers' identifiers \e markerIds (one per marker of \e model, distinct; empty: none written).
-    \exception vpProjectiveException (dimensionError, invalidValueError) if the identifiers do not match the markers;
-    (fileError) if the file cannot be written.
+    The same with the markers' identifiers \e markerIds (one per marker of \e model, distinct; empty: none written),
+    the self-calibration's \e frames (each with n readings and one image per marker; empty: none written) and what the
+    model's calibration checked (\e check, if not null and checked: the "model_check" entry).
+    \exception vpProjectiveException (dimensionError, invalidValueError) if the identifiers or the frames do not
+    match the model; (fileError) if the file cannot be written.
   */
   static void save(const std::string &filename, const vpProjectiveArmModel &model, double calibrationResidual,
-                   double algebraicResidual, const std::vector<int> &markerIds);
-  /*!
-    The same with what the model's calibration checked (\e check, if not null and checked: the "model_check" entry).
-    \exception vpProjectiveException as the other overloads.
-  */
-  static void save(const std::string &filename, const vpProjectiveArmModel &model, double calibrationResidual,
-                   double algebraicResidual, const std::vector<int> &markerIds, const vpProjectiveModelCheck *check);
+                   double algebraicResidual, const std::vector<int> &markerIds,
+                   const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames =
+                       std::vector<vpProjectiveArmAcquisition::vpFrame>(),
+                   const vpProjectiveModelCheck *check = nullptr);
   /*!
     Reads a model written by save(); \e calibrationResidual and \e algebraicResidual, if not null, receive the
-    residuals it was saved with, \e markerIds the markers' identifiers (empty if the file has none).
+    residuals it was saved with, \e markerIds the markers' identifiers (empty if the file has none), \e frames the
+    self-calibration's frames (empty if the file has none).
     \exception vpProjectiveException (fileError) as described in the class documentation.
   */
   static vpProjectiveArmModel load(const std::string &filename, double *calibrationResidual = nullptr,
-                                   double *algebraicResidual = nullptr, std::vector<int> *markerIds = nullptr);
+                                   double *algebraicResidual = nullptr, std::vector<int> *markerIds = nullptr,
+                                   std::vector<vpProjectiveArmAcquisition::vpFrame> *frames = nullptr);
 
   //! The JSON text that save() writes.
   static std::string toString(const vpProjectiveArmModel &model, double calibrationResidual, double algebraicResidual,
                               const std::vector<int> &markerIds = std::vector<int>(),
+                              const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames =
+                                  std::vector<vpProjectiveArmAcquisition::vpFrame>(),
                               const vpProjectiveModelCheck *check = nullptr);
   /*!
-    The model of a JSON text as written by save(); \e name (a file name) is quoted in the error messages. \e markerIds,
-    if not null, receives the markers' identifiers (empty if the file has none).
+    The model of a JSON text as written by save(); \e name (a file name) is quoted in the error messages. \e markerIds
+    and \e frames, if not null, receive the markers' identifiers and the frames (empty if the file has none).
     \exception vpProjectiveException (fileError) as load().
   */
   static vpProjectiveArmModel fromString(const std::string &text, const std::string &name,
                                          double *calibrationResidual = nullptr, double *algebraicResidual = nullptr,
-                                         std::vector<int> *markerIds = nullptr);
+                                         std::vector<int> *markerIds = nullptr,
+                                         std::vector<vpProjectiveArmAcquisition::vpFrame> *frames = nullptr);
 };
 
 END_VISP_NAMESPACE

@@ -49,7 +49,8 @@ BEGIN_VISP_NAMESPACE
   and their pixels (ViSP's convention: the centre of pixel (i, j) is (u, v) = (j, i)). The AprilTag detector of the
   plugin is such a function; tests give one of their own.
 
-  <b>calibrate()</b> reads the zero, trial and observation frames (target and servo frames are not needed), then
+  <b>calibrate()</b> reads the zero, trial and observation frames (and, for the metric self-calibration, the target
+  and servo frames), then
   - extracts the markers of each, one progress line per frame; a frame without any marker is an error;
   - keeps the markers of the zero frame (at least 5), in identifier order; a trial frame may miss some of them
     (occluded, turned away), matched by identifier (vpProjectiveArmAcquisition's identified markers), as long as it
@@ -64,9 +65,13 @@ BEGIN_VISP_NAMESPACE
     adjustment;
   - tells the rig's mounting from the observation frames when there are some (the model of each mounting predicts
     them; the better one is kept), else keeps setMounting()'s (eye-to-hand by default);
+  - adds the observation, target and servo frames as calibration frames (vpProjectiveArmAcquisition::
+    addCalibrationFrame(); a frame that shows none of the model's markers is left out, with a progress line) and
+    says what the metric self-calibration over all of them determines (vpProjectiveSelfCalibration: the noise, the
+    largest uncertainty);
   - summarises each joint: its trials, their range and the model's RMS prediction error on them.
-  saveModel() then writes the model with the markers' identifiers (vpProjectiveModelFile), to a temporary file that
-  is renamed: the model file is complete or absent.
+  saveModel() then writes the model with the markers' identifiers and the self-calibration's frames
+  (vpProjectiveModelFile), to a temporary file that is renamed: the model file is complete or absent.
 
   <b>check()</b> predicts, for each frame of a session, the markers of the model seen in it at the frame's encoder
   readings, and compares with the extracted ones: RMS per coordinate in the left image, in the right image, and both.
@@ -250,6 +255,7 @@ private:
   bool m_calibrated;
   vpProjectiveArmModel m_model;
   std::vector<int> m_ids;
+  std::vector<vpProjectiveArmAcquisition::vpFrame> m_frames; // of the metric self-calibration
   double m_residual, m_algebraicResidual;
   std::vector<vpJointSummary> m_joints;
   vpRigState m_state;
