@@ -113,12 +113,12 @@ bool initialTwists(const ArmCalibrationData &data, const Eigen::Matrix4d &G, con
                    std::vector<Eigen::Vector3d> &axis, std::vector<Eigen::Vector3d> &point);
 
 /*!
-  The start of the bundle adjustment: the affine and metric upgrade of the generators (with every joint, and with
-  one or two left out in turn) and the metric twists, the candidate that best predicts all the trials. Throws
-  (estimationFailedError) if no upgrade gives a finite, invertible G.
+  The starts of the bundle adjustment: the affine and metric upgrade of the generators (with every joint, and with
+  one or two left out in turn) and the metric twists, the candidate that best predicts all the trials first, then the
+  others in the order of their prediction. Throws (estimationFailedError) if no upgrade gives a finite, invertible G.
 */
-MetricModel initialMetricModel(const ArmCalibrationData &data, const std::vector<Eigen::Matrix4d> &Hhat,
-                               const std::vector<Eigen::Vector4d> &M0);
+std::vector<MetricModel> initialMetricModels(const ArmCalibrationData &data, const std::vector<Eigen::Matrix4d> &Hhat,
+                                             const std::vector<Eigen::Vector4d> &M0);
 
 /*!
   Bundle adjustment over \f$ G^{-1} \f$ (unit sphere of R^16), the twists (revolute axes on the unit sphere) and the
@@ -138,9 +138,10 @@ MetricModel metricModelOf(const vpProjectiveArmModel &model);
 /*!
   The whole calibration of \e data with its joint types data.types, from the trials' \e displacements: the algebraic
   generators, the metric start, the bundle adjustment and, with an outlier threshold, its rounds of outlier
-  classification. \e data receives the inlier flags and the rig of the last adjustment; \e residual and
-  \e algebraicResidual the RMS pixel residuals of the adjustment and of the algebraic generators. Throws
-  (estimationFailedError) if the upgrade or the adjustment fails.
+  classification. An adjustment ending above twice the images' epipolar noise (epipolarNoise(), at least 0.05 px)
+  tries the other metric starts (initialMetricModels()) and keeps the model of the lowest residual. \e data receives the
+  inlier flags and the rig of the last adjustment; \e residual and \e algebraicResidual the RMS pixel residuals of the
+  adjustment and of the algebraic generators. Throws (estimationFailedError) if the upgrade or the adjustment fails.
 */
 vpProjectiveArmModel fitArmModel(ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,
                                  const std::vector<Eigen::Matrix4d> &displacements,

@@ -23,6 +23,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -189,8 +190,8 @@ void algebraicGenerators(const ArmCalibrationData &data, const std::vector<Eigen
   }
 }
 
-MetricModel initialMetricModel(const ArmCalibrationData &data, const std::vector<Eigen::Matrix4d> &Hhat,
-                               const std::vector<Eigen::Vector4d> &M0)
+std::vector<MetricModel> initialMetricModels(const ArmCalibrationData &data, const std::vector<Eigen::Matrix4d> &Hhat,
+                                             const std::vector<Eigen::Vector4d> &M0)
 {
   const size_t n = data.types.size();
   std::vector<std::vector<Eigen::Vector4d>> trialPoints(data.trials.size());
@@ -206,8 +207,7 @@ MetricModel initialMetricModel(const ArmCalibrationData &data, const std::vector
   // from a small marker set (the shoulder of an arm) can have a generator too poor for the common plane at infinity
   // and metric conic (at 1 px noise, 6 PUMA acquisitions of 300 failed with every joint in). The candidate that
   // predicts all the trials best starts the bundle adjustment.
-  MetricModel model;
-  double best = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<double, MetricModel>> candidates;
   std::vector<std::vector<bool>> subsets(1, std::vector<bool>(n, true));
   for (size_t a = 0; n >= 3 && a < n; ++a) {
     for (size_t b = a; b < n && (b == a || n >= 4); ++b) {
@@ -228,19 +228,26 @@ MetricModel initialMetricModel(const ArmCalibrationData &data, const std::vector
     for (size_t i = 0; i < n; ++i) {
       HhatC[i] = GcInv * vpProjectiveJoint::twist(data.types[i], axisC[i], pointC[i]) * Gc;
     }
+    MetricModel candidate;
+    candidate.G = Gc;
+    candidate.axis = axisC;
+    candidate.point = pointC;
     const double residual = predictionResidual(data, HhatC, M0);
-    if (residual < best) {
-      best = residual;
-      model.G = Gc;
-      model.axis = axisC;
-      model.point = pointC;
-    }
+    candidates.emplace_back(std::isnan(residual) ? std::numeric_limits<double>::infinity() : residual, candidate);
   }
-  if (!(best < std::numeric_limits<double>::infinity())) {
+  if (candidates.empty()) {
     fail(vpProjectiveException::estimationFailedError, "vpProjectiveArmAcquisition::calibrate()",
          "the affine and metric upgrade of the generators failed; check that the trial motions are large enough and "
          "that the markers are matched in the same order in every image");
   }
-  return model;
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const std::pair<double, MetricModel> &a, const std::pair<double, MetricModel> &b) {
+                     return a.first < b.first;
+                   });
+  std::vector<MetricModel> starts;
+  for (const std::pair<double, MetricModel> &c : candidates) {
+    starts.push_back(c.second);
+  }
+  return starts;
 }
 } // namespace vpProjectiveInternal
