@@ -256,10 +256,10 @@ TEST(ProjectiveSessionCalibration, BadSessionsAreRefusedWithOneLineNamingTheFram
   };
   // A frame with no tag.
   rec->keep[4] = 0;
-  expectRefused("no tag", "frame 4 ('left/000004.png', trial): no marker found");
+  expectRefused("no tag", "frame 5/13 ('left/000004.png', trial): no marker found");
   // Too few markers.
   rec->keep.assign(rec->keep.size(), 4);
-  expectRefused("too few markers", "only 4 markers are seen in frame 0");
+  expectRefused("too few markers", "only 4 markers are seen in frame 1/13");
   rec->keep.assign(rec->keep.size(), static_cast<unsigned int>(-1));
   // The default extraction (AprilTag 36h11) on images without tags: the frame named, what to check.
   {
@@ -268,7 +268,7 @@ TEST(ProjectiveSessionCalibration, BadSessionsAreRefusedWithOneLineNamingTheFram
       calibration.calibrate(session);
       ADD_FAILURE() << "the default extraction found tags in images without any";
     } catch (const vpProjectiveException &e) {
-      EXPECT_NE(e.getStringMessage().find("frame 0 ('left/000000.png', zero): no marker found in both images"),
+      EXPECT_NE(e.getStringMessage().find("frame 1/13 ('left/000000.png', zero): no marker found in both images"),
                 std::string::npos)
           << e.getStringMessage();
     }
@@ -308,7 +308,7 @@ TEST(ProjectiveSessionCalibration, TrialsMissingSomeMarkersStillCalibrate)
     calibration.calibrate(vpProjectiveSession::read(tmp / "session"));
     ADD_FAILURE() << "a trial with 4 markers accepted";
   } catch (const vpProjectiveException &e) {
-    EXPECT_NE(e.getStringMessage().find("frame 8 ('left/000008.png', trial) shows only 4 of the 7 markers"),
+    EXPECT_NE(e.getStringMessage().find("frame 9/13 ('left/000008.png', trial) shows only 4 of the 7 markers"),
               std::string::npos)
         << e.getStringMessage();
   }

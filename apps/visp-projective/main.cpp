@@ -21,7 +21,7 @@
 
   Exit status: 0 on success (check: the model fits every frame), 1 on bad input or any error (one line on stderr
   that says what was wrong and what to do; calibrate then leaves no model file), 2 on a usage mistake, 3 when check
-  finds that the model does not fit the session (a camera moved).
+  finds that the model does not fit the session (its likeliest cause first on stderr).
 */
 
 #include <chrono>
@@ -41,6 +41,7 @@
 #include <visp3/projective/vpProjectiveSessionCalibration.h>
 #include <visp3/projective/vpStereoGrabberSource.h>
 
+#include "visp-projective-cell.h"
 #include "visp-projective-markers.h"
 #include "visp-projective-options.h"
 #include "visp-projective-plots.h"
@@ -121,6 +122,9 @@ const char *const kCalibrateUsage =
     "  --epipolar-threshold PX        inlier threshold of the rig's estimation (default 2)\n"
     "  --outlier-threshold PX         leave out trial observations farther than PX from the model (default 0: none)\n"
     "  --coplanarity-threshold PX     plane parallax below which markers count as coplanar (default 2)\n"
+    "  --camera-layout LAYOUT         left-right (default: upright cameras, the left one on the left; a session\n"
+    "                                 whose right camera sits to the left of the left one is refused as one with\n"
+    "                                 exchanged images) or any (a camera upside down or seen in a mirror)\n"
     "  --recorded-markers             take each frame's recorded markers (its recorded_markers entry: sessions of\n"
     "                                 programs whose markers are not tags, e.g. projective-paper --record) instead\n"
     "                                 of detecting tags in its images\n"
@@ -130,7 +134,10 @@ const char *const kCalibrateUsage =
 const char *const kCheckUsage =
     "Usage: visp-projective check MODEL.json SESSION [--family 36h11 | --recorded-markers] [--threshold PX]\n"
     "Predicts, at each frame's encoder readings, the markers of the model seen in the frame and prints the RMS error\n"
-    "of the left and right images; says whether the rig moved since the model was made, and which camera.\n"
+    "of the left and right images; says whether the rig moved since the model was made, and which camera. When\n"
+    "frames do not fit, the probable causes are tried and ranked, the likeliest first (a camera moved, the left and\n"
+    "right images exchanged, the markers moved on the tool, readings of other encoders, a session of another cell),\n"
+    "in one line on the standard output and the standard error.\n"
     "Exit status 0 if every frame fits, 3 if not, 1 on bad input.\n"
     "\n"
     "Options:\n"
@@ -146,7 +153,8 @@ const char *const kReportUsage =
     "metric self-calibration over the frames the model file holds (the acquisition's, and the observation, target\n"
     "and servo frames of its session): intrinsics K of both cameras, the right camera's pose R, t in the left one (t\n"
     "in the prismatic joints' unit, or a unit baseline without one), the joints' axes in the left camera's frame,\n"
-    "each with its standard deviation, and the largest uncertainty.\n"
+    "each with its standard deviation, and the largest uncertainty; and its cameras (which was left, on which side\n"
+    "the right one sits).\n"
     "\n"
     "Options:\n"
     "  --plots DIR                    write DIR/joint-paths-left.png and -right.png (gnuplot): the marker paths the\n"
@@ -200,7 +208,7 @@ int calibrate(int argc, char **argv)
 {
   vispProjective::Arguments args("visp-projective calibrate", {"SESSION"},
                                  {"--output", "-o", "--family", "--mounting", "--epipolar-threshold",
-                                  "--outlier-threshold", "--coplanarity-threshold"},
+                                  "--outlier-threshold", "--coplanarity-threshold", "--camera-layout"},
                                  {"--quiet", "--recorded-markers"});
   const int parsed = parseArguments(args, argc, argv, "calibrate", kCalibrateUsage);
   if (parsed >= 0) {
@@ -221,6 +229,10 @@ int calibrate(int argc, char **argv)
   if (mounting != "auto" && mounting != "eye-to-hand" && mounting != "eye-in-hand") {
     return usageError("calibrate", "--mounting takes auto, eye-to-hand or eye-in-hand, not '" + mounting + "'");
   }
+  const std::string layout = args.value("--camera-layout", "left-right");
+  if (layout != "left-right" && layout != "any") {
+    return usageError("calibrate", "--camera-layout takes left-right or any, not '" + layout + "'");
+  }
   const auto start = std::chrono::steady_clock::now();
   vpProjectiveSessionCalibration calibration(vispProjective::markerExtractor(args.value("--family", "36h11")));
   vpProjectiveSessionCalibration::checkWritable(output);
@@ -233,6 +245,8 @@ int calibrate(int argc, char **argv)
   calibration.setMounting(mounting == "eye-to-hand"   ? vpProjectiveSessionCalibration::MOUNTING_EYE_TO_HAND
                           : mounting == "eye-in-hand" ? vpProjectiveSessionCalibration::MOUNTING_EYE_IN_HAND
                                                       : vpProjectiveSessionCalibration::MOUNTING_AUTO);
+  calibration.setCameraLayout(layout == "any" ? vpProjectiveCellFingerprint::LAYOUT_ANY
+                                              : vpProjectiveCellFingerprint::LAYOUT_LEFT_RIGHT);
   calibration.calibrate(session);
   calibration.saveModel(output);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -241,12 +255,6 @@ int calibrate(int argc, char **argv)
               << std::endl;
   }
   return EXIT_SUCCESS;
-}
-
-//! The model of \e file with its marker identifiers; throws if it has none.
-vpProjectiveArmModel loadModel(const std::string &file, std::vector<int> &ids, double &residual, double &algebraic)
-{
-  return vpProjectiveModelFile::load(file, &residual, &algebraic, &ids);
 }
 
 int check(int argc, char **argv)
@@ -265,7 +273,9 @@ int check(int argc, char **argv)
   vpProjectiveSessionCalibration calibration(vispProjective::markerExtractor(args.value("--family", "36h11")));
   std::vector<int> ids;
   double residual = 0.0, algebraic = 0.0;
-  const vpProjectiveArmModel model = loadModel(args.positional(0), ids, residual, algebraic);
+  vpProjectiveCellFingerprint cell;
+  const vpProjectiveArmModel model =
+      vpProjectiveModelFile::load(args.positional(0), &residual, &algebraic, &ids, nullptr, &cell);
   if (ids.empty()) {
     throw vpException(vpException::fatalError,
                       "the model '" + args.positional(0) +
@@ -276,7 +286,7 @@ int check(int argc, char **argv)
   calibration.setOutput(args.has("--quiet") ? nullptr : &std::cout);
   calibration.setMismatchThreshold(threshold);
   calibration.setRecordedMarkers(args.has("--recorded-markers"));
-  const std::vector<vpProjectiveSessionCalibration::vpFrameCheck> checks = calibration.check(model, ids, session);
+  const std::vector<vpProjectiveSessionCalibration::vpFrameCheck> checks = calibration.check(model, ids, session, cell);
   unsigned int off = 0;
   for (const auto &c : checks) {
     off += c.fits ? 0 : 1;
@@ -284,8 +294,13 @@ int check(int argc, char **argv)
   std::cout << std::setprecision(3) << "left images " << calibration.getLeftResidual() << " px RMS, right images "
             << calibration.getRightResidual() << " px RMS over " << checks.size() << " frames, " << off << " above "
             << threshold << " px (the model's calibration residual: " << residual << " px)" << std::endl;
-  std::cout << vpProjectiveSessionCalibration::toString(calibration.getRigState()) << std::endl;
-  return calibration.getRigState() == vpProjectiveSessionCalibration::RIG_UNCHANGED ? EXIT_SUCCESS : kMismatch;
+  std::cout << calibration.getDiagnosisMessage() << std::endl;
+  if (calibration.getRigState() == vpProjectiveSessionCalibration::RIG_UNCHANGED) {
+    return EXIT_SUCCESS;
+  }
+  // The likeliest cause first, on the standard error too: a script that reads only it learns why.
+  std::cerr << "visp-projective check: " << oneLine(calibration.getDiagnosisMessage()) << std::endl;
+  return kMismatch;
 }
 
 int record(int argc, char **argv)
@@ -357,8 +372,9 @@ int report(int argc, char **argv)
   std::vector<int> ids;
   double residual = 0.0, algebraic = 0.0;
   std::vector<vpProjectiveArmAcquisition::vpFrame> frames;
+  vpProjectiveCellFingerprint cell;
   const vpProjectiveArmModel model =
-      vpProjectiveModelFile::load(args.positional(0), &residual, &algebraic, &ids, &frames);
+      vpProjectiveModelFile::load(args.positional(0), &residual, &algebraic, &ids, &frames, &cell);
   if (args.has("--plots")) {
     std::unique_ptr<vpProjectiveSession> session;
     if (args.has("--session")) {
@@ -382,6 +398,7 @@ int report(int argc, char **argv)
             << std::endl;
   std::cout << std::setprecision(3) << "residuals: bundle adjustment " << residual << " px RMS, algebraic generators "
             << algebraic << " px RMS" << std::endl;
+  vispProjective::printCell(cell, std::cout);
   for (unsigned int i = 0; i < model.getNumberOfJoints(); ++i) {
     const bool revolute = model.jointType(i) == vpProjectiveJoint::REVOLUTE;
     std::cout << "joint " << i << " (" << vpProjectiveJoint::name(model.jointType(i)) << "), zero reference at "

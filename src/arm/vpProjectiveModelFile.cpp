@@ -23,6 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "arm/vpCameraIdentityJson.h"
 #include "core/vpProjectiveConversions.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -190,12 +191,54 @@ json framesToJson(const vpProjectiveArmModel &model, const std::vector<vpProject
   }
   return list;
 }
+
+//! The fingerprint of a "cell" entry \e c, checked.
+vpProjectiveCellFingerprint cellFromJson(const Reader &reader, const json &c)
+{
+  vpProjectiveCellFingerprint cell;
+  if (!c.is_object()) {
+    reader.bad("the cell entry is not an object");
+  }
+  if (c.contains("image_size")) {
+    const json &size = reader.array(c["image_size"], "the cell's image_size", 2, 2);
+    if (!size[0].is_number_unsigned() || !size[1].is_number_unsigned() || size[0].get<unsigned long long>() > 100000 ||
+        size[1].get<unsigned long long>() > 100000) {
+      reader.bad("the cell's image_size must be two image dimensions in pixels");
+    }
+    cell.setImageSize(size[0].get<unsigned int>(), size[1].get<unsigned int>());
+  }
+  const json &layout = reader.member(c, "camera_layout");
+  if (layout != "left-right" && layout != "any") {
+    reader.bad("the cell's camera_layout is neither \"left-right\" nor \"any\"");
+  }
+  cell.setCameraLayout(layout == "any" ? vpProjectiveCellFingerprint::LAYOUT_ANY
+                                       : vpProjectiveCellFingerprint::LAYOUT_LEFT_RIGHT);
+  const int found = cameraSideOf(reader.member(c, "right_camera"));
+  if (found < 0) {
+    reader.bad("the cell's right_camera is not one of \"unknown\", \"right\", \"left\", \"above-below\"");
+  }
+  const Eigen::Vector3d direction = reader.vector<3>(reader.member(c, "baseline_direction"), "the baseline direction");
+  try {
+    cell.setCameraSide(static_cast<vpProjectiveCellFingerprint::vpCameraSide>(found), direction);
+  } catch (const vpException &e) {
+    reader.bad(e.getStringMessage());
+  }
+  if (c.contains("cameras")) {
+    vpProjectiveCellFingerprint::vpCameraIdentity left, right;
+    if (!camerasFromJson(c["cameras"], left, right)) {
+      reader.bad("the cell's cameras must be {\"left\": {...}, \"right\": {...}}, each field a string");
+    }
+    cell.setCameras(left, right);
+  }
+  return cell;
+}
 } // namespace
 
 std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, double calibrationResidual,
                                             double algebraicResidual, const std::vector<int> &markerIds,
                                             const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames,
-                                            const vpProjectiveModelCheck *check)
+                                            const vpProjectiveModelCheck *check,
+                                            const vpProjectiveCellFingerprint *cell)
 {
   if (model.getNumberOfJoints() == 0) {
     fail(vpProjectiveException::notInitializedError, "vpProjectiveModelFile::save()",
@@ -260,6 +303,9 @@ std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, d
   if (!frames.empty()) {
     m["frames"] = framesToJson(model, frames);
   }
+  if (cell != nullptr) {
+    m["cell"] = cellToJson(*cell);
+  }
   json file;
   file["format"] = kFormat;
   file["version"] = version;
@@ -294,7 +340,8 @@ void vpProjectiveModelFile::save(const std::string &filename, const vpProjective
 
 vpProjectiveArmModel vpProjectiveModelFile::load(const std::string &filename, double *calibrationResidual,
                                                  double *algebraicResidual, std::vector<int> *markerIds,
-                                                 std::vector<vpProjectiveArmAcquisition::vpFrame> *frames)
+                                                 std::vector<vpProjectiveArmAcquisition::vpFrame> *frames,
+                                                 vpProjectiveCellFingerprint *cell)
 {
   std::ifstream file(filename.c_str(), std::ios::binary);
   if (!file) {
@@ -303,13 +350,14 @@ vpProjectiveArmModel vpProjectiveModelFile::load(const std::string &filename, do
   }
   std::ostringstream text;
   text << file.rdbuf();
-  return fromString(text.str(), filename, calibrationResidual, algebraicResidual, markerIds, frames);
+  return fromString(text.str(), filename, calibrationResidual, algebraicResidual, markerIds, frames, cell);
 }
 
 vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, const std::string &name,
                                                        double *calibrationResidual, double *algebraicResidual,
                                                        std::vector<int> *markerIds,
-                                                       std::vector<vpProjectiveArmAcquisition::vpFrame> *frames)
+                                                       std::vector<vpProjectiveArmAcquisition::vpFrame> *frames,
+                                                       vpProjectiveCellFingerprint *cell)
 {
   const Reader reader(name);
   json file;
@@ -399,6 +447,8 @@ vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, 
       reader.bad("two markers have the same identifier in marker_ids");
     }
   }
+  const vpProjectiveCellFingerprint fingerprint =
+      m.contains("cell") ? cellFromJson(reader, m["cell"]) : vpProjectiveCellFingerprint();
 
   std::vector<vpProjectiveArmAcquisition::vpFrame> framesRead;
   if (m.contains("frames")) {
@@ -430,6 +480,9 @@ vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, 
   }
   if (frames != nullptr) {
     *frames = std::move(framesRead);
+  }
+  if (cell != nullptr) {
+    *cell = fingerprint;
   }
   return model;
 }

@@ -27,6 +27,7 @@
 #include <visp3/projective/vpProjectiveArmAcquisition.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
 #include <visp3/projective/vpProjectiveModelCheck.h>
+#include <visp3/projective/vpProjectiveCellFingerprint.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -86,6 +87,20 @@ BEGIN_VISP_NAMESPACE
   images the model's metric self-calibration adjusts over (vpProjectiveArmAcquisition::getFrames(): the encoder
   readings q, and per marker its pixels in both images, null where the frame does not show it), so that the
   self-calibration and its uncertainty (vpProjectiveSelfCalibration) can be computed again from the file.
+
+  Such a model also carries, inside "model", the fingerprint of its cell (vpProjectiveCellFingerprint), optional as
+  "marker_ids" (a file without it reads as an empty fingerprint):
+  \code{.json}
+  "cell": { "image_size": [640, 480], "camera_layout": "left-right", "right_camera": "right",
+            "baseline_direction": [0.995, 0.0, 0.0997],
+            "cameras": { "left": { "device": "/dev/video0", "name": "HD Webcam C920", "bus": "usb-0000:00:14.0-1",
+                                   "serial": "8A3F1C2E" },
+                         "right": { "device": "/dev/video2", ... } } }
+  \endcode
+  \c image_size is the left camera's (pixels; left out when not known), \c right_camera where the metric
+  self-calibration put the right camera ("right", "left", "above-below" or "unknown"), \c baseline_direction its unit
+  direction in the left camera's frame, \c cameras the identities of the cameras (left out when the session did not
+  record them; an identity's empty fields are left out).
 */
 class VISP_EXPORT vpProjectiveModelFile
 {
@@ -114,28 +129,35 @@ public:
   /*!
     Reads a model written by save(); \e calibrationResidual and \e algebraicResidual, if not null, receive the
     residuals it was saved with, \e markerIds the markers' identifiers (empty if the file has none), \e frames the
-    self-calibration's frames (empty if the file has none).
+    self-calibration's frames (empty if the file has none), \e cell the fingerprint of its cell (empty if the file has
+    none).
     \exception vpProjectiveException (fileError) as described in the class documentation.
   */
   static vpProjectiveArmModel load(const std::string &filename, double *calibrationResidual = nullptr,
                                    double *algebraicResidual = nullptr, std::vector<int> *markerIds = nullptr,
-                                   std::vector<vpProjectiveArmAcquisition::vpFrame> *frames = nullptr);
+                                   std::vector<vpProjectiveArmAcquisition::vpFrame> *frames = nullptr,
+                                   vpProjectiveCellFingerprint *cell = nullptr);
 
-  //! The JSON text that save() writes.
+  /*!
+    The JSON text that save() writes; with \e cell (not null), the fingerprint of the model's cell in its "cell" entry.
+  */
   static std::string toString(const vpProjectiveArmModel &model, double calibrationResidual, double algebraicResidual,
                               const std::vector<int> &markerIds = std::vector<int>(),
                               const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames =
                                   std::vector<vpProjectiveArmAcquisition::vpFrame>(),
-                              const vpProjectiveModelCheck *check = nullptr);
+                              const vpProjectiveModelCheck *check = nullptr,
+                              const vpProjectiveCellFingerprint *cell = nullptr);
   /*!
-    The model of a JSON text as written by save(); \e name (a file name) is quoted in the error messages. \e markerIds
-    and \e frames, if not null, receive the markers' identifiers and the frames (empty if the file has none).
+    The model of a JSON text as written by save(); \e name (a file name) is quoted in the error messages. \e markerIds,
+    \e frames and \e cell, if not null, receive the markers' identifiers, the frames and the fingerprint of its cell
+    (empty if the file has none).
     \exception vpProjectiveException (fileError) as load().
   */
   static vpProjectiveArmModel fromString(const std::string &text, const std::string &name,
                                          double *calibrationResidual = nullptr, double *algebraicResidual = nullptr,
                                          std::vector<int> *markerIds = nullptr,
-                                         std::vector<vpProjectiveArmAcquisition::vpFrame> *frames = nullptr);
+                                         std::vector<vpProjectiveArmAcquisition::vpFrame> *frames = nullptr,
+                                         vpProjectiveCellFingerprint *cell = nullptr);
 };
 
 END_VISP_NAMESPACE

@@ -82,6 +82,11 @@ public:
     some drivers use gives, counts as none).
   */
   bool getTimestamps(double &left, double &right) const override;
+  /*!
+    The identities of the V4L2 cameras opened by the first constructor: the device names given, V4L2's card name and
+    bus_info, and a USB camera's serial number (from sysfs) when it has one. False for grabbers given by the caller.
+  */
+  bool getCameraIdentities(vpCameraIdentity &left, vpCameraIdentity &right) const override;
   //! Width of the left camera's images (pixels).
   unsigned int getWidth() const override { return m_left->getWidth(); }
   //! Height of the left camera's images (pixels).
@@ -94,8 +99,9 @@ private:
   std::unique_ptr<vpFrameGrabber> m_ownedLeft, m_ownedRight;
   vpFrameGrabber *m_left, *m_right;
   std::string m_leftName, m_rightName;
-  double m_stamps[2]; // the last images' instants (s, CLOCK_MONOTONIC)
-  bool m_stamped;     // both stamps valid
+  double m_stamps[2];               // the last images' instants (s, CLOCK_MONOTONIC)
+  bool m_stamped;                   // both stamps valid
+  vpCameraIdentity m_identities[2]; // left, right: the V4L2 cameras opened by the first constructor
 };
 
 END_VISP_NAMESPACE
