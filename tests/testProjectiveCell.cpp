@@ -33,7 +33,9 @@
 
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveCell.h>
+#include <visp3/projective/vpProjectiveCellFingerprint.h>
 #include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpProjectiveModelFile.h>
 #include <visp3/projective/vpProjectiveSession.h>
 #include <visp3/projective/vpSimulatorStereoCell.h>
 
@@ -157,8 +159,15 @@ public:
   unsigned int getWidth() const override { return m_cell.getWidth(); }
   unsigned int getHeight() const override { return m_cell.getHeight(); }
   bool getTimestamps(double &left, double &right) const override { return m_cell.getTimestamps(left, right); }
+  bool getCameraIdentities(vpCameraIdentity &left, vpCameraIdentity &right) const override
+  {
+    left = identities[0];
+    right = identities[1];
+    return !identities[0].serial.empty();
+  }
   Fault fault = NONE;
   unsigned int at = 0, frames = 0;
+  vpCameraIdentity identities[2]; // left, right: known if the left one has a serial
 
 private:
   vpSimulatorStereoCell &m_cell;
@@ -533,4 +542,54 @@ TEST_F(ProjectiveCellServo, LateImagesStopTheArm)
   EXPECT_NE(result.end, vpProjectiveCell::SERVO_CONVERGED) << result.message; // lost, or no plan without features
   EXPECT_NE(result.message.find("maxLatency"), std::string::npos) << result.message;
   EXPECT_TRUE(m_arm->still());
+}
+
+TEST_F(ProjectiveCellServo, ModelKeepsItsCamerasAndOthersOrExchangedOnesAreNamed)
+{
+  // The suite's model was acquired with cameras that do not say who they are: any cameras load it.
+  prepare(FaultyCameras::NONE, 0);
+  vpStereoImageSource::vpCameraIdentity a, b, c;
+  a.device = "/dev/video0";
+  a.serial = "8A3F1C2E";
+  b.device = "/dev/video2";
+  b.serial = "5D09B7A1";
+  c.device = "/dev/video2";
+  c.serial = "33334444";
+  const std::string file = temporaryFolder("cameras") + ".json";
+  auto loadWith = [&](const vpStereoImageSource::vpCameraIdentity &left,
+                      const vpStereoImageSource::vpCameraIdentity &right) {
+    m_cameras->identities[0] = left;
+    m_cameras->identities[1] = right;
+    m_cell->loadModel(file);
+  };
+  m_cameras->identities[0] = a;
+  m_cameras->identities[1] = b;
+  m_cell->loadModel(s_model);
+  // Saved by a cell whose cameras say who they are, the model keeps them, with its right camera on the right.
+  m_cell->saveModel(file);
+  vpProjectiveCellFingerprint cell;
+  vpProjectiveModelFile::load(file, nullptr, nullptr, nullptr, nullptr, &cell);
+  EXPECT_EQ(vpProjectiveCellFingerprint::sameCamera(cell.getLeftCamera(), a), 1);
+  EXPECT_EQ(vpProjectiveCellFingerprint::sameCamera(cell.getRightCamera(), b), 1);
+  EXPECT_EQ(cell.getCameraSide(), vpProjectiveCellFingerprint::SIDE_RIGHT);
+  EXPECT_EQ(cell.getWidth(), m_cameras->getWidth());
+  EXPECT_NO_THROW(loadWith(a, b));
+  // The same cameras given the other way round, then another right camera: refused, the cause named first.
+  struct Mistake {
+    vpStereoImageSource::vpCameraIdentity left, right;
+    std::string opening;
+  };
+  for (const Mistake &mistake :
+       {Mistake{b, a, "the left and right cameras are exchanged"}, Mistake{a, c, "the cameras are not the model's"}}) {
+    try {
+      loadWith(mistake.left, mistake.right);
+      ADD_FAILURE() << "loaded with " << mistake.opening;
+    } catch (const vpProjectiveException &e) {
+      EXPECT_EQ(e.getCode(), vpProjectiveException::invalidValueError);
+      EXPECT_NE(e.getStringMessage().find("loadModel(): the model '" + file + "': " + mistake.opening),
+                std::string::npos)
+          << e.getStringMessage();
+    }
+  }
+  std::remove(file.c_str());
 }

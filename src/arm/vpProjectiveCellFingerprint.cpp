@@ -104,6 +104,23 @@ int vpProjectiveCellFingerprint::sameCamera(const vpCameraIdentity &a, const vpC
   return -1;
 }
 
+std::string vpProjectiveCellFingerprint::cameraMismatch(const vpCameraIdentity &left,
+                                                        const vpCameraIdentity &right) const
+{
+  if (sameCamera(left, m_right) == 1 && sameCamera(right, m_left) == 1) {
+    return "the left and right cameras are exchanged: the left one, " + toString(left) +
+           ", is the model's right camera; exchange the cameras (their devices or cables) or give them in the "
+           "model's order";
+  }
+  if (sameCamera(left, m_left) == 0 || sameCamera(right, m_right) == 0) {
+    return "the cameras are not the model's: " + toString(left) + " and " + toString(right) + ", the model's " +
+           toString(m_left) + " and " + toString(m_right) +
+           "; give the cameras of the model's cell, or acquire a "
+           "model of these";
+  }
+  return std::string();
+}
+
 std::string vpProjectiveCellFingerprint::toString(const vpCameraIdentity &camera)
 {
   if (!isKnown(camera)) {

@@ -324,10 +324,10 @@ void vpProjectiveModelFile::save(const std::string &filename, const vpProjective
                                  double calibrationResidual, double algebraicResidual,
                                  const std::vector<int> &markerIds,
                                  const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames,
-                                 const vpProjectiveModelCheck *check)
+                                 const vpProjectiveModelCheck *check, const vpProjectiveCellFingerprint *cell)
 {
   const std::string where = "vpProjectiveModelFile::save()";
-  const std::string text = toString(model, calibrationResidual, algebraicResidual, markerIds, frames, check);
+  const std::string text = toString(model, calibrationResidual, algebraicResidual, markerIds, frames, check, cell);
   std::ofstream file(filename.c_str(), std::ios::binary);
   if (!file) {
     fail(vpProjectiveException::fileError, where, "cannot open '" + filename + "' for writing");

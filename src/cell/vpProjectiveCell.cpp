@@ -27,6 +27,7 @@
 
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
+#include <visp3/projective/vpProjectiveCellFingerprint.h>
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
 
@@ -306,15 +307,37 @@ void vpProjectiveCell::loadModel(const std::string &file)
          "the model '" + file + "' has " + std::to_string(model.getNumberOfJoints()) + " joints, the arm " +
              std::to_string(m_types.size()) + ": give the model of this arm");
   }
-  vpProjectiveModelFile::load(file, nullptr, nullptr, &m_markerIds);
+  std::vector<int> ids;
+  vpProjectiveCellFingerprint cell;
+  vpProjectiveModelFile::load(file, nullptr, nullptr, &ids, nullptr, &cell);
+  vpStereoImageSource::vpCameraIdentity left, right;
+  if (m_cameras.getCameraIdentities(left, right)) {
+    const std::string mismatch = cell.cameraMismatch(left, right);
+    if (!mismatch.empty()) {
+      fail(vpProjectiveException::invalidValueError, at("loadModel()"), "the model '" + file + "': " + mismatch);
+    }
+  }
+  m_markerIds = ids;
   m_model = model;
 }
 
 void vpProjectiveCell::saveModel(const std::string &file) const
 {
-  // With the markers' ids (AprilTag corners), so that visp-projective check compares it with recorded sessions.
+  // With the markers' ids (AprilTag corners), so that visp-projective check compares it with recorded sessions, and
+  // the fingerprint of the cell (its cameras, which is left), so that loadModel() and check compare it.
+  vpProjectiveCellFingerprint cell;
+  cell.setImageSize(m_cameras.getWidth(), m_cameras.getHeight());
+  vpStereoImageSource::vpCameraIdentity left, right;
+  if (m_cameras.getCameraIdentities(left, right)) {
+    cell.setCameras(left, right);
+  }
+  Eigen::Vector3d direction;
+  const vpProjectiveCellFingerprint::vpCameraSide side =
+      vpProjectiveCellFingerprint::cameraSide(m_model.getModel(), direction);
+  cell.setCameraSide(side, direction);
   vpProjectiveModelFile::save(file, m_model.getModel(), m_model.getCalibrationResidual(),
-                              m_model.getAlgebraicResidual(), m_markerIds);
+                              m_model.getAlgebraicResidual(), m_markerIds,
+                              std::vector<vpProjectiveArmAcquisition::vpFrame>(), nullptr, &cell);
 }
 
 void vpProjectiveCell::moveTo(const vpColVector &target)

@@ -181,11 +181,18 @@ public:
     halted (a signal, a limit, an error of the arm), or any exception of the cameras or the arm.
   */
   void acquire();
-  //! The model of a previous acquisition (vpProjectiveRobot::loadModel()) in place of acquire().
+  /*!
+    The model of a previous acquisition (vpProjectiveRobot::loadModel()) in place of acquire().
+    \exception vpProjectiveException (invalidValueError) if the model's file recorded its cameras and the cameras'
+    identities (vpStereoImageSource::getCameraIdentities()) are not them: exchanged, named first, or others
+    (vpProjectiveCellFingerprint::cameraMismatch()); the cell is left as it was.
+  */
   void loadModel(const std::string &file);
   /*!
-    Writes the model with its markers' ids (vpProjectiveModelFile::save()): vpProjectiveRobot::loadModel() reads it,
-    and `visp-projective check MODEL SESSION` checks it against a recorded session.
+    Writes the model with its markers' ids and the fingerprint of the cell (the image size, the cameras' identities
+    when the source gives them, the side of the right camera: vpProjectiveCellFingerprint) (vpProjectiveModelFile::
+    save()): vpProjectiveRobot::loadModel() reads it, loadModel() compares the cameras, and
+    `visp-projective check MODEL SESSION` checks it against a recorded session.
   */
   void saveModel(const std::string &file) const;
   //! The model (calibrated after acquire() or loadModel()).

@@ -119,6 +119,12 @@ public:
   static int sameCamera(const vpCameraIdentity &a, const vpCameraIdentity &b);
   //! True if the identity has a field (the camera is known).
   static bool isKnown(const vpCameraIdentity &camera);
+  /*!
+    What tells that the cameras \e left and \e right (as a source gives them: vpStereoImageSource::
+    getCameraIdentities()) are not this fingerprint's, the likeliest first: the model's cameras exchanged, or other
+    cameras; with what to do. Empty if they are the fingerprint's, or if the identities do not tell (sameCamera()).
+  */
+  std::string cameraMismatch(const vpCameraIdentity &left, const vpCameraIdentity &right) const;
   //! A camera's identity in a few words ("'/dev/video0' (HD Webcam C920, serial 8A3F1C2E)"); "an unknown camera".
   static std::string toString(const vpCameraIdentity &camera);
   //! A side in a few words ("to the right of the left camera", ...).

@@ -117,7 +117,8 @@ public:
   /*!
     The same with the markers' identifiers \e markerIds (one per marker of \e model, distinct; empty: none written),
     the self-calibration's \e frames (each with n readings and one image per marker; empty: none written) and what the
-    model's calibration checked (\e check, if not null and checked: the "model_check" entry).
+    model's calibration checked (\e check, if not null and checked: the "model_check" entry), and the fingerprint of
+    its cell (\e cell, if not null: the "cell" entry).
     \exception vpProjectiveException (dimensionError, invalidValueError) if the identifiers or the frames do not
     match the model; (fileError) if the file cannot be written.
   */
@@ -125,7 +126,7 @@ public:
                    double algebraicResidual, const std::vector<int> &markerIds,
                    const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames =
                        std::vector<vpProjectiveArmAcquisition::vpFrame>(),
-                   const vpProjectiveModelCheck *check = nullptr);
+                   const vpProjectiveModelCheck *check = nullptr, const vpProjectiveCellFingerprint *cell = nullptr);
   /*!
     Reads a model written by save(); \e calibrationResidual and \e algebraicResidual, if not null, receive the
     residuals it was saved with, \e markerIds the markers' identifiers (empty if the file has none), \e frames the
