@@ -196,7 +196,7 @@ void bindCalibration(py::module_ &m)
       .def_static("checkWritable", &B::checkWritable, py::arg("filename"))
       .def(
           "check",
-          [](B &self, const vpProjectiveArmModel &model, const std::vector<int> &ids,
+          [](C &self, const vpProjectiveArmModel &model, const std::vector<int> &ids,
              const vpProjectiveSession &session) { return self.check(model, ids, session); },
           py::arg("model"), py::arg("ids"), py::arg("session"), ReleaseGil())
       .def("getRigState", &B::getRigState)
