@@ -93,6 +93,10 @@ public:
     if (++commands == failAt) {
       throw vpException(vpException::fatalError, "controller fault (injected)");
     }
+    if (ignoreFrom > 0 && commands >= ignoreFrom) { // a controller that takes the commands and does not move
+      vpProjectiveCellViSPArm::setJointVelocities(vpColVector(qdot.size(), 0.0));
+      return;
+    }
     vpProjectiveCellViSPArm::setJointVelocities(qdot);
     movingSinceStop = qdot.frobeniusNorm() > 0.0;
   }
@@ -108,7 +112,7 @@ public:
     return m_robot.getVelocity(vpRobot::ARTICULAR_FRAME).frobeniusNorm() == 0.0 &&
            m_robot.getRobotState() == vpRobot::STATE_STOP && !movingSinceStop && stops > 0;
   }
-  unsigned int commands = 0, failAt = 0, stops = 0;
+  unsigned int commands = 0, failAt = 0, ignoreFrom = 0, stops = 0;
   bool movingSinceStop = false;
 
 private:
@@ -398,6 +402,19 @@ TEST_F(ProjectiveCellServo, ArmFaultStopsTheArm)
   m_arm->failAt = m_arm->commands + 5; // the fifth command of the servo
   EXPECT_THROW(m_cell->servo(), vpException);
   EXPECT_NE(m_cell->getRobot().getHaltReason().find("controller fault"), std::string::npos);
+  EXPECT_TRUE(m_arm->still());
+}
+
+TEST_F(ProjectiveCellServo, ArmNotFollowingStopsTheArmWithItsCause)
+{
+  // The task's own check (vpServoArmFollowing): a controller that stops moving the arm from the fifth command of the
+  // servo on. The cell stops with the status and the diagnosis instead of waiting for its timeout.
+  prepare(FaultyCameras::NONE, 0);
+  m_arm->ignoreFrom = m_arm->commands + 5;
+  const vpProjectiveCell::vpServoResult result = m_cell->servo();
+  EXPECT_EQ(result.end, vpProjectiveCell::SERVO_STATUS) << result.message;
+  EXPECT_NE(result.message.find("SERVO_ARM_NOT_FOLLOWING"), std::string::npos) << result.message;
+  EXPECT_NE(result.message.find("does not move"), std::string::npos) << result.message;
   EXPECT_TRUE(m_arm->still());
 }
 

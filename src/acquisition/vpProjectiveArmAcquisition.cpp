@@ -30,45 +30,6 @@ using namespace vpProjectiveInternal;
 
 const vpErrorSite at("vpProjectiveArmAcquisition");
 
-namespace
-{
-/*!
-  Flags the trial observations of \e data that \e model places within the outlier threshold (RMS over the two
-  images); true if a flag changed.
-*/
-bool classifyTrialObservations(const vpProjectiveArmModel &model, ArmCalibrationData &data)
-{
-  bool changed = false;
-  for (size_t k = 0; k < data.trials.size(); ++k) {
-    const ArmTrial &trial = data.trials[k];
-    const Eigen::Matrix4d H = model.jointExp(trial.joint, trial.amount);
-    for (unsigned int j = 0; j < model.markers().size(); ++j) {
-      if (!trial.seen[j]) {
-        continue; // no observation
-      }
-      Eigen::Vector4d s;
-      const double d = model.predictMarker(j, H, s) ? std::sqrt(0.5 * (s - trial.s[j]).squaredNorm())
-                                                    : std::numeric_limits<double>::infinity();
-      const bool inlier = d <= data.outlierThreshold;
-      changed = changed || inlier != data.inlier[k][j];
-      data.inlier[k][j] = inlier;
-    }
-  }
-  return changed;
-}
-
-MetricModel metricModelOf(const vpProjectiveArmModel &model)
-{
-  MetricModel m;
-  m.G = model.projectiveToMetric();
-  for (unsigned int i = 0; i < model.getNumberOfJoints(); ++i) {
-    m.axis.push_back(model.axis(i));
-    m.point.push_back(model.point(i));
-  }
-  return m;
-}
-} // namespace
-
 vpProjectiveArmAcquisition::vpProjectiveArmAcquisition()
     : m_types(), m_mounting(vpProjectiveArmModel::EYE_TO_HAND), m_rig(), m_zeroImages(), m_qRef(), m_trials(), m_ids(),
       m_frames(), m_outlierThreshold(0.0), m_inlier(), m_residual(0.0), m_algebraicResidual(0.0)
@@ -231,7 +192,7 @@ void vpProjectiveArmAcquisition::addTrialMotion(unsigned int i, double amount, c
     fail(vpProjectiveException::invalidValueError, where,
          "the trial amount is zero; move the joint (e.g. 20 to 60 deg) so that its motion can be observed");
   }
-  if (m_types[i] == vpProjectiveJoint::REVOLUTE && std::abs(std::remainder(amount, 2.0 * M_PI)) < 1e-3) {
+  if (m_declared && m_types[i] == vpProjectiveJoint::REVOLUTE && std::abs(std::remainder(amount, 2.0 * M_PI)) < 1e-3) {
     fail(vpProjectiveException::invalidValueError, where,
          "a revolute trial by a multiple of 2 pi leaves the markers where they were; use another amount");
   }
@@ -341,76 +302,6 @@ void vpProjectiveArmAcquisition::setOutlierThreshold(double pixels)
     fail(vpProjectiveException::invalidValueError, at("setOutlierThreshold()"), os.str());
   }
   m_outlierThreshold = pixels;
-}
-
-vpProjectiveArmModel vpProjectiveArmAcquisition::calibrate()
-{
-  const std::string where = at("calibrate()");
-  if (m_types.empty()) {
-    fail(vpProjectiveException::notInitializedError, where, "the robot has no joints; construct it with joint types");
-  }
-  if (m_zeroImages.empty()) {
-    fail(vpProjectiveException::notInitializedError, where,
-         "no zero reference; call setStereoRig(), setZeroReference() and addTrialMotion() for every joint first");
-  }
-  ArmCalibrationData data;
-  data.types = m_types;
-  data.mounting = m_mounting;
-  data.rig = m_rig;
-  data.zeroImages = m_zeroImages;
-  for (const vpTrial &t : m_trials) {
-    data.trials.push_back(ArmTrial{t.joint, t.amount, t.s, t.seen});
-    data.inlier.push_back(t.seen); // a missing marker is no observation: never an inlier
-  }
-  data.outlierThreshold = m_outlierThreshold;
-  const size_t K = m_zeroImages.size();
-
-  std::vector<Eigen::Vector4d> M0(K);
-  for (size_t j = 0; j < K; ++j) {
-    M0[j] = m_rig.triangulate(Eigen::Vector2d(m_zeroImages[j].head<2>()), Eigen::Vector2d(m_zeroImages[j].tail<2>()));
-  }
-  if (m_outlierThreshold > 0.0) {
-    // The zero reference defines which marker is which: a marker whose two images there do not meet (a left-right
-    // mismatch) cannot be repaired, only reported.
-    for (size_t j = 0; j < K; ++j) {
-      Eigen::Vector4d s;
-      const double d = m_rig.project(M0[j], s) ? std::sqrt(0.5 * (s - m_zeroImages[j]).squaredNorm())
-                                               : std::numeric_limits<double>::infinity();
-      if (!(d <= m_outlierThreshold)) {
-        std::ostringstream os;
-        os << "the left and right images of marker " << j << " at the zero reference are " << d
-           << " px away from any 3D point (outlier threshold " << m_outlierThreshold
-           << " px): they are not the same marker; fix the matching of the zero-reference images";
-        fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
-      }
-    }
-  }
-  std::vector<Eigen::Matrix4d> Hhat;
-  algebraicGenerators(data, M0, Hhat);
-  const double algebraicResidual = predictionResidual(data, Hhat, M0);
-  const MetricModel start = initialMetricModel(data, Hhat, M0);
-  double residual = 0.0;
-  vpProjectiveArmModel model;
-  if (m_outlierThreshold > 0.0) {
-    // Every trial observation, mismatches down-weighted by a robust loss; then least squares on exactly those the
-    // model accepts, until that set no longer changes (at most 3 rounds).
-    // Each adjustment refines the rig too: the next one starts from its frame.
-    model = bundleAdjust(data, M0, start, true, m_qRef, residual);
-    data.rig = model.getStereoRig();
-    classifyTrialObservations(model, data);
-    model = bundleAdjust(data, model.markers(), metricModelOf(model), false, m_qRef, residual);
-    data.rig = model.getStereoRig();
-    for (int round = 0; round < 2 && classifyTrialObservations(model, data); ++round) {
-      model = bundleAdjust(data, model.markers(), metricModelOf(model), false, m_qRef, residual);
-      data.rig = model.getStereoRig();
-    }
-  } else {
-    model = bundleAdjust(data, M0, start, false, m_qRef, residual);
-  }
-  m_inlier = data.inlier;
-  m_residual = residual;
-  m_algebraicResidual = algebraicResidual;
-  return model;
 }
 
 unsigned int vpProjectiveArmAcquisition::getNumberOfOutliers() const

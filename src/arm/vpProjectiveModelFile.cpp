@@ -194,7 +194,8 @@ json framesToJson(const vpProjectiveArmModel &model, const std::vector<vpProject
 
 std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, double calibrationResidual,
                                             double algebraicResidual, const std::vector<int> &markerIds,
-                                            const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames)
+                                            const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames,
+                                            const vpProjectiveModelCheck *check)
 {
   if (model.getNumberOfJoints() == 0) {
     fail(vpProjectiveException::notInitializedError, "vpProjectiveModelFile::save()",
@@ -240,6 +241,22 @@ std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, d
     }
     m["marker_ids"] = markerIds;
   }
+  if (check != nullptr && check->isChecked()) {
+    json joints = json::array();
+    bool identified = false;
+    for (const vpProjectiveModelCheck::vpJointTypeFit &j : check->getJoints()) {
+      auto finite = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
+      joints.push_back(json{{"turn", finite(j.turn)},
+                            {"residual_revolute", finite(j.residualRevolute)},
+                            {"residual_prismatic", finite(j.residualPrismatic)}});
+      identified = identified || !j.declared;
+    }
+    m["model_check"] =
+        json{{"joint_types", identified ? "identified" : "declared"},
+             {"image_noise", check->getNoise()},
+             {"residual_limit", std::isfinite(check->getLimit()) ? json(check->getLimit()) : json(nullptr)},
+             {"joints", joints}};
+  }
   if (!frames.empty()) {
     m["frames"] = framesToJson(model, frames);
   }
@@ -260,10 +277,11 @@ void vpProjectiveModelFile::save(const std::string &filename, const vpProjective
 void vpProjectiveModelFile::save(const std::string &filename, const vpProjectiveArmModel &model,
                                  double calibrationResidual, double algebraicResidual,
                                  const std::vector<int> &markerIds,
-                                 const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames)
+                                 const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames,
+                                 const vpProjectiveModelCheck *check)
 {
   const std::string where = "vpProjectiveModelFile::save()";
-  const std::string text = toString(model, calibrationResidual, algebraicResidual, markerIds, frames);
+  const std::string text = toString(model, calibrationResidual, algebraicResidual, markerIds, frames, check);
   std::ofstream file(filename.c_str(), std::ios::binary);
   if (!file) {
     fail(vpProjectiveException::fileError, where, "cannot open '" + filename + "' for writing");

@@ -72,6 +72,11 @@ vpProjectiveRobot::vpProjectiveRobot(const std::vector<vpJointType> &joints) : v
   m_acquisition = vpProjectiveArmAcquisition(joints);
 }
 
+vpProjectiveRobot::vpProjectiveRobot(unsigned int n) : vpProjectiveRobot()
+{
+  m_acquisition = vpProjectiveArmAcquisition(n);
+}
+
 void vpProjectiveRobot::checkJoint(unsigned int i, const char *method) const
 {
   if (i >= getNumberOfJoints()) {
@@ -84,6 +89,10 @@ void vpProjectiveRobot::checkJoint(unsigned int i, const char *method) const
 vpProjectiveRobot::vpJointType vpProjectiveRobot::getJointType(unsigned int i) const
 {
   checkJoint(i, "getJointType()");
+  if (!m_calibrated && !m_acquisition.hasDeclaredJointTypes()) {
+    fail(vpProjectiveException::notInitializedError, at("getJointType()"),
+         "the robot was constructed from its joint count: calibrate() identifies the joint types from the trials");
+  }
   return m_acquisition.getJointTypes()[i];
 }
 
@@ -150,7 +159,11 @@ void vpProjectiveRobot::setCalibration(const vpProjectiveArmAcquisition &acquisi
                                        double residual)
 {
   const std::string where = at("setCalibration()");
-  if (model.jointTypes() != acquisition.getJointTypes() || model.jointTypes() != m_acquisition.getJointTypes()) {
+  // A robot of a joint count alone takes the types identified by the acquisition.
+  const bool sameJoints = m_acquisition.hasDeclaredJointTypes()
+                              ? model.jointTypes() == m_acquisition.getJointTypes()
+                              : model.getNumberOfJoints() == m_acquisition.getNumberOfJoints();
+  if (model.jointTypes() != acquisition.getJointTypes() || !sameJoints) {
     fail(vpProjectiveException::dimensionError, where,
          "the model, the acquisition and the robot have different joints; calibrate from an acquisition of this "
          "robot's joints (getAcquisition())");
@@ -426,8 +439,10 @@ void vpProjectiveRobot::getMetricJointAxes(std::vector<vpColVector> &direction, 
 
 void vpProjectiveRobot::saveModel(const std::string &filename) const
 {
+  // The check of the model's own calibration (not of a later, refused one).
+  const vpProjectiveModelCheck &check = m_acquisition.getModelCheck();
   vpProjectiveModelFile::save(filename, getModel(), m_residual, m_algebraicResidual, std::vector<int>(),
-                              selfCalibrationFrames());
+                              selfCalibrationFrames(), check.isAccepted() ? &check : nullptr);
 }
 
 void vpProjectiveRobot::loadModel(const std::string &filename)

@@ -166,13 +166,18 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
     const vpColVector qdot = task.computeControlLaw(q);
     const vpServoProjective::vpServoStatus status = task.getStatus();
     std::ostringstream why;
-    if (status == vpServoProjective::SERVO_MODEL_MISMATCH || status == vpServoProjective::SERVO_NO_PLAN) {
+    if (status == vpServoProjective::SERVO_MODEL_MISMATCH || status == vpServoProjective::SERVO_NO_PLAN ||
+        status == vpServoProjective::SERVO_ARM_NOT_FOLLOWING) {
       result.end = SERVO_STATUS;
-      why << "the task stopped: " << vpServoProjective::toString(status)
-          << (status == vpServoProjective::SERVO_MODEL_MISMATCH
-                  ? "; run visp-projective check on the recorded session: if a camera moved, re-register the rig "
-                    "or acquire again"
-                  : "; teach a target reachable within the joint limits, the tags in view");
+      why << "the task stopped: " << vpServoProjective::toString(status);
+      if (status == vpServoProjective::SERVO_MODEL_MISMATCH) {
+        why << "; run visp-projective check on the recorded session: if a camera moved, re-register the rig or "
+               "acquire again";
+      } else if (status == vpServoProjective::SERVO_NO_PLAN) {
+        why << "; teach a target reachable within the joint limits, the tags in view";
+      } else { // the task's qdot stays 0 until its check is reset: the cell stops rather than wait
+        why << "; " << task.getArmFollowing().getDiagnosis();
+      }
       if (!timing.empty()) { // no frame used: the cause is the cameras', not the target's
         why << "; no frame was used: the cameras' timing is out of the limits, " << timing;
       }

@@ -18,7 +18,11 @@
 #include <visp3/projective/vpServoProjective.h>
 
 #include <ostream>
+#include <string>
 
+#include <visp3/projective/vpProjectiveNotices.h>
+
+#include "servo/vpServoProjectiveNotices.h"
 #include <Eigen/Core>
 
 #include "core/vpProjectiveConversions.h"
@@ -65,6 +69,9 @@ const char *statusName(vpServoProjective::vpServoStatus status)
   case vpServoProjective::SERVO_OPEN_LOOP:
     return "SERVO_OPEN_LOOP (too few features seen: the missing ones predicted by the model, the plan followed for at "
            "most setMaxOpenLoopTime())";
+  case vpServoProjective::SERVO_ARM_NOT_FOLLOWING:
+    return "SERVO_ARM_NOT_FOLLOWING (the arm does not make the commanded joint motion: qdot = 0 until "
+           "getArmFollowing().reset(); getReport().getArmFollowing().getDiagnosis() says why)";
   }
   return "?";
 }
@@ -151,6 +158,9 @@ void vpServoProjective::print(std::ostream &os) const
          << " now; EYE_IN_HAND when the cameras ride on the arm, vpProjectiveAcquisitionProcedure tells it) and the "
             "markers' order; if the rig moved, re-register it\n";
     }
+    if (last().m_status == SERVO_ARM_NOT_FOLLOWING) {
+      os << "  The arm: " << last().m_arm.getDiagnosis() << "\n";
+    }
     os << "  Last step: gain " << last().m_lambda << ", damping " << last().m_damping << ", "
        << (last().m_saturated ? "saturated" : "not saturated") << "\n";
   }
@@ -191,6 +201,17 @@ void vpServoProjective::print(std::ostream &os) const
   } else {
     os << "off";
   }
+  os << "; arm-following check ";
+  if (m_follow.isEnabled()) {
+    os << "on (" << m_follow.getConsecutiveCalls() << " calls, period ";
+    if (m_follow.getControlPeriod() > 0.0) {
+      os << m_follow.getControlPeriod() << " s)";
+    } else {
+      os << "learned: " << m_follow.getReferenceDuration() << " s)";
+    }
+  } else {
+    os << "off";
+  }
   os << "\n";
   os << "  Rig refinement: ";
   if (!m_refinement.isEnabled()) {
@@ -227,4 +248,21 @@ void vpServoProjective::print(std::ostream &os) const
 std::string vpServoProjective::toString(vpServoStatus status)
 {
   return statusName(status);
+}
+
+void vpProjectiveInternal::noticeServoStatus(const vpServoProjectiveReport &report,
+                                             const vpProjectivePathPlanner &planner)
+{
+  // Once per status kind and process (vpProjectiveNotices): the line is built only when it is printed.
+  const vpServoProjectiveReport::vpServoStatus status = report.getStatus();
+  if (status == vpServoProjectiveReport::SERVO_RUNNING || !vpProjectiveNotices::isPending(status)) {
+    return;
+  }
+  std::string line = std::string("vpServoProjective: ") + statusName(status);
+  if (status == vpServoProjectiveReport::SERVO_ARM_NOT_FOLLOWING) {
+    line += ": " + report.getArmFollowing().getDiagnosis();
+  } else if (status == vpServoProjectiveReport::SERVO_NO_PLAN) {
+    line += ": " + planner.getDescription();
+  }
+  vpProjectiveNotices::tell(status, line);
 }

@@ -282,8 +282,10 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
     }
     model = acquisition.calibrate();
   } catch (const vpException &e) {
-    fail(vpProjectiveException::estimationFailedError, where,
-         "the arm cannot be calibrated from the session (" + e.getStringMessage() + ")");
+    // A model the check refused keeps its code: its message ranks the causes.
+    fail(e.getCode() == vpProjectiveException::modelRejectedError ? e.getCode()
+                                                                  : vpProjectiveException::estimationFailedError,
+         where, "the arm cannot be calibrated from the session (" + e.getStringMessage() + ")");
   }
 
   // The mounting.

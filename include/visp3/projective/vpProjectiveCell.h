@@ -141,7 +141,8 @@ public:
     SERVO_CONVERGED, //!< The image error stayed under vpSettings::convergedError.
     SERVO_TIMEOUT,   //!< vpSettings::timeout passed.
     SERVO_TAGS_LOST, //!< Too few features for longer than vpSettings::maxLostTime.
-    SERVO_STATUS     //!< The task stopped: SERVO_MODEL_MISMATCH or SERVO_NO_PLAN (the message says which).
+    SERVO_STATUS     //!< The task stopped: SERVO_MODEL_MISMATCH, SERVO_NO_PLAN or SERVO_ARM_NOT_FOLLOWING (the
+                     //!< message says which and why).
   };
   //! What servo() did.
   struct vpServoResult {

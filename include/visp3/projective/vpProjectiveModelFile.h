@@ -26,6 +26,7 @@
 
 #include <visp3/projective/vpProjectiveArmAcquisition.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpProjectiveModelCheck.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -69,6 +70,13 @@ BEGIN_VISP_NAMESPACE
   or unreadable, not JSON or truncated, another format or version, a checksum that does not match, a missing, mistyped
   or non-finite entry, inconsistent sizes, or a model that vpProjectiveArmModel rejects.
 
+  A model saved with what its calibration checked (vpProjectiveRobot::saveModel() after calibrate(), or save() given a
+  vpProjectiveModelCheck) also carries, inside "model", <tt>"model_check": { "joint_types": "identified" or
+  "declared", "image_noise": 0.31, "residual_limit": 0.93, "joints": [ { "turn": 0.52, "residual_revolute": 0.30,
+  "residual_prismatic": 14.2 }, ... ] }</tt>: how the joint types were found, the image noise (pixels) and the limit
+  of the check, and per joint the rotation angle (rad) of its trials' displacements and the RMS residual (pixels) of
+  its trials with each type (null where not fitted). The entry is optional, as "marker_ids".
+
   A model calibrated from a recorded session (vpProjectiveSessionCalibration) also carries, inside "model" (hence
   under the checksum), <tt>"marker_ids": [ ... ]</tt>: the identifier of each marker (e.g. 4 * AprilTag id + corner),
   so that the markers are found again in new images by their identifiers. The entry is optional: a file without it
@@ -92,15 +100,17 @@ public:
   static void save(const std::string &filename, const vpProjectiveArmModel &model, double calibrationResidual,
                    double algebraicResidual);
   /*!
-    The same with the markers' identifiers \e markerIds (one per marker of \e model, distinct; empty: none written)
-    and the self-calibration's \e frames (each with n readings and one image per marker; empty: none written).
+    The same with the markers' identifiers \e markerIds (one per marker of \e model, distinct; empty: none written),
+    the self-calibration's \e frames (each with n readings and one image per marker; empty: none written) and what the
+    model's calibration checked (\e check, if not null and checked: the "model_check" entry).
     \exception vpProjectiveException (dimensionError, invalidValueError) if the identifiers or the frames do not
     match the model; (fileError) if the file cannot be written.
   */
   static void save(const std::string &filename, const vpProjectiveArmModel &model, double calibrationResidual,
                    double algebraicResidual, const std::vector<int> &markerIds,
                    const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames =
-                       std::vector<vpProjectiveArmAcquisition::vpFrame>());
+                       std::vector<vpProjectiveArmAcquisition::vpFrame>(),
+                   const vpProjectiveModelCheck *check = nullptr);
   /*!
     Reads a model written by save(); \e calibrationResidual and \e algebraicResidual, if not null, receive the
     residuals it was saved with, \e markerIds the markers' identifiers (empty if the file has none), \e frames the
@@ -115,7 +125,8 @@ public:
   static std::string toString(const vpProjectiveArmModel &model, double calibrationResidual, double algebraicResidual,
                               const std::vector<int> &markerIds = std::vector<int>(),
                               const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames =
-                                  std::vector<vpProjectiveArmAcquisition::vpFrame>());
+                                  std::vector<vpProjectiveArmAcquisition::vpFrame>(),
+                              const vpProjectiveModelCheck *check = nullptr);
   /*!
     The model of a JSON text as written by save(); \e name (a file name) is quoted in the error messages. \e markerIds
     and \e frames, if not null, receive the markers' identifiers and the frames (empty if the file has none).

@@ -94,10 +94,21 @@ public:
     \exception vpProjectiveException if there are no joints, more than maxJoints, or a type is invalid.
   */
   explicit vpProjectiveRobot(const std::vector<vpJointType> &joints);
+  /*!
+    A chain of \e n joints whose types calibrate() (or vpProjectiveAcquisitionProcedure::run()) identifies from the
+    trials: each joint the type that fits its trials better (vpProjectiveArmAcquisition(unsigned int),
+    vpProjectiveModelCheck). getJointType() is known once calibrated.
+    \exception vpProjectiveException (dimensionError) if \e n is 0 or more than maxJoints.
+  */
+  explicit vpProjectiveRobot(unsigned int n);
 
   //! Number of joints \e n.
   unsigned int getNumberOfJoints() const { return m_acquisition.getNumberOfJoints(); }
-  //! Type of joint \e i. \exception vpProjectiveException (dimensionError) on a bad index.
+  /*!
+    Type of joint \e i.
+    \exception vpProjectiveException (dimensionError) on a bad index; (notInitializedError) for a robot of a joint
+    count alone before calibrate() identified the types.
+  */
   vpJointType getJointType(unsigned int i) const;
   /*!
     Sets where the rig is mounted (default EYE_TO_HAND). The trial motions look the same in both cases (one joint
@@ -156,9 +167,10 @@ public:
                            const std::vector<vpImagePoint> &right);
   /*!
     Computes the model: algebraic generators, metric upgrade, then Ceres bundle adjustment (see
-    vpProjectiveArmAcquisition). On failure the robot keeps the model it had.
+    vpProjectiveArmAcquisition), and checks it against the image noise and the joint types the trials show
+    (getAcquisition().getModelCheck(), vpProjectiveModelCheck). On failure the robot keeps the model it had.
     \exception vpProjectiveException if a joint has no trial motion, the zero reference is missing, or the data is
-    degenerate.
+    degenerate; (modelRejectedError) if the check refuses the model: the message ranks its probable causes.
   */
   void calibrate();
   //! True once calibrate() or loadModel() succeeded.
