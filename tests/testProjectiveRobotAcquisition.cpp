@@ -66,9 +66,9 @@ TEST(ProjectiveRobot, CalibrationAtOnePixelNoise)
     learned to leave such joints out. 60 seeds of the PUMA (eye-to-hand) and 20 of each other arm; at random
     configurations within the trial amounts, the model must predict the markers within 5 sigma RMS: a failed
     calibration is 20 times beyond, while the eye-in-hand models, acquired with 4 deg trials, measure 0.59 px mean and
-    0.68 px worst (1.8 and 3.4 px before the calibration tried its other starts; the PUMA eye-to-hand: 0.64 and 1.05 px).
-    The model gate may refuse one eye-in-hand acquisition of the 20 (modelRejectedError, never another error): with 4
-    deg trials at 1 px its declared model's adjustment can end in a local minimum, 1.4 px against 1.03 px of noise for
+    0.68 px worst (1.8 and 3.4 px before the calibration tried its other starts; the PUMA eye-to-hand: 0.64 and 1.05
+    px). The model gate may refuse one eye-in-hand acquisition of the 20 (modelRejectedError, never another error): with
+    4 deg trials at 1 px its declared model's adjustment can end in a local minimum, 1.4 px against 1.03 px of noise for
     seed 2, where a prismatic elbow fits at 1.14 px and is named (every one of 22 metric starts ends there).
   */
   const double sigma = 1.0;
