@@ -22,6 +22,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <memory>
 #include <sstream>
@@ -39,6 +40,7 @@
 #include <visp3/projective/vpProjectiveSession.h>
 #include <visp3/projective/vpSimulatorStereoCell.h>
 
+#include "vpModelFileChecksum.h"
 #include "vpProjectiveTestTools.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -574,6 +576,15 @@ TEST_F(ProjectiveCellServo, ModelKeepsItsCamerasAndOthersOrExchangedOnesAreNamed
   EXPECT_EQ(cell.getCameraSide(), vpProjectiveCellFingerprint::SIDE_RIGHT);
   EXPECT_EQ(cell.getWidth(), m_cameras->getWidth());
   EXPECT_NO_THROW(loadWith(a, b));
+  // A session the cell records says which camera took the left images.
+  const std::string session = temporaryFolder("cameras-session");
+  m_cell->setRecording(session);
+  std::ostringstream json;
+  json << std::ifstream(session + "/session.json").rdbuf();
+  const std::string text = json.str();
+  EXPECT_NE(text.find("\"" + a.serial + "\""), std::string::npos) << text;
+  EXPECT_LT(text.find(a.serial), text.find(b.serial)) << text;
+  std::filesystem::remove_all(session);
   // The same cameras given the other way round, then another right camera: refused, the cause named first.
   struct Mistake {
     vpStereoImageSource::vpCameraIdentity left, right;
@@ -592,4 +603,53 @@ TEST_F(ProjectiveCellServo, ModelKeepsItsCamerasAndOthersOrExchangedOnesAreNamed
     }
   }
   std::remove(file.c_str());
+}
+
+/*
+  The task compares the rest of the fingerprint of the model's cell: a model loaded into a cell whose arm declares a
+  joint of another kind, or whose cameras give images of another size, is refused with the joint or the sizes named.
+*/
+TEST_F(ProjectiveCellServo, ModelOfAnotherArmOrImageSizeIsRefused)
+{
+  RenderedCell rendered(5);
+  std::vector<vpProjectiveJoint::vpJointType> types = rendered.types;
+  types[2] = vpProjectiveJoint::PRISMATIC;
+  WatchedArm arm(rendered.cell.getRobot(), types);
+  FaultyCameras cameras(rendered.cell);
+  vpProjectiveCell cell(arm, cameras, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), testSettings());
+  auto expectRefused = [&cell](const std::string &file, const std::string &named) {
+    try {
+      cell.loadModel(file);
+      ADD_FAILURE() << "loaded a model of " << named;
+    } catch (const vpProjectiveException &e) {
+      EXPECT_EQ(e.getCode(), vpProjectiveException::invalidValueError);
+      EXPECT_NE(e.getStringMessage().find(named), std::string::npos) << e.getStringMessage();
+    }
+    EXPECT_THROW(cell.getModel().getModel(), vpProjectiveException); // the cell is left as it was: no model
+  };
+  expectRefused(s_model, "the arm is not the model's: its joint 2 is prismatic, the model's revolute");
+
+  // The suite's model with its cell's images said to be twice as large, loaded by a cell of the right arm.
+  WatchedArm right(rendered.cell.getRobot(), rendered.types);
+  vpProjectiveCell rightCell(right, cameras, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), testSettings());
+  EXPECT_NO_THROW(rightCell.loadModel(s_model));
+  nlohmann::json file;
+  std::ifstream(s_model) >> file;
+  const unsigned int width = cameras.getWidth(), height = cameras.getHeight();
+  ASSERT_EQ(file["model"]["cell"]["image_size"], nlohmann::json({width, height}));
+  file["model"]["cell"]["image_size"] = {2 * width, 2 * height};
+  const std::string larger = temporaryFolder("larger") + ".json";
+  std::ofstream(larger) << vpProjectiveTest::resigned(file);
+  vpProjectiveCell other(right, cameras, vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), testSettings());
+  try {
+    other.loadModel(larger);
+    ADD_FAILURE() << "loaded a model of images of another size";
+  } catch (const vpProjectiveException &e) {
+    EXPECT_NE(e.getStringMessage().find("the left images are " + std::to_string(width) + " x " +
+                                        std::to_string(height) + " pixels, the model's " + std::to_string(2 * width) +
+                                        " x " + std::to_string(2 * height)),
+              std::string::npos)
+        << e.getStringMessage();
+  }
+  std::remove(larger.c_str());
 }

@@ -293,6 +293,22 @@ TEST(ProjectiveSessionCameras, CheckNamesTheLikeliestCauseFirst)
       }
       testLog() << s.name << ", " << mistake.name << ": " << checker.getDiagnosisMessage() << std::endl;
     }
+    // A session of an arm with a joint of another kind: refused before any frame, the joint named.
+    const std::string same = tmp / "check-40";
+    json edited = json::parse(readText(same + "/session.json"));
+    const bool revolute = edited["joint_types"][2] == "revolute";
+    edited["joint_types"][2] = revolute ? "prismatic" : "revolute";
+    writeText(same + "/session.json", edited.dump());
+    try {
+      Calibration(recordedMarkers(rec)).check(model, ids, vpProjectiveSession::read(same), cell);
+      ADD_FAILURE() << s.name << ": a session of another arm was checked";
+    } catch (const vpProjectiveException &e) {
+      EXPECT_EQ(e.getCode(), vpProjectiveException::dimensionError);
+      EXPECT_NE(what(e).find(std::string("the session is of another arm: its joint 2 is ") +
+                             (revolute ? "prismatic, the model's revolute" : "revolute, the model's prismatic")),
+                std::string::npos)
+          << e.getStringMessage();
+    }
   }
 }
 

@@ -153,10 +153,7 @@ unsigned int recordFromReadings(const std::string &folder, vpStereoImageSource &
       if (interactive) {
         writer->setSaveInterval(1, 1.0); // a session on disk after every frame typed in
       }
-      vpStereoImageSource::vpCameraIdentity leftCamera, rightCamera; // which camera is left, for later checks
-      if (images.getCameraIdentities(leftCamera, rightCamera)) {
-        writer->setCameras(leftCamera, rightCamera);
-      }
+      writer->setCameras(images); // which camera is left, for later checks
     }
     if (readings.size() != writer->getSession().getNumberOfJoints()) {
       throw vpException(vpException::dimensionError, "line " + std::to_string(number) + " of the joint readings has " +

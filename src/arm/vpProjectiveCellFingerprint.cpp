@@ -121,6 +121,30 @@ std::string vpProjectiveCellFingerprint::cameraMismatch(const vpCameraIdentity &
   return std::string();
 }
 
+std::string vpProjectiveCellFingerprint::imageSizeMismatch(unsigned int width, unsigned int height) const
+{
+  if (m_width == 0 || width == 0 || (width == m_width && height == m_height)) {
+    return std::string();
+  }
+  return "the left images are " + std::to_string(width) + " x " + std::to_string(height) + " pixels, the model's " +
+         std::to_string(m_width) + " x " + std::to_string(m_height);
+}
+
+std::string vpProjectiveCellFingerprint::jointTypesMismatch(const std::vector<vpProjectiveJoint::vpJointType> &model,
+                                                            const std::vector<vpProjectiveJoint::vpJointType> &arm)
+{
+  if (arm.size() != model.size()) {
+    return "it has " + std::to_string(arm.size()) + " joints, the model " + std::to_string(model.size());
+  }
+  for (size_t i = 0; i < arm.size(); ++i) {
+    if (arm[i] != model[i]) {
+      return "its joint " + std::to_string(i) + " is " + vpProjectiveJoint::name(arm[i]) + ", the model's " +
+             vpProjectiveJoint::name(model[i]);
+    }
+  }
+  return std::string();
+}
+
 std::string vpProjectiveCellFingerprint::toString(const vpCameraIdentity &camera)
 {
   if (!isKnown(camera)) {

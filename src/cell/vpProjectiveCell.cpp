@@ -168,7 +168,9 @@ void vpProjectiveCell::progress(const std::string &line) const
 
 void vpProjectiveCell::setRecording(const std::string &folder)
 {
-  m_writer.reset(new vpProjectiveSessionWriter(folder, m_types));
+  std::unique_ptr<vpProjectiveSessionWriter> writer(new vpProjectiveSessionWriter(folder, m_types));
+  writer->setCameras(m_cameras); // which camera is left, so that check and loadModel() tell exchanged ones
+  m_writer = std::move(writer);
   m_recording = folder;
 }
 
@@ -310,12 +312,26 @@ void vpProjectiveCell::loadModel(const std::string &file)
   std::vector<int> ids;
   vpProjectiveCellFingerprint cell;
   vpProjectiveModelFile::load(file, nullptr, nullptr, &ids, nullptr, &cell);
+  // The fingerprint of the model's cell against this one, the likeliest mistake first: the cameras exchanged or
+  // others, the arm's joint kinds, the images' size (the model's matrices are in its pixels).
+  std::string mismatch;
   vpStereoImageSource::vpCameraIdentity left, right;
   if (m_cameras.getCameraIdentities(left, right)) {
-    const std::string mismatch = cell.cameraMismatch(left, right);
-    if (!mismatch.empty()) {
-      fail(vpProjectiveException::invalidValueError, at("loadModel()"), "the model '" + file + "': " + mismatch);
-    }
+    mismatch = cell.cameraMismatch(left, right);
+  }
+  const std::string otherArm = vpProjectiveCellFingerprint::jointTypesMismatch(model.getModel().jointTypes(), m_types);
+  if (mismatch.empty() && !otherArm.empty()) {
+    mismatch = "the arm is not the model's: " + otherArm +
+               "; give the model of this arm, or declare its joints' kinds as they are (vpProjectiveCellArm::"
+               "getJointTypes())";
+  }
+  const std::string otherSize = cell.imageSizeMismatch(m_cameras.getWidth(), m_cameras.getHeight());
+  if (mismatch.empty() && !otherSize.empty()) {
+    mismatch = "the cameras are not set as the model's: " + otherSize +
+               "; give the cameras the model's resolution, or acquire a model at this one";
+  }
+  if (!mismatch.empty()) {
+    fail(vpProjectiveException::invalidValueError, at("loadModel()"), "the model '" + file + "': " + mismatch);
   }
   m_markerIds = ids;
   m_model = model;

@@ -126,11 +126,12 @@ vpProjectiveSessionCalibration::check(const vpProjectiveArmModel &model, const s
   if (model.getNumberOfJoints() == 0) {
     fail(vpProjectiveException::notInitializedError, where, "the model is empty; load one first");
   }
-  if (session.getJointTypes() != model.jointTypes()) {
+  const std::string otherArm =
+      vpProjectiveCellFingerprint::jointTypesMismatch(model.jointTypes(), session.getJointTypes());
+  if (!otherArm.empty()) {
     fail(vpProjectiveException::dimensionError, where,
-         "the session's joints (" + std::to_string(session.getNumberOfJoints()) +
-             ", joint_types) are not the model's (" + std::to_string(model.getNumberOfJoints()) +
-             "): the session is of another arm; check a session of the arm the model was made for");
+         "the session is of another arm: " + otherArm +
+             " (its joint_types); check a session of the arm the model was made for");
   }
   if (ids.size() != model.markers().size()) {
     fail(vpProjectiveException::dimensionError, where,

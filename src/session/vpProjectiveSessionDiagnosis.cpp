@@ -302,11 +302,9 @@ std::vector<Calibration::vpCheckDiagnosis> diagnoseMismatch(const MismatchInput 
   const vpProjectiveCellFingerprint &cell = in.cell;
   const vpProjectiveSession &session = in.session;
   std::vector<std::string> otherCell;
-  if (cell.getWidth() > 0 && session.getWidth() > 0 &&
-      (cell.getWidth() != session.getWidth() || cell.getHeight() != session.getHeight())) {
-    otherCell.push_back("its left images are " + std::to_string(session.getWidth()) + " x " +
-                        std::to_string(session.getHeight()) + " pixels, the model's " +
-                        std::to_string(cell.getWidth()) + " x " + std::to_string(cell.getHeight()));
+  const std::string otherSize = cell.imageSizeMismatch(session.getWidth(), session.getHeight());
+  if (!otherSize.empty()) {
+    otherCell.push_back(otherSize);
   }
   typedef vpProjectiveCellFingerprint FP;
   const int sameLeft = FP::sameCamera(session.getLeftCamera(), cell.getLeftCamera());

@@ -241,10 +241,8 @@ vpProjectiveSessionCalibration::markerSource(vpStereoImageSource &images, const 
         }
         // Recorded once the markers are all seen: the session holds the frames that the procedure used, and which
         // camera took which images when the source knows.
-        vpStereoImageSource::vpCameraIdentity leftCamera, rightCamera;
-        if (writer != nullptr && writer->getSession().getNumberOfFrames() == 0 &&
-            images.getCameraIdentities(leftCamera, rightCamera)) {
-          writer->setCameras(leftCamera, rightCamera);
+        if (writer != nullptr && writer->getSession().getNumberOfFrames() == 0) {
+          writer->setCameras(images);
         }
         if (writer != nullptr) {
           writer->addAcquisitionFrame(q, now - state->t0, state->Il, state->Ir);

@@ -154,6 +154,16 @@ void vpProjectiveSessionWriter::save()
   m_lastSave = vpTime::measureTimeSecond();
 }
 
+bool vpProjectiveSessionWriter::setCameras(const vpStereoImageSource &images)
+{
+  vpStereoImageSource::vpCameraIdentity left, right;
+  if (!images.getCameraIdentities(left, right)) {
+    return false;
+  }
+  setCameras(left, right);
+  return true;
+}
+
 void vpProjectiveSessionWriter::setCameras(const vpStereoImageSource::vpCameraIdentity &left,
                                            const vpStereoImageSource::vpCameraIdentity &right)
 {

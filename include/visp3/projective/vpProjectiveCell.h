@@ -169,7 +169,8 @@ public:
   void setOutput(std::ostream *os) { m_os = os; }
   /*!
     Records every frame used from now on in the new session \e folder (vpProjectiveSessionWriter: acquisition frames,
-    TARGET, SERVO), closed by servo() and the destructor.
+    TARGET, SERVO), closed by servo() and the destructor, with which camera is left when the cameras tell
+    (vpStereoImageSource::getCameraIdentities()).
     \exception vpProjectiveException (fileError) as vpProjectiveSessionWriter().
   */
   void setRecording(const std::string &folder);
@@ -183,9 +184,13 @@ public:
   void acquire();
   /*!
     The model of a previous acquisition (vpProjectiveRobot::loadModel()) in place of acquire().
-    \exception vpProjectiveException (invalidValueError) if the model's file recorded its cameras and the cameras'
-    identities (vpStereoImageSource::getCameraIdentities()) are not them: exchanged, named first, or others
-    (vpProjectiveCellFingerprint::cameraMismatch()); the cell is left as it was.
+    \exception vpProjectiveException (dimensionError) if the model's joints are not as many as the arm's;
+    (invalidValueError) if the fingerprint of the model's cell (vpProjectiveCellFingerprint) is not this cell's, the
+    likeliest first: the model's file recorded its cameras and the cameras' identities
+    (vpStereoImageSource::getCameraIdentities()) are not them (exchanged, named first, or others:
+    vpProjectiveCellFingerprint::cameraMismatch()), a joint of the arm is of another kind than the model's
+    (vpProjectiveCellFingerprint::jointTypesMismatch()), the cameras' images are not of the model's size. The cell is
+    left as it was.
   */
   void loadModel(const std::string &file);
   /*!

@@ -23,6 +23,7 @@
 #include <visp3/projective/vpProjectiveConfig.h>
 
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -125,6 +126,19 @@ public:
     cameras; with what to do. Empty if they are the fingerprint's, or if the identities do not tell (sameCamera()).
   */
   std::string cameraMismatch(const vpCameraIdentity &left, const vpCameraIdentity &right) const;
+  /*!
+    What tells that images of \e width x \e height pixels are not the model's ("the left images are 320 x 240 pixels,
+    the model's 640 x 480": the rig's matrices are in the model's pixels); empty if they are, or if a size is not
+    known (0).
+  */
+  std::string imageSizeMismatch(unsigned int width, unsigned int height) const;
+  /*!
+    What tells that an arm whose joints are of the kinds \e arm is not the one a model of joints \e model was made
+    for: their numbers, or the first joint whose kind differs ("joint 2 is prismatic, the model's revolute"); empty if
+    they are the same.
+  */
+  static std::string jointTypesMismatch(const std::vector<vpProjectiveJoint::vpJointType> &model,
+                                        const std::vector<vpProjectiveJoint::vpJointType> &arm);
   //! A camera's identity in a few words ("'/dev/video0' (HD Webcam C920, serial 8A3F1C2E)"); "an unknown camera".
   static std::string toString(const vpCameraIdentity &camera);
   //! A side in a few words ("to the right of the left camera", ...).

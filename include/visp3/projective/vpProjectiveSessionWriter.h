@@ -122,6 +122,12 @@ public:
   void setCameras(const vpStereoImageSource::vpCameraIdentity &left,
                   const vpStereoImageSource::vpCameraIdentity &right);
   /*!
+    The cameras of \e images (vpStereoImageSource::getCameraIdentities()) when it knows them, as setCameras(); nothing
+    otherwise. Returns whether it knew them.
+    \exception vpProjectiveException (fileError) as save().
+  */
+  bool setCameras(const vpStereoImageSource &images);
+  /*!
     The cameras' layout (the session's \c camera_layout entry; default LAYOUT_LEFT_RIGHT): LAYOUT_ANY for a rig whose
     cameras are not upright side by side with the left one on the left (see vpProjectiveCellFingerprint). Written to
     session.json at once.
