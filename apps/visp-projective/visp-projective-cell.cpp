@@ -15,6 +15,10 @@
 
 #include <iomanip>
 
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
 namespace vispProjective
 {
 void printCell(const vpProjectiveCellFingerprint &cell, std::ostream &os)

@@ -26,6 +26,10 @@
 
 #include <visp3/projective/vpProjectiveCellFingerprint.h>
 
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
 namespace vpProjectiveInternal
 {
 //! The fields of an identity, in the JSON's names.
