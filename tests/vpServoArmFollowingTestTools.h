@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -82,6 +83,12 @@ struct LoopSettings {
   double skipProbability = 0.0;  //!< a controller cycle missed: no step before the next call
   bool planning = false;         //!< setPathPlanning(true) with the arm's limits and the image window
   bool settling = false;         //!< setSettling(true)
+  // The user's program, from the first call (testUserMistakes): \e read changes the encoder readings before the task
+  // sees them (joints listed in another order, a sign flipped), \e send the task's qdot before the robot gets it (a
+  // twist of another frame); \e swapImages gives the task each left image as the right one and conversely.
+  std::function<void(vpColVector &q)> read;
+  std::function<void(vpSimulatorRobotArm &robot, vpColVector &command)> send;
+  bool swapImages = false;
 };
 
 //! What a run saw.
@@ -131,7 +138,11 @@ inline LoopResult runLoop(const ArmSetup &s, const vpProjectiveRobot &model, con
   std::vector<vpFeatureStereoPoint> feat(N), featStar(N);
   for (size_t k = 0; k < N; ++k) {
     const Eigen::Vector4d t = s.imageOf(s.armJoints(qTarget), tracked[k]);
-    featStar[k].buildFrom(t(0), t(1), t(2), t(3));
+    if (settings.swapImages) {
+      featStar[k].buildFrom(t(2), t(3), t(0), t(1));
+    } else {
+      featStar[k].buildFrom(t(0), t(1), t(2), t(3));
+    }
   }
   vpServoProjective task;
   task.setRobot(model);
@@ -181,13 +192,17 @@ inline LoopResult runLoop(const ArmSetup &s, const vpProjectiveRobot &model, con
     for (unsigned int i = 0; i < q.size(); ++i) {
       q[i] += settings.encoderNoise * encoders();
     }
+    if (settings.read) {
+      settings.read(q);
+    }
     const vpColVector qArm = robot.getArmJoints();
     for (unsigned int i = 0; i < s.n(); ++i) {
       r.atArmLimit = r.atArmLimit || qArm[i] <= s.arm.getJointMin()[i] || qArm[i] >= s.arm.getJointMax()[i];
     }
     for (size_t k = 0; k < N; ++k) {
       const Eigen::Vector4d m = seen.imageOf(qArm, tracked[k]);
-      feat[k].buildFrom(m(0) + pixels(), m(1) + pixels(), m(2) + pixels(), m(3) + pixels());
+      const unsigned int l = settings.swapImages ? 2 : 0, r = 2 - l;
+      feat[k].buildFrom(m(l) + pixels(), m(l + 1) + pixels(), m(r) + pixels(), m(r + 1) + pixels());
     }
     const vpColVector qdot = task.computeControlLaw(q);
     ++r.calls;
@@ -228,6 +243,9 @@ inline LoopResult runLoop(const ArmSetup &s, const vpProjectiveRobot &model, con
       for (unsigned int i = 0; i < s.n(); ++i) {
         command[i] = c[s.n() - 1 - i];
       }
+    }
+    if (settings.send) {
+      settings.send(robot, command);
     }
     const bool skip = settings.skipProbability > 0.0 && rng.uniform(0.0, 1.0) < settings.skipProbability;
     try {
