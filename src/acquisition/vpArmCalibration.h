@@ -138,7 +138,7 @@ MetricModel metricModelOf(const vpProjectiveArmModel &model);
 /*!
   The whole calibration of \e data with its joint types data.types, from the trials' \e displacements: the algebraic
   generators, the metric start, the bundle adjustment and, with an outlier threshold, its rounds of outlier
-  classification. An adjustment ending above twice the images' epipolar noise (epipolarNoise(), at least 0.05 px)
+  classification. An adjustment ending above 1.3 times the images' epipolar noise (epipolarNoise(), at least 0.05 px)
   tries the other metric starts (initialMetricModels()) and keeps the model of the lowest residual. \e data receives the
   inlier flags and the rig of the last adjustment; \e residual and \e algebraicResidual the RMS pixel residuals of the
   adjustment and of the algebraic generators. Throws (estimationFailedError) if the upgrade or the adjustment fails.

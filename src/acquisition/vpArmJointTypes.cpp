@@ -95,6 +95,13 @@ std::vector<vpProjectiveJoint::vpJointType> flipped(std::vector<vpProjectiveJoin
   return types;
 }
 
+//! A fit that replaces declared types: better by 16 sigma^2 of squared error and by 10 %.
+bool decisivelyBetter(const ArmFit &other, const ArmFit &declared, double sigma)
+{
+  return declared.squaredError - other.squaredError > 16.0 * sigma * sigma &&
+         other.squaredError < 0.9 * declared.squaredError;
+}
+
 //! The better of two fits (the lower squared error; \e a on a tie).
 const ArmFit &better(const ArmFit &a, const ArmFit &b)
 {
@@ -169,9 +176,8 @@ void settleJointTypes(const ArmCheckInput &in, ArmCheck &check)
         continue;
       }
       other[i] = refitHypothesis(in, current, flipped(current.data.types, {i}));
-      const bool changes = in.identify ? other[i].squaredError < current.squaredError
-                                       : current.squaredError - other[i].squaredError > 16.0 * sigma * sigma &&
-                                             other[i].squaredError < 0.9 * current.squaredError;
+      const bool changes =
+          in.identify ? other[i].squaredError < current.squaredError : decisivelyBetter(other[i], current, sigma);
       if (changes) {
         improving.push_back(i);
         bestSingle = &better(*bestSingle, other[i]);

@@ -29,6 +29,10 @@
 
 #include "acquisition/vpArmCalibration.h"
 
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
 namespace vpProjectiveInternal
 {
 //! One calibrated hypothesis: the model of data.types, the data it was fitted to, and its errors.

@@ -27,6 +27,10 @@
 
 #include "core/vpProjectiveErrors.h"
 
+#ifdef ENABLE_VISP_NAMESPACE
+using namespace VISP_NAMESPACE_NAME;
+#endif
+
 namespace vpProjectiveInternal
 {
 /*!

@@ -304,7 +304,8 @@ void vpServoArmFollowing::commit(const JointVector &q, const JointVector &qdot)
     if (v.learnable && std::abs(v.duration - m_lastDuration) <= kRegular * m_lastDuration) {
       m_durations[m_nextDuration] = v.duration;
       m_nextDuration = (m_nextDuration + 1) % kLearned;
-      m_nbDurations = std::min(m_nbDurations + 1, kLearned);
+      const unsigned int learned = kLearned; // a value: std::min() would bind the undefined static member
+      m_nbDurations = std::min(m_nbDurations + 1, learned);
     }
     m_lastDuration = v.learnable ? v.duration : 0.0;
   } else if (!m_notFollowing) {
