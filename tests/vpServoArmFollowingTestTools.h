@@ -96,7 +96,7 @@ struct LoopResult {
   unsigned int calls = 0;    //!< computeControlLaw() calls made
   int notFollowingAt = -1;   //!< the first call that returned SERVO_ARM_NOT_FOLLOWING
   int mismatchAt = -1;       //!< the first call that returned SERVO_MODEL_MISMATCH
-  bool qdotZeroAfter = true; //!< every qdot from notFollowingAt on was exactly 0
+  bool qdotZeroAfter = true; //!< every qdot from the first stop (notFollowingAt or mismatchAt) on was exactly 0
   double finalRms = -1.0;    //!< image error at the end (px), noise-free
   vpServoArmFollowing::vpFollowingCause cause = vpServoArmFollowing::ARM_FOLLOWING;
   std::string diagnosis;
@@ -201,8 +201,8 @@ inline LoopResult runLoop(const ArmSetup &s, const vpProjectiveRobot &model, con
     }
     for (size_t k = 0; k < N; ++k) {
       const Eigen::Vector4d m = seen.imageOf(qArm, tracked[k]);
-      const unsigned int l = settings.swapImages ? 2 : 0, r = 2 - l;
-      feat[k].buildFrom(m(l) + pixels(), m(l + 1) + pixels(), m(r) + pixels(), m(r + 1) + pixels());
+      const Eigen::Index left = settings.swapImages ? 2 : 0, right = 2 - left;
+      feat[k].buildFrom(m(left) + pixels(), m(left + 1) + pixels(), m(right) + pixels(), m(right + 1) + pixels());
     }
     const vpColVector qdot = task.computeControlLaw(q);
     ++r.calls;
@@ -215,7 +215,7 @@ inline LoopResult runLoop(const ArmSetup &s, const vpProjectiveRobot &model, con
     if (status == vpServoProjective::SERVO_MODEL_MISMATCH && r.mismatchAt < 0) {
       r.mismatchAt = static_cast<int>(call);
     }
-    if (r.notFollowingAt >= 0) {
+    if (r.notFollowingAt >= 0 || r.mismatchAt >= 0) {
       r.qdotZeroAfter = r.qdotZeroAfter && qdot.frobeniusNorm() == 0.0;
     }
     if (stoppedAt < 0 && (r.notFollowingAt >= 0 || r.mismatchAt >= 0)) {
