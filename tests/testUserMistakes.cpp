@@ -127,33 +127,24 @@ TEST(UserMistakes, MarkerOccludedDuringTheAcquisition)
 {
   for (const ArmCase &arm : kMistakeArms) {
     const ArmSetup s = arm.make();
-    vpArmRobot robot(s.arm, s.qRef);
-    robot.setEncoderOffset(-1.0 * s.qRef); // readings of the model's joints, zero at the zero reference
-    vpGaussRand noise(1.0, 0.0, 30);
-    vpProjectiveAcquisitionProcedure procedure(
-        [&](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
-          const bool hidden = robot.q()[1] - s.qRef[1] > 0.5 * s.trialAmounts[1];
-          return s.images(robot.q(), left, right, 0.3, noise, 0.0) && !hidden;
-        },
-        s.width, s.height);
-    std::ostringstream progress;
-    procedure.setOutput(&progress);
-    vpProjectiveRobot model(s.jointTypes());
-    model.setStereoRig(s.rig());
-    std::string message;
-    ASSERT_EQ(codeOf([&]() { procedure.run(robot, model); }, message), -1) << arm.label << ": " << message;
+    const ProcedureRun run =
+        runProcedure(s, 30, [&s](const vpColVector &qArm, std::vector<vpImagePoint> &, std::vector<vpImagePoint> &) {
+          return qArm[1] - s.qRef[1] <= 0.5 * s.trialAmounts[1]; // marker 3 hidden beyond
+        });
+    ASSERT_EQ(run.code, -1) << arm.label << ": " << run.message;
+    const vpProjectiveRobot &model = run.model;
     ASSERT_TRUE(model.isCalibrated()) << arm.label;
-    const vpProjectiveAcquisitionProcedure::vpJointReport &joint1 = procedure.getReports()[1];
+    const vpProjectiveAcquisitionProcedure::vpJointReport &joint1 = run.reports[1];
     EXPECT_EQ(joint1.stopPositive, vpProjectiveAcquisitionProcedure::MARKER_LOST) << arm.label;
     EXPECT_LE(joint1.amountPositive, 0.5 * s.trialAmounts[1] + 1e-9) << arm.label;
-    const size_t line = progress.str().find("joint 1 +: ");
-    EXPECT_NE(progress.str().find("(marker lost)", line), std::string::npos) << progress.str();
+    const size_t line = run.progress.find("joint 1 +: ");
+    EXPECT_NE(run.progress.find("(marker lost)", line), std::string::npos) << run.progress;
     double worst = 0.0;
     const double rms = predictionRms(s, model, s.trialAmounts, 31, worst);
     EXPECT_LT(rms, 1.0) << arm.label << ": worst " << worst << " px";
     row("a marker occluded during the acquisition", arm.label,
         "right model (" + std::to_string(rms).substr(0, 4) + " px RMS at random poses), trial shortened",
-        progress.str().substr(line, progress.str().find('\n', line) - line));
+        run.progress.substr(line, run.progress.find('\n', line) - line));
   }
 }
 

@@ -18,7 +18,8 @@
   constant sampling time mode moving an ArmSetup's arm, with the realistic effects a correct arm shows (encoder noise,
   one call of command latency, pauses between calls, skipped controller cycles) and the faults a user makes (a
   velocity read in another frame, a robot not in velocity control, a joint held at a limit, a robot that clips the
-  velocity, a bumped camera). Used by testServoArmFollowing (suite) and testServoArmFollowingStudy (study).
+  velocity, a bumped camera). Used by testServoArmFollowing (suite), testServoArmFollowingStudy and testUserMistakes
+  (studies).
 */
 
 #ifndef _vpServoArmFollowingTestTools_h_

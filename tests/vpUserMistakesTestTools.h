@@ -25,11 +25,13 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpUniRand.h>
+#include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveModelCheck.h>
 #include <visp3/projective/vpProjectiveNotices.h>
@@ -37,6 +39,7 @@
 #include <visp3/projective/vpServoArmFollowing.h>
 
 #include "vpModelCheckTestTools.h"
+#include "vpProjectiveAcquisitionProcedureTestTools.h"
 #include "vpProjectiveSessionTestTools.h"
 #include "vpServoArmFollowingTestTools.h"
 
@@ -82,6 +85,43 @@ inline void expectRefused(const char *mistake, const ArmCase &arm,
   EXPECT_EQ(causes.front().cause, cause) << mistake << ", " << arm.label << ": " << message;
   EXPECT_NE(causes.front().finding.find(words), std::string::npos) << causes.front().finding;
   row(mistake, arm.label, "refused (modelRejectedError)", causes.front().finding);
+}
+
+//! What a run of vpProjectiveAcquisitionProcedure showed.
+struct ProcedureRun {
+  vpProjectiveRobot model;
+  int code = -1;        //!< the vpProjectiveException's code (-1: none)
+  std::string message;  //!< its message
+  std::string progress; //!< the progress lines
+  std::vector<vpProjectiveAcquisitionProcedure::vpJointReport> reports;
+};
+
+/*
+  The procedure run as a user runs it on the arm of setup \e s (the library's simulated robot, readings of the model's
+  joints), the rig's true F given, its image source the setup's images at 0.3 px drawn from \e seed passed through
+  \e view (the user's camera program: it may swap them, or say that a marker is lost by returning false).
+*/
+inline ProcedureRun runProcedure(const ArmSetup &s, long seed,
+                                 const std::function<bool(const vpColVector &qArm, std::vector<vpImagePoint> &left,
+                                                          std::vector<vpImagePoint> &right)> &view)
+{
+  vpArmRobot robot(s.arm, s.qRef);
+  robot.setEncoderOffset(-1.0 * s.qRef); // readings of the model's joints, zero at the zero reference
+  vpGaussRand noise(1.0, 0.0, seed);
+  vpProjectiveAcquisitionProcedure procedure(
+      [&](std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
+        const vpColVector qArm = robot.q();
+        return s.images(qArm, left, right, 0.3, noise, 0.0) && view(qArm, left, right);
+      },
+      s.width, s.height);
+  std::ostringstream progress;
+  procedure.setOutput(&progress);
+  ProcedureRun r{vpProjectiveRobot(s.jointTypes())};
+  r.model.setStereoRig(s.rig());
+  r.code = codeOf([&]() { procedure.run(robot, r.model); }, r.message);
+  r.progress = progress.str();
+  r.reports = procedure.getReports();
+  return r;
 }
 
 /*
