@@ -414,7 +414,7 @@ std::string vpServoArmFollowing::getDiagnosis() const
                  "limits)"
                : "): send qdot as joint velocities, setVelocity(vpRobot::ARTICULAR_FRAME, qdot), not in another frame "
                  "(CAMERA_FRAME, END_EFFECTOR_FRAME); check that q holds the encoders' readings of the model's joints, "
-                 "in its order and units");
+                 "in its order, signs and units");
     break;
   case ARM_FOLLOWING:
     break;
