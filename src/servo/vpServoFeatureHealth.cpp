@@ -20,7 +20,6 @@
 
 #include "core/vpImageWindow.h"
 #include "core/vpProjectiveErrors.h"
-#include "servo/vpEpipolarDistance.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -39,6 +38,34 @@ namespace
   os << "feature index " << i << " is out of range; the task has " << size
      << " features (indices in addFeature() order, from 0)";
   fail(vpProjectiveException::dimensionError, at(method), os.str());
+}
+
+/*!
+  Distance (pixels) of a point to the line \e l of an image, from the epipolar residual \f$ r = |m'^T F m| \f$ that
+  every such distance shares. A line with a null normal is the epipolar line of an epipole: the distance is 0 if the
+  residual is, infinite otherwise.
+*/
+double lineDistance(double residual, const Eigen::Vector3d &l)
+{
+  const double normal = l.head<2>().norm();
+  if (normal > 0.0) {
+    return residual / normal;
+  }
+  return residual == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+}
+
+/*!
+  The larger distance of a point to the lines \e l and \e lp: max(lineDistance(residual, l), lineDistance(residual,
+  lp)), to the bit. With both normals non-null it is \f$ r / \sqrt{\min(\|n\|^2, \|n'\|^2)} \f$: the square root and
+  the division are correctly rounded, hence monotone, so that one of each gives the larger of both quotients.
+*/
+double largerLineDistance(double residual, const Eigen::Vector3d &l, const Eigen::Vector3d &lp)
+{
+  const double n2 = l.head<2>().squaredNorm(), np2 = lp.head<2>().squaredNorm();
+  if (n2 > 0.0 && np2 > 0.0) {
+    return residual / std::sqrt(std::min(n2, np2));
+  }
+  return std::max(lineDistance(residual, l), lineDistance(residual, lp));
 }
 } // namespace
 
@@ -138,7 +165,13 @@ void vpServoFeatureHealth::startIteration(const vpProjectiveArmModel &model, con
 inline vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::outlierTest(const Eigen::Vector4d &s,
                                                                               vpRecord &record) const
 {
-  const double dF = epipolarDistance(m_model->getStereoRig().fundamentalMatrix(), s);
+  const Eigen::Matrix3d &F = m_model->getStereoRig().fundamentalMatrix();
+  const Eigen::Vector3d m(s(0), s(1), 1.0);
+  const Eigen::Vector3d mp(s(2), s(3), 1.0);
+  const Eigen::Vector3d lp = F * m;             // epipolar line of m in the right image
+  const Eigen::Vector3d l = F.transpose() * mp; // epipolar line of m' in the left image
+  const double residual = std::abs(mp.dot(lp));
+  const double dF = largerLineDistance(residual, l, lp);
   record.epipolarDistance = dF;
   if (!(dF <= m_outlierThreshold)) {
     return FEATURE_OUTLIER;

@@ -17,7 +17,6 @@
 #include <cmath>
 
 #include "core/vpProjectiveErrors.h"
-#include "servo/vpEpipolarDistance.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -39,8 +38,8 @@ Eigen::Vector4d alignedWith(const Eigen::Vector4d &reference, const Eigen::Vecto
 } // namespace
 
 vpServoModelMismatch::vpServoModelMismatch()
-    : m_records(), m_threshold(5.0), m_iterations(2), m_disagreeing(0), m_mismatch(false), m_swapped(false),
-      m_model(nullptr), m_data(nullptr)
+    : m_records(), m_threshold(5.0), m_iterations(2), m_disagreeing(0), m_mismatch(false), m_model(nullptr),
+      m_data(nullptr)
 {
 }
 
@@ -75,13 +74,12 @@ void vpServoModelMismatch::reset()
     r.triangulated.setZero();
     r.s.setZero();
     r.distance = -1.0;
-    r.epipolar = r.swapped = -1.0;
     r.usable = false;
     r.hasMemory = false;
     r.exact = false;
   }
   m_disagreeing = 0;
-  m_mismatch = m_swapped = false;
+  m_mismatch = false;
 }
 
 void vpServoModelMismatch::startIteration(const vpProjectiveArmModel &model, const vpServoProjectiveData &data)
@@ -96,19 +94,8 @@ void vpServoModelMismatch::observe(unsigned int i, bool usable)
   const Eigen::Vector4d &s = m_data->getFeature(i);
   r.s = s;
   r.usable = usable && s.allFinite();
-  r.distance = r.epipolar = r.swapped = -1.0;
-  if (!r.usable || m_model == nullptr) {
-    return;
-  }
-  // The stereo test: images off the rig's epipolar geometry disagree whatever the memory says.
-  const Eigen::Matrix3d &F = m_model->getStereoRig().fundamentalMatrix();
-  r.epipolar = epipolarDistance(F, s);
-  if (r.epipolar > m_threshold) {
-    r.swapped = epipolarDistance(F, Eigen::Vector4d(s(2), s(3), s(0), s(1)));
-    r.distance = r.epipolar;
-    return;
-  }
-  if (!r.hasMemory) {
+  r.distance = -1.0;
+  if (!r.usable || !r.hasMemory || m_model == nullptr) {
     return;
   }
   // The recent prediction first (it follows the model's drift, offset to where the feature last agreed): within the
@@ -138,27 +125,23 @@ void vpServoModelMismatch::observe(unsigned int i, bool usable)
 
 bool vpServoModelMismatch::endIteration()
 {
-  unsigned int evaluated = 0, disagreeing = 0, swapped = 0;
+  unsigned int evaluated = 0, disagreeing = 0;
   for (const vpRecord &r : m_records) {
     if (r.distance >= 0.0) {
       ++evaluated;
       if (r.distance > m_threshold) {
         ++disagreeing;
       }
-      if (r.epipolar > m_threshold && r.swapped >= 0.0 && r.swapped <= m_threshold) {
-        ++swapped;
-      }
     }
   }
-  m_swapped = evaluated >= 2 && swapped == evaluated;
   const bool disagrees = m_threshold > 0.0 && evaluated >= 2 && disagreeing == evaluated;
   m_disagreeing = disagrees ? m_disagreeing + 1 : 0;
   m_mismatch = m_disagreeing >= m_iterations;
   if (!disagrees && m_model != nullptr) {
     for (size_t i = 0; i < m_records.size(); ++i) {
       vpRecord &r = m_records[i];
-      if (!r.usable || r.epipolar > m_threshold || (r.hasMemory && (r.distance < 0.0 || r.distance > m_threshold))) {
-        continue; // off the rig's epipolar geometry, or off its memory: not a point to remember
+      if (!r.usable || (r.hasMemory && (r.distance < 0.0 || r.distance > m_threshold))) {
+        continue;
       }
       const Eigen::Vector4d &M = m_data->getZeroPoint(static_cast<unsigned int>(i)); // H(q)^-1 M, unit norm
       if (!M.allFinite()) {

@@ -19,10 +19,7 @@
 #define _vpServoProjectiveNotices_h_
 
 #include <visp3/projective/vpProjectivePathPlanner.h>
-#include <visp3/projective/vpServoModelMismatch.h>
 #include <visp3/projective/vpServoProjectiveReport.h>
-
-#include <string>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -34,17 +31,9 @@ namespace vpProjectiveInternal
   After each computeControlLaw(): the first time in the process that a call ends in a status other than
   SERVO_RUNNING (the task stopped, degraded or left the user's plan), one line on std::cerr names the status, what
   it means and the fix (vpServoProjective::toString()), with the arm-following check's diagnosis or the planner's
-  description, or the model mismatch's when the images are given right first, when they say more. Nothing is built
-  otherwise.
+  description when they say more. Nothing is built otherwise.
 */
-void noticeServoStatus(const vpServoProjectiveReport &report, const vpProjectivePathPlanner &planner,
-                       const vpServoModelMismatch &mismatch);
-
-/*!
-  One sentence on a model mismatch whose features all meet the rig's epipolar geometry only with their left and
-  right images exchanged (vpServoModelMismatch::isLeftRightSwapped()): the distances and the fix; empty otherwise.
-*/
-std::string swapDiagnosis(const vpServoModelMismatch &mismatch);
+void noticeServoStatus(const vpServoProjectiveReport &report, const vpProjectivePathPlanner &planner);
 } // namespace vpProjectiveInternal
 
 #endif

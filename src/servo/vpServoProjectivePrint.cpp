@@ -17,9 +17,7 @@
 
 #include <visp3/projective/vpServoProjective.h>
 
-#include <algorithm>
 #include <ostream>
-#include <sstream>
 #include <string>
 
 #include <visp3/projective/vpProjectiveNotices.h>
@@ -154,10 +152,7 @@ void vpServoProjective::print(std::ostream &os) const
   os << "Status and settings\n";
   if (computed) {
     os << "  Status: " << statusName(last().m_status) << "\n";
-    if (last().m_status == SERVO_MODEL_MISMATCH && m_mismatch.isLeftRightSwapped()) {
-      os << "  Images: " << swapDiagnosis(m_mismatch) << "\n";
-    } else if (last().m_status == SERVO_MODEL_MISMATCH && m_link.robot != nullptr &&
-               m_link.robot->getRigGeneration() == 0) {
+    if (last().m_status == SERVO_MODEL_MISMATCH && m_link.robot != nullptr && m_link.robot->getRigGeneration() == 0) {
       // No re-registration since the acquisition: the model may never have fit, whatever moved.
       os << "  Model never re-registered since its acquisition: if it never fit, check the rig mounting ("
          << (m_link.robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "EYE_IN_HAND" : "EYE_TO_HAND")
@@ -256,30 +251,8 @@ std::string vpServoProjective::toString(vpServoStatus status)
   return statusName(status);
 }
 
-std::string vpProjectiveInternal::swapDiagnosis(const vpServoModelMismatch &mismatch)
-{
-  if (!mismatch.isLeftRightSwapped()) {
-    return std::string();
-  }
-  double given = -1.0, exchanged = 0.0; // the smallest distance as given, the largest once exchanged
-  for (unsigned int i = 0; i < mismatch.getNumberOfFeatures(); ++i) {
-    if (mismatch.getEpipolarDistance(i) >= 0.0) {
-      given = given < 0.0 ? mismatch.getEpipolarDistance(i) : std::min(given, mismatch.getEpipolarDistance(i));
-      exchanged = std::max(exchanged, mismatch.getSwappedEpipolarDistance(i));
-    }
-  }
-  std::ostringstream os;
-  os.precision(3);
-  os << "every feature is " << given << " px or more off the rig's epipolar geometry, and within " << exchanged
-     << " px of it with its left and right images exchanged: the right camera's image is given first; check that the "
-        "left and right images are not swapped (the left camera's first, as in the acquisition: "
-        "vpFeatureStereoPoint::buildFrom(u, v, u', v'))";
-  return os.str();
-}
-
 void vpProjectiveInternal::noticeServoStatus(const vpServoProjectiveReport &report,
-                                             const vpProjectivePathPlanner &planner,
-                                             const vpServoModelMismatch &mismatch)
+                                             const vpProjectivePathPlanner &planner)
 {
   // Once per status kind and process (vpProjectiveNotices): the line is built only when it is printed.
   const vpServoProjectiveReport::vpServoStatus status = report.getStatus();
@@ -291,8 +264,6 @@ void vpProjectiveInternal::noticeServoStatus(const vpServoProjectiveReport &repo
     line += ": " + report.getArmFollowing().getDiagnosis();
   } else if (status == vpServoProjectiveReport::SERVO_NO_PLAN) {
     line += ": " + planner.getDescription();
-  } else if (status == vpServoProjectiveReport::SERVO_MODEL_MISMATCH && mismatch.isLeftRightSwapped()) {
-    line += ": " + swapDiagnosis(mismatch);
   }
   vpProjectiveNotices::tell(status, line);
 }

@@ -61,18 +61,11 @@ BEGIN_VISP_NAMESPACE
   one is then not computed), else the smaller of the two. A bump is sudden: both memories, frozen from the iteration
   before it, disagree at once and stay so.
 
-  <b>Stereo test.</b> A feature whose images do not meet the rig's epipolar geometry (its epipolar distance
-  \f$ d_F \f$, as vpServoFeatureHealth's, beyond the threshold) disagrees with the model whatever its memory, and is
-  never remembered: a moved camera shows there at once, and features whose left and right images are exchanged
-  (the right camera's image given first) would otherwise be remembered as points of nothing. When every feature of a
-  mismatch is beyond the threshold as given and within it with its left and right images exchanged,
-  isLeftRightSwapped() is true.
-
-  <b>Decision.</b> An iteration disagrees when at least two features have a prediction or a stereo test and every
-  one of them is farther than the threshold (setThreshold(), default 5 px: well above the noise of a tracked feature and
-  the prediction error of an acquired model, well below the image motion of a camera turned by 1 degree or moved by 5 mm
-  at 1 m with a 12.5 mm lens). The model mismatches when the last setConsecutiveIterations() iterations (default 2) all
-  disagreed. Memories are updated only by the features that agree, never in an iteration that disagrees.
+  <b>Decision.</b> An iteration disagrees when at least two features have a prediction and every one of them is
+  farther than the threshold (setThreshold(), default 5 px: well above the noise of a tracked feature and the
+  prediction error of an acquired model, well below the image motion of a camera turned by 1 degree or moved by
+  5 mm at 1 m with a 12.5 mm lens). The model mismatches when the last setConsecutiveIterations() iterations (default
+  2) all disagreed. Memories are updated only by the features that agree, never in an iteration that disagrees.
 
   Usage: startIteration(), observe() for every feature, endIteration(); reset() when the rig or the model changed.
   No allocation once the features are added.
@@ -120,15 +113,6 @@ public:
 
   //! True if the last endIteration() found a mismatch.
   bool isMismatch() const { return m_mismatch; }
-  /*!
-    True if the last endIteration() found a mismatch in which every evaluated feature is beyond the threshold from the
-    rig's epipolar geometry and within it with its left and right images exchanged: the images are given right first.
-  */
-  bool isLeftRightSwapped() const { return m_mismatch && m_swapped; }
-  //! Epipolar distance (pixels) of feature \e i at the last iteration as given, -1 if not evaluated (no check of \e i).
-  double getEpipolarDistance(unsigned int i) const { return m_records[i].epipolar; }
-  //! As getEpipolarDistance(), with the feature's left and right images exchanged.
-  double getSwappedEpipolarDistance(unsigned int i) const { return m_records[i].swapped; }
   //! Prediction distance (pixels) of feature \e i at the last iteration, -1 if not evaluated (no check of \e i).
   double getDistance(unsigned int i) const { return m_records[i].distance; }
   /*!
@@ -171,8 +155,6 @@ private:
     Eigen::Vector4d sum;          // sum of the sign-aligned unit points at the zero reference
     Eigen::Vector4d s;            // this iteration's value
     double distance;              // this iteration's distance, -1: not evaluated
-    double epipolar;              // this iteration's epipolar distance, -1: not evaluated
-    double swapped;               // the same with the left and right images exchanged
     bool usable;                  // this iteration
     bool hasMemory;               // sum is set
     bool exact;                   // sum is an acquired marker's point (vpProjectiveArmModel::matchMarker())
@@ -187,7 +169,6 @@ private:
   unsigned int m_iterations;
   unsigned int m_disagreeing;
   bool m_mismatch;
-  bool m_swapped; // every disagreeing feature of the last iteration agrees with the rig once exchanged
   const vpProjectiveArmModel *m_model;
   const vpServoProjectiveData *m_data;
 };
