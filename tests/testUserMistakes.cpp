@@ -375,3 +375,20 @@ TEST(UserMistakes, ModelOfAnotherCellInTheServo)
         "(none needed)");
   }
 }
+
+// The robot not in velocity mode in a drop-in ViSP program that never calls setControlPeriod(): the arm never moves, so
+// the arm-following check has no period to learn; it stops the task after 40 still calls of commands (2 s here).
+TEST(UserMistakes, RobotNotInVelocityModeWithoutPeriod)
+{
+  for (const ArmCase &arm : kMistakeArms) {
+    const ArmSetup s = arm.make();
+    const vpProjectiveRobot model = calibratedRobot(s, 0.3, 2);
+    LoopSettings user = userLoop();
+    user.givePeriod = false;
+    const ServoOutcome o = servoWithMistake(s, model, user, 22, NOT_IN_VELOCITY, 0);
+    testLog() << "[ measured ] " << arm.label << ": stopped at call " << o.stoppedAt() << ", final " << o.r.finalRms
+              << " px, stderr: " << o.err << std::endl;
+    expectStopped("robot not in velocity mode, no period", arm.label, o, 0, {"SERVO_ARM_NOT_FOLLOWING"},
+                  "STATE_VELOCITY_CONTROL");
+  }
+}

@@ -41,11 +41,12 @@ const double kNotMoving = 0.03;
 const double kNoise = 0.025;
 //! Two consecutive calls are regular when their durations differ by at most this fraction.
 const double kRegular = 0.2;
-//! Without a reference duration: the arm does not move when it stayed within kNoise of where it was over
-//! kStillCalls commanding calls whose commands would have moved the images by kStillMotion pixels even if each
-//! lasted kShortestCall seconds (a 1 kHz loop; a robot starts within the 40 ms that makes).
+//! Without a reference duration: the arm does not move when it stayed within kMinMotion of where it was (above the
+//! encoders' noise) over kStillCalls commanding calls whose commands would have moved the images by kStillMotion
+//! pixels, ten times more, even if each lasted kShortestCall seconds: the task is called once per image pair, and a
+//! fast camera gives 200 pairs per second (a robot starts within the 0.2 s of 40 such calls).
 const unsigned int kStillCalls = 40;
-const double kStillMotion = 1.0, kShortestCall = 0.001;
+const double kStillMotion = 1.0, kShortestCall = 0.005;
 
 /*!
   What joint i did: its measured motion \e d against scale c, \e c its command (per second), \e s the image motion of
@@ -277,7 +278,7 @@ bool vpServoArmFollowing::evaluate(const JointVector &q, const JointMatrix &JtJ,
   // Without a reference: the arm still since m_qStill over enough commanding calls (evaluated only while it has been).
   if (!(v.reference > 0.0)) {
     const JointVector moved = m_qStill.size() == n ? JointVector(q - m_qStill) : d;
-    if (std::sqrt(std::max(0.0, moved.dot(G * moved))) < kNoise) {
+    if (std::sqrt(std::max(0.0, moved.dot(G * moved))) < kMinMotion) {
       v.stillCalls = m_stillCalls + 1;
       v.stillCommand = m_stillCommand + commandNorm;
       if (v.stillCalls >= kStillCalls && kShortestCall * v.stillCommand >= kStillMotion) {

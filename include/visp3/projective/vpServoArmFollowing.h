@@ -95,9 +95,10 @@ BEGIN_VISP_NAMESPACE
 
   <b>Without any reference</b> (no period given, none learned yet: a robot that has not moved since the first call
   leaves nothing to learn it from), the arm does not move when, over 40 consecutive commanding calls, the joints
-  stayed within the encoders' noise of where they were (\f$ \|q_k - q_{start}\|_G < \f$ 0.025 px) while the commands
-  would have moved the images by at least 1 px even at 1 ms per call (\f$ 0.001\,\sum_k \|c_k\|_G \ge 1 \f$ px):
-  2 s of a 20 Hz loop, 40 ms of a 1 kHz one, longer than a robot takes to start. The cause is ARM_NOT_MOVING.
+  stayed where they were (\f$ \|q_k - q_{start}\|_G < \f$ 0.1 px, the smallest motion judged) while the commands
+  would have moved the images by at least 1 px, ten times more, even at 5 ms per call (\f$ 0.005\,\sum_k \|c_k\|_G
+  \ge 1 \f$ px; the task is called once per image pair, and a fast camera gives 200 pairs per second): 2 s of a
+  20 Hz loop, 0.2 s of a 200 Hz one, longer than a robot takes to start. The cause is ARM_NOT_MOVING.
 
   Limitation: without a period (setControlPeriod()), a robot that clips is not told from a loop that runs faster, and
   a robot that does not move is found after 40 calls instead of setConsecutiveCalls(). The shape needs no period.
