@@ -344,6 +344,38 @@ TEST(ServoArmFollowing, faultsStopTheTaskAndNameTheCause)
   }
 }
 
+// A robot that never moves, in a program that does not give the task its period: nothing to learn the period from,
+// yet SERVO_ARM_NOT_FOLLOWING (ARM_NOT_MOVING) after the 40 still calls plus setConsecutiveCalls(), within 3 s of a
+// 20 Hz loop, qdot = 0 from then on, the missing period named; a robot that moves, with the same settings, never
+// stops (its period is learned from its first calls).
+TEST(ServoArmFollowing, robotStillFromTheFirstCallWithoutPeriodStopsTheTask)
+{
+  const NoticesSetting quiet(false); // the fault is provoked
+  vpUniRand rng(14);
+  for (const ArmSetup &s : {pumaEyeToHand(), viperEyeToHand()}) {
+    const vpProjectiveRobot model = calibratedRobot(s, 0.3, 2);
+    for (int run = 0; run < 2; ++run) {
+      vpColVector qStart, qTarget;
+      randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(25.0), qStart, qTarget);
+      LoopSettings settings;
+      settings.givePeriod = false;
+      settings.encoderNoise = run == 1 ? 1e-5 : 0.0;
+      const LoopResult still =
+          runLoop(s, model, {0, 1, 2}, qStart, qTarget, settings, 300 + run, 100, NOT_IN_VELOCITY, 0);
+      EXPECT_GE(still.notFollowingAt, 40) << s.name << " run " << run;
+      EXPECT_LE(still.notFollowingAt * settings.period, 3.0) << s.name << " run " << run;
+      EXPECT_TRUE(still.qdotZeroAfter) << s.name << " run " << run;
+      EXPECT_EQ(still.cause, vpServoArmFollowing::ARM_NOT_MOVING)
+          << s.name << " run " << run << ": " << still.diagnosis;
+      EXPECT_NE(still.diagnosis.find("setControlPeriod()"), std::string::npos) << still.diagnosis;
+      const LoopResult moving = runLoop(s, model, {0, 1, 2}, qStart, qTarget, settings, 300 + run, 100);
+      EXPECT_EQ(moving.notFollowingAt, -1) << s.name << " run " << run << ": " << moving.diagnosis;
+      testLog() << "[ measured ] " << s.name << ", run " << run << ": a still robot without a period stopped at call "
+                << still.notFollowingAt << ": " << still.diagnosis << std::endl;
+    }
+  }
+}
+
 // A bumped camera (1-3 deg, 0.5-2 cm) is a model mismatch, never an arm that does not follow: the arm follows.
 TEST(ServoArmFollowing, bumpedCameraIsAMismatchNotAnArmFault)
 {

@@ -18,7 +18,8 @@
   constant sampling time mode moving an ArmSetup's arm, with the realistic effects a correct arm shows (encoder noise,
   one call of command latency, pauses between calls, skipped controller cycles) and the faults a user makes (a
   velocity read in another frame, a robot not in velocity control, a joint held at a limit, a robot that clips the
-  velocity, a bumped camera). Used by testServoArmFollowing (suite) and testServoArmFollowingStudy (study).
+  velocity, a bumped camera). Used by testServoArmFollowing (suite), testServoArmFollowingStudy and testUserMistakes
+  (studies).
 */
 
 #ifndef _vpServoArmFollowingTestTools_h_
@@ -26,6 +27,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -82,6 +84,12 @@ struct LoopSettings {
   double skipProbability = 0.0;  //!< a controller cycle missed: no step before the next call
   bool planning = false;         //!< setPathPlanning(true) with the arm's limits and the image window
   bool settling = false;         //!< setSettling(true)
+  // The user's program, from the first call (testUserMistakes): \e read changes the encoder readings before the task
+  // sees them (joints listed in another order, a sign flipped), \e send the task's qdot before the robot gets it (a
+  // twist of another frame); \e swapImages gives the task each left image as the right one and conversely.
+  std::function<void(vpColVector &q)> read;
+  std::function<void(vpSimulatorRobotArm &robot, vpColVector &command)> send;
+  bool swapImages = false;
 };
 
 //! What a run saw.
@@ -89,7 +97,7 @@ struct LoopResult {
   unsigned int calls = 0;    //!< computeControlLaw() calls made
   int notFollowingAt = -1;   //!< the first call that returned SERVO_ARM_NOT_FOLLOWING
   int mismatchAt = -1;       //!< the first call that returned SERVO_MODEL_MISMATCH
-  bool qdotZeroAfter = true; //!< every qdot from notFollowingAt on was exactly 0
+  bool qdotZeroAfter = true; //!< every qdot from the first stop (notFollowingAt or mismatchAt) on was exactly 0
   double finalRms = -1.0;    //!< image error at the end (px), noise-free
   vpServoArmFollowing::vpFollowingCause cause = vpServoArmFollowing::ARM_FOLLOWING;
   std::string diagnosis;
@@ -131,7 +139,11 @@ inline LoopResult runLoop(const ArmSetup &s, const vpProjectiveRobot &model, con
   std::vector<vpFeatureStereoPoint> feat(N), featStar(N);
   for (size_t k = 0; k < N; ++k) {
     const Eigen::Vector4d t = s.imageOf(s.armJoints(qTarget), tracked[k]);
-    featStar[k].buildFrom(t(0), t(1), t(2), t(3));
+    if (settings.swapImages) {
+      featStar[k].buildFrom(t(2), t(3), t(0), t(1));
+    } else {
+      featStar[k].buildFrom(t(0), t(1), t(2), t(3));
+    }
   }
   vpServoProjective task;
   task.setRobot(model);
@@ -181,13 +193,17 @@ inline LoopResult runLoop(const ArmSetup &s, const vpProjectiveRobot &model, con
     for (unsigned int i = 0; i < q.size(); ++i) {
       q[i] += settings.encoderNoise * encoders();
     }
+    if (settings.read) {
+      settings.read(q);
+    }
     const vpColVector qArm = robot.getArmJoints();
     for (unsigned int i = 0; i < s.n(); ++i) {
       r.atArmLimit = r.atArmLimit || qArm[i] <= s.arm.getJointMin()[i] || qArm[i] >= s.arm.getJointMax()[i];
     }
     for (size_t k = 0; k < N; ++k) {
       const Eigen::Vector4d m = seen.imageOf(qArm, tracked[k]);
-      feat[k].buildFrom(m(0) + pixels(), m(1) + pixels(), m(2) + pixels(), m(3) + pixels());
+      const Eigen::Index left = settings.swapImages ? 2 : 0, right = 2 - left;
+      feat[k].buildFrom(m(left) + pixels(), m(left + 1) + pixels(), m(right) + pixels(), m(right + 1) + pixels());
     }
     const vpColVector qdot = task.computeControlLaw(q);
     ++r.calls;
@@ -200,7 +216,7 @@ inline LoopResult runLoop(const ArmSetup &s, const vpProjectiveRobot &model, con
     if (status == vpServoProjective::SERVO_MODEL_MISMATCH && r.mismatchAt < 0) {
       r.mismatchAt = static_cast<int>(call);
     }
-    if (r.notFollowingAt >= 0) {
+    if (r.notFollowingAt >= 0 || r.mismatchAt >= 0) {
       r.qdotZeroAfter = r.qdotZeroAfter && qdot.frobeniusNorm() == 0.0;
     }
     if (stoppedAt < 0 && (r.notFollowingAt >= 0 || r.mismatchAt >= 0)) {
@@ -228,6 +244,9 @@ inline LoopResult runLoop(const ArmSetup &s, const vpProjectiveRobot &model, con
       for (unsigned int i = 0; i < s.n(); ++i) {
         command[i] = c[s.n() - 1 - i];
       }
+    }
+    if (settings.send) {
+      settings.send(robot, command);
     }
     const bool skip = settings.skipProbability > 0.0 && rng.uniform(0.0, 1.0) < settings.skipProbability;
     try {

@@ -41,6 +41,12 @@ const double kNotMoving = 0.03;
 const double kNoise = 0.025;
 //! Two consecutive calls are regular when their durations differ by at most this fraction.
 const double kRegular = 0.2;
+//! Without a reference duration: the arm does not move when it stayed within kMinMotion of where it was (above the
+//! encoders' noise) over kStillCalls commanding calls whose commands would have moved the images by kStillMotion
+//! pixels, ten times more, even if each lasted kShortestCall seconds: the task is called once per image pair, and a
+//! fast camera gives 200 pairs per second (a robot starts within the 0.2 s of 40 such calls).
+const unsigned int kStillCalls = 40;
+const double kStillMotion = 1.0, kShortestCall = 0.005;
 
 /*!
   What joint i did: its measured motion \e d against scale c, \e c its command (per second), \e s the image motion of
@@ -136,7 +142,7 @@ unsigned int judgeJoints(const vpServoArmFollowing::JointVector &d, const vpServ
 vpServoArmFollowing::vpServoArmFollowing()
     : m_enabled(true), m_calls(3), m_period(0.0), m_hasPrevious(false), m_qPrevious(), m_qdot1(), m_qdot2(),
       m_pending(), m_last(), m_detection(), m_disagreeing(0), m_notFollowing(false), m_durations(), m_nbDurations(0),
-      m_nextDuration(0), m_lastDuration(0.0)
+      m_nextDuration(0), m_lastDuration(0.0), m_qStill(), m_stillCalls(0), m_stillCommand(0.0)
 {
 }
 
@@ -171,6 +177,8 @@ void vpServoArmFollowing::reset()
   m_notFollowing = false;
   m_nbDurations = m_nextDuration = 0;
   m_lastDuration = 0.0;
+  m_stillCalls = 0;
+  m_stillCommand = 0.0;
 }
 
 double vpServoArmFollowing::learnedDuration() const
@@ -267,15 +275,28 @@ bool vpServoArmFollowing::evaluate(const JointVector &q, const JointMatrix &JtJ,
                 (measured < kNotMoving * v.commanded || (measured < kNoise && measured < kSlower * v.commanded));
     slower = m_period > 0.0 && v.commanded >= kMinMotion && v.ratio < kSlower;
   }
+  // Without a reference: the arm still since m_qStill over enough commanding calls (evaluated only while it has been).
+  if (!(v.reference > 0.0)) {
+    const JointVector moved = m_qStill.size() == n ? JointVector(q - m_qStill) : d;
+    if (std::sqrt(std::max(0.0, moved.dot(G * moved))) < kMinMotion) {
+      v.stillCalls = m_stillCalls + 1;
+      v.stillCommand = m_stillCommand + commandNorm;
+      if (v.stillCalls >= kStillCalls && kShortestCall * v.stillCommand >= kStillMotion) {
+        notMoving = true;
+        anyJudged = true;
+      }
+    }
+  }
   v.judged = anyJudged || v.commanded >= kMinMotion;
   v.disagrees = notMoving || shapeFails || slower;
   if (notMoving) {
     v.cause = ARM_NOT_MOVING;
     for (Eigen::Index i = 0; i < n; ++i) {
       const double expected = v.reference * std::abs(m_qdot1(i));
-      const bool seen = std::sqrt(std::max(0.0, G(i, i))) * expected >= kMinMotion;
+      const bool seen = v.reference > 0.0 ? std::sqrt(std::max(0.0, G(i, i))) * expected >= kMinMotion
+                                          : m_qdot1(i) != 0.0; // still over the streak, whatever the period
       v.states[i] = seen ? JOINT_STILL : JOINT_NOT_JUDGED;
-      v.ratios[i] = seen ? d(i) / (v.reference * m_qdot1(i)) : 0.0;
+      v.ratios[i] = seen && v.reference > 0.0 ? d(i) / (v.reference * m_qdot1(i)) : 0.0;
     }
   } else if (shapeFails) {
     v.cause = onlyLagging && anyFollows ? ARM_JOINTS_LAGGING : ARM_OTHER_DIRECTION;
@@ -312,6 +333,13 @@ void vpServoArmFollowing::commit(const JointVector &q, const JointVector &qdot)
     m_disagreeing = 0; // nothing to judge: only consecutive disagreements stop the task
     m_lastDuration = 0.0;
   }
+  // The still streak goes on only through calls where evaluate() found the arm still (a call that commanded nothing
+  // or moved the arm starts a new one here).
+  m_stillCalls = m_notFollowing ? m_stillCalls : v.stillCalls;
+  m_stillCommand = m_notFollowing ? m_stillCommand : v.stillCommand;
+  if (m_stillCalls == 0) {
+    m_qStill = q;
+  }
   m_qdot2 = m_hasPrevious && m_qdot1.size() == q.size() ? m_qdot1 : JointVector(JointVector::Zero(q.size()));
   m_qdot1 = qdot;
   m_qPrevious = q;
@@ -338,10 +366,16 @@ std::string vpServoArmFollowing::getDiagnosis() const
   os.precision(3);
   switch (v.cause) {
   case ARM_NOT_MOVING:
-    os << "the arm does not move: no joint moved over " << m_calls << " calls while the task commanded " << v.commanded
-       << " px of image motion per call (" << v.reference << " s per call"
-       << (m_period > 0.0 ? ", setControlPeriod()" : ", learned from the arm's motion")
-       << "); check that the robot is in velocity control "
+    if (v.reference > 0.0) {
+      os << "the arm does not move: no joint moved over " << m_calls << " calls while the task commanded "
+         << v.commanded << " px of image motion per call (" << v.reference << " s per call"
+         << (m_period > 0.0 ? ", setControlPeriod()" : ", learned from the arm's motion") << ")";
+    } else {
+      os << "the arm does not move: no joint moved over " << v.stillCalls << " calls while the task commanded "
+         << v.stillCommand / v.stillCalls << " px/s of image motion on average (no period: setControlPeriod() "
+         << "was not given, and the arm never moved to learn one from)";
+    }
+    os << "; check that the robot is in velocity control "
        << "(setRobotState(vpRobot::STATE_VELOCITY_CONTROL)), that qdot reaches it (setVelocity(vpRobot::"
        << "ARTICULAR_FRAME, qdot)), that no joint is at a limit (some robots then stop every joint) and that q is "
        << "read from the encoders at each call";
@@ -381,7 +415,7 @@ std::string vpServoArmFollowing::getDiagnosis() const
                  "limits)"
                : "): send qdot as joint velocities, setVelocity(vpRobot::ARTICULAR_FRAME, qdot), not in another frame "
                  "(CAMERA_FRAME, END_EFFECTOR_FRAME); check that q holds the encoders' readings of the model's joints, "
-                 "in its order and units");
+                 "in its order, signs and units");
     break;
   case ARM_FOLLOWING:
     break;

@@ -64,8 +64,9 @@ const char *statusName(vpServoProjective::vpServoStatus status)
   case vpServoProjective::SERVO_NO_PLAN:
     return "SERVO_NO_PLAN (path planning found no plan for the target: qdot = 0)";
   case vpServoProjective::SERVO_MODEL_MISMATCH:
-    return "SERVO_MODEL_MISMATCH (every feature disagrees with the model: re-register a moved rig, or check the rig "
-           "mounting; qdot = 0)";
+    return "SERVO_MODEL_MISMATCH (every feature disagrees with the model's prediction at the joint readings: "
+           "re-register a moved rig, or check the rig mounting, that the readings are the model's joints (their "
+           "order, signs and units) and that the left and right images are not swapped; qdot = 0)";
   case vpServoProjective::SERVO_OPEN_LOOP:
     return "SERVO_OPEN_LOOP (too few features seen: the missing ones predicted by the model, the plan followed for at "
            "most setMaxOpenLoopTime())";

@@ -93,9 +93,15 @@ BEGIN_VISP_NAMESPACE
   - ARM_OTHER_DIRECTION: the joints move in another direction: a velocity sent in another frame (vpRobot::
     setVelocity() with CAMERA_FRAME instead of ARTICULAR_FRAME), or readings that are not the joints of the model.
 
-  Limitation: without a period (setControlPeriod()), a robot that does not move from the very first call leaves
-  nothing to learn the period from (the scale is judged once the arm was seen to follow), and a robot that clips is
-  not told from a loop that runs faster. The shape needs no period.
+  <b>Without any reference</b> (no period given, none learned yet: a robot that has not moved since the first call
+  leaves nothing to learn it from), the arm does not move when, over 40 consecutive commanding calls, the joints
+  stayed where they were (\f$ \|q_k - q_{start}\|_G < \f$ 0.1 px, the smallest motion judged) while the commands
+  would have moved the images by at least 1 px, ten times more, even at 5 ms per call (\f$ 0.005\,\sum_k \|c_k\|_G
+  \ge 1 \f$ px; the task is called once per image pair, and a fast camera gives 200 pairs per second): 2 s of a
+  20 Hz loop, 0.2 s of a 200 Hz one, longer than a robot takes to start. The cause is ARM_NOT_MOVING.
+
+  Limitation: without a period (setControlPeriod()), a robot that clips is not told from a loop that runs faster, and
+  a robot that does not move is found after 40 calls instead of setConsecutiveCalls(). The shape needs no period.
 
   Usage (the task does it): evaluate() once per call before the status is decided, commit() with the call's
   \f$ \dot q \f$ once the call succeeded; a call that throws in between changes nothing. No allocation per call:
@@ -200,11 +206,13 @@ private:
     bool disagrees = false;
     vpFollowingCause cause = ARM_FOLLOWING;
     unsigned int joints = 0;
-    double ratio = -1.0;    // tau / tau_ref
-    double duration = 0.0;  // tau
-    double reference = 0.0; // tau_ref
-    double commanded = 0.0; // tau_ref ||qdot_{k-1}||_G (px), 0 without a reference
-    bool learnable = false; // followed, measurably: tau joins the learned durations
+    double ratio = -1.0;         // tau / tau_ref
+    double duration = 0.0;       // tau
+    double reference = 0.0;      // tau_ref
+    double commanded = 0.0;      // tau_ref ||qdot_{k-1}||_G (px), 0 without a reference
+    bool learnable = false;      // followed, measurably: tau joins the learned durations
+    unsigned int stillCalls = 0; // consecutive commanding calls with the joints within the noise of m_qStill
+    double stillCommand = 0.0;   // sum of ||c_k||_G over them (px per second)
     vpJointFollowing states[vpProjectiveArmModel::maxJoints] = {};
     double ratios[vpProjectiveArmModel::maxJoints] = {};
   };
@@ -226,6 +234,11 @@ private:
   double m_durations[kLearned];
   unsigned int m_nbDurations, m_nextDuration;
   double m_lastDuration; // of the last call if it was learnable, else 0
+  // Without a reference: the joints where the arm has been still since, over how many commanding calls, and the sum
+  // of their commands' image speeds (px per second).
+  JointVector m_qStill;
+  unsigned int m_stillCalls;
+  double m_stillCommand;
 };
 
 END_VISP_NAMESPACE
