@@ -248,11 +248,14 @@ LoopResult runViSP(Robot &robot, const Cell<Robot, Kinematics> &cell, const vpPr
       // A careless loop goes on.
     }
     if (constantSampling) {
-      // The simulator's thread makes one step per command, at most every sampling period.
+      // The simulator's thread makes one step per command, at most every sampling period; on a loaded machine it may
+      // not run for tens of milliseconds (a 15 ms limit read a starved thread as an arm that does not move: one fault
+      // of the Afma6 misnamed at load 6), so the loop waits up to 200 ms, longer than any scheduling delay, for the
+      // step of an arm that moves.
       do {
         vpTime::wait(1);
         robot.getPosition(vpRobot::ARTICULAR_FRAME, q);
-      } while (q == before && vpTime::measureTimeMs() - t0 < 15.0);
+      } while (q == before && vpTime::measureTimeMs() - t0 < 200.0);
     } else {
       vpTime::wait(t0, 10.0);
     }
