@@ -301,8 +301,8 @@ TEST(UserMistakes, LeftAndRightSwappedEverywhere)
 
 // A session of another cell: a model calibrated from a session of this cell (vpProjectiveSessionCalibration) checked
 // against a session recorded in another cell of the same arm and markers, whose rig stands 6 cm and 4 deg elsewhere
-// (with what main has: vpProjectiveSessionCalibration::check()). Every frame is refused, both images are off, and
-// the conclusion says to calibrate again.
+// (vpProjectiveSessionCalibration::check(), the sessions without recorded cameras). Every frame is refused, both
+// images are off, the conclusion says to calibrate again and the diagnosis names another rig.
 TEST(UserMistakes, SessionOfAnotherCell)
 {
   for (const ArmCase &arm : kMistakeArms) {
@@ -341,6 +341,10 @@ TEST(UserMistakes, SessionOfAnotherCell)
     EXPECT_EQ(checker.getRigState(), vpProjectiveSessionCalibration::BOTH_CAMERAS_MOVED) << arm.label;
     const std::string conclusion = vpProjectiveSessionCalibration::toString(checker.getRigState());
     EXPECT_NE(conclusion.find("calibrate again"), std::string::npos) << conclusion;
+    // The same images as the rig moved by 6 cm: the diagnosis names both, another rig among them (sessions without
+    // recorded cameras cannot tell them apart; with them, the cameras' identities name the other cell first).
+    const std::string diagnosis = checker.getDiagnosisMessage();
+    EXPECT_NE(diagnosis.find("another rig"), std::string::npos) << diagnosis;
     row("a session of another cell (check)", arm.label,
         "no frame fits: left " + std::to_string(checker.getLeftResidual()).substr(0, 5) + " px, right " +
             std::to_string(checker.getRightResidual()).substr(0, 5) + " px",
