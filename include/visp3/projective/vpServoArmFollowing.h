@@ -206,13 +206,15 @@ private:
     bool disagrees = false;
     vpFollowingCause cause = ARM_FOLLOWING;
     unsigned int joints = 0;
-    double ratio = -1.0;         // tau / tau_ref
-    double duration = 0.0;       // tau
-    double reference = 0.0;      // tau_ref
-    double commanded = 0.0;      // tau_ref ||qdot_{k-1}||_G (px), 0 without a reference
-    bool learnable = false;      // followed, measurably: tau joins the learned durations
-    unsigned int stillCalls = 0; // consecutive commanding calls with the joints within the noise of m_qStill
-    double stillCommand = 0.0;   // sum of ||c_k||_G over them (px per second)
+    double ratio = -1.0;    // tau / tau_ref
+    double duration = 0.0;  // tau
+    double reference = 0.0; // tau_ref
+    double commanded = 0.0; // tau_ref ||qdot_{k-1}||_G (px), 0 without a reference
+    bool learnable = false; // followed, measurably: tau joins the learned durations
+    // Without a reference: consecutive commanding calls with the joints within 0.1 px of m_qStill (the smallest motion
+    // judged), and the sum of ||c_k||_G over them (px per second).
+    unsigned int stillCalls = 0;
+    double stillCommand = 0.0;
     vpJointFollowing states[vpProjectiveArmModel::maxJoints] = {};
     double ratios[vpProjectiveArmModel::maxJoints] = {};
   };
