@@ -38,6 +38,7 @@ TEST(ProjectiveAcquisitionProcedure, JointThatLosesMarkersThrowsAndChangesNothin
         return base(l, r) && std::fabs(s.robot.q()[2]) < vpMath::rad(0.5);
       },
       s.sim.getWidth(), s.sim.getHeight());
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   vpProjectiveArmAcquisition acq = s.acquisition();
   try {
     procedure.run(s.robot, acq);
@@ -58,6 +59,7 @@ TEST(ProjectiveAcquisitionProcedure, BadSettingsThrow)
   EXPECT_THROW(vpProjectiveAcquisitionProcedure(nullptr, 640, 480), vpProjectiveException);
   EXPECT_THROW(vpProjectiveAcquisitionProcedure(s.source(), 0, 480), vpProjectiveException);
   vpProjectiveAcquisitionProcedure procedure(s.source(), 640, 480);
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   EXPECT_THROW(procedure.setMaxAmounts(vpColVector(6, -0.1)), vpProjectiveException);
   EXPECT_THROW(procedure.setSteps(vpColVector(6, 0.0)), vpProjectiveException);
   EXPECT_THROW(procedure.setMinAmounts(vpColVector(6, -1.0)), vpProjectiveException);
@@ -86,6 +88,7 @@ void expectFailureBeforeTheArmMoves(const std::vector<vpColVector> &markers, int
 {
   AcquisitionSetup s;
   vpProjectiveAcquisitionProcedure procedure(toolMarkersSource(s, markers), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   for (bool withRig : {true, false}) {
     vpProjectiveArmAcquisition acq =
         withRig
@@ -131,6 +134,7 @@ TEST(ProjectiveAcquisitionProcedure, FourOfFiveCoplanarMarkersFailWithTheCause)
   std::vector<vpColVector> onePlusPlane = planarMarkers(4);
   onePlusPlane.push_back(vpProjectiveTest::point3(0.0, 0.0, 0.05)); // 4 coplanar and one off: still degenerate
   vpProjectiveAcquisitionProcedure procedure(toolMarkersSource(s, onePlusPlane), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   procedure.setSteps(vpColVector(6, vpMath::rad(3.0)));
   vpProjectiveArmAcquisition acq = s.acquisition();
   int code = 0;
@@ -154,6 +158,7 @@ TEST(ProjectiveAcquisitionProcedure, FourOfFiveCoplanarMarkersFailWithTheCause)
     cube.push_back(vpProjectiveTest::point3((k & 1) ? 0.03 : -0.03, (k & 2) ? 0.03 : -0.03, (k & 4) ? 0.03 : -0.03));
   }
   vpProjectiveAcquisitionProcedure cubeProcedure(toolMarkersSource(s, cube), s.sim.getWidth(), s.sim.getHeight());
+  cubeProcedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   cubeProcedure.setSteps(vpColVector(6, vpMath::rad(3.0)));
   vpProjectiveArmAcquisition cubeAcq = s.acquisition();
   cubeProcedure.run(s.robot, cubeAcq);
@@ -166,6 +171,7 @@ TEST(ProjectiveAcquisitionProcedure, TooSmallAMotionIsNamed)
 {
   AcquisitionSetup s;
   vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   procedure.setMaxAmounts(vpColVector(6, vpMath::rad(0.2)));
   procedure.setSteps(vpColVector(6, vpMath::rad(0.1)));
   procedure.setMinAmounts(vpColVector(6, 0.0));
@@ -194,6 +200,7 @@ TEST(ProjectiveAcquisitionProcedure, MarkerOrderChangeIsNamed)
         return ok;
       },
       s.sim.getWidth(), s.sim.getHeight());
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   vpProjectiveArmAcquisition acq = s.acquisition();
   int code = 0;
   const std::string message = messageOf([&]() { procedure.run(s.robot, acq); }, code);

@@ -71,6 +71,7 @@ TEST(ProjectiveAcquisitionProcedure, EstimatesTheRigFromItsOwnImages)
 {
   AcquisitionSetup s;
   vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   procedure.setSteps(vpColVector(6, vpMath::rad(2.0)));
   std::vector<vpProjectiveArmAcquisition::vpJointType> types(6, vpProjectiveJoint::REVOLUTE);
   vpProjectiveArmAcquisition acq(types);
@@ -114,6 +115,7 @@ TEST(ProjectiveAcquisitionProcedure, CalibratesTheFacadeFromAbsoluteReadings)
   const vpColVector qRef({0.1, -0.05, 0.08, 0.2, -0.1, 0.3});
   s.robot.setPosition(vpRobot::ARTICULAR_FRAME, qRef);
   vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   procedure.setSteps(vpColVector(6, vpMath::rad(2.0)));
   vpProjectiveRobot robot(std::vector<vpProjectiveRobot::vpJointType>(6, vpProjectiveRobot::REVOLUTE));
   procedure.run(s.robot, robot);
@@ -153,6 +155,7 @@ TEST(ProjectiveAcquisitionProcedure, TightImageBoundsAmountsAndReportSaysSo)
   AcquisitionSetup s;
   const double margin = 120.0;
   vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   procedure.setSteps(vpColVector(6, vpMath::rad(2.0)));
   procedure.setMaxAmounts(vpColVector(6, vpMath::rad(40.0)));
   procedure.setImageMargin(margin);
@@ -186,6 +189,7 @@ TEST(ProjectiveAcquisitionProcedure, JointLimitsRespected)
 {
   AcquisitionSetup s;
   vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   vpColVector qmin(6, -vpMath::rad(170.0)), qmax(6, vpMath::rad(170.0));
   qmin[1] = -vpMath::rad(8.0);
   qmax[1] = vpMath::rad(12.0);

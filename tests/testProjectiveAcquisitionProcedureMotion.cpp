@@ -36,6 +36,7 @@ TEST(ProjectiveAcquisitionProcedure, DefaultMotionNeverCallsABlockingSetPosition
   AcquisitionSetup s;
   s.robot.blockInSetPosition = true;
   vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   procedure.setSteps(vpColVector(6, vpMath::rad(3.0)));
   vpProjectiveArmAcquisition acq = s.acquisition();
   const vpProjectiveArmModel model = procedure.run(s.robot, acq);
@@ -49,6 +50,7 @@ TEST(ProjectiveAcquisitionProcedure, PositionControlIsAnOption)
 {
   AcquisitionSetup s;
   vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   procedure.setSteps(vpColVector(6, vpMath::rad(3.0)));
   procedure.setMotionControl(vpProjectiveAcquisitionProcedure::POSITION_CONTROL);
   EXPECT_EQ(procedure.getMotionControl(), vpProjectiveAcquisitionProcedure::POSITION_CONTROL);
@@ -70,6 +72,7 @@ TEST(ProjectiveAcquisitionProcedure, StuckJointTimesOutWithAClearMessage)
   AcquisitionSetup s;
   s.robot.stuckJoint = 3;
   vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
+  procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   procedure.setSteps(vpColVector(6, vpMath::rad(3.0)));
   procedure.setMoveTimeout(0.2);
   vpProjectiveArmAcquisition acq = s.acquisition();

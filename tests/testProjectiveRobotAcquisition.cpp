@@ -65,8 +65,11 @@ TEST(ProjectiveRobot, CalibrationAtOnePixelNoise)
     of 6 PUMA acquisitions out of 300 (an exception, or a bundle adjustment ending 100+ px off) before the upgrade
     learned to leave such joints out. 60 seeds of the PUMA (eye-to-hand) and 20 of each other arm; at random
     configurations within the trial amounts, the model must predict the markers within 5 sigma RMS: a failed
-    calibration is 20 times beyond, while the eye-in-hand models, acquired with 4 deg trials, measure 1.8 px mean and
-    3.4 px worst (the PUMA eye-to-hand: 0.62 and 1.0 px; 0.65 and 1.19 px over 300 seeds).
+    calibration is 20 times beyond, while the eye-in-hand models, acquired with 4 deg trials, measure 0.59 px mean and
+    0.68 px worst (1.8 and 3.4 px before the calibration tried its other starts; the PUMA eye-to-hand: 0.64 and 1.05
+    px). The model gate may refuse one eye-in-hand acquisition of the 20 (modelRejectedError, never another error): with
+    4 deg trials at 1 px its declared model's adjustment can end in a local minimum, 1.4 px against 1.03 px of noise for
+    seed 2, where a prismatic elbow fits at 1.14 px and is named (every one of 22 metric starts ends there).
   */
   const double sigma = 1.0;
   const std::vector<std::pair<ArmSetup, long>> setups = {
@@ -74,12 +77,20 @@ TEST(ProjectiveRobot, CalibrationAtOnePixelNoise)
   for (const auto &setup : setups) {
     const ArmSetup &s = setup.first;
     double meanRms = 0.0, worstRms = 0.0;
+    unsigned int refused = 0;
     for (long seed = 1; seed <= setup.second; ++seed) {
       vpProjectiveRobot robot(s.jointTypes());
       vpGaussRand noise(1.0, 0.0, seed);
       ASSERT_TRUE(s.acquire(robot, sigma, noise)) << s.name << ": a marker left the view during the acquisition";
       try {
         robot.calibrate();
+      } catch (const vpProjectiveException &e) {
+        EXPECT_EQ(e.getCode(), vpProjectiveException::modelRejectedError)
+            << s.name << ", seed " << seed << ": calibrate() failed: " << e.getStringMessage();
+        ++refused;
+        testLog() << "[ measured ] " << s.name << ", seed " << seed << ": refused: " << e.getStringMessage()
+                  << std::endl;
+        continue;
       } catch (const vpException &e) {
         ADD_FAILURE() << s.name << ", seed " << seed << ": calibrate() failed: " << e.getStringMessage();
         continue;
@@ -87,11 +98,13 @@ TEST(ProjectiveRobot, CalibrationAtOnePixelNoise)
       double worst = 0.0;
       const double rms = predictionRms(s, robot, s.trialAmounts, 200 + seed, worst);
       EXPECT_LE(rms, 5.0 * sigma) << s.name << ", seed " << seed;
-      meanRms += rms / static_cast<double>(setup.second);
+      meanRms += rms; // over the accepted models, divided below
       worstRms = std::max(worstRms, rms);
     }
+    EXPECT_LE(refused, s.mounting == vpProjectiveRobot::EYE_IN_HAND ? 1u : 0u) << s.name;
+    meanRms /= static_cast<double>(std::max<long>(1, setup.second - static_cast<long>(refused)));
     testLog() << "[ measured ] " << s.name << " at 1 px, " << setup.second << " seeds: prediction RMS " << meanRms
-              << " px mean, " << worstRms << " px worst" << std::endl;
+              << " px mean, " << worstRms << " px worst; refused " << refused << std::endl;
   }
 }
 

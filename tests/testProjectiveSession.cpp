@@ -309,59 +309,59 @@ TEST(ProjectiveSession, MalformedSessionsAreRefusedWithOneLineNamingTheFileOrFra
   expectRefused(editedSession(tmp, "jointtype", [](json &f) { f["joint_types"][1] = "spherical"; }),
                 {"joint 1", "spherical"}, "unknown joint type");
   expectRefused(editedSession(tmp, "short", [](json &f) { f["frames"][2]["q"].erase(2); }),
-                {"frame 2 ('left/000002.png')", "2 readings", "3 joints"}, "readings of the wrong length");
+                {"frame 3/7 ('left/000002.png')", "2 readings", "3 joints"}, "readings of the wrong length");
   expectRefused(editedSession(tmp, "long", [](json &f) { f["frames"][5]["q"].push_back(0.0); }),
-                {"frame 5", "4 readings"}, "readings of the wrong length");
+                {"frame 6/7", "4 readings"}, "readings of the wrong length");
   expectRefused(editedSession(tmp, "nan", [](json &f) { f["frames"][4]["q"][1] = "NaN"; }),
-                {"frame 4", "reading 1", "not a finite number"}, "a non-finite reading");
-  expectRefused(editedSession(tmp, "null", [](json &f) { f["frames"][4]["q"][0] = nullptr; }), {"frame 4", "reading 0"},
-                "a null reading");
+                {"frame 5/7", "reading 1", "not a finite number"}, "a non-finite reading");
+  expectRefused(editedSession(tmp, "null", [](json &f) { f["frames"][4]["q"][0] = nullptr; }),
+                {"frame 5/7", "reading 0"}, "a null reading");
   expectRefused(editedSession(tmp, "twojoints", [](json &f) { f["frames"][2]["q"][0] = 0.3; }),
-                {"frame 2 ('left/000002.png')", "moves joints 1 and 0", "observation"}, "a trial moving two joints");
+                {"frame 3/7 ('left/000002.png')", "moves joints 1 and 0", "observation"}, "a trial moving two joints");
   expectRefused(editedSession(tmp, "nomotion", [](json &f) { f["frames"][1]["q"][0] = 0.1; }),
-                {"frame 1", "moves no joint"}, "a trial moving no joint");
+                {"frame 2/7", "moves no joint"}, "a trial moving no joint");
   expectRefused(editedSession(tmp, "nozero", [](json &f) { f["frames"][0]["role"] = "observation"; }),
                 {"no zero frame"}, "no zero frame");
   expectRefused(editedSession(tmp, "twozeros", [](json &f) { f["frames"][4]["role"] = "zero"; }),
-                {"frame 4", "second zero frame", "frame 0"}, "two zero frames");
-  expectRefused(editedSession(tmp, "role", [](json &f) { f["frames"][3]["role"] = "trail"; }), {"frame 3", "\"trail\""},
-                "unknown role");
-  expectRefused(editedSession(tmp, "norole", [](json &f) { f["frames"][3].erase("role"); }), {"frame 3", "'role'"},
+                {"frame 5/7", "second zero frame", "frame 1/7"}, "two zero frames");
+  expectRefused(editedSession(tmp, "role", [](json &f) { f["frames"][3]["role"] = "trail"; }),
+                {"frame 4/7", "\"trail\""}, "unknown role");
+  expectRefused(editedSession(tmp, "norole", [](json &f) { f["frames"][3].erase("role"); }), {"frame 4/7", "'role'"},
                 "no role");
   expectRefused(editedSession(tmp, "outside", [](json &f) { f["frames"][1]["right"] = "../outside/000001.png"; }),
-                {"frame 1", "inside the session folder"}, "an image outside the folder");
-  expectRefused(editedSession(tmp, "time", [](json &f) { f["frames"][1]["t"] = "noon"; }), {"frame 1", "'t'"},
+                {"frame 2/7", "inside the session folder"}, "an image outside the folder");
+  expectRefused(editedSession(tmp, "time", [](json &f) { f["frames"][1]["t"] = "noon"; }), {"frame 2/7", "'t'"},
                 "a time that is not a number");
   expectRefused(editedSession(tmp, "noframes", [](json &f) { f["frames"] = json::array(); }), {"'frames'"},
                 "no frames");
   {
     const std::string folder = editedSession(tmp, "missing", [](json &) {});
     std::filesystem::remove(folder + "/right/000003.png");
-    expectRefused(folder, {"frame 3 ('left/000003.png')", "right image", "right/000003.png", "is missing"},
+    expectRefused(folder, {"frame 4/7 ('left/000003.png')", "right image", "right/000003.png", "is missing"},
                   "a missing image");
   }
   {
     const std::string folder = editedSession(tmp, "notpng", [](json &) {});
     writeText(folder + "/left/000002.png", "this is no image, only a text of more than 33 characters");
-    expectRefused(folder, {"frame 2", "left/000002.png", "not a PNG"}, "an image that is not a PNG");
+    expectRefused(folder, {"frame 3/7", "left/000002.png", "not a PNG"}, "an image that is not a PNG");
   }
   {
     const std::string folder = editedSession(tmp, "cut", [](json &) {});
     const std::string png = readText(folder + "/left/000005.png");
     writeText(folder + "/left/000005.png", png.substr(0, 40));
-    expectRefused(folder, {"frame 5", "left/000005.png"}, "a truncated PNG");
+    expectRefused(folder, {"frame 6/7", "left/000005.png"}, "a truncated PNG");
   }
   {
     const std::string folder = editedSession(tmp, "depth", [](json &) {});
     std::string png = readText(folder + "/right/000001.png");
     png[24] = 16; // bit depth 16 in the IHDR header
     writeText(folder + "/right/000001.png", png);
-    expectRefused(folder, {"frame 1", "right/000001.png", "bit depth 16", "8-bit grey or RGB"}, "a 16-bit PNG");
+    expectRefused(folder, {"frame 2/7", "right/000001.png", "bit depth 16", "8-bit grey or RGB"}, "a 16-bit PNG");
   }
   {
     const std::string folder = editedSession(tmp, "size", [](json &) {});
     vpImageIo::write(pattern(4, 10, 16), folder + "/left/000004.png");
-    expectRefused(folder, {"frame 4", "16 x 10", "16 x 12"}, "an image of another size");
+    expectRefused(folder, {"frame 5/7", "16 x 10", "16 x 12"}, "an image of another size");
   }
 }
 
@@ -408,6 +408,9 @@ TEST(ProjectiveSession, AMissingCameraDeviceGivesAClearError)
   EXPECT_EQ(Il[0][0], 10);
   EXPECT_EQ(Ir[0][0], 20);
   EXPECT_EQ(left.acquisitions, 1u);
+  double tLeft = -1.0, tRight = -1.0; // grabbers other than V4L2 give no stamps: the cell then waits and discards
+  EXPECT_FALSE(pair.getTimestamps(tLeft, tRight));
+  EXPECT_EQ(tLeft, -1.0);
   FixedGrabber unopened(0, 0, 0);
   EXPECT_THROW(vpStereoGrabberSource(left, unopened), vpProjectiveException);
 }

@@ -28,6 +28,7 @@
 #include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
 #include <visp3/projective/vpProjectiveRobot.h>
+#include <visp3/projective/vpProjectiveSelfCalibration.h>
 
 #include "vpProjectiveSessionTestTools.h"
 
@@ -132,6 +133,39 @@ TEST(ProjectiveSessionCalibration, PrismaticArmSessionPredictsRandomConfiguratio
   expectCalibrated(rrprrrEyeToHand());
 }
 
+/*
+  The observation and servo frames join the metric self-calibration: the model file holds every frame (1 zero, 12
+  trials, 2 observations, 5 servo frames but one that shows no marker, which is left out with a progress line), the
+  robot that loads it takes them as calibration frames, and its self-calibration is over all of them.
+*/
+TEST(ProjectiveSessionCalibration, ServoFramesJoinTheSelfCalibration)
+{
+  TemporaryFolder tmp;
+  const ArmSetup s = viperEyeToHand();
+  auto rec = std::make_shared<Recording>();
+  ASSERT_TRUE(recordCalibrationSession(s, tmp / "session", *rec, kSigma, 3, 2, 5));
+  rec->keep.back() = 0; // the last servo frame's tags were lost
+  vpProjectiveSessionCalibration calibration(recordedMarkers(rec));
+  std::ostringstream os;
+  calibration.setOutput(&os);
+  calibration.calibrate(vpProjectiveSession::read(tmp / "session"));
+  calibration.saveModel(tmp / "model.json");
+  EXPECT_NE(os.str().find("left out of the metric self-calibration"), std::string::npos) << os.str();
+  EXPECT_NE(os.str().find("metric self-calibration: 19 frames (6 observation, target and servo frames)"),
+            std::string::npos)
+      << os.str();
+  std::vector<vpProjectiveArmAcquisition::vpFrame> frames;
+  const vpProjectiveArmModel model =
+      vpProjectiveModelFile::load(tmp / "model.json", nullptr, nullptr, nullptr, &frames);
+  ASSERT_EQ(frames.size(), 19u);
+  vpProjectiveRobot robot;
+  robot.loadModel(tmp / "model.json");
+  EXPECT_EQ(robot.getAcquisition().getNumberOfCalibrationFrames(), 19u);
+  const vpProjectiveSelfCalibration selfCalibration(model, frames);
+  EXPECT_EQ(selfCalibration.getNumberOfFrames(), 19u);
+  EXPECT_NEAR(selfCalibration.getNoiseLevel(), kSigma, 0.2 * kSigma);
+}
+
 TEST(ProjectiveSessionCalibration, CheckPassesTheUnmovedRigAndNamesTheBumpedCamera)
 {
   const ArmSetup s = viperEyeToHand();
@@ -222,10 +256,10 @@ TEST(ProjectiveSessionCalibration, BadSessionsAreRefusedWithOneLineNamingTheFram
   };
   // A frame with no tag.
   rec->keep[4] = 0;
-  expectRefused("no tag", "frame 4 ('left/000004.png', trial): no marker found");
+  expectRefused("no tag", "frame 5/13 ('left/000004.png', trial): no marker found");
   // Too few markers.
   rec->keep.assign(rec->keep.size(), 4);
-  expectRefused("too few markers", "only 4 markers are seen in frame 0");
+  expectRefused("too few markers", "only 4 markers are seen in frame 1/13");
   rec->keep.assign(rec->keep.size(), static_cast<unsigned int>(-1));
   // The default extraction (AprilTag 36h11) on images without tags: the frame named, what to check.
   {
@@ -234,7 +268,7 @@ TEST(ProjectiveSessionCalibration, BadSessionsAreRefusedWithOneLineNamingTheFram
       calibration.calibrate(session);
       ADD_FAILURE() << "the default extraction found tags in images without any";
     } catch (const vpProjectiveException &e) {
-      EXPECT_NE(e.getStringMessage().find("frame 0 ('left/000000.png', zero): no marker found in both images"),
+      EXPECT_NE(e.getStringMessage().find("frame 1/13 ('left/000000.png', zero): no marker found in both images"),
                 std::string::npos)
           << e.getStringMessage();
     }
@@ -274,7 +308,7 @@ TEST(ProjectiveSessionCalibration, TrialsMissingSomeMarkersStillCalibrate)
     calibration.calibrate(vpProjectiveSession::read(tmp / "session"));
     ADD_FAILURE() << "a trial with 4 markers accepted";
   } catch (const vpProjectiveException &e) {
-    EXPECT_NE(e.getStringMessage().find("frame 8 ('left/000008.png', trial) shows only 4 of the 7 markers"),
+    EXPECT_NE(e.getStringMessage().find("frame 9/13 ('left/000008.png', trial) shows only 4 of the 7 markers"),
               std::string::npos)
         << e.getStringMessage();
   }

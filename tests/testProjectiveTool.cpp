@@ -70,9 +70,9 @@ TEST_F(ProjectiveTool, ReportAndCheckOfAModelCalibratedFromASession)
   const ToolRun report = runTool(tmp, "report '" + (tmp / "model.json") + "'");
   EXPECT_EQ(report.status, 0) << report.err;
   EXPECT_TRUE(report.err.empty()) << report.err;
-  for (const std::string needle :
-       {"6 joints, eye-to-hand, 7 markers", "joint 2 (prismatic)", "joint 5 (revolute)", "residuals: bundle adjustment",
-        "metric self-calibration", "left K:", "right K:", "baseline", "prismatic joints' unit"}) {
+  for (const std::string needle : {"6 joints, eye-to-hand, 7 markers", "joint 2 (prismatic)", "joint 5 (revolute)",
+                                   "residuals: bundle adjustment", "metric self-calibration", "left K:", "right K:",
+                                   "baseline", "prismatic joints' unit", "+-", "largest uncertainty"}) {
     EXPECT_NE(report.out.find(needle), std::string::npos) << needle << " not in:\n" << report.out;
   }
   // check needs the markers of the session's images: these have no tags, refused clearly (the frame named).

@@ -40,7 +40,7 @@ TEST_F(ProjectiveTool, MalformedSessionsExitWithStatus1OneLineAndNoModelFile)
     expectBadInput(tmp, folder, "not valid JSON", "truncated session.json");
   }
   expectBadInput(tmp, edited(tmp, "version", [](json &f) { f["version"] = 7; }), "version 7", "wrong version");
-  expectBadInput(tmp, edited(tmp, "length", [](json &f) { f["frames"][3]["q"].erase(0); }), "frame 3",
+  expectBadInput(tmp, edited(tmp, "length", [](json &f) { f["frames"][3]["q"].erase(0); }), "frame 4/13",
                  "readings of the wrong length");
   expectBadInput(tmp, edited(tmp, "nan", [](json &f) { f["frames"][3]["q"][0] = "nan"; }), "not a finite number",
                  "a non-finite reading");

@@ -23,6 +23,8 @@
 */
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -223,18 +225,29 @@ TEST_F(ProjectiveTool, RecordCalibrateCheckAndReportTheRenderedCell)
   ASSERT_EQ(calibrate.status, 0) << calibrate.err;
   const ToolRun check = runTool(tmp, "check '" + (tmp / "model.json") + "' '" + (tmp / "cell") + "'");
   EXPECT_EQ(check.status, 0) << check.out << check.err;
-  const ToolRun report = runTool(tmp, "report '" + (tmp / "model.json") + "' --plots '" + (tmp / "plots") + "'");
-  EXPECT_EQ(report.status, 0) << report.err;
-  for (const char *side : {"left", "right"}) {
-    vpImage<vpRGBa> I;
-    vpImageIo::read(I, tmp / "plots" + "/joint-paths-" + side + ".png");
-    EXPECT_EQ(I.getWidth(), 640u);
-    unsigned int drawn = 0; // pixels that are not the white background: the paths and the crosses
-    for (unsigned int k = 0; k < I.getSize(); ++k) {
-      drawn += I.bitmap[k] == vpRGBa(255, 255, 255) ? 0 : 1;
+  // The plots (gnuplot): without the session the paths alone; with it, over the zero frame's images (a 640 x 480
+  // grey picture in the figure: many more pixels drawn), with the acquired ranges in the legend.
+  unsigned int drawn[2][2] = {{0, 0}, {0, 0}}; // [session][side]: pixels that are not the white background
+  for (int withSession = 0; withSession < 2; ++withSession) {
+    const std::string folder = tmp / (withSession ? "plots-session" : "plots");
+    const ToolRun report = runTool(tmp, "report '" + (tmp / "model.json") + "' --plots '" + folder + "'" +
+                                            (withSession ? " --session '" + (tmp / "cell") + "'" : std::string()));
+    ASSERT_EQ(report.status, 0) << report.err;
+    for (int side = 0; side < 2; ++side) {
+      vpImage<vpRGBa> I;
+      vpImageIo::read(I, folder + "/joint-paths-" + (side == 0 ? "left" : "right") + ".png");
+      EXPECT_EQ(I.getWidth(), 1200u);
+      for (unsigned int k = 0; k < I.getSize(); ++k) {
+        drawn[withSession][side] += I.bitmap[k] == vpRGBa(255, 255, 255) ? 0 : 1;
+      }
+      EXPECT_GT(drawn[withSession][side], 1000u) << side;
     }
-    EXPECT_GT(drawn, 1000u) << side;
+    std::ifstream script((folder + "/joint-paths-left.gnuplot").c_str());
+    const std::string text((std::istreambuf_iterator<char>(script)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(text.find("joint 0: acquired") != std::string::npos, withSession == 1) << text;
+    EXPECT_EQ(text.find("measured (o)") != std::string::npos, withSession == 1) << text;
   }
+  EXPECT_GT(drawn[1][0], drawn[0][0] + 640u * 480u / 2);
   // A folder that already holds a session is never overwritten.
   EXPECT_EQ(runTool(tmp, "record '" + (tmp / "cell") + "'").status, 1);
 }

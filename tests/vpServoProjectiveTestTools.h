@@ -261,6 +261,10 @@ inline LimitedRun runLimited(const ArmSetup &s, const vpProjectiveRobot &robot, 
   configure(t.task);
   if (qmin != nullptr) {
     t.task.setJointLimits(*qmin, *qmax);
+  } else {
+    // Unconstrained, the task may push a joint into the simulated arm's own limit, where integrate() holds it: the
+    // arm-following check would stop the task there; off, the run shows how far the task alone goes.
+    t.task.getArmFollowing().setEnabled(false);
   }
   vpColVector q = qStart;
   r.lowest = q;

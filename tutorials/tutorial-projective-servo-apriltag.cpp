@@ -13,8 +13,8 @@
 
 //! \example tutorial-projective-servo-apriltag.cpp
 /*!
-  A robot cell servoed on printed AprilTags by two cameras nobody calibrated, in one main() to copy into a real
-  cell: replace the rendered cell (vpSimulatorStereoCell) by your vpRobot and your two grabbers, and keep the rest.
+  A robot cell servoed on printed AprilTags by two cameras nobody calibrated, in one main(). On real hardware run
+  `visp-projective servo` (docs/robot.dox): the same steps, with safe limits and the arm stopped on every exit path.
   1. The cell: a PUMA-like arm behind vpRobot (joint velocity control, 25 Hz), three 3 cm tags (36h11, ids 0-2) on
      its tool, two cameras rendering them with noise, blur and a lighting that changes during the run.
   2. The acquisition (vpProjectiveAcquisitionProcedure): the tag corners at the zero reference, then each joint moved
@@ -75,7 +75,7 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
 
   try {
     //! [Cell]
-    // The rendered cell: replace it by your robot and two grabbers (vpStereoImageSource).
+    // The rendered cell: a simulated arm behind vpRobot and two rendered cameras (vpStereoImageSource).
     vpSimulatorStereoCell cell(vpSimulatorArm::puma(vpSimulatorArm::paperBasePose()),
                                vpSimulatorStereoRig::paperRig(vpColVector(3, 0.0), 1.0));
     cell.addToolTags(0.03); // tags 0, 1, 2 on three faces of a holder on the tool

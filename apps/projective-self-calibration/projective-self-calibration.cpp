@@ -12,42 +12,47 @@
  */
 
 /*!
-  Metric self-calibration for free: the projective model of an arm, acquired from images alone, holds the metric
-  stereo rig (vpProjectiveRobot::getMetricStereoRig(): both cameras' intrinsics, skew included, and the right
-  camera's pose in the left one), here compared with the simulator's truth and with ViSP's own calibration
-  (vpCalibration) of the same rig from a planar target seen with the same pixel noise.
+  The self-calibration study: the metric stereo rig that an arm's projective model gives for free
+  (vpProjectiveSelfCalibration: the metric bundle adjustment over the acquisition and calibration frames at random
+  configurations), beside ViSP's own calibration (vpCalibration) of the same rig from as many views of a planar grid
+  at the same noise.
 
-  1. Self-calibration: the paper's world (apps/projective-paper), the arm acquired by its trial motions at
-     --noise px; the baseline's length comes from the distance between two markers (measured once with a ruler), the
-     arm having no prismatic joint. The same with the markers spread twice as wide (a 20 cm pattern).
-  2. ViSP's calibration: a planar grid of 6 x 5 points (10 cm wide, then 30 cm wide) seen by both cameras in 13 poses
-     around 1 m (the acquisition's number of images), each camera calibrated by vpCalibration::computeCalibrationMulti()
-     (virtual visual servoing, no distortion), the rig's pose from the two cameras' poses of the grid.
-  3. The errors against the truth, median over the seeds: focal lengths, principal points, the rig's rotation,
-     baseline direction and length.
+  Worlds (calibration-world.h): the PUMA-like arm, ViSP's Viper850 and the R-R-P-R-R-R arm, each carrying the
+  gripper's 7 markers (10 cm), watched by a random verged rig of two different cameras with skew and unequal focal
+  lengths, drawn per seed. Per seed and arm:
+  1. the acquisition (13 images: each joint's trial both ways) and --frames frames at random readings within
+     +---range deg of the zero reference's (prismatic: 2 mm per deg), all at --noise px; the fundamental matrix
+     estimated from the acquisition's images;
+  2. the self-calibration from the acquisition alone, then from the acquisition and the frames, each with its
+     standard deviations; the baseline's length from the prismatic joint's encoder (R-R-P-R-R-R) or from the distance
+     between two markers (the other arms: measured once with a ruler);
+  3. vpCalibration of the same rig from as many views of a --grid-points x --grid-points grid --grid-width m wide,
+     and of the same rig without skew (vpCalibration's camera model has none).
+  The table gives each parameter's error (the worst of both cameras for the intrinsics), median / worst over the
+  seeds, and how often the self-calibration's stated standard deviations cover its errors (every component within
+  3 sigma).
 
-  The principal point is the weak part of any calibration from a small pattern: its trade-off with the rotation of the
-  whole rig is determined by the perspective of the pattern as it moves, which a 10 cm pattern 1 m away shows little
-  of. A wider pattern (more markers spread further on the tool) or larger trial motions improve it.
-
-  Usage: projective-self-calibration [--seeds N] [--noise SIGMA] [--help]
-  Exits with 1 if the self-calibration's median focal length error exceeds 2 % or its rig rotation 2 deg.
+  Usage: projective-self-calibration [--seeds N] [--first S] [--noise SIGMA] [--frames N] [--range DEG] [--arm NAME]
+                                     [--grid-points N] [--grid-width M] [--grid-views N] [--grid-seeds N]
+  (vpCalibration's virtual visual servoing takes most of the time: about 10 s of CPU per camera with 43 views.)
+  Exits with 1 if a self-calibration's median focal length error exceeds 1 % or its rig rotation 1 deg.
 */
 
 #include <algorithm>
-#include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include <visp3/core/vpGaussRand.h>
-#include <visp3/core/vpMath.h>
-#include <visp3/vision/vpCalibration.h>
+#include <visp3/core/vpUniRand.h>
+#include <visp3/projective/vpProjectiveSelfCalibration.h>
 
-#include <visp3/projective/vpProjectiveRobot.h>
-
+#include "calibration-world.h"
 #include "command-line.h"
 #include "paper-world.h"
+#include "planar-calibration.h"
+#include "rig-errors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -55,170 +60,144 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace
 {
-//! Errors of a calibrated rig against the truth (worst of the two cameras for the intrinsics).
-struct RigErrors {
-  double focal;     //!< relative
-  double principal; //!< px
-  double rotation;  //!< deg, right camera's orientation in the left one
-  double direction; //!< deg, baseline direction
-  double length;    //!< relative, baseline length
-};
+enum Method { ACQUISITION, SELF_CALIBRATION, GRID, GRID_NO_SKEW, METHODS };
+const char *const kMethods[METHODS] = {"self-calibration, acquisition only", "self-calibration, acquisition + frames",
+                                       "vpCalibration, same rig", "vpCalibration, same rig without skew"};
 
-RigErrors compare(const vpCameraParameters &camL, const vpCameraParameters &camR, const vpHomogeneousMatrix &lMr,
-                  const vpSimulatorStereoRig &truth)
+//! [Self-calibration]
+//! The rig of the self-calibration over \e frames, its lengths in the prismatic joints' unit or a marker distance's.
+selfcal::RigErrors selfCalibrate(const vpProjectiveRobot &robot, const selfcal::StudyArm &arm,
+                                 const selfcal::SkewedRig &rig,
+                                 const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames)
 {
-  const vpCameraParameters cams[2] = {camL, camR};
-  const vpCameraParameters trueCams[2] = {truth.getLeftCameraParameters(), truth.getRightCameraParameters()};
-  RigErrors e{0, 0, 0, 0, 0};
-  for (int c = 0; c < 2; ++c) {
-    e.focal = std::max({e.focal, std::abs(cams[c].get_px() / trueCams[c].get_px() - 1.0),
-                        std::abs(cams[c].get_py() / trueCams[c].get_py() - 1.0)});
-    e.principal = std::max({e.principal, std::abs(cams[c].get_u0() - trueCams[c].get_u0()),
-                            std::abs(cams[c].get_v0() - trueCams[c].get_v0())});
+  vpProjectiveSelfCalibration calibration(robot.getModel(), frames);
+  if (arm.name != "prismatic") { // two markers whose distance was measured with a ruler
+    const std::vector<vpColVector> X = arm.arm.getMarkers(arm.qRef);
+    calibration.setScale(vpProjectiveSelfCalibration::SCALE_MARKER_DISTANCE, 0, 1, (X[0] - X[1]).frobeniusNorm());
   }
-  const vpHomogeneousMatrix lMrTrue = truth.get_rMl().inverse();
-  e.rotation = vpMath::deg(vpThetaUVector((lMrTrue.getRotationMatrix().t() * lMr.getRotationMatrix())).getTheta());
-  const vpColVector b = lMr.getTranslationVector(), bTrue = lMrTrue.getTranslationVector();
-  e.direction = vpMath::deg(
-      std::acos(std::min(1.0, vpColVector::dotProd(b, bTrue) / (b.frobeniusNorm() * bTrue.frobeniusNorm()))));
-  e.length = std::abs(b.frobeniusNorm() / bTrue.frobeniusNorm() - 1.0);
-  return e;
-}
-
-//! [Self-calibration]
-//! The arm acquired at sigma px, then the metric rig its model holds.
-RigErrors selfCalibrate(const vpSimulatorArm &arm, const vpSimulatorStereoRig &rig, double sigma, unsigned int seed)
-{
-  vpGaussRand noise(sigma, 0.0, seed);
-  const app::ImagesAt imagesAt = [&](const vpColVector &q, std::vector<vpImagePoint> &left,
-                                     std::vector<vpImagePoint> &right) {
-    return rig.project(arm.getMarkers(q), left, right, sigma, noise);
-  };
-  const vpProjectiveRobot robot =
-      app::acquireByTrials({30, 20, 30, 40, 60, 60}, imagesAt, std::max(1.0, 4.0 * sigma), false);
-  // The scale: two markers whose distance was measured with a ruler.
-  const std::vector<vpColVector> &tMarkers = arm.getToolMarkers();
-  const double distance = (tMarkers[0] - tMarkers[1]).frobeniusNorm();
-  vpMatrix Kl, Kr;
-  vpHomogeneousMatrix lMr;
-  robot.getMetricStereoRig(Kl, Kr, lMr, 0, 1, distance);
-  const vpCameraParameters camL(Kl[0][0], Kl[1][1], Kl[0][2], Kl[1][2]), camR(Kr[0][0], Kr[1][1], Kr[0][2], Kr[1][2]);
-  return compare(camL, camR, lMr, rig);
+  Eigen::Matrix3d Kl, Kr;
+  Eigen::Matrix4d lMr;
+  calibration.getMetricStereoRig(Kl, Kr, lMr);
+  return selfcal::compare(Kl, Kr, lMr, rig, true, &calibration.getUncertainty());
 }
 //! [Self-calibration]
 
-//! [Planar calibration]
-//! ViSP's calibration of both cameras from 13 views of a 6 x 5 planar grid \e width metres wide, at sigma px.
-RigErrors planarCalibrate(const vpSimulatorStereoRig &rig, double width, double sigma, unsigned int seed)
+void printTable(const std::vector<selfcal::RigErrors> (&runs)[METHODS])
 {
-  vpGaussRand noise(sigma, 0.0, seed);
-  vpUniRand uniform(seed);
-  std::vector<vpCalibration> views[2];
-  std::vector<vpHomogeneousMatrix> wMo;
-  const vpColVector centre = rig.get_wMl() * vpColVector({0.0, 0.0, 1.0, 1.0}); // 1 m in front of the left camera
-  while (wMo.size() < 13) {
-    // The grid 1 m away, tilted by up to 30 deg about its axes, placed where the rig sees all of it.
-    // Drawn last to first, the order g++ evaluated them in as the arguments of one call (C++ leaves that order
-    // unspecified; the documented figures were measured with g++): the same poses whichever the compiler.
-    const double tuz = vpMath::rad(uniform.uniform(-180, 180));
-    const double tuy = vpMath::rad(uniform.uniform(-30, 30));
-    const double tux = vpMath::rad(uniform.uniform(-30, 30));
-    const double z = centre[2] + uniform.uniform(-0.1, 0.1);
-    const double y = centre[1] + uniform.uniform(-0.05, 0.05);
-    const double x = centre[0] + uniform.uniform(-0.05, 0.05);
-    const vpHomogeneousMatrix M(x, y, z, tux, tuy, tuz);
-    vpCalibration calib[2];
-    bool visible = true;
-    for (int i = 0; i < 6 && visible; ++i) {
-      for (int j = 0; j < 5 && visible; ++j) {
-        const double X = width * (i / 5.0 - 0.5), Y = 0.8 * width * (j / 4.0 - 0.5);
-        const vpColVector wX = M * vpColVector({X, Y, 0.0, 1.0});
-        vpImagePoint ip[2];
-        visible = rig.isVisible(vpColVector({wX[0], wX[1], wX[2]}), 5.0) &&
-                  rig.project(vpColVector({wX[0], wX[1], wX[2]}), ip[0], ip[1], sigma, noise);
-        for (int c = 0; c < 2; ++c) {
-          calib[c].addPoint(X, Y, 0.0, ip[c]);
-        }
+  std::cout << std::defaultfloat << std::setprecision(3) << "| method |";
+  for (int p = 0; p < selfcal::PARAMETERS; ++p) {
+    std::cout << " " << selfcal::nameOf(selfcal::Parameter(p)) << " (" << selfcal::unitOf(selfcal::Parameter(p))
+              << ") |";
+  }
+  std::cout << "\n|---|---|---|---|---|---|---|\n";
+  for (int m = 0; m < METHODS; ++m) {
+    std::cout << "| " << kMethods[m] << " (" << runs[m].size() << " seeds) |";
+    for (int p = 0; p < selfcal::PARAMETERS; ++p) {
+      std::vector<double> x;
+      for (const selfcal::RigErrors &e : runs[m]) {
+        x.push_back(selfcal::scaleOf(selfcal::Parameter(p)) * e.error[p]);
       }
+      std::cout << " " << app::median(x) << " / " << app::maxOf(x) << " |";
     }
-    if (visible) {
-      wMo.push_back(M);
-      views[0].push_back(calib[0]);
-      views[1].push_back(calib[1]);
-    }
+    std::cout << "\n";
   }
-  vpCameraParameters cam[2];
-  for (int c = 0; c < 2; ++c) {
-    // The virtual visual servoing starts from a rough guess (a focal length 15 % off, the image centre 20 px off):
-    // what a user knows from the lens and the sensor.
-    cam[c].initPersProjWithoutDistortion(1400.0, 1400.0, 340.0, 220.0);
-    double residual = 0.0;
-    vpCalibration::computeCalibrationMulti(vpCalibration::CALIB_VIRTUAL_VS, views[c], cam[c], residual);
-  }
-  // The rig from the grid's poses in both cameras, lMr = lMo rMo^-1, averaged over the views.
-  vpColVector t(3, 0.0), thetaU(3, 0.0);
-  for (size_t k = 0; k < wMo.size(); ++k) {
-    const vpHomogeneousMatrix lMr = views[0][k].cMo * views[1][k].cMo.inverse();
-    t += lMr.getTranslationVector() / wMo.size();
-    thetaU += vpColVector(vpThetaUVector(lMr.getRotationMatrix())) / wMo.size();
-  }
-  const vpHomogeneousMatrix lMr(vpTranslationVector(t[0], t[1], t[2]), vpThetaUVector(thetaU[0], thetaU[1], thetaU[2]));
-  return compare(cam[0], cam[1], lMr, rig);
 }
-//! [Planar calibration]
 
-double medianOf(const std::vector<RigErrors> &runs, double RigErrors::*field)
+//! How often the stated deviations cover the errors of \e runs, per parameter and all at once.
+void printCoverage(const std::vector<selfcal::RigErrors> &runs)
 {
-  std::vector<double> x;
-  for (const RigErrors &r : runs) {
-    x.push_back(r.*field);
+  std::cout << std::defaultfloat << std::setprecision(3)
+            << "standard deviations of the self-calibration (acquisition + frames), errors within 3 sigma in:";
+  unsigned int all = 0;
+  std::vector<double> ratios;
+  for (int p = 0; p < selfcal::PARAMETERS; ++p) {
+    unsigned int covered = 0;
+    for (const selfcal::RigErrors &e : runs) {
+      covered += e.covered[p] ? 1 : 0;
+    }
+    std::cout << (p > 0 ? ", " : " ") << selfcal::nameOf(selfcal::Parameter(p)) << " " << covered << "/" << runs.size();
   }
-  return app::median(x);
+  for (const selfcal::RigErrors &e : runs) {
+    all += std::all_of(std::begin(e.covered), std::end(e.covered), [](bool c) { return c; }) ? 1 : 0;
+    ratios.push_back(e.sigmaRatio);
+  }
+  std::cout << "; all at once " << all << "/" << runs.size() << " seeds; largest error of a seed in standard "
+            << "deviations: median " << app::median(ratios) << ", worst " << app::maxOf(ratios) << "\n";
 }
 } // namespace
 
 int main(int argc, char **argv)
 {
-  unsigned int seeds = 10;
-  double sigma = 0.5;
+  unsigned int seeds = 10, first = 1, frames = 30, gridPoints = 7, gridViews = 0, gridSeeds = 0;
+  double sigma = 0.5, range = 30.0, gridWidth = 0.30;
+  std::string armName = "all";
   app::CommandLine cmd;
-  cmd.add("--seeds", seeds, "N", "number of noise seeds", 1)
-      .add("--noise", sigma, "SIGMA", "pixel noise (px, Gaussian, every image coordinate)", 0.0);
+  cmd.add("--seeds", seeds, "N", "number of seeds (worlds) per arm", 1)
+      .add("--first", first, "S", "the first seed")
+      .add("--noise", sigma, "SIGMA", "pixel noise (px, Gaussian, every image coordinate)", 0.0)
+      .add("--frames", frames, "N", "calibration frames at random configurations beside the acquisition")
+      .add("--range", range, "DEG", "the frames' joints within +-DEG of the zero reference (prismatic: 2 mm/deg)", 0.0)
+      .add("--arm", armName, "NAME", "puma, viper850, prismatic or all")
+      .add("--grid-points", gridPoints, "N", "the planar grid's points per side", 2)
+      .add("--grid-width", gridWidth, "M", "the planar grid's width (m)", 0.01)
+      .add("--grid-views", gridViews, "N", "the grid's views (0: as many as the self-calibration's images)")
+      .add("--grid-seeds", gridSeeds, "N",
+           "vpCalibration on the first N seeds only (0: all; it takes most of the time)");
   int exitCode = 0;
   if (!cmd.parse(argc, argv, exitCode)) {
     return exitCode;
   }
   try {
-    const app::PaperWorld world;
-    std::vector<vpColVector> wide = vpSimulatorArm::gripperMarkers(); // the same markers, spread twice as wide
-    for (vpColVector &X : wide) {
-      X *= 2.0;
+    const std::vector<std::string> arms = armName == "all" ? std::vector<std::string>{"puma", "viper850", "prismatic"}
+                                                           : std::vector<std::string>{armName};
+    bool ok = true;
+    std::cout << std::setprecision(3) << "Errors at " << sigma << " px, " << frames << " frames within +-" << range
+              << " deg, vpCalibration on a " << gridPoints << " x " << gridPoints << " grid " << 100 * gridWidth
+              << " cm wide with " << (gridViews > 0 ? std::to_string(gridViews) : std::string("as many"))
+              << " views; median / worst over " << seeds << " seeds (from " << first << ")\n";
+    for (size_t a = 0; a < arms.size(); ++a) {
+      const selfcal::StudyArm arm = selfcal::makeArm(arms[a]);
+      std::vector<selfcal::RigErrors> runs[METHODS];
+      std::vector<double> grids; // the grid's width (cm): smaller than asked when both views cannot see it whole
+      for (unsigned int seed = first; seed < first + seeds; ++seed) {
+        // Separate streams: the rig, the robot's views, the grid's.
+        vpUniRand rigRng(1000003ul * seed + a), viewRng(2000003ul * seed + a), gridRng(3000017ul * seed + a);
+        vpGaussRand noise(1.0, 0.0, static_cast<long>(4000037ul * seed + a));
+        const selfcal::SkewedRig rig = selfcal::randomRig(arm, rigRng);
+        const vpProjectiveRobot robot = selfcal::acquire(arm, rig, sigma, frames, range, noise, viewRng);
+        std::vector<vpProjectiveArmAcquisition::vpFrame> all = robot.getAcquisition().getFrames();
+        const std::vector<vpProjectiveArmAcquisition::vpFrame> acquisition(
+            all.begin(), all.end() - robot.getAcquisition().getNumberOfCalibrationFrames());
+        runs[ACQUISITION].push_back(selfCalibrate(robot, arm, rig, acquisition));
+        runs[SELF_CALIBRATION].push_back(selfCalibrate(robot, arm, rig, all));
+        if (gridSeeds > 0 && seed >= first + gridSeeds) {
+          continue;
+        }
+        const unsigned int views = gridViews > 0 ? gridViews : static_cast<unsigned int>(all.size());
+        Eigen::Matrix3d Kl, Kr;
+        Eigen::Matrix4d lMr;
+        double used = 0.0;
+        selfcal::planarCalibration(rig, views, gridPoints, gridWidth, sigma, noise, gridRng, Kl, Kr, lMr, used);
+        grids.push_back(100.0 * used);
+        runs[GRID].push_back(selfcal::compare(Kl, Kr, lMr, rig, true));
+        const selfcal::SkewedRig natural = selfcal::withoutSkew(rig);
+        selfcal::planarCalibration(natural, views, gridPoints, gridWidth, sigma, noise, gridRng, Kl, Kr, lMr, used);
+        runs[GRID_NO_SKEW].push_back(selfcal::compare(Kl, Kr, lMr, natural, true));
+      }
+      std::cout << std::defaultfloat << std::setprecision(3) << "\n"
+                << arms[a] << " ("
+                << (arms[a] == "prismatic" ? "lengths in the prismatic joint's unit" : "lengths from a marker distance")
+                << "; the grid " << app::median(grids) << " cm wide in the median, "
+                << *std::min_element(grids.begin(), grids.end()) << " cm at least):\n";
+      printTable(runs);
+      printCoverage(runs[SELF_CALIBRATION]);
+      std::vector<double> focal, rotation;
+      for (const selfcal::RigErrors &e : runs[SELF_CALIBRATION]) {
+        focal.push_back(e.error[selfcal::FOCAL]);
+        rotation.push_back(e.error[selfcal::ROTATION]);
+      }
+      ok = ok && app::median(focal) <= 0.01 && app::median(rotation) <= 1.0;
     }
-    const vpSimulatorArm wideArm(vpSimulatorArm::pumaTable(), vpSimulatorArm::gripperMount(), wide,
-                                 vpSimulatorArm::paperBasePose());
-    const char *names[4] = {"self-calibration, 7 markers on 10 cm", "self-calibration, 7 markers on 20 cm",
-                            "vpCalibration, 6 x 5 grid 10 cm wide", "vpCalibration, 6 x 5 grid 30 cm wide"};
-    std::vector<RigErrors> runs[4];
-    for (unsigned int seed = 1; seed <= seeds; ++seed) {
-      runs[0].push_back(selfCalibrate(world.arm, world.rig, sigma, seed));
-      runs[1].push_back(selfCalibrate(wideArm, world.rig, sigma, seed));
-      runs[2].push_back(planarCalibrate(world.rig, 0.10, sigma, seed));
-      runs[3].push_back(planarCalibrate(world.rig, 0.30, sigma, seed));
-    }
-    const vpCameraParameters cam = world.rig.getLeftCameraParameters();
-    std::cout << std::setprecision(3) << "The rig's truth: px = py = " << cam.get_px() << " px, (u0, v0) = ("
-              << cam.get_u0() << ", " << cam.get_v0() << ") px, baseline "
-              << world.rig.get_rMl().getTranslationVector().frobeniusNorm() << " m\n\nErrors at " << sigma
-              << " px, median over " << seeds << " seeds:\n"
-              << "| method | focal length | principal point | rig rotation | baseline direction | baseline length "
-                 "|\n|---|---|---|---|---|---|\n";
-    for (int m = 0; m < 4; ++m) {
-      std::cout << "| " << names[m] << " | " << 100 * medianOf(runs[m], &RigErrors::focal) << " % | "
-                << medianOf(runs[m], &RigErrors::principal) << " px | " << medianOf(runs[m], &RigErrors::rotation)
-                << " deg | " << medianOf(runs[m], &RigErrors::direction) << " deg | "
-                << 100 * medianOf(runs[m], &RigErrors::length) << " % |\n";
-    }
-    const bool ok = medianOf(runs[0], &RigErrors::focal) <= 0.02 && medianOf(runs[0], &RigErrors::rotation) <= 2.0;
     return ok ? 0 : 1;
   } catch (const vpException &e) {
     std::cerr << "Error: " << e.getStringMessage() << std::endl;

@@ -127,6 +127,7 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
     amounts[i] = world.trials[i];
   }
   acquisition.setMaxAmounts(amounts);
+  acquisition.setOutput(nullptr); // the study prints its tables, not each case's progress
   std::vector<vpProjectiveRobot::vpJointType> types;
   for (unsigned int i = 0; i < n; ++i) {
     types.push_back(world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? vpProjectiveRobot::PRISMATIC

@@ -17,10 +17,11 @@
     visp-projective calibrate SESSION --output MODEL.json [--family 36h11] [options]
     visp-projective check MODEL.json SESSION [--family 36h11] [--threshold PX]
     visp-projective report MODEL.json
+    visp-projective servo SESSION --robot KIND [--left DEV --right DEV] [options]
 
   Exit status: 0 on success (check: the model fits every frame), 1 on bad input or any error (one line on stderr
   that says what was wrong and what to do; calibrate then leaves no model file), 2 on a usage mistake, 3 when check
-  finds that the model does not fit the session (a camera moved).
+  finds that the model does not fit the session (its likeliest cause first on stderr).
 */
 
 #include <chrono>
@@ -28,22 +29,24 @@
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <string>
 
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpMath.h>
-#include <visp3/core/vpThetaUVector.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
 #include <visp3/projective/vpProjectiveSelfCalibration.h>
 #include <visp3/projective/vpProjectiveSession.h>
 #include <visp3/projective/vpProjectiveSessionCalibration.h>
 #include <visp3/projective/vpStereoGrabberSource.h>
 
+#include "visp-projective-cell.h"
 #include "visp-projective-markers.h"
 #include "visp-projective-options.h"
 #include "visp-projective-plots.h"
 #include "visp-projective-record.h"
+#include "visp-projective-servo.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -65,10 +68,14 @@ const char *const kMainUsage =
     "  report MODEL.json                       joints, residuals, the metric self-calibration K, R, t\n"
     "  record SESSION                          a session from two cameras and typed-in joint readings, or the\n"
     "                                          acquisition of the rendered tag cell (no camera needed)\n"
+    "  servo SESSION --robot KIND              a real cell end to end: acquisition, s* taught by showing, the\n"
+    "                                          planned servo, the session recorded; the arm stopped on every exit "
+    "path\n"
     "\n"
     "'visp-projective COMMAND --help' describes each command. A SESSION is a folder holding session.json\n"
     "(format visp-projective-session, version 1) and its PNG images.\n"
-    "Exit status: 0 success, 1 bad input or error (one line on stderr), 2 usage, 3 check: the model does not fit.\n";
+    "Exit status: 0 success, 1 bad input or error (one line on stderr), 2 usage, 3 check: the model does not fit,\n"
+    "4 servo: not converged (the arm stopped).\n";
 
 const char *const kRecordUsage =
     "Usage: visp-projective record SESSION --left DEV --right DEV --joints FILE [--joint-types TYPES] [--scale N]\n"
@@ -115,6 +122,9 @@ const char *const kCalibrateUsage =
     "  --epipolar-threshold PX        inlier threshold of the rig's estimation (default 2)\n"
     "  --outlier-threshold PX         leave out trial observations farther than PX from the model (default 0: none)\n"
     "  --coplanarity-threshold PX     plane parallax below which markers count as coplanar (default 2)\n"
+    "  --camera-layout LAYOUT         left-right (default: upright cameras, the left one on the left; a session\n"
+    "                                 whose right camera sits to the left of the left one is refused as one with\n"
+    "                                 exchanged images) or any (a camera upside down or seen in a mirror)\n"
     "  --recorded-markers             take each frame's recorded markers (its recorded_markers entry: sessions of\n"
     "                                 programs whose markers are not tags, e.g. projective-paper --record) instead\n"
     "                                 of detecting tags in its images\n"
@@ -124,7 +134,10 @@ const char *const kCalibrateUsage =
 const char *const kCheckUsage =
     "Usage: visp-projective check MODEL.json SESSION [--family 36h11 | --recorded-markers] [--threshold PX]\n"
     "Predicts, at each frame's encoder readings, the markers of the model seen in the frame and prints the RMS error\n"
-    "of the left and right images; says whether the rig moved since the model was made, and which camera.\n"
+    "of the left and right images; says whether the rig moved since the model was made, and which camera. When\n"
+    "frames do not fit, the probable causes are tried and ranked, the likeliest first (a camera moved, the left and\n"
+    "right images exchanged, the markers moved on the tool, readings of other encoders, a session of another cell),\n"
+    "in one line on the standard output and the standard error.\n"
     "Exit status 0 if every frame fits, 3 if not, 1 on bad input.\n"
     "\n"
     "Options:\n"
@@ -135,16 +148,27 @@ const char *const kCheckUsage =
     "  -h, --help                     this help\n";
 
 const char *const kReportUsage =
-    "Usage: visp-projective report MODEL.json [--plots DIR] [--range DEG] [--travel M]\n"
-    "Prints what the model says about the cell: the joints (kind, axis in the left camera's frame), the residuals\n"
-    "of its calibration, its markers, and the metric self-calibration of the rig (intrinsics K of both cameras, the\n"
-    "right camera's pose R, t in the left one; t in the prismatic joints' unit, or a unit baseline without one).\n"
+    "Usage: visp-projective report MODEL.json [--plots DIR [--session SESSION] [--range DEG] [--travel M]]\n"
+    "Prints what the model says about the cell: the joints, the residuals of its calibration, its markers, and the\n"
+    "metric self-calibration over the frames the model file holds (the acquisition's, and the observation, target\n"
+    "and servo frames of its session): intrinsics K of both cameras, the right camera's pose R, t in the left one (t\n"
+    "in the prismatic joints' unit, or a unit baseline without one), the joints' axes in the left camera's frame,\n"
+    "each with its standard deviation, and the largest uncertainty; and its cameras (which was left, on which side\n"
+    "the right one sits).\n"
     "\n"
     "Options:\n"
-    "  --plots DIR                    write DIR/joint-paths-left.png and -right.png: the marker paths the model\n"
-    "                                 predicts when each joint moves alone (one colour per joint)\n"
-    "  --range DEG                    a revolute joint's motion either way for the plots (default 30)\n"
-    "  --travel M                     a prismatic joint's motion either way for the plots (default 0.05)\n"
+    "  --plots DIR                    write DIR/joint-paths-left.png and -right.png (gnuplot): the marker paths the\n"
+    "                                 model predicts when each joint moves alone, one colour and legend per joint,\n"
+    "                                 axes in pixels\n"
+    "  --session SESSION              the model's session: the paths over its zero frame's images and their border,\n"
+    "                                 solid within the range its trials acquired, dashed beyond, and the markers\n"
+    "                                 measured in each trial beside the model's prediction there\n"
+    "  --range DEG                    a revolute joint's motion either way (default: 1.5 times the acquired range\n"
+    "                                 with --session, else 30)\n"
+    "  --travel M                     a prismatic joint's motion either way (default: 1.5 times the acquired range\n"
+    "                                 with --session, else 0.05)\n"
+    "  --family NAME                  AprilTag family of the session's markers (default 36h11; a frame's recorded\n"
+    "                                 markers are used when it has them)\n"
     "  -h, --help                     this help\n";
 
 //! One line: a message with its line breaks replaced.
@@ -184,7 +208,7 @@ int calibrate(int argc, char **argv)
 {
   vispProjective::Arguments args("visp-projective calibrate", {"SESSION"},
                                  {"--output", "-o", "--family", "--mounting", "--epipolar-threshold",
-                                  "--outlier-threshold", "--coplanarity-threshold"},
+                                  "--outlier-threshold", "--coplanarity-threshold", "--camera-layout"},
                                  {"--quiet", "--recorded-markers"});
   const int parsed = parseArguments(args, argc, argv, "calibrate", kCalibrateUsage);
   if (parsed >= 0) {
@@ -205,6 +229,10 @@ int calibrate(int argc, char **argv)
   if (mounting != "auto" && mounting != "eye-to-hand" && mounting != "eye-in-hand") {
     return usageError("calibrate", "--mounting takes auto, eye-to-hand or eye-in-hand, not '" + mounting + "'");
   }
+  const std::string layout = args.value("--camera-layout", "left-right");
+  if (layout != "left-right" && layout != "any") {
+    return usageError("calibrate", "--camera-layout takes left-right or any, not '" + layout + "'");
+  }
   const auto start = std::chrono::steady_clock::now();
   vpProjectiveSessionCalibration calibration(vispProjective::markerExtractor(args.value("--family", "36h11")));
   vpProjectiveSessionCalibration::checkWritable(output);
@@ -217,6 +245,8 @@ int calibrate(int argc, char **argv)
   calibration.setMounting(mounting == "eye-to-hand"   ? vpProjectiveSessionCalibration::MOUNTING_EYE_TO_HAND
                           : mounting == "eye-in-hand" ? vpProjectiveSessionCalibration::MOUNTING_EYE_IN_HAND
                                                       : vpProjectiveSessionCalibration::MOUNTING_AUTO);
+  calibration.setCameraLayout(layout == "any" ? vpProjectiveCellFingerprint::LAYOUT_ANY
+                                              : vpProjectiveCellFingerprint::LAYOUT_LEFT_RIGHT);
   calibration.calibrate(session);
   calibration.saveModel(output);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -225,12 +255,6 @@ int calibrate(int argc, char **argv)
               << std::endl;
   }
   return EXIT_SUCCESS;
-}
-
-//! The model of \e file with its marker identifiers; throws if it has none.
-vpProjectiveArmModel loadModel(const std::string &file, std::vector<int> &ids, double &residual, double &algebraic)
-{
-  return vpProjectiveModelFile::load(file, &residual, &algebraic, &ids);
 }
 
 int check(int argc, char **argv)
@@ -249,7 +273,9 @@ int check(int argc, char **argv)
   vpProjectiveSessionCalibration calibration(vispProjective::markerExtractor(args.value("--family", "36h11")));
   std::vector<int> ids;
   double residual = 0.0, algebraic = 0.0;
-  const vpProjectiveArmModel model = loadModel(args.positional(0), ids, residual, algebraic);
+  vpProjectiveCellFingerprint cell;
+  const vpProjectiveArmModel model =
+      vpProjectiveModelFile::load(args.positional(0), &residual, &algebraic, &ids, nullptr, &cell);
   if (ids.empty()) {
     throw vpException(vpException::fatalError,
                       "the model '" + args.positional(0) +
@@ -260,7 +286,7 @@ int check(int argc, char **argv)
   calibration.setOutput(args.has("--quiet") ? nullptr : &std::cout);
   calibration.setMismatchThreshold(threshold);
   calibration.setRecordedMarkers(args.has("--recorded-markers"));
-  const std::vector<vpProjectiveSessionCalibration::vpFrameCheck> checks = calibration.check(model, ids, session);
+  const std::vector<vpProjectiveSessionCalibration::vpFrameCheck> checks = calibration.check(model, ids, session, cell);
   unsigned int off = 0;
   for (const auto &c : checks) {
     off += c.fits ? 0 : 1;
@@ -268,15 +294,13 @@ int check(int argc, char **argv)
   std::cout << std::setprecision(3) << "left images " << calibration.getLeftResidual() << " px RMS, right images "
             << calibration.getRightResidual() << " px RMS over " << checks.size() << " frames, " << off << " above "
             << threshold << " px (the model's calibration residual: " << residual << " px)" << std::endl;
-  std::cout << vpProjectiveSessionCalibration::toString(calibration.getRigState()) << std::endl;
-  return calibration.getRigState() == vpProjectiveSessionCalibration::RIG_UNCHANGED ? EXIT_SUCCESS : kMismatch;
-}
-
-std::string vectorText(const Eigen::Vector3d &v, int precision)
-{
-  std::ostringstream os;
-  os << std::fixed << std::setprecision(precision) << "(" << v(0) << ", " << v(1) << ", " << v(2) << ")";
-  return os.str();
+  std::cout << calibration.getDiagnosisMessage() << std::endl;
+  if (calibration.getRigState() == vpProjectiveSessionCalibration::RIG_UNCHANGED) {
+    return EXIT_SUCCESS;
+  }
+  // The likeliest cause first, on the standard error too: a script that reads only it learns why.
+  std::cerr << "visp-projective check: " << oneLine(calibration.getDiagnosisMessage()) << std::endl;
+  return kMismatch;
 }
 
 int record(int argc, char **argv)
@@ -331,21 +355,39 @@ int record(int argc, char **argv)
 
 int report(int argc, char **argv)
 {
-  vispProjective::Arguments args("visp-projective report", {"MODEL.json"}, {"--plots", "--range", "--travel"}, {});
+  vispProjective::Arguments args("visp-projective report", {"MODEL.json"},
+                                 {"--plots", "--range", "--travel", "--session", "--family"}, {});
   const int parsed = parseArguments(args, argc, argv, "report", kReportUsage);
   if (parsed >= 0) {
     return parsed;
   }
-  double range = 30.0, travel = 0.05;
+  double range = 0.0, travel = 0.0; // 0: told by the session's trials (or 30 deg, 5 cm)
   std::string error;
-  if (!args.number("--range", 30.0, 1e-9, range, error) || !args.number("--travel", 0.05, 1e-9, travel, error)) {
+  if (!args.number("--range", 0.0, 1e-9, range, error) || !args.number("--travel", 0.0, 1e-9, travel, error)) {
     return usageError("report", error);
+  }
+  if (args.has("--session") && !args.has("--plots")) {
+    return usageError("report", "--session is for the plots: give --plots DIR too");
   }
   std::vector<int> ids;
   double residual = 0.0, algebraic = 0.0;
-  const vpProjectiveArmModel model = loadModel(args.positional(0), ids, residual, algebraic);
+  std::vector<vpProjectiveArmAcquisition::vpFrame> frames;
+  vpProjectiveCellFingerprint cell;
+  const vpProjectiveArmModel model =
+      vpProjectiveModelFile::load(args.positional(0), &residual, &algebraic, &ids, &frames, &cell);
   if (args.has("--plots")) {
-    for (const std::string &file : vispProjective::writeJointPathPlots(model, range, travel, args.value("--plots"))) {
+    std::unique_ptr<vpProjectiveSession> session;
+    if (args.has("--session")) {
+      session.reset(new vpProjectiveSession(vpProjectiveSession::read(args.value("--session"))));
+      if (ids.size() != model.markers().size()) {
+        throw vpException(vpException::badValue, "the model '" + args.positional(0) +
+                                                     "' has no marker identifiers: its markers cannot be found in "
+                                                     "the session; calibrate it with 'visp-projective calibrate'");
+      }
+    }
+    for (const std::string &file :
+         vispProjective::writeJointPathPlots(model, ids, range, travel, args.value("--plots"), session.get(),
+                                             vispProjective::markerExtractor(args.value("--family", "36h11")))) {
       std::cout << "plot: " << file << std::endl;
     }
   }
@@ -356,58 +398,21 @@ int report(int argc, char **argv)
             << std::endl;
   std::cout << std::setprecision(3) << "residuals: bundle adjustment " << residual << " px RMS, algebraic generators "
             << algebraic << " px RMS" << std::endl;
-  bool metric = true;
-  std::vector<Eigen::Vector3d> direction, point;
-  Eigen::Matrix3d Kl, Kr;
-  Eigen::Matrix4d lMr;
-  std::string why;
-  try {
-    vpProjectiveSelfCalibration::metricStereoRig(model, Kl, Kr, lMr);
-    vpProjectiveSelfCalibration::jointAxes(model, direction, point);
-  } catch (const vpException &e) {
-    metric = false;
-    why = oneLine(e.getStringMessage());
-  }
-  bool prismatic = false;
+  vispProjective::printCell(cell, std::cout);
   for (unsigned int i = 0; i < model.getNumberOfJoints(); ++i) {
     const bool revolute = model.jointType(i) == vpProjectiveJoint::REVOLUTE;
-    prismatic = prismatic || !revolute;
     std::cout << "joint " << i << " (" << vpProjectiveJoint::name(model.jointType(i)) << "), zero reference at "
               << std::setprecision(6)
               << (revolute ? vpMath::deg(model.zeroReferenceJoints()(i)) : model.zeroReferenceJoints()(i))
-              << (revolute ? " deg" : " m");
-    if (metric) {
-      std::cout << ": direction " << vectorText(direction[i], 4);
-      if (revolute) {
-        std::cout << " through " << vectorText(point[i], 4);
-      }
-    }
-    std::cout << std::endl;
+              << (revolute ? " deg" : " m") << std::endl;
   }
-  if (!metric) {
-    std::cout << "metric self-calibration: not available (" << why << ")" << std::endl;
-    return EXIT_SUCCESS;
+  try {
+    // The metric bundle adjustment over the frames the model file holds (none in a file of an older version: the
+    // read-out of the model's upgrade, without uncertainty).
+    vpProjectiveSelfCalibration(model, frames).print(std::cout);
+  } catch (const vpException &e) {
+    std::cout << "metric self-calibration: not available (" << oneLine(e.getStringMessage()) << ")" << std::endl;
   }
-  const char *unit = prismatic ? "prismatic joints' unit" : "unit baseline: no prismatic joint fixes the scale";
-  std::cout << "metric self-calibration (axes and t in the left camera's frame, lengths in the " << unit
-            << "):" << std::endl;
-  for (int c = 0; c < 2; ++c) {
-    const Eigen::Matrix3d &K = c == 0 ? Kl : Kr;
-    std::cout << std::fixed << std::setprecision(2) << (c == 0 ? "  left K:  " : "  right K: ") << "fx " << K(0, 0)
-              << ", fy " << K(1, 1) << ", skew " << K(0, 1) << ", u0 " << K(0, 2) << ", v0 " << K(1, 2) << std::endl;
-  }
-  vpRotationMatrix R;
-  for (unsigned int i = 0; i < 3; ++i) {
-    for (unsigned int j = 0; j < 3; ++j) {
-      R[i][j] = lMr(i, j);
-    }
-  }
-  const vpThetaUVector tu(R);
-  std::cout << std::fixed << std::setprecision(3) << "  right camera in the left one: R (theta-u, deg) ("
-            << vpMath::deg(tu[0]) << ", " << vpMath::deg(tu[1]) << ", " << vpMath::deg(tu[2]) << "), t "
-            << vectorText(lMr.block<3, 1>(0, 3), 4) << ", baseline " << std::setprecision(4)
-            << lMr.block<3, 1>(0, 3).norm() << std::endl;
-  std::cout.unsetf(std::ios::floatfield);
   return EXIT_SUCCESS;
 }
 } // namespace
@@ -432,6 +437,9 @@ int main(int argc, char **argv)
     if (command == "record") {
       return record(argc, argv);
     }
+    if (command == "servo") {
+      return vispProjective::servoCommand(argc, argv);
+    }
   } catch (const vpException &e) {
     std::cerr << "visp-projective " << command << ": " << oneLine(e.getStringMessage()) << std::endl;
     return EXIT_FAILURE;
@@ -439,7 +447,8 @@ int main(int argc, char **argv)
     std::cerr << "visp-projective " << command << ": " << oneLine(e.what()) << std::endl;
     return EXIT_FAILURE;
   }
-  std::cerr << "visp-projective: unknown command '" << command << "'; use calibrate, check, report or record (see "
+  std::cerr << "visp-projective: unknown command '" << command
+            << "'; use calibrate, check, report, record or servo (see "
             << "'visp-projective --help')" << std::endl;
   return kUsageError;
 }

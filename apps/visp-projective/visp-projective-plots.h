@@ -14,16 +14,19 @@
 /*!
   \file visp-projective-plots.h
   \brief `visp-projective report --plots DIR`: the paths the model predicts for its markers when each joint moves
-  alone, drawn as PNG images.
+  alone, drawn by gnuplot over the zero frame's images when the model's session is given.
 */
 
 #ifndef _visp_projective_plots_h_
 #define _visp_projective_plots_h_
 
+#include <ostream>
 #include <string>
 #include <vector>
 
 #include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpProjectiveSession.h>
+#include <visp3/projective/vpProjectiveSessionCalibration.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -32,14 +35,22 @@ using namespace VISP_NAMESPACE_NAME;
 namespace vispProjective
 {
 /*!
-  Writes \e folder/joint-paths-left.png and \e folder/joint-paths-right.png (640 x 480): for each joint alone moved
-  from the zero reference by -\e range to +\e range (degrees for a revolute joint, \e travel metres for a prismatic
-  one), the image path of every marker that the model predicts, one colour per joint, the zero reference's images as
-  black crosses; the view is the bounding box of the paths. Returns the files written.
-  \exception vpException (ioError) if a file cannot be written.
+  Writes \e folder/joint-paths-left.png and \e folder/joint-paths-right.png through gnuplot (and, beside them, the
+  data files and the script): for each joint alone moved from the zero reference, the image path of every marker
+  (ids \e ids, the model's order) that the model predicts, one colour and one legend entry per joint, axes in pixels.
+  With the model's \e session (not null): drawn over the zero frame's images, with the image border; solid within the
+  range the session's trials acquired, dashed beyond (to 1.5 times that range, or \e range deg / \e travel m either
+  way when these are > 0); and the markers measured in each trial frame (its recorded markers, else those of
+  \e extractor) as circles beside the model's prediction at the frame's readings (crosses). Without a session: the
+  paths to \e range deg (30 if 0) or \e travel m (0.05 if 0) either way, the view their bounding box. Returns the
+  figures written.
+  \exception vpException (ioError) if a file cannot be written or gnuplot fails (install gnuplot-nox: the data
+  and the script are left in \e folder).
 */
-std::vector<std::string> writeJointPathPlots(const vpProjectiveArmModel &model, double range, double travel,
-                                             const std::string &folder);
+std::vector<std::string> writeJointPathPlots(const vpProjectiveArmModel &model, const std::vector<int> &ids,
+                                             double range, double travel, const std::string &folder,
+                                             const vpProjectiveSession *session,
+                                             const vpProjectiveSessionCalibration::vpMarkerExtractor &extractor);
 } // namespace vispProjective
 
 #endif

@@ -153,6 +153,7 @@ unsigned int recordFromReadings(const std::string &folder, vpStereoImageSource &
       if (interactive) {
         writer->setSaveInterval(1, 1.0); // a session on disk after every frame typed in
       }
+      writer->setCameras(images); // which camera is left, for later checks
     }
     if (readings.size() != writer->getSession().getNumberOfJoints()) {
       throw vpException(vpException::dimensionError, "line " + std::to_string(number) + " of the joint readings has " +
@@ -176,7 +177,7 @@ unsigned int recordFromReadings(const std::string &folder, vpStereoImageSource &
       given = static_cast<vpProjectiveSession::vpFrameRole>(role);
       writer->addFrame(given, q, t, Il, Ir);
     }
-    os << "frame " << writer->getSession().getNumberOfFrames() - 1 << " (line " << number
+    os << "frame " << writer->getSession().getNumberOfFrames() << " (line " << number
        << "): " << vpProjectiveSession::toString(given) << std::endl;
   }
   if (!writer) {

@@ -64,7 +64,8 @@ void bindErrors(py::module_ &m)
       {"pointAtInfinityError", vpProjectiveException::pointAtInfinityError},
       {"fileError", vpProjectiveException::fileError},
       {"estimationFailedError", vpProjectiveException::estimationFailedError},
-      {"robotMotionError", vpProjectiveException::robotMotionError}};
+      {"robotMotionError", vpProjectiveException::robotMotionError},
+      {"modelRejectedError", vpProjectiveException::modelRejectedError}};
   for (const auto &code : codes) {
     projective.attr(code.first) = static_cast<int>(code.second);
   }

@@ -61,6 +61,8 @@ void bindRobotContract(RobotClass &robot)
       .def("getImageJacobian", &vpProjectiveRobot::getImageJacobian, py::arg("q"), py::arg("M"))
       .def("saveModel", &vpProjectiveRobot::saveModel, py::arg("filename"))
       .def("loadModel", &vpProjectiveRobot::loadModel, py::arg("filename"))
+      .def("addCalibrationFrame", &vpProjectiveRobot::addCalibrationFrame, py::arg("q"), py::arg("left"),
+           py::arg("right"), "A frame at any configuration for the metric self-calibration (getMetricStereoRig()).")
       .def("addRigObservation", &vpProjectiveRobot::addRigObservation, py::arg("q"), py::arg("left"), py::arg("right"))
       .def("updateRig", &vpProjectiveRobot::updateRig, ReleaseGil())
       .def("getPredictionError", &vpProjectiveRobot::getPredictionError, py::arg("q"), py::arg("left"),

@@ -81,6 +81,7 @@ void bindReport(py::module_ &m)
       .value("SERVO_NO_PLAN", vpServoProjectiveReport::SERVO_NO_PLAN)
       .value("SERVO_MODEL_MISMATCH", vpServoProjectiveReport::SERVO_MODEL_MISMATCH)
       .value("SERVO_OPEN_LOOP", vpServoProjectiveReport::SERVO_OPEN_LOOP)
+      .value("SERVO_ARM_NOT_FOLLOWING", vpServoProjectiveReport::SERVO_ARM_NOT_FOLLOWING)
       .export_values();
   py::enum_<vpServoFeatureHealth::vpFeatureState>(report, "FeatureState")
       .value("FEATURE_ACTIVE", vpServoFeatureHealth::FEATURE_ACTIVE)

@@ -156,6 +156,10 @@ void bindCalibration(py::module_ &m)
       .value("LEFT_CAMERA_MOVED", B::LEFT_CAMERA_MOVED)
       .value("RIGHT_CAMERA_MOVED", B::RIGHT_CAMERA_MOVED)
       .value("BOTH_CAMERAS_MOVED", B::BOTH_CAMERAS_MOVED)
+      .value("CAMERAS_SWAPPED", B::CAMERAS_SWAPPED)
+      .value("MARKERS_MOVED", B::MARKERS_MOVED)
+      .value("OTHER_READINGS", B::OTHER_READINGS)
+      .value("OTHER_CELL", B::OTHER_CELL)
       .export_values();
   py::class_<B::vpJointSummary>(calibration, "JointSummary")
       .def_readonly("type", &B::vpJointSummary::type)
@@ -190,8 +194,13 @@ void bindCalibration(py::module_ &m)
       .def("getJointSummaries", &B::getJointSummaries)
       .def("saveModel", &B::saveModel, py::arg("filename"))
       .def_static("checkWritable", &B::checkWritable, py::arg("filename"))
-      .def("check", &B::check, py::arg("model"), py::arg("ids"), py::arg("session"), ReleaseGil())
+      .def(
+          "check",
+          [](C &self, const vpProjectiveArmModel &model, const std::vector<int> &ids,
+             const vpProjectiveSession &session) { return self.check(model, ids, session); },
+          py::arg("model"), py::arg("ids"), py::arg("session"), ReleaseGil())
       .def("getRigState", &B::getRigState)
+      .def("getDiagnosisMessage", &B::getDiagnosisMessage)
       .def("getLeftResidual", &B::getLeftResidual)
       .def("getRightResidual", &B::getRightResidual)
       .def_static("toString", &B::toString, py::arg("state"));

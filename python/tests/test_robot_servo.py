@@ -37,6 +37,33 @@ def test_image_jacobian_is_the_derivative_of_the_predictions(paper_robot):
     assert np.abs(J - numeric).max() < 1e-5 * np.abs(J).max()
 
 
+def test_calibration_frames_refine_the_metric_rig(paper_robot):
+    """Frames at random configurations (+-25 deg, 0.1 px) feed getMetricStereoRig(): the focal lengths come closer to
+    the paper's cameras than from the acquisition alone; a frame without every marker is refused and changes
+    nothing."""
+    world, rng = puma(), np.random.default_rng(7)
+    robot = vpp.ProjectiveRobot(paper_robot)  # a copy: the fixture is shared
+
+    def focal_error(K):
+        return max(abs(K[0, 0] / K[2, 2] - 1666.67), abs(K[1, 1] / K[2, 2] - 1666.67)) / 1666.67
+
+    before = robot.getMetricStereoRig()[0]
+    added = 0
+    while added < 15:
+        q = world.q_ref + rng.uniform(-1.0, 1.0, 6) * np.radians(25.0)
+        visible, left, right = world.images(q, rng, 0.1)
+        if visible:
+            robot.addCalibrationFrame(q, left, right)
+            added += 1
+    Kl, Kr, lMr = robot.getMetricStereoRig()
+    assert focal_error(Kl) < focal_error(before) and focal_error(Kl) < 0.005
+    assert focal_error(Kr) < 0.005
+    with pytest.raises(vpp.ProjectiveException) as error:
+        robot.addCalibrationFrame(world.q_ref, left[:-1], right[:-1])
+    assert error.value.code == vpp.ProjectiveException.dimensionError
+    assert np.array_equal(robot.getMetricStereoRig()[0], Kl)  # nothing recorded
+
+
 def test_model_file_round_trip_and_bad_file(paper_robot, tmp_path):
     path = str(tmp_path / "arm.json")
     paper_robot.saveModel(path)

@@ -78,13 +78,21 @@ double predictionResidual(const ArmCalibrationData &data, const std::vector<Eige
                           const std::vector<Eigen::Vector4d> &M0);
 
 /*!
-  The generator of each joint from its trials' displacements (the candidate that best predicts the joint's trials),
-  \e M0 the triangulated zero reference; 0 for a joint none of whose trials gave a logarithm. With an outlier
-  threshold the mismatched markers of each trial are flagged in data.inlier. Throws if a trial did not move the
-  markers or a joint has no trial.
+  The displacement of each trial (4x4, normalised) from the zero reference's images to its own, by maximum likelihood
+  (vpProjectiveDisplacement::estimateFromImages()) or, with an outlier threshold, by the 5-point consensus of
+  estimateRobust(), whose mismatched markers are flagged in data.inlier; NaN for a trial without a usable estimate.
+  Throws (degenerateConfigurationError) if a trial did not move the markers. The displacements do not depend on the
+  joint types: the hypotheses of the joint-type check share them.
 */
-void algebraicGenerators(ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,
-                         std::vector<Eigen::Matrix4d> &Hhat);
+std::vector<Eigen::Matrix4d> trialDisplacements(ArmCalibrationData &data);
+
+/*!
+  The generator of each joint of type data.types[i] from its trials' \e displacements (the candidate that best
+  predicts the joint's trials), \e M0 the triangulated zero reference; 0 for a joint none of whose trials gave a
+  logarithm. Throws (notInitializedError) if a joint has no trial.
+*/
+void algebraicGenerators(const ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,
+                         const std::vector<Eigen::Matrix4d> &displacements, std::vector<Eigen::Matrix4d> &Hhat);
 
 /*!
   The affine and metric upgrade G (projective to metric frame, 4x4) of the generators \e Hhat of the joints flagged in
@@ -105,23 +113,61 @@ bool initialTwists(const ArmCalibrationData &data, const Eigen::Matrix4d &G, con
                    std::vector<Eigen::Vector3d> &axis, std::vector<Eigen::Vector3d> &point);
 
 /*!
-  The start of the bundle adjustment: the affine and metric upgrade of the generators (with every joint, and with
-  one or two left out in turn) and the metric twists, the candidate that best predicts all the trials. Throws
-  (estimationFailedError) if no upgrade gives a finite, invertible G.
+  The starts of the bundle adjustment: the affine and metric upgrade of the generators (with every joint, and with
+  one or two left out in turn) and the metric twists, the candidate that best predicts all the trials first, then the
+  others in the order of their prediction. Throws (estimationFailedError) if no upgrade gives a finite, invertible G.
 */
-MetricModel initialMetricModel(const ArmCalibrationData &data, const std::vector<Eigen::Matrix4d> &Hhat,
-                               const std::vector<Eigen::Vector4d> &M0);
+std::vector<MetricModel> initialMetricModels(const ArmCalibrationData &data, const std::vector<Eigen::Matrix4d> &Hhat,
+                                             const std::vector<Eigen::Vector4d> &M0);
 
 /*!
   Bundle adjustment over \f$ G^{-1} \f$ (unit sphere of R^16), the twists (revolute axes on the unit sphere) and the
   marker points (unit sphere of R^4), on the pixel error of the zero reference and of the inlier trial observations,
   or, with \e robustLoss, of every trial observation under a Cauchy loss at the outlier threshold. Returns the model
-  (its markers of unit norm, its zero-reference joints \e qRef) and the RMS residual per pixel coordinate. Throws
+  (its markers of unit norm, its zero-reference joints \e qRef) and the RMS residual per pixel coordinate; \e quick
+  stops earlier (50 iterations, 1e-8 relative changes instead of 200 and 1e-12: to compare hypotheses). Throws
   (estimationFailedError) if Ceres gives no usable solution.
 */
 vpProjectiveArmModel bundleAdjust(const ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,
                                   const MetricModel &start, bool robustLoss,
-                                  const vpProjectiveArmModel::JointVector &qRef, double &residual);
+                                  const vpProjectiveArmModel::JointVector &qRef, double &residual, bool quick = false);
+
+//! The metric model (G, axes, points) of \e model: the start of another adjustment.
+MetricModel metricModelOf(const vpProjectiveArmModel &model);
+
+/*!
+  The whole calibration of \e data with its joint types data.types, from the trials' \e displacements: the algebraic
+  generators, the metric start, the bundle adjustment and, with an outlier threshold, its rounds of outlier
+  classification. An adjustment ending above 1.3 times the images' epipolar noise (epipolarNoise(), at least 0.05 px)
+  tries the other metric starts (initialMetricModels()) and keeps the model of the lowest residual. \e data receives the
+  inlier flags and the rig of the last adjustment; \e residual and \e algebraicResidual the RMS pixel residuals of the
+  adjustment and of the algebraic generators. Throws (estimationFailedError) if the upgrade or the adjustment fails.
+*/
+vpProjectiveArmModel fitArmModel(ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,
+                                 const std::vector<Eigen::Matrix4d> &displacements,
+                                 const vpProjectiveArmModel::JointVector &qRef, double &residual,
+                                 double &algebraicResidual);
+
+/*!
+  The bundle adjustment of \e data (its inlier flags and rig those of the fit of \e from) with the joint types
+  data.types, started from \e from: a joint whose type differs from the model's starts from the motion of the other
+  type that moves the markers' centroid alike (a revolute axis at the distance that turns the reading into the
+  prismatic joint's motion, perpendicular to it and to the line of sight; a prismatic direction along the revolute
+  motion of the centroid). \e quick: see bundleAdjust(). Throws (estimationFailedError) if the adjustment fails.
+*/
+vpProjectiveArmModel refitArmModel(const ArmCalibrationData &data, const vpProjectiveArmModel &from, double &residual,
+                                   bool quick);
+
+/*!
+  Squared pixel error (summed over u, v, u', v') of each observation of \e data predicted by \e model: zero[j] at the
+  zero reference, trial[k][j] of marker j in trial k; NaN for an observation that is not used (not seen, or an
+  outlier), infinity for a prediction on a camera's focal plane.
+*/
+struct ObservationErrors {
+  std::vector<double> zero;
+  std::vector<std::vector<double>> trial;
+};
+ObservationErrors observationErrors(const vpProjectiveArmModel &model, const ArmCalibrationData &data);
 } // namespace vpProjectiveInternal
 
 #endif

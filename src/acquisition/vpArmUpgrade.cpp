@@ -23,6 +23,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include <Eigen/Dense>
 
@@ -77,14 +78,11 @@ double predictionResidual(const ArmCalibrationData &data, const std::vector<Eige
   return count > 0 ? std::sqrt(sum / static_cast<double>(count)) : 0.0;
 }
 
-void algebraicGenerators(ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,
-                         std::vector<Eigen::Matrix4d> &Hhat)
+std::vector<Eigen::Matrix4d> trialDisplacements(ArmCalibrationData &data)
 {
   const std::string where = "vpProjectiveArmAcquisition::calibrate()";
-  const size_t n = data.types.size();
-  // Candidate generators of each joint: the logarithm of each of its trials, and their projected mean.
-  std::vector<std::vector<Eigen::Matrix4d>> candidates(n);
-  std::vector<unsigned int> trialCount(n, 0);
+  std::vector<Eigen::Matrix4d> displacements(data.trials.size(),
+                                             Eigen::Matrix4d::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (size_t k = 0; k < data.trials.size(); ++k) {
     const ArmTrial &trial = data.trials[k];
     // A blocked joint or a tiny trial leaves the markers where they were: H = I has no logarithm to speak of.
@@ -108,31 +106,52 @@ void algebraicGenerators(ArmCalibrationData &data, const std::vector<Eigen::Vect
     // Maximum-likelihood displacement: the linear one from 7 noisy markers is too poor a start for the upgrade. 12
     // Levenberg-Marquardt iterations (of about 25 to full convergence) are enough for a start: the bundle adjustment
     // refines everything, and at 1 px noise no acquisition of 300 failed with 12 (one failed with 8).
-    ++trialCount[trial.joint];
     try {
       // With an outlier threshold, mismatched markers are found by the 5-point consensus of estimateRobust() and
       // left out of everything that follows (the candidates' scores, the rigid motions, the bundle adjustment).
-      Eigen::Matrix4d H;
       if (data.outlierThreshold > 0.0) {
         std::vector<bool> inlier;
-        H = vpProjectiveDisplacement::estimateRobust(data.rig, all ? data.zeroImages : s0, all ? trial.s : s1,
-                                                     data.outlierThreshold, inlier);
+        displacements[k] = vpProjectiveDisplacement::estimateRobust(data.rig, all ? data.zeroImages : s0,
+                                                                    all ? trial.s : s1, data.outlierThreshold, inlier);
         for (size_t j = 0, m = 0; j < trial.s.size(); ++j) {
           data.inlier[k][j] = trial.seen[j] && inlier[m++];
         }
       } else {
-        H = vpProjectiveDisplacement::estimateFromImages(data.rig, all ? data.zeroImages : s0, all ? trial.s : s1, 12);
+        displacements[k] =
+            vpProjectiveDisplacement::estimateFromImages(data.rig, all ? data.zeroImages : s0, all ? trial.s : s1, 12);
       }
-      candidates[trial.joint].push_back(
-          vpProjectiveJoint::log(data.types[trial.joint], vpProjectiveDisplacement(H), trial.amount));
     } catch (const vpProjectiveException &) {
-      // A noisy homography so far off that it is singular or has no logarithm gives no candidate; the joint's other
-      // trials, or the rigid motions of its markers in the metric frame (initialTwists()), still do. A trial where
-      // too few markers agree on one displacement stays out of the initial model: the model of the other trials
-      // decides which of its observations to keep.
+      // A noisy homography so far off that it is singular gives no candidate; the joint's other trials, or the rigid
+      // motions of its markers in the metric frame (initialTwists()), still do. A trial where too few markers agree on
+      // one displacement stays out of the initial model: the model of the other trials decides which of its
+      // observations to keep.
       if (data.outlierThreshold > 0.0) {
         data.inlier[k].assign(data.inlier[k].size(), false);
       }
+    }
+  }
+  return displacements;
+}
+
+void algebraicGenerators(const ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,
+                         const std::vector<Eigen::Matrix4d> &displacements, std::vector<Eigen::Matrix4d> &Hhat)
+{
+  const std::string where = "vpProjectiveArmAcquisition::calibrate()";
+  const size_t n = data.types.size();
+  // Candidate generators of each joint: the logarithm of each of its trials, and their projected mean.
+  std::vector<std::vector<Eigen::Matrix4d>> candidates(n);
+  std::vector<unsigned int> trialCount(n, 0);
+  for (size_t k = 0; k < data.trials.size(); ++k) {
+    const ArmTrial &trial = data.trials[k];
+    ++trialCount[trial.joint];
+    if (!displacements[k].allFinite()) {
+      continue; // no displacement: no candidate
+    }
+    try {
+      candidates[trial.joint].push_back(
+          vpProjectiveJoint::log(data.types[trial.joint], vpProjectiveDisplacement(displacements[k]), trial.amount));
+    } catch (const vpProjectiveException &) {
+      // A displacement without a logarithm of this joint's kind gives no candidate.
     }
   }
   // A single trial's homography occasionally lands far off (a small marker set gives a poorly conditioned 15-dof
@@ -171,8 +190,8 @@ void algebraicGenerators(ArmCalibrationData &data, const std::vector<Eigen::Vect
   }
 }
 
-MetricModel initialMetricModel(const ArmCalibrationData &data, const std::vector<Eigen::Matrix4d> &Hhat,
-                               const std::vector<Eigen::Vector4d> &M0)
+std::vector<MetricModel> initialMetricModels(const ArmCalibrationData &data, const std::vector<Eigen::Matrix4d> &Hhat,
+                                             const std::vector<Eigen::Vector4d> &M0)
 {
   const size_t n = data.types.size();
   std::vector<std::vector<Eigen::Vector4d>> trialPoints(data.trials.size());
@@ -188,8 +207,7 @@ MetricModel initialMetricModel(const ArmCalibrationData &data, const std::vector
   // from a small marker set (the shoulder of an arm) can have a generator too poor for the common plane at infinity
   // and metric conic (at 1 px noise, 6 PUMA acquisitions of 300 failed with every joint in). The candidate that
   // predicts all the trials best starts the bundle adjustment.
-  MetricModel model;
-  double best = std::numeric_limits<double>::infinity();
+  std::vector<std::pair<double, MetricModel>> candidates;
   std::vector<std::vector<bool>> subsets(1, std::vector<bool>(n, true));
   for (size_t a = 0; n >= 3 && a < n; ++a) {
     for (size_t b = a; b < n && (b == a || n >= 4); ++b) {
@@ -210,19 +228,26 @@ MetricModel initialMetricModel(const ArmCalibrationData &data, const std::vector
     for (size_t i = 0; i < n; ++i) {
       HhatC[i] = GcInv * vpProjectiveJoint::twist(data.types[i], axisC[i], pointC[i]) * Gc;
     }
+    MetricModel candidate;
+    candidate.G = Gc;
+    candidate.axis = axisC;
+    candidate.point = pointC;
     const double residual = predictionResidual(data, HhatC, M0);
-    if (residual < best) {
-      best = residual;
-      model.G = Gc;
-      model.axis = axisC;
-      model.point = pointC;
-    }
+    candidates.emplace_back(std::isnan(residual) ? std::numeric_limits<double>::infinity() : residual, candidate);
   }
-  if (!(best < std::numeric_limits<double>::infinity())) {
+  if (candidates.empty()) {
     fail(vpProjectiveException::estimationFailedError, "vpProjectiveArmAcquisition::calibrate()",
          "the affine and metric upgrade of the generators failed; check that the trial motions are large enough and "
          "that the markers are matched in the same order in every image");
   }
-  return model;
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [](const std::pair<double, MetricModel> &a, const std::pair<double, MetricModel> &b) {
+                     return a.first < b.first;
+                   });
+  std::vector<MetricModel> starts;
+  for (const std::pair<double, MetricModel> &c : candidates) {
+    starts.push_back(c.second);
+  }
+  return starts;
 }
 } // namespace vpProjectiveInternal

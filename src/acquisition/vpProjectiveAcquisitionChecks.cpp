@@ -280,3 +280,35 @@ void vpProjectiveAcquisitionProcedure::checkZeroReference(const vpProjectiveArmA
     checkGeneralPosition(acquisition.getStereoRig(), left, right, "zero reference, known rig");
   }
 }
+
+double vpProjectiveAcquisitionProcedure::noiseAtRest(const std::vector<int> &ids, const std::vector<vpImagePoint> &left,
+                                                     const std::vector<vpImagePoint> &right)
+{
+  std::vector<int> ids2;
+  std::vector<vpImagePoint> left2, right2;
+  if (!acquire(ids2, left2, right2)) {
+    progress("image noise at rest: a marker was lost in the second frame; the calibration estimates the noise from "
+             "the images");
+    return 0.0;
+  }
+  // Two frames of the same markers without motion: each coordinate differs by sqrt(2) sigma RMS.
+  double sum = 0.0;
+  size_t coordinates = 0;
+  for (size_t j = 0, m = 0; j < ids.size(); ++j) {
+    while (m < ids2.size() && ids2[m] < ids[j]) {
+      ++m; // ids ascending in both
+    }
+    if (m < ids2.size() && ids2[m] == ids[j] && m < left2.size() && m < right2.size()) {
+      sum += vpImagePoint::sqrDistance(left[j], left2[m]) + vpImagePoint::sqrDistance(right[j], right2[m]);
+      coordinates += 4;
+    }
+  }
+  const double noise = coordinates > 0 ? std::sqrt(sum / (2.0 * static_cast<double>(coordinates))) : 0.0;
+  std::ostringstream os;
+  os << "image noise at rest: " << noise << " px RMS per coordinate (two frames without motion)";
+  if (!(noise > 0.0)) {
+    os << "; identical frames: the calibration estimates the noise from the images";
+  }
+  progress(os.str());
+  return noise;
+}

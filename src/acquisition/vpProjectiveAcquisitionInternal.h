@@ -38,6 +38,13 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace vpProjectiveAcquisitionInternal
 {
+//! The kinds of the procedure's notices (vpProjectiveNotices: 32 to 39 are the acquisition procedure's).
+enum vpAcquisitionNotice {
+  NOTICE_MOUNTING_REPLACED = 32, //!< The mounting found replaced the one set.
+  NOTICE_MARKER_DROPPED = 33,    //!< An identified marker seen in too few trials was left out of the model.
+  NOTICE_TRIAL_DROPPED = 34      //!< A trial that shows fewer than 5 of the markers kept was left out.
+};
+
 inline std::string at(const char *method)
 {
   return std::string("vpProjectiveAcquisitionProcedure::") + method;

@@ -87,19 +87,53 @@ void vpProjectiveAcquisitionProcedure::stopRobot(vpRobot &robot) const
   }
 }
 
+void vpProjectiveAcquisitionProcedure::measureEncoderNoise(vpRobot &robot)
+{
+  // Readings at rest, spread over 50 ms: a controller that refreshes its readings every few milliseconds shows its
+  // noise; their standard deviation per joint sets how close a move can be asked to arrive.
+  const unsigned int readings = 10;
+  std::vector<vpColVector> q(readings);
+  for (unsigned int k = 0; k < readings; ++k) {
+    if (k > 0) {
+      sleepSeconds(0.005);
+    }
+    robot.getPosition(vpRobot::ARTICULAR_FRAME, q[k]);
+  }
+  const unsigned int n = q[0].size();
+  vpColVector mean(n, 0.0);
+  m_encoderNoise.resize(n, true);
+  for (unsigned int k = 0; k < readings; ++k) {
+    mean += q[k] / static_cast<double>(readings);
+  }
+  double largest = 0.0;
+  for (unsigned int i = 0; i < n; ++i) {
+    double sum = 0.0;
+    for (unsigned int k = 0; k < readings; ++k) {
+      sum += (q[k][i] - mean[i]) * (q[k][i] - mean[i]);
+    }
+    m_encoderNoise[i] = std::sqrt(sum / (readings - 1));
+    largest = std::max(largest, m_encoderNoise[i]);
+  }
+  m_tolerance = std::max(m_minTolerance, 4.0 * largest);
+  std::ostringstream os;
+  os << "encoder noise at rest: " << largest << " (rad or m, the largest standard deviation of 10 readings); arrival "
+     << "tolerance " << m_tolerance
+     << (m_tolerance > m_minTolerance ? " (4 times the noise)" : " (setArrivalTolerance())");
+  progress(os.str());
+}
+
 void vpProjectiveAcquisitionProcedure::checkArrival(vpRobot &robot, const vpColVector &q, double tolerance,
                                                     const char *how) const
 {
   vpColVector reading;
   robot.getPosition(vpRobot::ARTICULAR_FRAME, reading);
   for (unsigned int k = 0; k < q.size(); ++k) {
-    const bool revolute = m_types[k] == vpProjectiveJoint::REVOLUTE;
     const double allowed = std::max(tolerance, 0.1 * stepOf(k));
     if (reading.size() != q.size() || !(std::abs(reading[k] - q[k]) <= allowed)) {
       std::ostringstream os;
-      os << at("run") << ": joint " << k << " did not arrive: commanded " << jointValue(q[k], revolute) << ", read "
-         << (reading.size() == q.size() ? jointValue(reading[k], revolute) : std::string("nothing")) << " after " << how
-         << " (allowed " << jointValue(allowed, revolute)
+      os << at("run") << ": joint " << k << " did not arrive: commanded " << valueText(q[k], k) << ", read "
+         << (reading.size() == q.size() ? valueText(reading[k], k) : std::string("nothing")) << " after " << how
+         << " (allowed " << valueText(allowed, k)
          << "): check the robot (joint limit, state, controller), or use setMotionControl(VELOCITY_CONTROL).";
       throw vpProjectiveException(vpProjectiveException::robotMotionError, os.str());
     }
@@ -114,8 +148,8 @@ void vpProjectiveAcquisitionProcedure::moveByVelocity(vpRobot &robot, const vpCo
   std::vector<double> vmax(n);
   double travel = 0.0;
   for (unsigned int k = 0; k < n; ++k) {
-    vmax[k] =
-        m_types[k] == vpProjectiveJoint::REVOLUTE ? robot.getMaxRotationVelocity() : robot.getMaxTranslationVelocity();
+    vmax[k] = byType(k, robot.getMaxRotationVelocity(), robot.getMaxTranslationVelocity(),
+                     std::min(robot.getMaxRotationVelocity(), robot.getMaxTranslationVelocity()));
     if (!(vmax[k] > 0.0)) {
       throw vpProjectiveException(vpProjectiveException::invalidValueError,
                                   at("run") + ": the robot's largest joint velocity is not positive: give one "
@@ -134,11 +168,12 @@ void vpProjectiveAcquisitionProcedure::moveByVelocity(vpRobot &robot, const vpCo
         worst = k;
       }
     }
-    const bool revolute = m_types[worst] == vpProjectiveJoint::REVOLUTE;
     std::ostringstream os;
     os << at("run") << ": joint " << worst << " did not arrive within " << timeout << " s (" << what << "): commanded "
-       << jointValue(target[worst], revolute) << ", read " << jointValue(q[worst], revolute) << ", velocity "
-       << v[worst] << (revolute ? " rad/s" : " m/s")
+       << valueText(target[worst], worst) << ", read " << valueText(q[worst], worst) << ", velocity " << v[worst]
+       << (!m_typesKnown                                   ? " (rad or m)/s"
+           : m_types[worst] == vpProjectiveJoint::REVOLUTE ? " rad/s"
+                                                           : " m/s")
        << "; the robot was stopped. Check that setVelocity(ARTICULAR_FRAME) moves this joint (robot state, joint "
           "limit, emergency stop), or raise setMoveTimeout(), or use setMotionControl(POSITION_CONTROL).";
     throw vpProjectiveException(vpProjectiveException::robotMotionError, os.str());
@@ -230,8 +265,7 @@ void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVect
                                                  std::vector<vpImagePoint> &right, std::vector<vpImagePoint> &allLeft,
                                                  std::vector<vpImagePoint> &allRight)
 {
-  const bool revolute = m_types[i] == vpProjectiveJoint::REVOLUTE;
-  const double maxAmount = amountOf(m_maxAmounts, i, revolute ? vpMath::rad(30.0) : 0.1);
+  const double maxAmount = amountOf(m_maxAmounts, i, byType(i, vpMath::rad(30.0), 0.1, 0.35));
   const double step = stepOf(i);
   amount = 0.0;
   reason = AMOUNT_REACHED;
@@ -265,8 +299,8 @@ void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVect
     if (!m_identified && (l.size() != prevL.size() || r.size() != prevR.size())) {
       std::ostringstream os;
       os << at("run") << ": the image source gave " << l.size() << " left and " << r.size()
-         << " right marker images at step " << jointValue(sign * next, revolute) << " of joint " << i << ", "
-         << prevL.size() << " at the zero reference: give every marker, in the same order, or return false when "
+         << " right marker images at step " << valueText(sign * next, i) << " of joint " << i << ", " << prevL.size()
+         << " at the zero reference: give every marker, in the same order, or return false when "
          << "one is lost.";
       throw vpProjectiveException(vpProjectiveException::dimensionError, os.str());
     }
@@ -275,8 +309,8 @@ void vpProjectiveAcquisitionProcedure::moveJoint(vpRobot &robot, const vpColVect
     const int jumped = m_identified ? -1 : orderChange(prevL, prevR, l, r, other, dOwn, dOther);
     if (jumped >= 0) {
       std::ostringstream os;
-      os << at("run") << ": marker " << jumped << " jumped, at step " << jointValue(sign * next, revolute)
-         << " of joint " << i << ", to where marker " << other << " was (" << dOther << " px from it, " << dOwn
+      os << at("run") << ": marker " << jumped << " jumped, at step " << valueText(sign * next, i) << " of joint " << i
+         << ", to where marker " << other << " was (" << dOther << " px from it, " << dOwn
          << " px from its own previous images, the markers' common motion taken out): the image source changed the "
             "markers' order. Return the markers in "
             "the same order in every frame (track each one, or identify it: tag ids), then run again.";

@@ -28,6 +28,7 @@
 #include <Eigen/Dense>
 
 #include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpProjectiveNotices.h>
 
 #include "core/vpImageWindow.h"
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
@@ -170,27 +171,31 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::tellMounting(vpRobot &rob
   robot.getPosition(vpRobot::ARTICULAR_FRAME, reading);
   std::vector<int> ids;
   std::vector<vpImagePoint> l, r;
-  bool seen = acquire(ids, l, r);
-  if (seen && m_identified) {
-    // The model's markers the images show, in the model's order (ascending ids); at least 5.
-    std::vector<vpImagePoint> ml(K), mr(K);
-    shown.assign(K, false);
-    unsigned int count = 0;
-    for (size_t k = 0; k < ids.size(); ++k) {
-      const std::vector<int>::const_iterator it = std::lower_bound(m_modelIds.begin(), m_modelIds.end(), ids[k]);
-      if (it != m_modelIds.end() && *it == ids[k] && static_cast<size_t>(it - m_modelIds.begin()) < K) {
-        const size_t j = static_cast<size_t>(it - m_modelIds.begin());
-        ml[j] = l[k];
-        mr[j] = r[k];
-        shown[j] = true;
-        ++count;
+  bool seen = false;
+  // A detector can miss a marker in one frame (blur, a reflection): up to 3 frames at the check pose.
+  for (int frame = 0; frame < 3 && !seen; ++frame) {
+    seen = acquire(ids, l, r);
+    if (seen && m_identified) {
+      // The model's markers the images show, in the model's order (ascending ids); at least 5.
+      std::vector<vpImagePoint> ml(K), mr(K);
+      shown.assign(K, false);
+      unsigned int count = 0;
+      for (size_t k = 0; k < ids.size(); ++k) {
+        const std::vector<int>::const_iterator it = std::lower_bound(m_modelIds.begin(), m_modelIds.end(), ids[k]);
+        if (it != m_modelIds.end() && *it == ids[k] && static_cast<size_t>(it - m_modelIds.begin()) < K) {
+          const size_t j = static_cast<size_t>(it - m_modelIds.begin());
+          ml[j] = l[k];
+          mr[j] = r[k];
+          shown[j] = true;
+          ++count;
+        }
       }
+      l = ml;
+      r = mr;
+      seen = count >= 5;
     }
-    l = ml;
-    r = mr;
-    seen = count >= 5;
+    seen = seen && l.size() == K && r.size() == K;
   }
-  seen = seen && l.size() == K && r.size() == K;
   if (seen && (m_motion || m_control == POSITION_CONTROL)) {
     checkArrival(robot, qCheck, std::max(m_tolerance, 0.05 * smallestStep),
                  m_motion ? "the motion of setMotion()" : "setPosition()");
@@ -235,6 +240,11 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::tellMounting(vpRobot &rob
   if (report.kept != report.set) {
     os << "; the acquisition was set to " << mountingName(report.set) << ": the model uses "
        << mountingName(report.kept) << " (call setRigMounting(" << mountingName(report.kept) << ") to say so)";
+    vpProjectiveNotices::tell(NOTICE_MOUNTING_REPLACED,
+                              at("run") + ": the rig's mounting was set to " + mountingName(report.set) +
+                                  ", but a motion of two joints shows " + mountingName(report.kept) +
+                                  ": the model uses " + mountingName(report.kept) + "; call setRigMounting(" +
+                                  mountingName(report.kept) + ") to say so");
   }
   progress(os.str());
   return report.kept == model.getRigMounting() ? model : other;

@@ -30,13 +30,12 @@
 
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpProjectiveNotices.h>
 #include <visp3/projective/vpSimulatorRobotArm.h>
-#include <visp3/robot/vpAfma4.h>
-#include <visp3/robot/vpAfma6.h>
-#include <visp3/robot/vpViper.h>
 
 #include "core/vpImageWindow.h"
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
+#include "acquisition/vpRobotJointLimits.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -126,7 +125,7 @@ double vpProjectiveAcquisitionProcedure::amountOf(const vpColVector &v, unsigned
 
 double vpProjectiveAcquisitionProcedure::stepOf(unsigned int i) const
 {
-  return amountOf(m_steps, i, m_types[i] == vpProjectiveJoint::REVOLUTE ? vpMath::rad(2.0) : 0.01);
+  return amountOf(m_steps, i, byType(i, vpMath::rad(2.0), 0.01, 0.02));
 }
 
 void vpProjectiveAcquisitionProcedure::progress(const std::string &line) const
@@ -141,7 +140,9 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
   const double tStart = seconds();
   const double previousResidual = m_residual;
   m_types = acquisition.getJointTypes();
+  m_typesKnown = acquisition.hasDeclaredJointTypes();
   m_parallax = -1.0;
+  m_restNoise = 0.0;
   vpColVector qRef;
   robot.getPosition(vpRobot::ARTICULAR_FRAME, qRef);
   const unsigned int n = qRef.size();
@@ -157,6 +158,7 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
                                 at("run") + ": the acquisition has " + std::to_string(acquisition.getNumberOfJoints()) +
                                     " joints, the robot " + std::to_string(n) + ": give the robot's joint types.");
   }
+  checkUnits();
   // The joint range the trials stay in: the limits given, else those of ViSP's arms that know theirs (Viper650/850,
   // Afma4/6, real or simulated, and vpSimulatorRobotArm) less 2 deg or 1 cm, else none.
   m_lower = vpColVector();
@@ -168,29 +170,29 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
     limitsFrom = "setJointLimits()";
   } else {
     vpColVector qmin, qmax;
-    if (const vpViper *viper = dynamic_cast<const vpViper *>(&robot)) {
-      qmin = viper->getJointMin();
-      qmax = viper->getJointMax();
-    } else if (const vpAfma6 *afma6 = dynamic_cast<const vpAfma6 *>(&robot)) {
-      qmin = afma6->getJointMin();
-      qmax = afma6->getJointMax();
-    } else if (const vpAfma4 *afma4 = dynamic_cast<const vpAfma4 *>(&robot)) {
-      qmin = afma4->getJointMin();
-      qmax = afma4->getJointMax();
-    } else if (const vpSimulatorRobotArm *arm = dynamic_cast<const vpSimulatorRobotArm *>(&robot)) {
-      qmin = arm->getJointMin(); // in encoder readings
-      qmax = arm->getJointMax();
-    }
-    if (qmin.size() == n && qmax.size() == n) {
+    if (vpProjectiveInternal::robotJointLimits(robot, qmin, qmax) && qmin.size() == n && qmax.size() == n) {
       m_lower = qmin;
       m_upper = qmax;
       for (unsigned int k = 0; k < n; ++k) {
-        const double margin = m_types[k] == vpProjectiveJoint::REVOLUTE ? vpMath::rad(2.0) : 0.01;
+        const double margin = byType(k, vpMath::rad(2.0), 0.01, 0.01);
         m_lower[k] += margin;
         m_upper[k] -= margin;
       }
-      limitsFrom = "the robot's own, less 2 deg or 1 cm";
+      limitsFrom = "the robot's own, less " + std::string(m_typesKnown ? "2 deg or 1 cm" : "0.01 (rad or m)");
     }
+  }
+  measureEncoderNoise(robot);
+  if (m_lower.size() != 0) { // the limits used, in the units they were given (radians, metres)
+    std::ostringstream os;
+    os << ", with the margin:";
+    for (unsigned int k = 0; k < n; ++k) {
+      os << " joint " << k << " [" << m_lower[k] << ", " << m_upper[k] << "]"
+         << (!m_typesKnown                               ? " (rad or m)"
+             : m_types[k] == vpProjectiveJoint::REVOLUTE ? " rad"
+                                                         : " m")
+         << (k + 1 < n ? "," : "");
+    }
+    limitsFrom += os.str();
   }
   std::vector<int> ids;
   std::vector<vpImagePoint> left, right;
@@ -202,6 +204,7 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
                                             "moved.");
   }
   checkZeroReference(acquisition, left, right); // before the arm moves
+  m_restNoise = noiseAtRest(ids, left, right);
   m_refIds = ids;
   m_modelIds = ids;
   progress("joint limits: " + limitsFrom);
@@ -218,6 +221,7 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
   // With a known rig the zero reference is checked before the arm moves; without one, once the rig is estimated.
   const bool rigKnown = acquisition.getStereoRig().isInitialized();
   vpProjectiveArmAcquisition work = acquisition;
+  work.setImageNoise(std::max(acquisition.getImageNoise(), m_restNoise));
   if (rigKnown) {
     work.setZeroReference(qRef, left, right);
   }
@@ -233,7 +237,6 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
     for (unsigned int i = 0; i < n; ++i) {
       vpJointReport &report = reports[i];
       report.trials = 0;
-      const bool revolute = m_types[i] == vpProjectiveJoint::REVOLUTE;
       for (int sign = -1; sign <= 1; sign += 2) {
         double amount = 0.0;
         vpStopReason reason = AMOUNT_REACHED;
@@ -252,17 +255,17 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
           moveTo(robot, qRef, m_tolerance); // from the negative side, the positive steps pass through it anyway
         }
         std::ostringstream os;
-        os << "joint " << i << (sign < 0 ? " -" : " +") << ": " << jointValue(amount, revolute) << " ("
-           << toString(reason) << ")" << (sign > 0 ? ", back at the zero reference" : "") << "; " << std::fixed
-           << std::setprecision(1) << seconds() - tStart << " s";
+        os << "joint " << i << (sign < 0 ? " -" : " +") << ": " << valueText(amount, i) << " (" << toString(reason)
+           << ")" << (sign > 0 ? ", back at the zero reference" : "") << "; " << std::fixed << std::setprecision(1)
+           << seconds() - tStart << " s";
         progress(os.str());
       }
-      const double minAmount = amountOf(m_minAmounts, i, revolute ? vpMath::rad(5.0) : 0.01);
+      const double minAmount = amountOf(m_minAmounts, i, byType(i, vpMath::rad(5.0), 0.01, 0.01));
       if (std::max(report.amountNegative, report.amountPositive) < minAmount) {
         std::ostringstream os;
-        os << at("run") << ": joint " << i << " moved only -" << jointValue(report.amountNegative, revolute) << " ("
-           << toString(report.stopNegative) << ") and +" << jointValue(report.amountPositive, revolute) << " ("
-           << toString(report.stopPositive) << "), less than the minimum " << jointValue(minAmount, revolute)
+        os << at("run") << ": joint " << i << " moved only -" << valueText(report.amountNegative, i) << " ("
+           << toString(report.stopNegative) << ") and +" << valueText(report.amountPositive, i) << " ("
+           << toString(report.stopPositive) << "), less than the minimum " << valueText(minAmount, i)
            << ": too small a motion to observe; move the arm so that the markers are nearer the image centre and "
            << "the joint away from its limits, or lower the image margin or the minimum amount.";
         if (m_identified && (report.stopNegative == MARKER_LOST || report.stopPositive == MARKER_LOST)) {
@@ -290,6 +293,10 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
           os << "marker " << m_refIds[j] << " left out: seen in " << seenIn[j] << " of " << trials.size()
              << " trial motions (setMinMarkerVisibility(): " << m_minVisibility << ")";
           progress(os.str());
+          vpProjectiveNotices::tell(vpProjectiveAcquisitionInternal::NOTICE_MARKER_DROPPED,
+                                    at("run") + ": " + os.str() +
+                                        " (getDroppedMarkers()); keep every marker in view of both cameras during "
+                                        "the trials, or lower setMinMarkerVisibility()");
         }
       }
       if (kept.size() < 5) {
@@ -308,6 +315,9 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
             usable.push_back(trial);
           } else {
             progress("a trial motion left out: it shows fewer than 5 of the markers kept");
+            vpProjectiveNotices::tell(vpProjectiveAcquisitionInternal::NOTICE_TRIAL_DROPPED,
+                                      at("run") + ": a trial motion was left out: it shows fewer than 5 of the "
+                                                  "markers kept; keep more markers in view during the trials");
           }
         }
         trials = usable;
@@ -346,6 +356,9 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
     try {
       model = work.calibrate();
     } catch (const vpProjectiveException &e) {
+      if (e.getCode() == vpProjectiveException::modelRejectedError) {
+        throw; // its message ranks the causes
+      }
       // Say what the run saw that makes a calibration fail: small image motions, markers nearly coplanar.
       std::ostringstream os;
       os << e.getStringMessage() << ". What the procedure saw:";
@@ -390,10 +403,19 @@ vpProjectiveArmModel vpProjectiveAcquisitionProcedure::run(vpRobot &robot, vpPro
     }
     {
       std::ostringstream os;
-      os << "calibrated: " << trials.size() << " trials, residual " << work.getCalibrationResidual() << " px RMS";
+      os << "calibrated: " << trials.size() << " trials, residual " << work.getCalibrationResidual()
+         << " px RMS (limit " << work.getModelCheck().getLimit() << " px)";
+      if (!m_typesKnown) {
+        os << "; joint types identified from the images:";
+        for (unsigned int i = 0; i < n; ++i) {
+          os << " " << vpProjectiveJoint::name(work.getJointTypes()[i]);
+        }
+      }
       progress(os.str());
     }
     m_residual = work.getCalibrationResidual();
+    m_types = work.getJointTypes(); // identified, for an acquisition of a joint count
+    m_typesKnown = true;
     model = tellMounting(robot, qRef, model, reports);
     work.setRigMounting(model.getRigMounting());
     stopRobot(robot);

@@ -19,12 +19,15 @@
 #include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 
 #include <cmath>
+#include <iomanip>
+#include <iostream>
 #include <sstream>
 #include <string>
 
 #include <visp3/projective/vpProjectiveException.h>
 
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
+#include "core/vpJointUnits.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -48,6 +51,8 @@ void checkPerJoint(const vpColVector &v, bool allowZero, const char *method, con
               (allowZero ? " is negative: give values >= 0." : " is not positive: give values > 0."));
     }
   }
+  // Beyond 10: neither radians nor metres; run() refuses a revolute joint's above 2 pi once it knows the types.
+  vpProjectiveInternal::requireJointUnits(v, std::vector<bool>(), at(method), name);
 }
 
 void checkScalar(double x, const char *method, const char *name)
@@ -72,9 +77,10 @@ vpProjectiveAcquisitionProcedure::vpProjectiveAcquisitionProcedure(const vpImage
     : m_source(source), m_idSource(), m_identified(false), m_minVisibility(0.5), m_refIds(), m_modelIds(), m_dropped(),
       m_width(width), m_height(height), m_maxAmounts(), m_steps(), m_minAmounts(), m_qmin(), m_qmax(),
       m_limitMargin(0.0), m_imageMargin(10.0), m_rotationSpeed(0.0), m_translationSpeed(0.0), m_epipolarThreshold(2.0),
-      m_control(VELOCITY_CONTROL), m_moveTimeout(0.0), m_tolerance(1e-5), m_coplanarity(2.0), m_detectMounting(true),
-      m_os(nullptr), m_callback(), m_motion(), m_reports(), m_mountingReport(), m_residual(0.0), m_parallax(-1.0),
-      m_commandPeriod(0.0), m_wallPeriod(0.0), m_types(), m_lower(), m_upper()
+      m_control(VELOCITY_CONTROL), m_moveTimeout(0.0), m_minTolerance(1e-5), m_tolerance(1e-5), m_coplanarity(2.0),
+      m_detectMounting(true), m_os(&std::cout), m_callback(), m_motion(), m_reports(), m_mountingReport(),
+      m_residual(0.0), m_parallax(-1.0), m_commandPeriod(0.0), m_wallPeriod(0.0), m_types(), m_lower(), m_upper(),
+      m_encoderNoise()
 {
   if (!m_source) {
     throw vpProjectiveException(vpProjectiveException::invalidValueError,
@@ -145,6 +151,9 @@ void vpProjectiveAcquisitionProcedure::setJointLimits(const vpColVector &qmin, c
                                       " has qmin + 2 margin >= qmax: give qmin < qmax and a smaller margin.");
     }
   }
+  // Beyond 10: neither radians nor metres; run() refuses a revolute joint's beyond 2 pi once it knows the types.
+  vpProjectiveInternal::requireJointUnits(qmin, std::vector<bool>(), at("setJointLimits"), "lower limit");
+  vpProjectiveInternal::requireJointUnits(qmax, std::vector<bool>(), at("setJointLimits"), "upper limit");
   m_qmin = qmin;
   m_qmax = qmax;
   m_limitMargin = margin;
@@ -201,7 +210,7 @@ void vpProjectiveAcquisitionProcedure::setMoveTimeout(double secondsAllowed)
 void vpProjectiveAcquisitionProcedure::setArrivalTolerance(double tolerance)
 {
   checkPositive(tolerance, "setArrivalTolerance", "the tolerance (rad or m)");
-  m_tolerance = tolerance;
+  m_minTolerance = tolerance;
 }
 
 void vpProjectiveAcquisitionProcedure::setCoplanarityThreshold(double pixels)
@@ -222,4 +231,36 @@ std::string vpProjectiveAcquisitionProcedure::toString(vpStopReason reason)
   default:
     return "joint limit";
   }
+}
+
+double vpProjectiveAcquisitionProcedure::byType(unsigned int i, double revolute, double prismatic, double unknown) const
+{
+  if (!m_typesKnown) {
+    return unknown;
+  }
+  return m_types[i] == vpProjectiveJoint::REVOLUTE ? revolute : prismatic;
+}
+
+std::string vpProjectiveAcquisitionProcedure::valueText(double v, unsigned int i) const
+{
+  if (m_typesKnown) {
+    return jointValue(v, m_types[i] == vpProjectiveJoint::REVOLUTE);
+  }
+  std::ostringstream os;
+  os << std::setprecision(6) << v << " (rad or m)";
+  return os.str();
+}
+
+void vpProjectiveAcquisitionProcedure::checkUnits() const
+{
+  std::vector<bool> revolute;
+  for (unsigned int i = 0; m_typesKnown && i < m_types.size(); ++i) {
+    revolute.push_back(m_types[i] == vpProjectiveJoint::REVOLUTE);
+  }
+  using vpProjectiveInternal::requireJointUnits;
+  requireJointUnits(m_qmin, revolute, at("run") + " (setJointLimits())", "lower limit");
+  requireJointUnits(m_qmax, revolute, at("run") + " (setJointLimits())", "upper limit");
+  requireJointUnits(m_maxAmounts, revolute, at("run") + " (setMaxAmounts())", "largest amount");
+  requireJointUnits(m_steps, revolute, at("run") + " (setSteps())", "step");
+  requireJointUnits(m_minAmounts, revolute, at("run") + " (setMinAmounts())", "smallest amount");
 }

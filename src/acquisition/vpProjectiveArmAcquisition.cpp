@@ -30,48 +30,9 @@ using namespace vpProjectiveInternal;
 
 const vpErrorSite at("vpProjectiveArmAcquisition");
 
-namespace
-{
-/*!
-  Flags the trial observations of \e data that \e model places within the outlier threshold (RMS over the two
-  images); true if a flag changed.
-*/
-bool classifyTrialObservations(const vpProjectiveArmModel &model, ArmCalibrationData &data)
-{
-  bool changed = false;
-  for (size_t k = 0; k < data.trials.size(); ++k) {
-    const ArmTrial &trial = data.trials[k];
-    const Eigen::Matrix4d H = model.jointExp(trial.joint, trial.amount);
-    for (unsigned int j = 0; j < model.markers().size(); ++j) {
-      if (!trial.seen[j]) {
-        continue; // no observation
-      }
-      Eigen::Vector4d s;
-      const double d = model.predictMarker(j, H, s) ? std::sqrt(0.5 * (s - trial.s[j]).squaredNorm())
-                                                    : std::numeric_limits<double>::infinity();
-      const bool inlier = d <= data.outlierThreshold;
-      changed = changed || inlier != data.inlier[k][j];
-      data.inlier[k][j] = inlier;
-    }
-  }
-  return changed;
-}
-
-MetricModel metricModelOf(const vpProjectiveArmModel &model)
-{
-  MetricModel m;
-  m.G = model.projectiveToMetric();
-  for (unsigned int i = 0; i < model.getNumberOfJoints(); ++i) {
-    m.axis.push_back(model.axis(i));
-    m.point.push_back(model.point(i));
-  }
-  return m;
-}
-} // namespace
-
 vpProjectiveArmAcquisition::vpProjectiveArmAcquisition()
     : m_types(), m_mounting(vpProjectiveArmModel::EYE_TO_HAND), m_rig(), m_zeroImages(), m_qRef(), m_trials(), m_ids(),
-      m_outlierThreshold(0.0), m_inlier(), m_residual(0.0), m_algebraicResidual(0.0)
+      m_frames(), m_outlierThreshold(0.0), m_inlier(), m_residual(0.0), m_algebraicResidual(0.0)
 {
 }
 
@@ -103,6 +64,8 @@ void vpProjectiveArmAcquisition::setStereoRig(const vpProjectiveStereoRig &rig)
   m_zeroImages.clear();
   m_ids.clear();
   m_trials.clear();
+  m_inlier.clear(); // the last calibrate()'s flags were of those trials
+  m_frames.clear();
 }
 
 void vpProjectiveArmAcquisition::setZeroReference(const std::vector<vpImagePoint> &left0,
@@ -135,6 +98,8 @@ void vpProjectiveArmAcquisition::setZeroReference(const vpColVector &qRef, const
   }
   m_qRef = q;
   m_trials.clear();
+  m_inlier.clear(); // the last calibrate()'s flags were of those trials
+  m_frames.clear();
 }
 
 namespace
@@ -188,29 +153,22 @@ void vpProjectiveArmAcquisition::setZeroReference(const vpColVector &qRef, const
 std::vector<Eigen::Vector4d> vpProjectiveArmAcquisition::matchByIds(const std::vector<int> &ids,
                                                                     const std::vector<vpImagePoint> &left,
                                                                     const std::vector<vpImagePoint> &right,
-                                                                    const std::string &where,
-                                                                    std::vector<bool> &seen) const
+                                                                    const std::string &where, std::vector<bool> &seen,
+                                                                    unsigned int &shown) const
 {
   const std::vector<Eigen::Vector4d> t = stackStereoImages(left, right, where);
   ascendingIds(ids, t.size(), where); // the checks
   std::vector<Eigen::Vector4d> s(m_ids.size(), Eigen::Vector4d::Constant(std::numeric_limits<double>::quiet_NaN()));
   seen.assign(m_ids.size(), false);
-  unsigned int common = 0;
+  shown = 0;
   for (size_t k = 0; k < ids.size(); ++k) {
     const std::vector<int>::const_iterator it = std::lower_bound(m_ids.begin(), m_ids.end(), ids[k]);
     if (it != m_ids.end() && *it == ids[k]) { // others: not a zero-reference marker, ignored
       const size_t j = static_cast<size_t>(it - m_ids.begin());
       s[j] = t[k];
       seen[j] = true;
-      ++common;
+      ++shown;
     }
-  }
-  if (common < 5) {
-    std::ostringstream os;
-    os << "the trial shows " << common << " of the zero reference's " << m_ids.size()
-       << " markers (matched by id); a trial's displacement needs at least 5 of them: leave it out, or move the "
-          "joint less so that more markers stay in view";
-    fail(vpProjectiveException::notEnoughPointsError, where, os.str());
   }
   return s;
 }
@@ -234,7 +192,7 @@ void vpProjectiveArmAcquisition::addTrialMotion(unsigned int i, double amount, c
     fail(vpProjectiveException::invalidValueError, where,
          "the trial amount is zero; move the joint (e.g. 20 to 60 deg) so that its motion can be observed");
   }
-  if (m_types[i] == vpProjectiveJoint::REVOLUTE && std::abs(std::remainder(amount, 2.0 * M_PI)) < 1e-3) {
+  if (m_declared && m_types[i] == vpProjectiveJoint::REVOLUTE && std::abs(std::remainder(amount, 2.0 * M_PI)) < 1e-3) {
     fail(vpProjectiveException::invalidValueError, where,
          "a revolute trial by a multiple of 2 pi leaves the markers where they were; use another amount");
   }
@@ -264,7 +222,15 @@ void vpProjectiveArmAcquisition::addIdentifiedTrial(
     fail(vpProjectiveException::notInitializedError, where, "call setZeroReference() before adding trial motions");
   }
   std::vector<bool> seen;
-  const std::vector<Eigen::Vector4d> s = matchByIds(ids, left, right, where, seen);
+  unsigned int shown = 0;
+  const std::vector<Eigen::Vector4d> s = matchByIds(ids, left, right, where, seen, shown);
+  if (shown < 5) {
+    std::ostringstream os;
+    os << "the trial shows " << shown << " of the zero reference's " << m_ids.size()
+       << " markers (matched by id); a trial's displacement needs at least 5 of them: leave it out, or move the "
+          "joint less so that more markers stay in view";
+    fail(vpProjectiveException::notEnoughPointsError, where, os.str());
+  }
   // The checks of the joint and the amount, on the zero reference's images; then this trial's.
   std::vector<vpImagePoint> l0(m_zeroImages.size()), r0(m_zeroImages.size());
   for (size_t j = 0; j < m_zeroImages.size(); ++j) {
@@ -336,76 +302,6 @@ void vpProjectiveArmAcquisition::setOutlierThreshold(double pixels)
     fail(vpProjectiveException::invalidValueError, at("setOutlierThreshold()"), os.str());
   }
   m_outlierThreshold = pixels;
-}
-
-vpProjectiveArmModel vpProjectiveArmAcquisition::calibrate()
-{
-  const std::string where = at("calibrate()");
-  if (m_types.empty()) {
-    fail(vpProjectiveException::notInitializedError, where, "the robot has no joints; construct it with joint types");
-  }
-  if (m_zeroImages.empty()) {
-    fail(vpProjectiveException::notInitializedError, where,
-         "no zero reference; call setStereoRig(), setZeroReference() and addTrialMotion() for every joint first");
-  }
-  ArmCalibrationData data;
-  data.types = m_types;
-  data.mounting = m_mounting;
-  data.rig = m_rig;
-  data.zeroImages = m_zeroImages;
-  for (const vpTrial &t : m_trials) {
-    data.trials.push_back(ArmTrial{t.joint, t.amount, t.s, t.seen});
-    data.inlier.push_back(t.seen); // a missing marker is no observation: never an inlier
-  }
-  data.outlierThreshold = m_outlierThreshold;
-  const size_t K = m_zeroImages.size();
-
-  std::vector<Eigen::Vector4d> M0(K);
-  for (size_t j = 0; j < K; ++j) {
-    M0[j] = m_rig.triangulate(Eigen::Vector2d(m_zeroImages[j].head<2>()), Eigen::Vector2d(m_zeroImages[j].tail<2>()));
-  }
-  if (m_outlierThreshold > 0.0) {
-    // The zero reference defines which marker is which: a marker whose two images there do not meet (a left-right
-    // mismatch) cannot be repaired, only reported.
-    for (size_t j = 0; j < K; ++j) {
-      Eigen::Vector4d s;
-      const double d = m_rig.project(M0[j], s) ? std::sqrt(0.5 * (s - m_zeroImages[j]).squaredNorm())
-                                               : std::numeric_limits<double>::infinity();
-      if (!(d <= m_outlierThreshold)) {
-        std::ostringstream os;
-        os << "the left and right images of marker " << j << " at the zero reference are " << d
-           << " px away from any 3D point (outlier threshold " << m_outlierThreshold
-           << " px): they are not the same marker; fix the matching of the zero-reference images";
-        fail(vpProjectiveException::degenerateConfigurationError, where, os.str());
-      }
-    }
-  }
-  std::vector<Eigen::Matrix4d> Hhat;
-  algebraicGenerators(data, M0, Hhat);
-  const double algebraicResidual = predictionResidual(data, Hhat, M0);
-  const MetricModel start = initialMetricModel(data, Hhat, M0);
-  double residual = 0.0;
-  vpProjectiveArmModel model;
-  if (m_outlierThreshold > 0.0) {
-    // Every trial observation, mismatches down-weighted by a robust loss; then least squares on exactly those the
-    // model accepts, until that set no longer changes (at most 3 rounds).
-    // Each adjustment refines the rig too: the next one starts from its frame.
-    model = bundleAdjust(data, M0, start, true, m_qRef, residual);
-    data.rig = model.getStereoRig();
-    classifyTrialObservations(model, data);
-    model = bundleAdjust(data, model.markers(), metricModelOf(model), false, m_qRef, residual);
-    data.rig = model.getStereoRig();
-    for (int round = 0; round < 2 && classifyTrialObservations(model, data); ++round) {
-      model = bundleAdjust(data, model.markers(), metricModelOf(model), false, m_qRef, residual);
-      data.rig = model.getStereoRig();
-    }
-  } else {
-    model = bundleAdjust(data, M0, start, false, m_qRef, residual);
-  }
-  m_inlier = data.inlier;
-  m_residual = residual;
-  m_algebraicResidual = algebraicResidual;
-  return model;
 }
 
 unsigned int vpProjectiveArmAcquisition::getNumberOfOutliers() const

@@ -18,10 +18,12 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "arm/vpCameraIdentityJson.h"
 #include "core/vpProjectiveConversions.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -141,13 +143,102 @@ public:
     return value;
   }
 
+  //! The self-calibration's frames of a model of \e n joints and \e K markers.
+  std::vector<vpProjectiveArmAcquisition::vpFrame> frames(const json &value, size_t n, size_t K) const
+  {
+    std::vector<vpProjectiveArmAcquisition::vpFrame> list;
+    for (const json &f : array(value, "the frames", 0, 10000000)) {
+      const std::string what = "frame " + std::to_string(list.size());
+      vpProjectiveArmAcquisition::vpFrame frame;
+      const json &q = array(member(f, "q"), what + "'s readings", n, n);
+      frame.q.resize(static_cast<Eigen::Index>(n));
+      for (size_t i = 0; i < n; ++i) {
+        frame.q(static_cast<Eigen::Index>(i)) = number(q[i], what + "'s readings");
+      }
+      for (const json &s : array(member(f, "s"), what + "'s marker images", K, K)) {
+        frame.seen.push_back(!s.is_null());
+        frame.s.push_back(s.is_null() ? Eigen::Vector4d::Constant(std::numeric_limits<double>::quiet_NaN())
+                                      : vector<4>(s, what + "'s marker images"));
+      }
+      list.push_back(std::move(frame));
+    }
+    return list;
+  }
+
 private:
   std::string m_name;
 };
+
+//! The frames as JSON, checked against \e model's joints and markers.
+json framesToJson(const vpProjectiveArmModel &model, const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames)
+{
+  json list = json::array();
+  for (const vpProjectiveArmAcquisition::vpFrame &frame : frames) {
+    if (frame.q.size() != static_cast<Eigen::Index>(model.getNumberOfJoints()) ||
+        frame.s.size() != model.markers().size() || frame.seen.size() != model.markers().size()) {
+      fail(vpProjectiveException::dimensionError, "vpProjectiveModelFile::save()",
+           "a frame has not the model's joints and markers; give each frame n readings and one image per marker");
+    }
+    json images = json::array();
+    for (size_t j = 0; j < frame.s.size(); ++j) {
+      if (frame.seen[j] && !frame.s[j].allFinite()) {
+        fail(vpProjectiveException::invalidValueError, "vpProjectiveModelFile::save()",
+             "a frame's marker image is not finite; mark the marker not seen");
+      }
+      images.push_back(frame.seen[j] ? vectorToJson(frame.s[j]) : json());
+    }
+    list.push_back(json{{"q", vectorToJson(frame.q)}, {"s", images}});
+  }
+  return list;
+}
+
+//! The fingerprint of a "cell" entry \e c, checked.
+vpProjectiveCellFingerprint cellFromJson(const Reader &reader, const json &c)
+{
+  vpProjectiveCellFingerprint cell;
+  if (!c.is_object()) {
+    reader.bad("the cell entry is not an object");
+  }
+  if (c.contains("image_size")) {
+    const json &size = reader.array(c["image_size"], "the cell's image_size", 2, 2);
+    if (!size[0].is_number_unsigned() || !size[1].is_number_unsigned() || size[0].get<unsigned long long>() > 100000 ||
+        size[1].get<unsigned long long>() > 100000) {
+      reader.bad("the cell's image_size must be two image dimensions in pixels");
+    }
+    cell.setImageSize(size[0].get<unsigned int>(), size[1].get<unsigned int>());
+  }
+  const json &layout = reader.member(c, "camera_layout");
+  if (layout != "left-right" && layout != "any") {
+    reader.bad("the cell's camera_layout is neither \"left-right\" nor \"any\"");
+  }
+  cell.setCameraLayout(layout == "any" ? vpProjectiveCellFingerprint::LAYOUT_ANY
+                                       : vpProjectiveCellFingerprint::LAYOUT_LEFT_RIGHT);
+  const int found = cameraSideOf(reader.member(c, "right_camera"));
+  if (found < 0) {
+    reader.bad("the cell's right_camera is not one of \"unknown\", \"right\", \"left\", \"above-below\"");
+  }
+  const Eigen::Vector3d direction = reader.vector<3>(reader.member(c, "baseline_direction"), "the baseline direction");
+  try {
+    cell.setCameraSide(static_cast<vpProjectiveCellFingerprint::vpCameraSide>(found), direction);
+  } catch (const vpException &e) {
+    reader.bad(e.getStringMessage());
+  }
+  if (c.contains("cameras")) {
+    vpProjectiveCellFingerprint::vpCameraIdentity left, right;
+    if (!camerasFromJson(c["cameras"], left, right)) {
+      reader.bad("the cell's cameras must be {\"left\": {...}, \"right\": {...}}, each field a string");
+    }
+    cell.setCameras(left, right);
+  }
+  return cell;
+}
 } // namespace
 
 std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, double calibrationResidual,
-                                            double algebraicResidual, const std::vector<int> &markerIds)
+                                            double algebraicResidual, const std::vector<int> &markerIds,
+                                            const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames,
+                                            const vpProjectiveModelCheck *check,
+                                            const vpProjectiveCellFingerprint *cell)
 {
   if (model.getNumberOfJoints() == 0) {
     fail(vpProjectiveException::notInitializedError, "vpProjectiveModelFile::save()",
@@ -193,6 +284,28 @@ std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, d
     }
     m["marker_ids"] = markerIds;
   }
+  if (check != nullptr && check->isChecked()) {
+    json joints = json::array();
+    bool identified = false;
+    for (const vpProjectiveModelCheck::vpJointTypeFit &j : check->getJoints()) {
+      auto finite = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
+      joints.push_back(json{{"turn", finite(j.turn)},
+                            {"residual_revolute", finite(j.residualRevolute)},
+                            {"residual_prismatic", finite(j.residualPrismatic)}});
+      identified = identified || !j.declared;
+    }
+    m["model_check"] =
+        json{{"joint_types", identified ? "identified" : "declared"},
+             {"image_noise", check->getNoise()},
+             {"residual_limit", std::isfinite(check->getLimit()) ? json(check->getLimit()) : json(nullptr)},
+             {"joints", joints}};
+  }
+  if (!frames.empty()) {
+    m["frames"] = framesToJson(model, frames);
+  }
+  if (cell != nullptr) {
+    m["cell"] = cellToJson(*cell);
+  }
   json file;
   file["format"] = kFormat;
   file["version"] = version;
@@ -209,10 +322,12 @@ void vpProjectiveModelFile::save(const std::string &filename, const vpProjective
 
 void vpProjectiveModelFile::save(const std::string &filename, const vpProjectiveArmModel &model,
                                  double calibrationResidual, double algebraicResidual,
-                                 const std::vector<int> &markerIds)
+                                 const std::vector<int> &markerIds,
+                                 const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames,
+                                 const vpProjectiveModelCheck *check, const vpProjectiveCellFingerprint *cell)
 {
   const std::string where = "vpProjectiveModelFile::save()";
-  const std::string text = toString(model, calibrationResidual, algebraicResidual, markerIds);
+  const std::string text = toString(model, calibrationResidual, algebraicResidual, markerIds, frames, check, cell);
   std::ofstream file(filename.c_str(), std::ios::binary);
   if (!file) {
     fail(vpProjectiveException::fileError, where, "cannot open '" + filename + "' for writing");
@@ -224,7 +339,9 @@ void vpProjectiveModelFile::save(const std::string &filename, const vpProjective
 }
 
 vpProjectiveArmModel vpProjectiveModelFile::load(const std::string &filename, double *calibrationResidual,
-                                                 double *algebraicResidual, std::vector<int> *markerIds)
+                                                 double *algebraicResidual, std::vector<int> *markerIds,
+                                                 std::vector<vpProjectiveArmAcquisition::vpFrame> *frames,
+                                                 vpProjectiveCellFingerprint *cell)
 {
   std::ifstream file(filename.c_str(), std::ios::binary);
   if (!file) {
@@ -233,12 +350,14 @@ vpProjectiveArmModel vpProjectiveModelFile::load(const std::string &filename, do
   }
   std::ostringstream text;
   text << file.rdbuf();
-  return fromString(text.str(), filename, calibrationResidual, algebraicResidual, markerIds);
+  return fromString(text.str(), filename, calibrationResidual, algebraicResidual, markerIds, frames, cell);
 }
 
 vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, const std::string &name,
                                                        double *calibrationResidual, double *algebraicResidual,
-                                                       std::vector<int> *markerIds)
+                                                       std::vector<int> *markerIds,
+                                                       std::vector<vpProjectiveArmAcquisition::vpFrame> *frames,
+                                                       vpProjectiveCellFingerprint *cell)
 {
   const Reader reader(name);
   json file;
@@ -328,6 +447,13 @@ vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, 
       reader.bad("two markers have the same identifier in marker_ids");
     }
   }
+  const vpProjectiveCellFingerprint fingerprint =
+      m.contains("cell") ? cellFromJson(reader, m["cell"]) : vpProjectiveCellFingerprint();
+
+  std::vector<vpProjectiveArmAcquisition::vpFrame> framesRead;
+  if (m.contains("frames")) {
+    framesRead = reader.frames(m["frames"], n, markers.size());
+  }
 
   vpProjectiveArmModel model;
   try {
@@ -351,6 +477,12 @@ vpProjectiveArmModel vpProjectiveModelFile::fromString(const std::string &text, 
   }
   if (markerIds != nullptr) {
     *markerIds = ids;
+  }
+  if (frames != nullptr) {
+    *frames = std::move(framesRead);
+  }
+  if (cell != nullptr) {
+    *cell = fingerprint;
   }
   return model;
 }

@@ -72,6 +72,11 @@ vpProjectiveRobot::vpProjectiveRobot(const std::vector<vpJointType> &joints) : v
   m_acquisition = vpProjectiveArmAcquisition(joints);
 }
 
+vpProjectiveRobot::vpProjectiveRobot(unsigned int n) : vpProjectiveRobot()
+{
+  m_acquisition = vpProjectiveArmAcquisition(n);
+}
+
 void vpProjectiveRobot::checkJoint(unsigned int i, const char *method) const
 {
   if (i >= getNumberOfJoints()) {
@@ -84,6 +89,10 @@ void vpProjectiveRobot::checkJoint(unsigned int i, const char *method) const
 vpProjectiveRobot::vpJointType vpProjectiveRobot::getJointType(unsigned int i) const
 {
   checkJoint(i, "getJointType()");
+  if (!m_calibrated && !m_acquisition.hasDeclaredJointTypes()) {
+    fail(vpProjectiveException::notInitializedError, at("getJointType()"),
+         "the robot was constructed from its joint count: calibrate() identifies the joint types from the trials");
+  }
   return m_acquisition.getJointTypes()[i];
 }
 
@@ -134,6 +143,12 @@ void vpProjectiveRobot::addTrialMotion(const vpColVector &q, const std::vector<v
   m_calibrated = false;
 }
 
+void vpProjectiveRobot::addCalibrationFrame(const vpColVector &q, const std::vector<vpImagePoint> &left,
+                                            const std::vector<vpImagePoint> &right)
+{
+  m_acquisition.addCalibrationFrame(q, left, right);
+}
+
 void vpProjectiveRobot::calibrate()
 {
   const vpProjectiveArmModel model = m_acquisition.calibrate(); // throws before anything changes
@@ -144,7 +159,11 @@ void vpProjectiveRobot::setCalibration(const vpProjectiveArmAcquisition &acquisi
                                        double residual)
 {
   const std::string where = at("setCalibration()");
-  if (model.jointTypes() != acquisition.getJointTypes() || model.jointTypes() != m_acquisition.getJointTypes()) {
+  // A robot of a joint count alone takes the types identified by the acquisition.
+  const bool sameJoints = m_acquisition.hasDeclaredJointTypes()
+                              ? model.jointTypes() == m_acquisition.getJointTypes()
+                              : model.getNumberOfJoints() == m_acquisition.getNumberOfJoints();
+  if (model.jointTypes() != acquisition.getJointTypes() || !sameJoints) {
     fail(vpProjectiveException::dimensionError, where,
          "the model, the acquisition and the robot have different joints; calibrate from an acquisition of this "
          "robot's joints (getAcquisition())");
@@ -374,11 +393,20 @@ void vpProjectiveRobot::predictMarkers(const std::vector<vpColVector> &trajector
   }
 }
 
+std::vector<vpProjectiveArmAcquisition::vpFrame> vpProjectiveRobot::selfCalibrationFrames() const
+{
+  std::vector<vpProjectiveArmAcquisition::vpFrame> frames = m_acquisition.getFrames();
+  if (m_rigUpdates > 0) { // the acquisition's images show the rig before it moved: only the frames added since
+    frames.erase(frames.begin(), frames.end() - m_acquisition.getNumberOfCalibrationFrames());
+  }
+  return frames;
+}
+
 void vpProjectiveRobot::getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogeneousMatrix &lMr) const
 {
   Eigen::Matrix3d Kle, Kre;
   Eigen::Matrix4d lMre;
-  vpProjectiveSelfCalibration::metricStereoRig(getModel(), Kle, Kre, lMre);
+  vpProjectiveSelfCalibration(getModel(), selfCalibrationFrames()).getMetricStereoRig(Kle, Kre, lMre);
   Kl = toVisp(Kle);
   Kr = toVisp(Kre);
   lMr = toHomogeneous(lMre);
@@ -387,10 +415,11 @@ void vpProjectiveRobot::getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogen
 void vpProjectiveRobot::getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogeneousMatrix &lMr, unsigned int markerA,
                                            unsigned int markerB, double distance) const
 {
+  vpProjectiveSelfCalibration calibration(getModel(), selfCalibrationFrames());
+  calibration.setScale(vpProjectiveSelfCalibration::SCALE_MARKER_DISTANCE, markerA, markerB, distance);
   Eigen::Matrix3d Kle, Kre;
   Eigen::Matrix4d lMre;
-  vpProjectiveSelfCalibration::metricStereoRig(
-      getModel(), Kle, Kre, lMre, vpProjectiveSelfCalibration::SCALE_MARKER_DISTANCE, markerA, markerB, distance);
+  calibration.getMetricStereoRig(Kle, Kre, lMre);
   Kl = toVisp(Kle);
   Kr = toVisp(Kre);
   lMr = toHomogeneous(lMre);
@@ -399,7 +428,7 @@ void vpProjectiveRobot::getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogen
 void vpProjectiveRobot::getMetricJointAxes(std::vector<vpColVector> &direction, std::vector<vpColVector> &point) const
 {
   std::vector<Eigen::Vector3d> d, p;
-  vpProjectiveSelfCalibration::jointAxes(getModel(), d, p);
+  vpProjectiveSelfCalibration(getModel(), selfCalibrationFrames()).getJointAxes(d, p);
   direction.clear();
   point.clear();
   for (size_t i = 0; i < d.size(); ++i) {
@@ -410,16 +439,33 @@ void vpProjectiveRobot::getMetricJointAxes(std::vector<vpColVector> &direction, 
 
 void vpProjectiveRobot::saveModel(const std::string &filename) const
 {
-  vpProjectiveModelFile::save(filename, getModel(), m_residual, m_algebraicResidual);
+  // The check of the model's own calibration (not of a later, refused one).
+  const vpProjectiveModelCheck &check = m_acquisition.getModelCheck();
+  vpProjectiveModelFile::save(filename, getModel(), m_residual, m_algebraicResidual, std::vector<int>(),
+                              selfCalibrationFrames(), check.isAccepted() ? &check : nullptr);
 }
 
 void vpProjectiveRobot::loadModel(const std::string &filename)
 {
   double residual = 0.0, algebraicResidual = 0.0;
-  const vpProjectiveArmModel model = vpProjectiveModelFile::load(filename, &residual, &algebraicResidual);
-  vpProjectiveArmAcquisition acquisition(model.jointTypes());
-  acquisition.setRigMounting(model.getRigMounting());
-  acquisition.setStereoRig(model.getStereoRig());
+  std::vector<vpProjectiveArmAcquisition::vpFrame> frames;
+  const vpProjectiveArmModel model =
+      vpProjectiveModelFile::load(filename, &residual, &algebraicResidual, nullptr, &frames);
+  vpProjectiveArmAcquisition acquisition(model);
   acquisition.setOutlierThreshold(m_acquisition.getOutlierThreshold());
+  for (const vpProjectiveArmAcquisition::vpFrame &frame : frames) {
+    std::vector<int> ids;
+    std::vector<vpImagePoint> left, right;
+    for (size_t j = 0; j < frame.s.size(); ++j) {
+      if (frame.seen[j]) {
+        ids.push_back(static_cast<int>(j));
+        left.emplace_back(frame.s[j](1), frame.s[j](0));
+        right.emplace_back(frame.s[j](3), frame.s[j](2));
+      }
+    }
+    if (!ids.empty()) {
+      acquisition.addCalibrationFrame(toVispVector(frame.q), ids, left, right);
+    }
+  }
   adopt(acquisition, model, residual, algebraicResidual);
 }

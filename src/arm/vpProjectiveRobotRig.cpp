@@ -114,7 +114,8 @@ void vpProjectiveRobot::updateRig()
   ++m_rigUpdates;
   m_rigJoints.clear();
   m_rigImages.clear();
-  m_listeners.notify(true); // the tasks on this robot re-express their desired features in the new rig
+  m_acquisition.clearCalibrationFrames(); // they show the rig before it moved
+  m_listeners.notify(true);               // the tasks on this robot re-express their desired features in the new rig
 }
 
 void vpProjectiveRobot::adoptRig(const vpProjectiveStereoRig &rig, double rms)

@@ -20,6 +20,7 @@
 
 #include <visp3/projective/vpMetricTwist.h>
 
+#include "arm/vpMetricAdjustment.h"
 #include "core/vpProjectiveErrors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -151,7 +152,58 @@ MetricRig metricRig(const vpProjectiveArmModel &model, vpProjectiveSelfCalibrati
   m.s = 1.0 / unitLength;
   return m;
 }
+
+//! The joints' axes of \e model in the left camera's frame of \e m, lengths in its output unit.
+void axesOf(const vpProjectiveArmModel &model, const MetricRig &m, std::vector<Eigen::Vector3d> &direction,
+            std::vector<Eigen::Vector3d> &point)
+{
+  // Twists of E' carried to the left camera's frame, lengths scaled to the output unit: C That C^-1.
+  Eigen::Matrix4d C = m.lMe;
+  C.topRows<3>() *= m.s;
+  const Eigen::Matrix4d Cinv = C.inverse();
+  direction.assign(model.getNumberOfJoints(), Eigen::Vector3d::Zero());
+  point.assign(model.getNumberOfJoints(), Eigen::Vector3d::Zero());
+  for (unsigned int i = 0; i < model.getNumberOfJoints(); ++i) {
+    const Eigen::Matrix<double, 6, 1> xi = vpMetricTwist::vee(Eigen::Matrix4d(C * model.twist(i) * Cinv));
+    const Eigen::Vector3d v = xi.head<3>(), w = xi.tail<3>();
+    if (model.jointType(i) == vpProjectiveJoint::REVOLUTE) {
+      direction[i] = w.normalized();
+      point[i] = w.cross(v) / w.squaredNorm(); // the axis' point nearest to the camera centre
+    } else {
+      direction[i] = v.normalized();
+    }
+  }
+}
+
+//! (fx, fy, skew, u0, v0) of K.
+Eigen::Matrix<double, 5, 1> intrinsicsOf(const Eigen::Matrix3d &K)
+{
+  Eigen::Matrix<double, 5, 1> k;
+  k << K(0, 0), K(1, 1), K(0, 1), K(0, 2), K(1, 2);
+  return k;
+}
 } // namespace
+
+namespace vpProjectiveInternal
+{
+MetricArm metricStart(const vpProjectiveArmModel &model)
+{
+  const MetricRig m = metricRig(model, vpProjectiveSelfCalibration::SCALE_FROM_PRISMATIC_JOINTS, 0, 1, 0.0,
+                                at("vpProjectiveSelfCalibration()"));
+  MetricArm arm;
+  arm.left = intrinsicsOf(m.left.K);
+  arm.right = intrinsicsOf(m.right.K);
+  arm.lRr = m.left.R * m.right.R.transpose();
+  arm.b = m.s * (m.left.t - arm.lRr * m.right.t);
+  axesOf(model, m, arm.axis, arm.point);
+  const Eigen::Matrix4d lNe = m.lMe * model.projectiveToMetric(); // projective frame to the left camera's, E' units
+  for (const Eigen::Vector4d &M : model.markers()) {
+    const Eigen::Vector4d N = lNe * M;
+    arm.X.push_back(m.s * N.head<3>() / N(3));
+  }
+  return arm;
+}
+} // namespace vpProjectiveInternal
 
 double vpProjectiveSelfCalibration::metricStereoRig(const vpProjectiveArmModel &model, Eigen::Matrix3d &Kl,
                                                     Eigen::Matrix3d &Kr, Eigen::Matrix4d &lMr, vpScale scale,
@@ -171,21 +223,5 @@ void vpProjectiveSelfCalibration::jointAxes(const vpProjectiveArmModel &model, s
                                             std::vector<Eigen::Vector3d> &point, vpScale scale, unsigned int markerA,
                                             unsigned int markerB, double distance)
 {
-  const MetricRig m = metricRig(model, scale, markerA, markerB, distance, at("jointAxes()"));
-  // Twists of E' carried to the left camera's frame, lengths scaled to the output unit: C That C^-1.
-  Eigen::Matrix4d C = m.lMe;
-  C.topRows<3>() *= m.s;
-  const Eigen::Matrix4d Cinv = C.inverse();
-  direction.assign(model.getNumberOfJoints(), Eigen::Vector3d::Zero());
-  point.assign(model.getNumberOfJoints(), Eigen::Vector3d::Zero());
-  for (unsigned int i = 0; i < model.getNumberOfJoints(); ++i) {
-    const Eigen::Matrix<double, 6, 1> xi = vpMetricTwist::vee(Eigen::Matrix4d(C * model.twist(i) * Cinv));
-    const Eigen::Vector3d v = xi.head<3>(), w = xi.tail<3>();
-    if (model.jointType(i) == vpProjectiveJoint::REVOLUTE) {
-      direction[i] = w.normalized();
-      point[i] = w.cross(v) / w.squaredNorm(); // the axis' point nearest to the camera centre
-    } else {
-      direction[i] = v.normalized();
-    }
-  }
+  axesOf(model, metricRig(model, scale, markerA, markerB, distance, at("jointAxes()")), direction, point);
 }

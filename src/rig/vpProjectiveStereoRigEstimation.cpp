@@ -43,6 +43,15 @@ using namespace VISP_NAMESPACE_NAME;
 
 using namespace vpProjectiveInternal;
 
+double vpProjectiveInternal::epipolarDistance(const Eigen::Matrix3d &F, const Eigen::Vector2d &m,
+                                              const Eigen::Vector2d &mp)
+{
+  const Eigen::Vector3d lp = F * m.homogeneous();
+  const Eigen::Vector3d l = F.transpose() * mp.homogeneous();
+  const double algebraic = std::abs(mp.homogeneous().dot(lp));
+  return std::max(algebraic / lp.head<2>().norm(), algebraic / l.head<2>().norm());
+}
+
 namespace
 {
 
@@ -66,15 +75,6 @@ Eigen::Matrix3d linearFundamental(const Eigen::MatrixXd &A, const std::vector<si
   Eigen::JacobiSVD<Eigen::Matrix3d> svdF(F, Eigen::ComputeFullU | Eigen::ComputeFullV);
   return svdF.matrixU() * Eigen::Vector3d(svdF.singularValues()(0), svdF.singularValues()(1), 0.0).asDiagonal() *
          svdF.matrixV().transpose();
-}
-
-// Larger of the distances (pixels) of m' to the epipolar line F m and of m to F^T m'.
-double epipolarDistance(const Eigen::Matrix3d &F, const Eigen::Vector2d &m, const Eigen::Vector2d &mp)
-{
-  const Eigen::Vector3d lp = F * m.homogeneous();
-  const Eigen::Vector3d l = F.transpose() * mp.homogeneous();
-  const double algebraic = std::abs(mp.homogeneous().dot(lp));
-  return std::max(algebraic / lp.head<2>().norm(), algebraic / l.head<2>().norm());
 }
 
 /*

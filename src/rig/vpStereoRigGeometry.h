@@ -12,8 +12,8 @@
  */
 
 /*
-  Private: what the rig's estimation and its triangulation share: the two-view geometry and the error site. Not
-  installed.
+  Private: what the rig's estimation and its triangulation share: the two-view geometry and the error site (and the
+  epipolar distance, which the check of a session uses too). Not installed.
 */
 
 #ifndef _vpStereoRigGeometry_h_
@@ -37,6 +37,10 @@ const vpErrorSite stereoRigAt("vpProjectiveStereoRig");
 
 //! The canonical right camera of a unit, canonically signed F with right epipole e': P' = [[e']_x F + e' e'^T | e'].
 vpProjectiveStereoRig::Projection canonicalRightProjection(const Eigen::Matrix3d &F, const Eigen::Vector3d &ep);
+
+//! Larger of the distances (pixels) of \e mp to the epipolar line F m and of \e m to F^T mp (the estimation's inlier
+//! test; vpProjectiveSessionCalibration::check() tells swapped images by it).
+double epipolarDistance(const Eigen::Matrix3d &F, const Eigen::Vector2d &m, const Eigen::Vector2d &mp);
 
 //! The unit right singular vector of the smallest singular value of \e As (false if not finite).
 bool smallestSingularVector(const Eigen::Matrix4d &As, Eigen::Vector4d &x);

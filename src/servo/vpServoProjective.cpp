@@ -21,6 +21,7 @@
 #include <Eigen/Dense>
 
 #include "core/vpProjectiveConversions.h"
+#include "servo/vpServoProjectiveNotices.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -32,8 +33,8 @@ const vpErrorSite at("vpServoProjective");
 
 vpServoProjective::vpServoProjective()
     : m_link(), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(), m_jointLimits(),
-      m_mismatch(), m_targets(), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(),
-      m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
+      m_mismatch(), m_follow(), m_targets(), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(),
+      m_plannedFor(), m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
       m_replanFailed(false), m_stallSum(), m_stallSumSq(), m_stallHalves{0.0, 0.0}, m_stallCount(0), m_followGain(1.0),
       m_maxOpenLoopTime(2.0), m_openLoopCalls(0), m_seenPoints(), m_hasSeenPoint(), m_activeNow(), m_period(1.0),
       m_qdotMax(0.0), m_gainInput(GAIN_INPUT_ERROR), m_errorUnit(ERROR_PIXELS), m_focalLength(0.0), m_errorScale(1.0),
@@ -382,6 +383,7 @@ inline void vpServoProjective::commit()
   report.m_rankTolerance = m_rankTolerance;
   report.m_law = m_law;
   report.m_limits = m_jointLimits;
+  report.m_arm = m_follow;
 }
 
 void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdot)
@@ -398,17 +400,21 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
                 m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
   buildTask(q, it, method);
   const bool mismatch = detectMismatch(it.m_data); // after the last step that may throw
-  it.m_status = mismatch ? SERVO_MODEL_MISMATCH : (planned ? decideStatus(it) : SERVO_NO_PLAN);
+  const bool notFollowing = m_follow.evaluate(q, it.m_data.m_JtJ, 4 * it.m_data.m_nbActive);
+  it.m_status = notFollowing ? SERVO_ARM_NOT_FOLLOWING
+                             : (mismatch ? SERVO_MODEL_MISMATCH : (planned ? decideStatus(it) : SERVO_NO_PLAN));
   if (it.m_status == SERVO_STOPPED && openLoop(it)) {
     it.m_status = SERVO_OPEN_LOOP;
   }
-  if (it.m_status == SERVO_STOPPED || it.m_status == SERVO_NO_PLAN || it.m_status == SERVO_MODEL_MISMATCH) {
+  if (it.m_status == SERVO_STOPPED || it.m_status == SERVO_NO_PLAN || it.m_status == SERVO_MODEL_MISMATCH ||
+      it.m_status == SERVO_ARM_NOT_FOLLOWING) {
     stop(it, qdot);
   } else {
     computePrimaryVelocity(q, it, qdot);
     addJointLimitAvoidance(q, it, qdot);
     qdot /= m_period; // the step of this call, as a velocity held for one period
   }
+  m_follow.commit(q, qdot); // the command the arm must make by the next call
   commit();
   // The rig refinement records the calls that move the arm, with the robot given modifiable; refine() never throws: a
   // failed refinement leaves everything as it was.
@@ -420,6 +426,7 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
       m_refinement.refine(*m_link.modifiable);
     }
   }
+  noticeServoStatus(last(), m_planner); // a program that never reads the status hears of it once
 }
 
 vpColVector vpServoProjective::computeControlLaw(const vpColVector &q)

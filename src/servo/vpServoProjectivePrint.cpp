@@ -18,7 +18,11 @@
 #include <visp3/projective/vpServoProjective.h>
 
 #include <ostream>
+#include <string>
 
+#include <visp3/projective/vpProjectiveNotices.h>
+
+#include "servo/vpServoProjectiveNotices.h"
 #include <Eigen/Core>
 
 #include "core/vpProjectiveConversions.h"
@@ -60,11 +64,15 @@ const char *statusName(vpServoProjective::vpServoStatus status)
   case vpServoProjective::SERVO_NO_PLAN:
     return "SERVO_NO_PLAN (path planning found no plan for the target: qdot = 0)";
   case vpServoProjective::SERVO_MODEL_MISMATCH:
-    return "SERVO_MODEL_MISMATCH (every feature disagrees with the model: re-register a moved rig, or check the rig "
-           "mounting; qdot = 0)";
+    return "SERVO_MODEL_MISMATCH (every feature disagrees with the model's prediction at the joint readings: "
+           "re-register a moved rig, or check the rig mounting, that the readings are the model's joints (their "
+           "order, signs and units) and that the left and right images are not swapped; qdot = 0)";
   case vpServoProjective::SERVO_OPEN_LOOP:
     return "SERVO_OPEN_LOOP (too few features seen: the missing ones predicted by the model, the plan followed for at "
            "most setMaxOpenLoopTime())";
+  case vpServoProjective::SERVO_ARM_NOT_FOLLOWING:
+    return "SERVO_ARM_NOT_FOLLOWING (the arm does not make the commanded joint motion: qdot = 0 until "
+           "getArmFollowing().reset(); getReport().getArmFollowing().getDiagnosis() says why)";
   }
   return "?";
 }
@@ -151,6 +159,9 @@ void vpServoProjective::print(std::ostream &os) const
          << " now; EYE_IN_HAND when the cameras ride on the arm, vpProjectiveAcquisitionProcedure tells it) and the "
             "markers' order; if the rig moved, re-register it\n";
     }
+    if (last().m_status == SERVO_ARM_NOT_FOLLOWING) {
+      os << "  The arm: " << last().m_arm.getDiagnosis() << "\n";
+    }
     os << "  Last step: gain " << last().m_lambda << ", damping " << last().m_damping << ", "
        << (last().m_saturated ? "saturated" : "not saturated") << "\n";
   }
@@ -191,6 +202,17 @@ void vpServoProjective::print(std::ostream &os) const
   } else {
     os << "off";
   }
+  os << "; arm-following check ";
+  if (m_follow.isEnabled()) {
+    os << "on (" << m_follow.getConsecutiveCalls() << " calls, period ";
+    if (m_follow.getControlPeriod() > 0.0) {
+      os << m_follow.getControlPeriod() << " s)";
+    } else {
+      os << "learned: " << m_follow.getReferenceDuration() << " s)";
+    }
+  } else {
+    os << "off";
+  }
   os << "\n";
   os << "  Rig refinement: ";
   if (!m_refinement.isEnabled()) {
@@ -227,4 +249,21 @@ void vpServoProjective::print(std::ostream &os) const
 std::string vpServoProjective::toString(vpServoStatus status)
 {
   return statusName(status);
+}
+
+void vpProjectiveInternal::noticeServoStatus(const vpServoProjectiveReport &report,
+                                             const vpProjectivePathPlanner &planner)
+{
+  // Once per status kind and process (vpProjectiveNotices): the line is built only when it is printed.
+  const vpServoProjectiveReport::vpServoStatus status = report.getStatus();
+  if (status == vpServoProjectiveReport::SERVO_RUNNING || !vpProjectiveNotices::isPending(status)) {
+    return;
+  }
+  std::string line = std::string("vpServoProjective: ") + statusName(status);
+  if (status == vpServoProjectiveReport::SERVO_ARM_NOT_FOLLOWING) {
+    line += ": " + report.getArmFollowing().getDiagnosis();
+  } else if (status == vpServoProjectiveReport::SERVO_NO_PLAN) {
+    line += ": " + planner.getDescription();
+  }
+  vpProjectiveNotices::tell(status, line);
 }

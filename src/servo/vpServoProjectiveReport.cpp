@@ -54,7 +54,8 @@ double conditionNumber(const vpProjectiveArmModel::JointMatrix &JtJ)
 
 vpServoProjectiveReport::vpServoProjectiveReport()
     : m_data(), m_status(SERVO_RUNNING), m_lambda(0.0), m_damping(0.0), m_saturated(false), m_qdot2(),
-      m_following(false), m_openLoopCalls(0), m_errorScale(1.0), m_rankTolerance(1e-6), m_states(), m_law(), m_limits()
+      m_following(false), m_openLoopCalls(0), m_errorScale(1.0), m_rankTolerance(1e-6), m_states(), m_law(), m_limits(),
+      m_arm()
 {
 }
 

@@ -24,6 +24,7 @@
 
 #include <Eigen/Dense>
 
+#include "core/vpJointUnits.h"
 #include "core/vpProjectiveErrors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -105,6 +106,7 @@ void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
   if (m_link.robot != &robot) {
     m_mismatch.reset(); // memories of another robot's model
   }
+  m_follow.reset();   // another arm (or the same, set again after the user fixed it)
   m_link.set(&robot); // the robot now tells this task of a new model or rig
   m_link.modifiable = nullptr;
   for (vpTarget &t : m_targets) {
@@ -208,6 +210,7 @@ void vpServoProjective::setControlPeriod(double seconds)
   // Inside, the law works per call (a joint step, as the planner's paths and rehearsals do); the user's gain and
   // saturation are per second.
   m_law.setMaxJointVelocity(m_qdotMax * seconds);
+  m_follow.setControlPeriod(seconds); // the arm's motion per call is judged against it
   m_period = seconds;
 }
 
@@ -271,6 +274,15 @@ void vpServoProjective::setJointLimits(const vpColVector &qmin, const vpColVecto
        << m_link.robot->getNumberOfJoints() << " joints";
     fail(vpProjectiveException::dimensionError, at("setJointLimits()"), os.str());
   }
+  // Radians and metres: a revolute joint's limit beyond 2 pi, or any beyond 10, is probably in degrees or millimetres.
+  std::vector<bool> revolute;
+  for (unsigned int i = 0; m_link.robot != nullptr && i < m_link.robot->getNumberOfJoints(); ++i) {
+    if (m_link.robot->isCalibrated() || m_link.robot->getAcquisition().hasDeclaredJointTypes()) {
+      revolute.push_back(m_link.robot->getJointType(i) == vpProjectiveRobot::REVOLUTE);
+    }
+  }
+  requireJointUnits(qmin, revolute, at("setJointLimits()"), "qmin");
+  requireJointUnits(qmax, revolute, at("setJointLimits()"), "qmax");
   m_jointLimits = limits;
 }
 

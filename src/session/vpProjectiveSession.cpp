@@ -25,6 +25,7 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
 
+#include "arm/vpCameraIdentityJson.h"
 #include "core/vpProjectiveErrors.h"
 #include "session/vpProjectiveSessionInternal.h"
 
@@ -33,6 +34,7 @@ using namespace VISP_NAMESPACE_NAME;
 #endif
 
 using namespace vpProjectiveInternal;
+using vpProjectiveSessionInternal::frameName;
 
 const char *const vpProjectiveSession::formatName = "visp-projective-session";
 
@@ -43,12 +45,6 @@ using json = nlohmann::json;
 const vpErrorSite at("vpProjectiveSession");
 
 const char *const kRoles[] = {"zero", "trial", "observation", "target", "servo"};
-
-//! "frame k (left/000003.png)": how the messages name a frame.
-std::string frameName(unsigned int k, const std::string &left)
-{
-  return "frame " + std::to_string(k) + (left.empty() ? std::string() : " ('" + left + "')");
-}
 
 //! Reads the entries of session.json, each error a fileError naming the file.
 class Reader
@@ -121,7 +117,8 @@ bool insideFolder(const std::string &path)
 } // namespace
 
 vpProjectiveSession::vpProjectiveSession()
-    : m_folder(), m_types(), m_frames(), m_trialJoint(), m_zero(-1), m_width(0), m_height(0)
+    : m_folder(), m_types(), m_frames(), m_trialJoint(), m_zero(-1), m_width(0), m_height(0), m_cameras(),
+      m_layout(vpProjectiveCellFingerprint::LAYOUT_LEFT_RIGHT)
 {
 }
 
@@ -174,7 +171,8 @@ int vpProjectiveSession::checkFrame(const vpFrame &frame, const std::string &whe
   }
   if (frame.role == ZERO && m_zero >= 0) {
     fail(vpProjectiveException::fileError, where,
-         name + " is a second zero frame (frame " + std::to_string(m_zero) +
+         name + " is a second zero frame (" +
+             frameName(static_cast<unsigned int>(m_zero), 0, m_frames[static_cast<size_t>(m_zero)].left) +
              " is the first); a session has exactly one: give the others the role 'observation'");
   }
   if (frame.role != TRIAL) {
@@ -229,17 +227,31 @@ vpProjectiveSession vpProjectiveSession::fromString(const std::string &text, con
                  "; use \"revolute\" or \"prismatic\"");
     }
   }
+  if (file.contains("cameras") && !camerasFromJson(file["cameras"], session.m_cameras[0], session.m_cameras[1])) {
+    reader.bad("'cameras' must be {\"left\": {...}, \"right\": {...}}, each camera's device, name, bus and serial "
+               "a string (those not known left out)");
+  }
+  if (file.contains("camera_layout")) {
+    const json &layout = file["camera_layout"];
+    if (layout != "left-right" && layout != "any") {
+      reader.bad("'camera_layout' is " + layout.dump() +
+                 "; use \"left-right\" (upright cameras, the left one on the left) or \"any\"");
+    }
+    session.m_layout =
+        layout == "any" ? vpProjectiveCellFingerprint::LAYOUT_ANY : vpProjectiveCellFingerprint::LAYOUT_LEFT_RIGHT;
+  }
   const json &frames = reader.member(file, "frames", "the file");
   if (!frames.is_array() || frames.empty()) {
     reader.bad("'frames' must be a non-empty array of frames (at least the zero frame)");
   }
   // First pass: each frame on its own; the zero frame found.
   std::vector<vpFrame> parsed(frames.size());
+  const unsigned int count = static_cast<unsigned int>(frames.size());
   int zero = -1;
   for (size_t k = 0; k < frames.size(); ++k) {
     const json &f = frames[k];
     const unsigned int index = static_cast<unsigned int>(k);
-    std::string label = frameName(index, "");
+    std::string label = frameName(index, count);
     if (!f.is_object()) {
       reader.bad(label + " is not a JSON object");
     }
@@ -251,7 +263,7 @@ vpProjectiveSession vpProjectiveSession::fromString(const std::string &text, con
     vpFrame &frame = parsed[k];
     frame.left = left.get<std::string>();
     frame.right = right.get<std::string>();
-    label = frameName(index, frame.left);
+    label = frameName(index, count, frame.left);
     const json &role = reader.member(f, "role", label);
     bool known = false;
     for (int r = 0; r < 5 && role.is_string(); ++r) {
@@ -292,7 +304,8 @@ vpProjectiveSession vpProjectiveSession::fromString(const std::string &text, con
     }
     if (frame.role == ZERO) {
       if (zero >= 0) {
-        reader.bad(label + " is a second zero frame (frame " + std::to_string(zero) +
+        reader.bad(label + " is a second zero frame (" +
+                   frameName(static_cast<unsigned int>(zero), count, parsed[static_cast<size_t>(zero)].left) +
                    " is the first); a session has exactly one: give the others the role 'observation'");
       }
       zero = static_cast<int>(k);
@@ -305,13 +318,14 @@ vpProjectiveSession vpProjectiveSession::fromString(const std::string &text, con
   const std::string where = at("read()");
   const std::string prefix = "cannot read the session '" + name + "': ";
   const size_t z = static_cast<size_t>(zero);
-  session.checkFrame(parsed[z], where, prefix + frameName(static_cast<unsigned int>(z), parsed[z].left));
+  session.checkFrame(parsed[z], where, prefix + frameName(static_cast<unsigned int>(z), count, parsed[z].left));
   session.m_frames = parsed;
   session.m_zero = zero;
   for (size_t k = 0; k < parsed.size(); ++k) {
-    const int joint =
-        k == z ? -1
-               : session.checkFrame(parsed[k], where, prefix + frameName(static_cast<unsigned int>(k), parsed[k].left));
+    const int joint = k == z
+                          ? -1
+                          : session.checkFrame(parsed[k], where,
+                                               prefix + frameName(static_cast<unsigned int>(k), count, parsed[k].left));
     session.m_trialJoint.push_back(joint);
   }
   return session;
@@ -341,7 +355,8 @@ vpProjectiveSession vpProjectiveSession::read(const std::string &folder, bool ch
       const std::string problem = vpProjectiveSessionInternal::checkPngFile(image, w, h);
       if (!problem.empty()) {
         fail(vpProjectiveException::fileError, at("read()"),
-             "cannot read the session '" + path + "': " + frameName(k, session.m_frames[k].left) + ": the " +
+             "cannot read the session '" + path +
+                 "': " + frameName(k, session.getNumberOfFrames(), session.m_frames[k].left) + ": the " +
                  (side == 0 ? "left" : "right") + " image '" + image + "' " + problem +
                  "; record the frame again or remove it from session.json");
       }
@@ -350,7 +365,8 @@ vpProjectiveSession vpProjectiveSession::read(const std::string &folder, bool ch
         size[side][1] = h;
       } else if (w != size[side][0] || h != size[side][1]) {
         fail(vpProjectiveException::fileError, at("read()"),
-             "cannot read the session '" + path + "': " + frameName(k, session.m_frames[k].left) + ": the " +
+             "cannot read the session '" + path +
+                 "': " + frameName(k, session.getNumberOfFrames(), session.m_frames[k].left) + ": the " +
                  (side == 0 ? "left" : "right") + " image '" + image + "' is " + std::to_string(w) + " x " +
                  std::to_string(h) + " pixels, the first frame's is " + std::to_string(size[side][0]) + " x " +
                  std::to_string(size[side][1]) + "; every frame of a camera must have the same size");
@@ -372,7 +388,7 @@ std::string vpProjectiveSession::toString() const
   for (const vpFrame &frame : m_frames) {
     vpProjectiveSessionInternal::appendFrame(frames, frame);
   }
-  return vpProjectiveSessionInternal::sessionText(m_types, frames);
+  return vpProjectiveSessionInternal::sessionText(*this, frames);
 }
 
 const vpProjectiveSession::vpFrame &vpProjectiveSession::getFrame(unsigned int k) const
@@ -422,7 +438,8 @@ void vpProjectiveSession::getImages(unsigned int k, vpImage<unsigned char> &Ilef
     if (!problem.empty()) {
       fail(vpProjectiveException::fileError, at("getImages()"),
            "cannot read the " + std::string(side == 0 ? "left" : "right") + " image '" + path + "' of " +
-               frameName(k, frame.left) + " (" + problem + "); record the frame again or remove it from session.json");
+               frameName(k, getNumberOfFrames(), frame.left) + " (" + problem +
+               "); record the frame again or remove it from session.json");
     }
   }
 }

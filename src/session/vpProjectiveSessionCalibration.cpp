@@ -31,6 +31,7 @@
 #include <visp3/core/vpTime.h>
 #include <visp3/projective/vpProjectiveArmAcquisition.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
+#include <visp3/projective/vpProjectiveSelfCalibration.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
@@ -64,7 +65,8 @@ vpProjectiveSessionCalibration::vpProjectiveSessionCalibration(const vpMarkerExt
     : m_extractor(extractor ? extractor : aprilTagMarkers("36h11")), m_os(nullptr), m_mounting(MOUNTING_AUTO),
       m_epipolar(2.0), m_outlier(0.0), m_coplanarity(2.0), m_mismatch(2.0), m_calibrated(false), m_model(), m_ids(),
       m_residual(0.0), m_algebraicResidual(0.0), m_joints(), m_state(RIG_UNCHANGED), m_leftResidual(0.0),
-      m_rightResidual(0.0), m_recorded(false)
+      m_rightResidual(0.0), m_recorded(false), m_layout(vpProjectiveCellFingerprint::LAYOUT_LEFT_RIGHT),
+      m_fingerprint(), m_diagnosis()
 {
 }
 
@@ -158,20 +160,17 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
 
   // Markers of every frame used.
   std::map<unsigned int, FrameMarkers> markers;
-  for (size_t u = 0; u < used.size(); ++u) {
-    const unsigned int k = used[u];
+  for (unsigned int k : used) {
     markers[k] = extract(session, k, m_extractor, m_recorded, where);
-    std::ostringstream os;
-    os << "frame " << (u + 1) << "/" << used.size() << " (" << session.getFrame(k).left << ", "
-       << vpProjectiveSession::toString(session.getFrame(k).role);
+    std::string role = vpProjectiveSession::toString(session.getFrame(k).role);
     const int joint = session.getTrialJoint(k);
     if (joint >= 0) {
       const double amount = session.getFrame(k).q[static_cast<unsigned int>(joint)] -
                             session.getFrame(zero).q[static_cast<unsigned int>(joint)];
-      os << " of joint " << joint << " by " << amountText(types[static_cast<size_t>(joint)], amount);
+      role += " of joint " + std::to_string(joint) + " by " + amountText(types[static_cast<size_t>(joint)], amount);
     }
-    os << "): " << markers[k].ids.size() << " markers";
-    progress(os.str());
+    progress(frameName(k, session.getNumberOfFrames(), session.getFrame(k).left, role) + ": " +
+             std::to_string(markers[k].ids.size()) + " markers");
   }
 
   // The markers of the model: those of the zero frame. A trial may miss some (identified markers: matched by id),
@@ -281,9 +280,13 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
     }
     model = acquisition.calibrate();
   } catch (const vpException &e) {
-    fail(vpProjectiveException::estimationFailedError, where,
-         "the arm cannot be calibrated from the session (" + e.getStringMessage() + ")");
+    // A model the check refused keeps its code: its message ranks the causes.
+    fail(e.getCode() == vpProjectiveException::modelRejectedError ? e.getCode()
+                                                                  : vpProjectiveException::estimationFailedError,
+         where, "the arm cannot be calibrated from the session (" + e.getStringMessage() + ")");
   }
+
+  const vpProjectiveCellFingerprint cell = cellOf(model, session);
 
   // The mounting.
   auto withMounting = [&model](vpProjectiveArmModel::vpRigMounting mounting) {
@@ -335,6 +338,46 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
              " RMS; the other mounting: " + pixels(error[1 - kept]) + ")");
   }
 
+  // The metric self-calibration's frames: the acquisition's, and the observation, target and servo frames (views of
+  // the markers at known readings). One that shows none of the model's markers is left out, and said so.
+  unsigned int views = 0;
+  for (unsigned int k = 0; k < session.getNumberOfFrames(); ++k) {
+    const vpProjectiveSession::vpFrameRole role = session.getFrame(k).role;
+    if (role != vpProjectiveSession::OBSERVATION && role != vpProjectiveSession::TARGET &&
+        role != vpProjectiveSession::SERVO) {
+      continue;
+    }
+    try {
+      if (markers.find(k) == markers.end()) {
+        markers[k] = extract(session, k, m_extractor, m_recorded, where);
+      }
+      std::vector<int> seen;
+      std::vector<vpImagePoint> l, r;
+      for (const std::pair<unsigned int, Eigen::Vector4d> &p : pairsOf(k)) {
+        seen.push_back(ids[p.first]);
+        l.push_back(vpImagePoint(p.second(1), p.second(0)));
+        r.push_back(vpImagePoint(p.second(3), p.second(2)));
+      }
+      acquisition.addCalibrationFrame(session.getFrame(k).q, seen, l, r);
+      ++views;
+    } catch (const vpException &e) {
+      progress(frameLabel(session, k) + ": left out of the metric self-calibration (" + e.getStringMessage() + ")");
+    }
+  }
+  const std::vector<vpProjectiveArmAcquisition::vpFrame> frames = acquisition.getFrames();
+  try {
+    const vpProjectiveSelfCalibration selfCalibration(model, frames);
+    std::string what;
+    const double largest = selfCalibration.getLargestUncertainty(&what);
+    std::ostringstream os;
+    os << "metric self-calibration: " << selfCalibration.getNumberOfFrames() << " frames (" << views
+       << " observation, target and servo frames), noise " << pixels(selfCalibration.getNoiseLevel())
+       << ", largest uncertainty " << what << " (" << std::setprecision(3) << largest * 180.0 / M_PI << " deg)";
+    progress(os.str());
+  } catch (const vpException &e) {
+    progress("metric self-calibration: not available (" + e.getStringMessage() + ")");
+  }
+
   // Per-joint summary.
   std::vector<vpJointSummary> joints(n);
   std::vector<double> sums(n, 0.0);
@@ -371,9 +414,48 @@ vpProjectiveArmModel vpProjectiveSessionCalibration::calibrate(const vpProjectiv
 
   m_model = model;
   m_ids = ids;
+  m_frames = frames;
   m_residual = acquisition.getCalibrationResidual();
   m_algebraicResidual = acquisition.getAlgebraicResidual();
   m_joints = joints;
+  m_fingerprint = cell;
   m_calibrated = true;
   return model;
+}
+
+vpProjectiveCellFingerprint vpProjectiveSessionCalibration::cellOf(const vpProjectiveArmModel &model,
+                                                                   const vpProjectiveSession &session) const
+{
+  vpProjectiveCellFingerprint cell;
+  cell.setImageSize(session.getWidth(), session.getHeight());
+  cell.setCameras(session.getLeftCamera(), session.getRightCamera());
+  const bool anyLayout = m_layout == vpProjectiveCellFingerprint::LAYOUT_ANY ||
+                         session.getCameraLayout() == vpProjectiveCellFingerprint::LAYOUT_ANY;
+  cell.setCameraLayout(anyLayout ? vpProjectiveCellFingerprint::LAYOUT_ANY
+                                 : vpProjectiveCellFingerprint::LAYOUT_LEFT_RIGHT);
+  Eigen::Vector3d direction;
+  const vpProjectiveCellFingerprint::vpCameraSide side = vpProjectiveCellFingerprint::cameraSide(model, direction);
+  cell.setCameraSide(side, direction);
+  std::ostringstream os;
+  os << std::fixed << std::setprecision(2) << "(" << direction(0) << ", " << direction(1) << ", " << direction(2)
+     << ")";
+  if (side == vpProjectiveCellFingerprint::SIDE_LEFT && !anyLayout) {
+    fail(vpProjectiveException::invalidValueError, calibrationAt("calibrate()"),
+         "the left and right images are exchanged: the metric self-calibration puts the right camera to the LEFT of "
+         "the left one (the baseline's direction " +
+             os.str() +
+             " in the left camera's frame; upright cameras named as seen from behind them have it along +x); "
+             "exchange the left and right cameras (their devices or cables, or the session's left and right images) "
+             "and record again, or, for a camera mounted upside down or seen through a mirror, say so "
+             "(visp-projective calibrate --camera-layout any; the session's \"camera_layout\": \"any\"; "
+             "setCameraLayout(LAYOUT_ANY))");
+  }
+  progress("cameras: the right camera is " + vpProjectiveCellFingerprint::toString(side) +
+           (side == vpProjectiveCellFingerprint::SIDE_UNKNOWN ? std::string()
+                                                              : " (the baseline's direction " + os.str() + ")") +
+           (anyLayout ? "; any layout: not checked" : std::string()) +
+           (session.hasCameras() ? "; left: " + vpProjectiveCellFingerprint::toString(session.getLeftCamera()) +
+                                       ", right: " + vpProjectiveCellFingerprint::toString(session.getRightCamera())
+                                 : std::string()));
+  return cell;
 }

@@ -13,12 +13,15 @@
 
 /*
   vpProjectiveSessionCalibration: the model file and check(), the prediction error of a model on a later session
-  (whether a camera moved).
+  (whether a camera moved; the diagnosis of frames that do not fit is in vpProjectiveSessionDiagnosis.cpp).
 */
 
 #include <visp3/projective/vpProjectiveSessionCalibration.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <set>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -59,9 +62,11 @@ void vpProjectiveSessionCalibration::saveModel(const std::string &filename) cons
     fail(vpProjectiveException::notInitializedError, calibrationAt("saveModel()"),
          "no model yet; call calibrate() first");
   }
-  vpProjectiveSessionInternal::writeAtomically(
-      filename, vpProjectiveModelFile::toString(m_model, m_residual, m_algebraicResidual, m_ids),
-      calibrationAt("saveModel()"));
+  vpProjectiveSessionInternal::writeAtomically(filename,
+                                               vpProjectiveModelFile::toString(m_model, m_residual, m_algebraicResidual,
+                                                                               m_ids, m_frames, nullptr,
+                                                                               &m_fingerprint),
+                                               calibrationAt("saveModel()"));
 }
 
 std::string vpProjectiveSessionCalibration::toString(vpRigState state)
@@ -75,25 +80,58 @@ std::string vpProjectiveSessionCalibration::toString(vpRigState state)
   case RIGHT_CAMERA_MOVED:
     return "the right camera moved since the model was made (its images are off, the left ones fit): calibrate again, "
            "or re-register the rig (vpProjectiveRobot::updateRig())";
+  case BOTH_CAMERAS_MOVED:
+    return "both cameras moved since the model was made (both images are off, a re-registered rig fits them): "
+           "re-register the rig (vpProjectiveRobot::updateRig()) or calibrate again";
+  case CAMERAS_SWAPPED:
+    return "the left and right images are exchanged (the model fits them exchanged): exchange the cameras and record "
+           "again";
+  case MARKERS_MOVED:
+    return "the markers moved on the tool since the model was made (the rig did not change): calibrate again";
+  case OTHER_READINGS:
+    return "the readings are not the model's encoders (another arm, the joints in another order, other units or "
+           "zero): record the model's encoders, or calibrate this arm";
   default:
-    return "both images are off: both cameras moved, or the markers moved on the tool, or the readings are not the "
-           "model's encoders; calibrate again";
+    return "the session is of another cell than the model's: check it against its own cell's model, or calibrate "
+           "this cell";
   }
+}
+
+std::string vpProjectiveSessionCalibration::getDiagnosisMessage() const
+{
+  if (m_diagnosis.empty()) {
+    return toString(m_state);
+  }
+  std::string likely, ruledOut;
+  for (size_t c = 0; c < m_diagnosis.size(); ++c) {
+    const vpCheckDiagnosis &d = m_diagnosis[c];
+    if (c == 0) {
+      likely = d.finding + ": " + d.fix;
+    } else if (d.likely) {
+      likely += (c == 1 ? ". Also possible: " : "; ") + d.finding;
+    } else {
+      // The residual with the fix where it shows why (some fixes fit and are ruled out by a simpler one that fits).
+      const std::string residual = d.residualIfFixed > m_mismatch ? " (" + pixels(d.residualIfFixed) + ")" : "";
+      ruledOut += (ruledOut.empty() ? ". Ruled out: " : ", ") + causeName(d.cause) + residual;
+    }
+  }
+  return likely + ruledOut;
 }
 
 std::vector<vpProjectiveSessionCalibration::vpFrameCheck>
 vpProjectiveSessionCalibration::check(const vpProjectiveArmModel &model, const std::vector<int> &ids,
-                                      const vpProjectiveSession &session)
+                                      const vpProjectiveSession &session, const vpProjectiveCellFingerprint &cell)
 {
   const std::string where = calibrationAt("check()");
   if (model.getNumberOfJoints() == 0) {
     fail(vpProjectiveException::notInitializedError, where, "the model is empty; load one first");
   }
-  if (session.getJointTypes() != model.jointTypes()) {
+  const std::string otherArm =
+      vpProjectiveCellFingerprint::jointTypesMismatch(model.jointTypes(), session.getJointTypes());
+  if (!otherArm.empty()) {
     fail(vpProjectiveException::dimensionError, where,
-         "the session's joints (" + std::to_string(session.getNumberOfJoints()) +
-             ", joint_types) are not the model's (" + std::to_string(model.getNumberOfJoints()) +
-             "); check a session of the arm the model was made for");
+         "the session is of another arm: " + otherArm +
+             " (its joint_types); check a session of the arm the model was made for");
   }
   if (ids.size() != model.markers().size()) {
     fail(vpProjectiveException::dimensionError, where,
@@ -101,8 +139,10 @@ vpProjectiveSessionCalibration::check(const vpProjectiveArmModel &model, const s
              " marker identifiers; use a model calibrated from a session (visp-projective calibrate)");
   }
   std::vector<vpFrameCheck> checks;
+  MismatchInput in{model, ids, session, cell, std::vector<CheckedFrame>(), m_mismatch, 0, 0, 0.0, 0.0, 0, 0};
   double sumLeft = 0.0, sumRight = 0.0;
-  unsigned int total = 0, leftOff = 0, rightOff = 0;
+  unsigned int total = 0;
+  std::set<int> seen, others;
   for (unsigned int k = 0; k < session.getNumberOfFrames(); ++k) {
     const FrameMarkers markers = extract(session, k, m_extractor, m_recorded, where);
     std::vector<std::pair<unsigned int, Eigen::Vector4d>> pairs;
@@ -110,12 +150,23 @@ vpProjectiveSessionCalibration::check(const vpProjectiveArmModel &model, const s
       const int f = markers.find(ids[j]);
       if (f >= 0) {
         pairs.push_back(std::make_pair(static_cast<unsigned int>(j), markers.s[static_cast<size_t>(f)]));
+        seen.insert(ids[j]);
+      }
+    }
+    for (int id : markers.ids) {
+      if (std::find(ids.begin(), ids.end(), id) == ids.end()) {
+        others.insert(id);
       }
     }
     if (pairs.empty()) {
       fail(vpProjectiveException::notEnoughPointsError, where,
-           frameLabel(session, k) + ": none of the model's markers is seen in both images; check that the tags face "
-                                    "both cameras, or remove the frame from session.json");
+           frameLabel(session, k) + ": none of the model's " + std::to_string(ids.size()) +
+               " markers is seen in both images, " + std::to_string(markers.ids.size()) + " others are (identifiers " +
+               std::to_string(markers.ids.front()) + " to " + std::to_string(markers.ids.back()) + ", the model's " +
+               std::to_string(*std::min_element(ids.begin(), ids.end())) + " to " +
+               std::to_string(*std::max_element(ids.begin(), ids.end())) +
+               "): the session is of another cell, or the tags face away; check the session against its own cell's "
+               "model, or remove the frame from session.json");
     }
     double l = 0.0, r = 0.0;
     unsigned int count = 0;
@@ -128,23 +179,29 @@ vpProjectiveSessionCalibration::check(const vpProjectiveArmModel &model, const s
     c.right = rms(r, 2 * count);
     c.rms = rms(l + r, 4 * count);
     c.fits = c.left <= m_mismatch && c.right <= m_mismatch;
-    leftOff += c.left > m_mismatch ? 1 : 0;
-    rightOff += c.right > m_mismatch ? 1 : 0;
+    in.leftOff += c.left > m_mismatch ? 1 : 0;
+    in.rightOff += c.right > m_mismatch ? 1 : 0;
     sumLeft += l;
     sumRight += r;
     total += count;
     checks.push_back(c);
+    in.frames.push_back(CheckedFrame{session.getFrame(k).q, jointsOf(session.getFrame(k).q), pairs});
     std::ostringstream os;
-    os << "frame " << (k + 1) << "/" << session.getNumberOfFrames() << " (" << session.getFrame(k).left << ", "
-       << vpProjectiveSession::toString(c.role) << "): " << count << " markers, left " << pixels(c.left) << ", right "
+    os << frameLabel(session, k) << ": " << count << " markers, left " << pixels(c.left) << ", right "
        << pixels(c.right) << (c.fits ? ": fits" : ": DOES NOT FIT");
     progress(os.str());
   }
-  m_leftResidual = rms(sumLeft, 2 * total);
-  m_rightResidual = rms(sumRight, 2 * total);
-  m_state = leftOff == 0 && rightOff == 0 ? RIG_UNCHANGED
-            : rightOff == 0               ? LEFT_CAMERA_MOVED
-            : leftOff == 0                ? RIGHT_CAMERA_MOVED
-                                          : BOTH_CAMERAS_MOVED;
+  in.leftResidual = rms(sumLeft, 2 * total);
+  in.rightResidual = rms(sumRight, 2 * total);
+  in.modelIdsSeen = seen.size();
+  in.otherIds = others.size();
+  std::vector<vpCheckDiagnosis> diagnosis;
+  if (in.leftOff > 0 || in.rightOff > 0) {
+    diagnosis = diagnoseMismatch(in);
+  }
+  m_leftResidual = in.leftResidual;
+  m_rightResidual = in.rightResidual;
+  m_diagnosis = diagnosis;
+  m_state = m_diagnosis.empty() ? RIG_UNCHANGED : m_diagnosis.front().cause;
   return checks;
 }

@@ -33,6 +33,7 @@
 #include <visp3/io/vpImageIo.h>
 #endif
 
+#include "arm/vpCameraIdentityJson.h"
 #include "core/vpProjectiveErrors.h"
 #include "session/vpProjectiveSessionInternal.h"
 
@@ -163,6 +164,14 @@ std::string checkPngFile(const std::string &path, unsigned int &width, unsigned 
   }
 }
 
+std::string frameName(unsigned int k, unsigned int total, const std::string &left, const std::string &role)
+{
+  std::string name = "frame " + std::to_string(k + 1) + (total > 0 ? "/" + std::to_string(total) : std::string());
+  const std::string image = left.empty() ? std::string() : "'" + left + "'";
+  const std::string details = image + (!image.empty() && !role.empty() ? ", " : "") + role;
+  return details.empty() ? name : name + " (" + details + ")";
+}
+
 void appendFrame(std::string &frames, const vpProjectiveSession::vpFrame &frame)
 {
   json f;
@@ -189,15 +198,22 @@ void appendFrame(std::string &frames, const vpProjectiveSession::vpFrame &frame)
   frames += (frames.empty() ? "\n  " : ",\n  ") + f.dump();
 }
 
-std::string sessionText(const std::vector<vpProjectiveJoint::vpJointType> &types, const std::string &frames)
+std::string sessionText(const vpProjectiveSession &session, const std::string &frames)
 {
   json typeNames = json::array();
-  for (vpProjectiveJoint::vpJointType type : types) {
+  for (vpProjectiveJoint::vpJointType type : session.getJointTypes()) {
     typeNames.push_back(vpProjectiveJoint::name(type));
+  }
+  std::string cameras;
+  if (session.hasCameras()) {
+    cameras += ",\n \"cameras\": " + camerasToJson(session.getLeftCamera(), session.getRightCamera()).dump();
+  }
+  if (session.getCameraLayout() != vpProjectiveCellFingerprint::LAYOUT_LEFT_RIGHT) {
+    cameras += ", \"camera_layout\": " + json(vpProjectiveCellFingerprint::toString(session.getCameraLayout())).dump();
   }
   return std::string("{\"format\": ") + json(vpProjectiveSession::formatName).dump() +
          ", \"version\": " + std::to_string(vpProjectiveSession::version) + ", \"joint_types\": " + typeNames.dump() +
-         ",\n \"frames\": [" + frames + "\n]}\n";
+         cameras + ",\n \"frames\": [" + frames + "\n]}\n";
 }
 
 int trialJoint(const vpColVector &q0, const vpColVector &q, std::string &why)

@@ -55,16 +55,24 @@ std::string checkPngFile(const std::string &path, unsigned int &width, unsigned 
 int trialJoint(const vpColVector &q0, const vpColVector &q, std::string &why);
 
 /*!
+  How every message and progress line names frame \e k (its index in session.json, from 0) of a session of \e total
+  frames: counted from 1, "frame 3/13 ('left/000002.png', trial)", or "frame 3 (...)" when \e total is 0 (not known
+  yet: a recording); the parenthesis holds \e left and \e role, those given.
+*/
+std::string frameName(unsigned int k, unsigned int total, const std::string &left = std::string(),
+                      const std::string &role = std::string());
+
+/*!
   Appends the JSON text of \e frame (one line) to \e frames, the text of a session's frame list: what
   sessionText() puts between the brackets of "frames". Each frame is serialised once (the writer keeps the text).
 */
 void appendFrame(std::string &frames, const vpProjectiveSession::vpFrame &frame);
 
 /*!
-  The text of a session.json with joints \e types and the frame list \e frames (appendFrame()'s): a JSON object, one
-  line per frame.
+  The text of the session.json of \e session (its joints, cameras and layout) with the frame list \e frames
+  (appendFrame()'s): a JSON object, one line per frame.
 */
-std::string sessionText(const std::vector<vpProjectiveJoint::vpJointType> &types, const std::string &frames);
+std::string sessionText(const vpProjectiveSession &session, const std::string &frames);
 
 /*!
   Reads the image file \e path into \e I (vpImageIo); returns what is wrong on one line (ViSP's message, an empty
@@ -101,7 +109,7 @@ struct FrameMarkers {
   }
 };
 
-//! How messages name frame \e k: "frame k ('left image', role)".
+//! How messages and progress lines name frame \e k of \e session: frameName() with its left image and role.
 std::string frameLabel(const vpProjectiveSession &session, unsigned int k);
 
 //! The markers of frame \e k by the extraction function, checked. Throws (naming \e where and the frame) if it fails or
@@ -126,6 +134,38 @@ double rms(double sumSquares, unsigned int coordinates);
 
 //! \e px as "1.23 px".
 std::string pixels(double px);
+
+// What check() gives its diagnosis (vpProjectiveSessionDiagnosis.cpp).
+
+//! A frame of a check: its readings and the model's markers seen in it (model marker index, measured pixels).
+struct CheckedFrame {
+  vpColVector q;                            //!< the readings
+  vpProjectiveArmModel::JointVector joints; //!< the same as the model's joint vector
+  std::vector<std::pair<unsigned int, Eigen::Vector4d>> pairs;
+};
+
+//! What check() measured: the frames, the errors, and what the session shows of the model's markers.
+struct MismatchInput {
+  const vpProjectiveArmModel &model;
+  const std::vector<int> &ids;
+  const vpProjectiveSession &session;
+  const vpProjectiveCellFingerprint &cell;
+  std::vector<CheckedFrame> frames;
+  double threshold;                   //!< the mismatch threshold (px)
+  unsigned int leftOff, rightOff;     //!< frames whose left (right) images are off
+  double leftResidual, rightResidual; //!< RMS per coordinate over the frames (px)
+  size_t modelIdsSeen;                //!< the model's markers seen in some frame
+  size_t otherIds;                    //!< markers seen that the model does not have
+};
+
+/*!
+  The probable causes of frames that do not fit, ranked likeliest first (see vpProjectiveSessionCalibration::check());
+  \e in has at least one frame off.
+*/
+std::vector<vpProjectiveSessionCalibration::vpCheckDiagnosis> diagnoseMismatch(const MismatchInput &in);
+
+//! A cause in a few words ("exchanged images", "the left camera moved", ...).
+std::string causeName(vpProjectiveSessionCalibration::vpRigState cause);
 } // namespace vpProjectiveSessionInternal
 
 #endif

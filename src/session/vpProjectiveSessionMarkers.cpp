@@ -44,7 +44,7 @@ namespace vpProjectiveSessionInternal
 std::string frameLabel(const vpProjectiveSession &session, unsigned int k)
 {
   const vpProjectiveSession::vpFrame &frame = session.getFrame(k);
-  return "frame " + std::to_string(k) + " ('" + frame.left + "', " + vpProjectiveSession::toString(frame.role) + ")";
+  return frameName(k, session.getNumberOfFrames(), frame.left, vpProjectiveSession::toString(frame.role));
 }
 
 FrameMarkers extract(const vpProjectiveSession &session, unsigned int k,
@@ -91,6 +91,14 @@ FrameMarkers extract(const vpProjectiveSession &session, unsigned int k,
            label + ": the marker extraction gave a non-finite pixel for marker " + std::to_string(ids[j]));
     }
     markers.s.push_back(s);
+  }
+  if (n == 0 && !session.getFrame(k).markerIds.empty()) {
+    // The likeliest cause first: a session of a program whose markers are not tags (balls, projected points).
+    fail(vpProjectiveException::notEnoughPointsError, where,
+         label + ": no marker found in its images, but the frame carries the " +
+             std::to_string(session.getFrame(k).markerIds.size()) +
+             " markers its recording program measured (recorded_markers): use them (visp-projective: "
+             "--recorded-markers; setRecordedMarkers(true)), or give the extraction that finds them in the images");
   }
   if (n == 0) {
     fail(vpProjectiveException::notEnoughPointsError, where,
@@ -231,7 +239,11 @@ vpProjectiveSessionCalibration::markerSource(vpStereoImageSource &images, const 
           left.push_back(l[static_cast<size_t>(it - ids.begin())]);
           right.push_back(r[static_cast<size_t>(it - ids.begin())]);
         }
-        // Recorded once the markers are all seen: the session holds the frames that the procedure used.
+        // Recorded once the markers are all seen: the session holds the frames that the procedure used, and which
+        // camera took which images when the source knows.
+        if (writer != nullptr && writer->getSession().getNumberOfFrames() == 0) {
+          writer->setCameras(images);
+        }
         if (writer != nullptr) {
           writer->addAcquisitionFrame(q, now - state->t0, state->Il, state->Ir);
         }

@@ -147,11 +147,56 @@ void vpProjectiveSessionWriter::setSaveInterval(unsigned int frames, double seco
 
 void vpProjectiveSessionWriter::save()
 {
-  vpProjectiveSessionInternal::writeAtomically(
-      m_session.getFolder() + "/session.json",
-      vpProjectiveSessionInternal::sessionText(m_session.getJointTypes(), m_frames), at("save()"));
+  vpProjectiveSessionInternal::writeAtomically(m_session.getFolder() + "/session.json",
+                                               vpProjectiveSessionInternal::sessionText(m_session, m_frames),
+                                               at("save()"));
   m_saved = m_session.getNumberOfFrames();
   m_lastSave = vpTime::measureTimeSecond();
+}
+
+bool vpProjectiveSessionWriter::setCameras(const vpStereoImageSource &images)
+{
+  vpStereoImageSource::vpCameraIdentity left, right;
+  if (!images.getCameraIdentities(left, right)) {
+    return false;
+  }
+  setCameras(left, right);
+  return true;
+}
+
+void vpProjectiveSessionWriter::setCameras(const vpStereoImageSource::vpCameraIdentity &left,
+                                           const vpStereoImageSource::vpCameraIdentity &right)
+{
+  if (m_closed) {
+    fail(vpProjectiveException::fileError, at("setCameras()"),
+         "the session '" + m_session.getFolder() + "' was closed; set the cameras before closing it");
+  }
+  const vpStereoImageSource::vpCameraIdentity before[2] = {m_session.m_cameras[0], m_session.m_cameras[1]};
+  m_session.m_cameras[0] = left;
+  m_session.m_cameras[1] = right;
+  try {
+    save();
+  } catch (...) {
+    m_session.m_cameras[0] = before[0];
+    m_session.m_cameras[1] = before[1];
+    throw;
+  }
+}
+
+void vpProjectiveSessionWriter::setCameraLayout(vpProjectiveCellFingerprint::vpCameraLayout layout)
+{
+  if (m_closed) {
+    fail(vpProjectiveException::fileError, at("setCameraLayout()"),
+         "the session '" + m_session.getFolder() + "' was closed; set the layout before closing it");
+  }
+  const vpProjectiveCellFingerprint::vpCameraLayout before = m_session.m_layout;
+  m_session.m_layout = layout;
+  try {
+    save();
+  } catch (...) {
+    m_session.m_layout = before;
+    throw;
+  }
 }
 
 void vpProjectiveSessionWriter::close()
@@ -186,10 +231,10 @@ unsigned int vpProjectiveSessionWriter::add(vpProjectiveSession::vpFrameRole rol
   frame.markerIds = ids;
   frame.markerLeft = left;
   frame.markerRight = right;
-  const int joint = m_session.checkFrame(frame, where, "frame " + std::to_string(k));
+  const int joint = m_session.checkFrame(frame, where, vpProjectiveSessionInternal::frameName(k, 0, frame.left));
   if (Ileft.getSize() == 0 || Iright.getSize() == 0) {
     fail(vpProjectiveException::fileError, where,
-         "frame " + std::to_string(k) + ": an image is empty; nothing written");
+         vpProjectiveSessionInternal::frameName(k, 0, frame.left) + ": an image is empty; nothing written");
   }
   for (int side = 0; side < 2; ++side) {
     const std::string path = m_session.getFolder() + "/" + (side == 0 ? frame.left : frame.right);

@@ -13,7 +13,10 @@
 
 #include <visp3/projective/vpStereoGrabberSource.h>
 
+#include <chrono>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include <visp3/core/vpConfig.h>
 #include <visp3/core/vpException.h>
@@ -40,8 +43,40 @@ namespace
 const vpErrorSite at("vpStereoGrabberSource");
 
 #if defined(VISP_HAVE_MODULE_SENSOR) && defined(VISP_HAVE_V4L2)
-//! A V4L2 grabber opened on \e device, or the error that names it.
-std::unique_ptr<vpFrameGrabber> openV4l2(const std::string &device, unsigned int scale, const char *side)
+//! The first line of the text file \e path, empty if it cannot be read.
+std::string firstLine(const std::string &path)
+{
+  std::ifstream file(path.c_str());
+  std::string line;
+  std::getline(file, line);
+  return line;
+}
+
+/*!
+  The serial number of the USB camera behind the V4L2 device \e device, from sysfs: the device node's
+  /sys/class/video4linux/videoN/device is the USB interface, whose parent holds the USB device's \c serial (its
+  iSerial string); empty if there is none (not a USB camera, no serial number, no sysfs).
+*/
+std::string usbSerial(const std::string &device)
+{
+  std::error_code error;
+  const std::filesystem::path node = std::filesystem::canonical(device, error);
+  if (error) {
+    return std::string();
+  }
+  const std::filesystem::path interface =
+      std::filesystem::canonical("/sys/class/video4linux" / node.filename() / "device", error);
+  return error ? std::string() : firstLine((interface.parent_path() / "serial").string());
+}
+#endif
+
+#if defined(VISP_HAVE_MODULE_SENSOR) && defined(VISP_HAVE_V4L2)
+/*!
+  A V4L2 grabber opened on \e device, or the error that names it; \e identity receives the camera's identity (the
+  device, V4L2's card and bus_info, the USB serial number).
+*/
+std::unique_ptr<vpFrameGrabber> openV4l2(const std::string &device, unsigned int scale, const char *side,
+                                         vpStereoImageSource::vpCameraIdentity &identity)
 {
   if (device.empty() || device.size() >= FILENAME_MAX) {
     fail(vpProjectiveException::invalidValueError, at("vpStereoGrabberSource()"),
@@ -63,6 +98,12 @@ std::unique_ptr<vpFrameGrabber> openV4l2(const std::string &device, unsigned int
               (((cap.capabilities & V4L2_CAP_DEVICE_CAPS) ? cap.device_caps : cap.capabilities) &
                (V4L2_CAP_VIDEO_CAPTURE | V4L2_CAP_VIDEO_CAPTURE_MPLANE)) != 0;
     ::close(fd);
+    identity.device = device;
+    identity.name = std::string(reinterpret_cast<const char *>(cap.card),
+                                strnlen(reinterpret_cast<const char *>(cap.card), sizeof(cap.card)));
+    identity.bus = std::string(reinterpret_cast<const char *>(cap.bus_info),
+                               strnlen(reinterpret_cast<const char *>(cap.bus_info), sizeof(cap.bus_info)));
+    identity.serial = usbSerial(device);
   }
   if (!capture) {
     fail(vpProjectiveException::fileError, at("vpStereoGrabberSource()"),
@@ -89,15 +130,16 @@ std::unique_ptr<vpFrameGrabber> openV4l2(const std::string &device, unsigned int
 
 vpStereoGrabberSource::vpStereoGrabberSource(const std::string &leftDevice, const std::string &rightDevice,
                                              unsigned int scale)
-    : m_ownedLeft(), m_ownedRight(), m_left(nullptr), m_right(nullptr), m_leftName(leftDevice), m_rightName(rightDevice)
+    : m_ownedLeft(), m_ownedRight(), m_left(nullptr), m_right(nullptr), m_leftName(leftDevice),
+      m_rightName(rightDevice), m_stamps{0.0, 0.0}, m_stamped(false)
 {
 #if defined(VISP_HAVE_MODULE_SENSOR) && defined(VISP_HAVE_V4L2)
   if (scale == 0) {
     fail(vpProjectiveException::invalidValueError, at("vpStereoGrabberSource()"),
          "the subsampling scale must be 1 (full resolution) or more");
   }
-  m_ownedLeft = openV4l2(leftDevice, scale, "left");
-  m_ownedRight = openV4l2(rightDevice, scale, "right");
+  m_ownedLeft = openV4l2(leftDevice, scale, "left", m_identities[0]);
+  m_ownedRight = openV4l2(rightDevice, scale, "right", m_identities[1]);
   m_left = m_ownedLeft.get();
   m_right = m_ownedRight.get();
 #else
@@ -111,7 +153,7 @@ vpStereoGrabberSource::vpStereoGrabberSource(const std::string &leftDevice, cons
 
 vpStereoGrabberSource::vpStereoGrabberSource(vpFrameGrabber &left, vpFrameGrabber &right)
     : m_ownedLeft(), m_ownedRight(), m_left(&left), m_right(&right), m_leftName("left grabber"),
-      m_rightName("right grabber")
+      m_rightName("right grabber"), m_stamps{0.0, 0.0}, m_stamped(false)
 {
   if (left.getWidth() == 0 || left.getHeight() == 0 || right.getWidth() == 0 || right.getHeight() == 0) {
     fail(vpProjectiveException::notInitializedError, at("vpStereoGrabberSource()"),
@@ -121,11 +163,37 @@ vpStereoGrabberSource::vpStereoGrabberSource(vpFrameGrabber &left, vpFrameGrabbe
 
 vpStereoGrabberSource::~vpStereoGrabberSource() {}
 
+bool vpStereoGrabberSource::getCameraIdentities(vpCameraIdentity &left, vpCameraIdentity &right) const
+{
+  if (m_ownedLeft == nullptr) {
+    return false; // grabbers opened by the caller: their identities are the caller's to record
+  }
+  left = m_identities[0];
+  right = m_identities[1];
+  return true;
+}
+
 bool vpStereoGrabberSource::acquire(vpImage<unsigned char> &Ileft, vpImage<unsigned char> &Iright)
 {
+  m_stamped = false;
+  bool stamped = true;
   for (int camera = 0; camera < 2; ++camera) {
+    vpFrameGrabber *grabber = camera == 0 ? m_left : m_right;
+    vpImage<unsigned char> &I = camera == 0 ? Ileft : Iright;
     try {
-      (camera == 0 ? m_left : m_right)->acquire(camera == 0 ? Ileft : Iright);
+#if defined(VISP_HAVE_MODULE_SENSOR) && defined(VISP_HAVE_V4L2)
+      if (vpV4l2Grabber *v4l2 = dynamic_cast<vpV4l2Grabber *>(grabber)) {
+        timeval stamp{};
+        v4l2->acquire(I, stamp);
+        const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+        m_stamps[camera] = static_cast<double>(stamp.tv_sec) + 1e-6 * static_cast<double>(stamp.tv_usec);
+        // A driver stamping on the wall clock gives an instant decades away from the monotonic one: no stamp then.
+        stamped = stamped && m_stamps[camera] <= now + 1e-3 && m_stamps[camera] > now - 10.0;
+        continue;
+      }
+#endif
+      grabber->acquire(I);
+      stamped = false;
     } catch (const vpException &e) {
       fail(vpProjectiveException::fileError, at("acquire()"),
            "the " + std::string(camera == 0 ? "left" : "right") + " camera '" +
@@ -133,5 +201,15 @@ bool vpStereoGrabberSource::acquire(vpImage<unsigned char> &Ileft, vpImage<unsig
                "); check its cable and that no other program uses it");
     }
   }
+  m_stamped = stamped;
   return true;
+}
+
+bool vpStereoGrabberSource::getTimestamps(double &left, double &right) const
+{
+  if (m_stamped) {
+    left = m_stamps[0];
+    right = m_stamps[1];
+  }
+  return m_stamped;
 }

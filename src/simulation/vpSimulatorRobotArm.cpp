@@ -48,7 +48,7 @@ std::string jointValue(double v, bool revolute)
 vpSimulatorRobotArm::vpSimulatorRobotArm(const vpSimulatorArm &arm, const vpColVector &q0)
     : vpRobot(), m_arm(arm), m_q(arm.getNumberOfJoints(), 0.0), m_qdot(arm.getNumberOfJoints(), 0.0),
       m_offset(arm.getNumberOfJoints(), 0.0), m_qLastRead(), m_constantSampling(true), m_samplingTime(0.01),
-      m_time(0.0), m_last(std::chrono::steady_clock::now())
+      m_time(0.0), m_last(std::chrono::steady_clock::now()), m_history(), m_encoderNoise(0.0), m_encoderRand()
 {
   nDof = static_cast<int>(arm.getNumberOfJoints());
   if (q0.size() != 0) {
@@ -66,6 +66,21 @@ vpSimulatorRobotArm::vpSimulatorRobotArm(const vpSimulatorArm &arm, const vpColV
     m_q = q;
   }
   m_qLastRead = m_q;
+  remember();
+}
+
+void vpSimulatorRobotArm::remember()
+{
+  // The history a camera model looks back into: 10 s is more than any latency studied; the oldest entry before that
+  // horizon is kept as the joints before it.
+  if (!m_history.empty() && m_history.back().first == m_time) {
+    m_history.back().second = m_q;
+  } else {
+    m_history.emplace_back(m_time, m_q);
+  }
+  while (m_history.size() > 2 && m_history[1].first < m_time - 10.0) {
+    m_history.pop_front();
+  }
 }
 
 void vpSimulatorRobotArm::requireJointSpace(vpRobot::vpControlFrameType frame, const char *method) const
@@ -110,6 +125,7 @@ void vpSimulatorRobotArm::advance(double dt)
       m_q = m_arm.integrate(m_q, m_qdot, dt);
     }
     m_time += dt;
+    remember();
   }
 }
 
@@ -198,8 +214,10 @@ void vpSimulatorRobotArm::setPosition(const vpRobot::vpControlFrameType frame, c
   if (!m_constantSampling && duration > 0.0) {
     std::this_thread::sleep_for(std::chrono::duration<double>(duration));
   }
+  remember();
   m_q = target;
   m_time += duration;
+  remember();
   m_last = std::chrono::steady_clock::now();
 }
 
@@ -208,6 +226,11 @@ void vpSimulatorRobotArm::getPosition(const vpRobot::vpControlFrameType frame, v
   requireJointSpace(frame, "getPosition()");
   catchUp();
   q = m_q + m_offset;
+  if (m_encoderNoise > 0.0) {
+    for (unsigned int i = 0; i < q.size(); ++i) {
+      q[i] += m_encoderRand();
+    }
+  }
 }
 
 void vpSimulatorRobotArm::getDisplacement(const vpRobot::vpControlFrameType frame, vpColVector &d)
@@ -315,4 +338,54 @@ vpColVector vpSimulatorRobotArm::getArmJoints()
 {
   catchUp();
   return m_q;
+}
+
+vpColVector vpSimulatorRobotArm::getArmJointsAt(double t)
+{
+  catchUp();
+  if (!(t < m_time) || m_history.empty()) {
+    return m_q;
+  }
+  const auto after = std::upper_bound(m_history.begin(), m_history.end(), t,
+                                      [](double v, const std::pair<double, vpColVector> &h) { return v < h.first; });
+  if (after == m_history.begin()) {
+    return m_history.front().second;
+  }
+  const auto before = after - 1;
+  if (after == m_history.end()) {
+    return before->second;
+  }
+  const double s = (t - before->first) / (after->first - before->first);
+  return before->second + s * (after->second - before->second);
+}
+
+void vpSimulatorRobotArm::wait(double seconds)
+{
+  if (!std::isfinite(seconds) || seconds < 0.0) {
+    std::ostringstream os;
+    os << "the time to wait must be finite and >= 0 (seconds), got " << seconds;
+    fail(vpProjectiveException::invalidValueError, at("wait()"), os.str());
+  }
+  catchUp();
+  if (!m_constantSampling) {
+    std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+    catchUp();
+  } else if (getRobotState() == vpRobot::STATE_VELOCITY_CONTROL) {
+    advance(seconds);
+  } else {
+    m_time += seconds;
+    remember();
+  }
+}
+
+void vpSimulatorRobotArm::setEncoderNoise(double sigma, long seed)
+{
+  if (!std::isfinite(sigma) || sigma < 0.0) {
+    std::ostringstream os;
+    os << "the encoder noise must be finite and >= 0 (rad or m), got " << sigma;
+    fail(vpProjectiveException::invalidValueError, at("setEncoderNoise()"), os.str());
+  }
+  m_encoderNoise = sigma;
+  m_encoderRand.setSigmaMean(sigma, 0.0);
+  m_encoderRand.seed(seed);
 }

@@ -20,11 +20,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numeric>
+#include <sstream>
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpRotationMatrix.h>
 #include <visp3/core/vpTranslationVector.h>
+
+#include "core/vpProjectiveErrors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -33,7 +38,9 @@ using namespace VISP_NAMESPACE_NAME;
 vpSimulatorStereoCell::vpSimulatorStereoCell(const vpSimulatorArm &arm, const vpSimulatorStereoRig &rig,
                                              const vpColVector &q0, long seed)
     : m_robot(arm, q0), m_rig0(rig), m_renderer(rig, seed), m_rig(rig), m_toolTags(), m_sceneTags(), m_eyeInHand(false),
-      m_eMw0()
+      m_eMw0(), m_frameRate(0.0), m_latency(0.0), m_skew(0.0), m_dropRate(0.0), m_timingSeed(1),
+      m_lastFrame(std::numeric_limits<long>::min()), m_stampLeft(std::numeric_limits<double>::quiet_NaN()),
+      m_stampRight(std::numeric_limits<double>::quiet_NaN()), m_scratch()
 {
 }
 
@@ -43,7 +50,7 @@ unsigned int vpSimulatorStereoCell::addToolTag(int id, double size, const vpHomo
   const unsigned int index = m_renderer.addTag(id, size, m_robot.getArm().get_wMt(q) * tMg);
   m_toolTags.push_back({index, tMg});
   m_sceneTags.push_back(vpHomogeneousMatrix());
-  update();
+  update(m_robot.getArmJoints());
   return index;
 }
 
@@ -70,7 +77,7 @@ unsigned int vpSimulatorStereoCell::addSceneTag(int id, double size, const vpHom
 {
   const unsigned int index = m_renderer.addTag(id, size, wMg);
   m_sceneTags.push_back(wMg);
-  update();
+  update(m_robot.getArmJoints());
   return index;
 }
 
@@ -78,15 +85,14 @@ void vpSimulatorStereoCell::setEyeInHand()
 {
   m_eMw0 = m_robot.getArm().get_wMe(m_robot.getArmJoints()).inverse();
   m_eyeInHand = true;
-  update();
+  update(m_robot.getArmJoints());
 }
 
-void vpSimulatorStereoCell::update()
+void vpSimulatorStereoCell::update(const vpColVector &q)
 {
   // The renderer's rig stays where it was given (m_rig0). Eye-in-hand, the world moves instead by the inverse of the
   // last link's motion A(q) = wMe(q) eMw0 since setEyeInHand(): what the moved cameras see of a tag at wMg is what the
   // fixed ones see of a tag at A^-1 wMg.
-  const vpColVector q = m_robot.getArmJoints();
   vpHomogeneousMatrix A;
   if (m_eyeInHand) {
     A = m_robot.getArm().get_wMe(q) * m_eMw0;
@@ -109,17 +115,85 @@ void vpSimulatorStereoCell::update()
               : m_rig0;
 }
 
+void vpSimulatorStereoCell::setTiming(double frameRate, double latency, double skew, double dropRate, long seed)
+{
+  const vpProjectiveInternal::vpErrorSite at("vpSimulatorStereoCell");
+  if (!std::isfinite(frameRate) || frameRate < 0.0 || !std::isfinite(latency) || latency < 0.0 ||
+      !std::isfinite(skew) || !(dropRate >= 0.0 && dropRate <= 0.9)) {
+    std::ostringstream os;
+    os << "give a frame rate >= 0 (Hz), a latency >= 0 (s), a finite skew (s) and a drop rate in [0, 0.9], not "
+       << frameRate << ", " << latency << ", " << skew << ", " << dropRate;
+    vpProjectiveInternal::fail(vpProjectiveException::invalidValueError, at("setTiming()"), os.str());
+  }
+  m_frameRate = frameRate;
+  m_latency = latency;
+  m_skew = skew;
+  m_dropRate = dropRate;
+  m_timingSeed = seed;
+  m_lastFrame = std::numeric_limits<long>::min();
+}
+
+bool vpSimulatorStereoCell::dropped(long frame) const
+{
+  // SplitMix64 of (seed, frame): each frame's fate is fixed, whatever order the frames are asked in.
+  uint64_t z = static_cast<uint64_t>(m_timingSeed) * 0x9E3779B97F4A7C15ULL + static_cast<uint64_t>(frame);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0) < m_dropRate;
+}
+
 bool vpSimulatorStereoCell::acquire(vpImage<unsigned char> &Ileft, vpImage<unsigned char> &Iright)
 {
-  update();
-  m_renderer.render(Ileft, Iright);
+  if (m_frameRate <= 0.0) {
+    m_stampLeft = m_stampRight = m_robot.getTime();
+    update(m_robot.getArmJoints());
+    m_renderer.render(Ileft, Iright);
+    return true;
+  }
+  // Frame k: left at k T, right at k T + skew, delivered at the later of the two plus the latency.
+  const double T = 1.0 / m_frameRate, delay = std::max(0.0, m_skew) + m_latency;
+  const double now = m_robot.getTime();
+  long k = static_cast<long>(std::floor((now - delay) / T + 1e-9));
+  while (k > m_lastFrame && dropped(k)) {
+    --k;
+  }
+  if (k <= m_lastFrame) { // nothing new: wait for the next frame that is not lost
+    k = std::max(m_lastFrame + 1, static_cast<long>(std::floor((now - delay) / T + 1e-9)) + 1);
+    while (dropped(k)) {
+      ++k;
+    }
+    m_robot.wait(std::max(0.0, k * T + delay - now));
+  }
+  m_lastFrame = k;
+  m_stampLeft = k * T;
+  m_stampRight = k * T + m_skew;
+  update(m_robot.getArmJointsAt(m_stampLeft));
+  if (m_skew == 0.0) {
+    m_renderer.render(Ileft, Iright);
+  } else {
+    m_renderer.render(Ileft, m_scratch);
+    update(m_robot.getArmJointsAt(m_stampRight));
+    m_renderer.render(m_scratch, Iright);
+  }
+  update(m_robot.getArmJoints());
+  return true;
+}
+
+bool vpSimulatorStereoCell::getTimestamps(double &left, double &right) const
+{
+  if (std::isnan(m_stampLeft)) {
+    return false;
+  }
+  left = m_stampLeft;
+  right = m_stampRight;
   return true;
 }
 
 unsigned int vpSimulatorStereoCell::getTrueCorners(std::vector<int> &ids, std::vector<vpImagePoint> &left,
                                                    std::vector<vpImagePoint> &right)
 {
-  update();
+  update(m_robot.getArmJoints());
   std::vector<int> allIds;
   std::vector<vpImagePoint> allLeft, allRight;
   for (unsigned int i = 0; i < m_renderer.getNbTags(); i++) {

@@ -113,8 +113,27 @@ BEGIN_VISP_NAMESPACE
   the acquisition's vpProjectiveArmAcquisition::getMarkerIds()[j]. The step callback receives the markers the step
   shows, in ascending id order.
 
-  <b>Progress.</b> With setOutput(), one line per step of the procedure (the zero reference's checks, each joint
-  and direction, the rig, the calibration, the mounting), each flushed as it is written.
+  <b>Joint types.</b> The acquisition's joint types set the units and defaults (degrees or centimetres); an acquisition
+  of a joint count alone (vpProjectiveArmAcquisition(unsigned int), vpProjectiveRobot(unsigned int)) has them
+  identified by its calibration, and run() then moves every joint by steps of 0.02 (radians or metres: 1.1 deg or 2
+  cm) up to 0.35 (20 deg or 35 cm) each way, at most the smaller of the robot's rotation and translation speeds.
+
+  <b>The model check.</b> Before the first motion, run() images the markers twice at rest: the difference of the two
+  frames gives the image noise (getImageNoise(); RMS per coordinate divided by sqrt(2)), which the calibration's check
+  takes as a lower bound of the noise (vpProjectiveArmAcquisition::setImageNoise()). A model whose residual is far above
+  it is refused with its probable causes ranked (vpProjectiveModelCheck): no model is returned then.
+
+  <b>Units.</b> The plugin's joint values are radians and metres. A limit of a revolute joint outside
+  \f$ [-2\pi, 2\pi] \f$, or of a prismatic joint beyond 10 m, is refused as probable degrees or millimetres, and so is a
+  step or an amount of a revolute joint above \f$ 2\pi \f$ or of any joint above 10 (the setters refuse the values
+  above 10 at once, run() the others once it knows the joint types).
+
+  <b>Progress.</b> One line per step of the procedure on std::cout by default (the zero reference's checks, the
+  noise at rest, the joint limits as given, each joint and direction, the rig, the calibration, the mounting), each
+  flushed as it is written; setOutput() writes them elsewhere, setOutput(nullptr) silences them. The first time a run
+  changes a setting of the user's (it replaces the mounting) or degrades the acquisition (it leaves out a marker or a
+  trial), one line on std::cerr names it and the fix (vpProjectiveNotices; vpProjectiveNotices::setEnabled(false)
+  silences it).
 
   Given an acquisition without a stereo rig, run() weakly calibrates the rig itself: the fundamental matrix from
   every stereo pair it saw with all markers inside the margins (the zero reference and every step: 7 markers and 100
@@ -203,29 +222,32 @@ public:
   /*!
     Largest amount per joint and direction (n x 1, rad or m, > 0). Default: 30 deg for a revolute joint, 10 cm
     for a prismatic one.
-    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) on a value <= 0 or not finite.
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) on a value <= 0, above 10 (probable
+    degrees or millimetres) or not finite.
   */
   void setMaxAmounts(const vpColVector &amounts);
   /*!
     Step per joint (n x 1, rad or m, > 0): the arm stops and the markers are imaged every step. Default: 2 deg for a
     revolute joint, 1 cm for a prismatic one (a run of ViSP's vpSimulatorViper850 at its default speed: about 20 s;
     1 deg: about 30 s).
-    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) on a value <= 0 or not finite.
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) on a value <= 0, above 10 or not finite.
   */
   void setSteps(const vpColVector &steps);
   /*!
     Smallest acceptable amount per joint (n x 1, rad or m, >= 0): run() throws if a joint moves less, both ways.
     Default: 5 deg for a revolute joint, 1 cm for a prismatic one.
-    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) on a negative or non-finite value.
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) on a negative, above 10 or non-finite
+    value.
   */
   void setMinAmounts(const vpColVector &amounts);
   /*!
     Joint limits (n x 1 each, rad or m, \e qmin < \e qmax) and the margin kept from them (>= 0, rad or m). Default:
     the robot's own limits less 2 deg (revolute) or 1 cm (prismatic) when it knows them (vpViper: vpRobotViper650,
-    vpRobotViper850, vpSimulatorViper850; vpAfma6: vpRobotAfma6, vpSimulatorAfma6; vpAfma4; vpSimulatorRobotArm),
-    otherwise none.
+    vpRobotViper850, vpSimulatorViper850; vpAfma6: vpRobotAfma6, vpSimulatorAfma6; vpAfma4 before ViSP 3.7, which
+    removed it; vpSimulatorRobotArm), otherwise none. run() prints the limits it uses, in the units they were given.
     \exception vpProjectiveException (dimensionError, invalidValueError, nonFiniteValueError) on mismatched sizes,
-    qmin >= qmax, a negative margin or non-finite values.
+    qmin >= qmax, a negative margin, non-finite values, or a limit beyond 10 in absolute value (probable degrees or
+    millimetres; run() refuses a revolute joint's limit outside [-2 pi, 2 pi] too).
   */
   void setJointLimits(const vpColVector &qmin, const vpColVector &qmax, double margin);
   /*!
@@ -259,14 +281,21 @@ public:
   */
   void setMoveTimeout(double seconds);
   /*!
-    How close (rad or m, > 0) a velocity move brings the joints back to the zero reference (default 1e-5): the other
+    The smallest tolerance (rad or m, > 0; default 1e-5) of a velocity move back to the zero reference: the other
     joints stay there while one joint's trials are imaged, and an offset of \e tolerance moves the markers by about
     \e tolerance times their pixels per joint unit (1e-5 rad: about a hundredth of a pixel at 1,000 px per radian).
-    It must exceed the encoders' resolution and noise, or the moves time out. The steps in between only need a
-    reading: they stop within a twentieth of the step.
+    A tolerance below the encoders' noise would make the moves time out, so run() first reads the joints 10 times at
+    rest, 5 ms apart (getEncoderNoise()), and uses the larger of \e tolerance and 4 times the largest standard
+    deviation it measured (the progress says which). The steps in between only need a reading: they stop within a
+    twentieth of the step.
     \exception vpProjectiveException (invalidValueError) if not positive or not finite.
   */
   void setArrivalTolerance(double tolerance);
+  /*!
+    The standard deviation (n x 1, rad or m) of each joint's readings at rest, measured at the start of the last
+    run() (see setArrivalTolerance()); empty before.
+  */
+  const vpColVector &getEncoderNoise() const { return m_encoderNoise; }
   /*!
     A motion of the caller's: empty (default) for setMotionControl()'s; otherwise \e motion moves the robot (and
     run() leaves the robot's state to it). getPosition() must then read the target within a tenth of the step.
@@ -302,7 +331,7 @@ public:
   void setMinMarkerVisibility(double fraction);
   //! The ids of the markers the last run() left out for being seen in too few trials (identified markers).
   const std::vector<int> &getDroppedMarkers() const { return m_dropped; }
-  //! Where to write the progress, a line per step of the procedure, flushed (null: nothing). Default null.
+  //! Where to write the progress, a line per step of the procedure, flushed (null: nothing). Default &std::cout.
   void setOutput(std::ostream *os) { m_os = os; }
   //! Called after each step with the new images (live display); empty: nothing.
   void setStepCallback(const vpStepCallback &callback) { m_callback = callback; }
@@ -337,6 +366,8 @@ public:
   const vpMountingReport &getMountingReport() const { return m_mountingReport; }
   //! The model residual (RMS pixels) of the last run().
   double getCalibrationResidual() const { return m_residual; }
+  //! The image noise (pixels per coordinate) measured at rest by the last run() (0: not measured).
+  double getImageNoise() const { return m_restNoise; }
   /*!
     The general-position margin of the last run()'s markers (pixels): over the sets of 5 markers, the largest of the
     smallest RMS plane parallax of 4 of them to the plane that fits them best (see setCoplanarityThreshold()); -1 if
@@ -351,11 +382,21 @@ private:
                                    bool identified);
   bool inside(const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right) const;
   double amountOf(const vpColVector &v, unsigned int i, double fallback) const;
+  //! \e revolute, \e prismatic or \e unknown after joint \e i's type (unknown: an acquisition of a joint count).
+  double byType(unsigned int i, double revolute, double prismatic, double unknown) const;
+  //! A joint value in its unit: degrees, metres, or as read for a joint of unknown type.
+  std::string valueText(double v, unsigned int i) const;
+  //! The image noise from a second frame at rest (the first: \e ids, \e left, \e right), 0 if not measured.
+  double noiseAtRest(const std::vector<int> &ids, const std::vector<vpImagePoint> &left,
+                     const std::vector<vpImagePoint> &right);
+  //! Refuses joint values (limits, amounts, steps) outside the plugin's units, once the types are known.
+  void checkUnits() const;
   double stepOf(unsigned int i) const;
   void moveTo(vpRobot &robot, const vpColVector &q, double tolerance, bool check = true);
   void moveByVelocity(vpRobot &robot, const vpColVector &q, double tolerance);
   void checkArrival(vpRobot &robot, const vpColVector &q, double tolerance, const char *how) const;
   void stopRobot(vpRobot &robot) const;
+  void measureEncoderNoise(vpRobot &robot);
   void checkZeroReference(const vpProjectiveArmAcquisition &acquisition, const std::vector<vpImagePoint> &left,
                           const std::vector<vpImagePoint> &right);
   void checkGeneralPosition(const vpProjectiveStereoRig &rig, const std::vector<vpImagePoint> &left,
@@ -382,7 +423,10 @@ private:
   vpColVector m_maxAmounts, m_steps, m_minAmounts, m_qmin, m_qmax;
   double m_limitMargin, m_imageMargin, m_rotationSpeed, m_translationSpeed, m_epipolarThreshold;
   vpMotionControl m_control;
-  double m_moveTimeout, m_tolerance, m_coplanarity;
+  double m_moveTimeout;
+  double m_minTolerance; // setArrivalTolerance()
+  double m_tolerance;    // the run's: m_minTolerance, or more when the encoders are noisier
+  double m_coplanarity;
   bool m_detectMounting;
   std::ostream *m_os;
   vpStepCallback m_callback;
@@ -394,7 +438,10 @@ private:
   double m_commandPeriod; // seconds of motion one velocity command was seen to make (0: not yet measured)
   double m_wallPeriod;    // wall-clock seconds from a velocity command to a new reading
   std::vector<vpProjectiveJoint::vpJointType> m_types; // of the acquisition being run
+  bool m_typesKnown = true;                            // false: an acquisition of a joint count
+  double m_restNoise = 0.0;                            // measured at rest by the last run()
   vpColVector m_lower, m_upper;                        // the joint range of the run (empty: no limits)
+  vpColVector m_encoderNoise;                          // of the last run (getEncoderNoise())
 };
 
 END_VISP_NAMESPACE

@@ -30,6 +30,7 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpProjectiveModelCheck.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
 BEGIN_VISP_NAMESPACE
@@ -56,6 +57,11 @@ BEGIN_VISP_NAMESPACE
      both cameras with \f$ P, P' \f$ fixed. All generators thereby share one \f$ G \f$, which is \f$ H_{PE} \f$ up to a
      similarity, and the final RMS residual (getCalibrationResidual()) sits at the image noise level: the self-check.
 
+  <b>The model check.</b> calibrate() refuses a model whose residual is far above the image noise, names a declared
+  joint type that the trials contradict, and with a joint count alone (vpProjectiveArmAcquisition(unsigned int))
+  identifies the joint types from the trials; a refused model comes with its probable causes ranked by a diagnostic
+  each (getModelCheck(), vpProjectiveModelCheck, \ref page_model_check).
+
   <b>Identified markers.</b> With ids (the setZeroReference() and addTrialMotion() overloads taking ids, such as
   AprilTag corners), the trials are matched to the zero reference by id and may miss some of its markers (occluded,
   turned away): every step above uses the observations there are, a trial's displacement those of its markers
@@ -77,11 +83,29 @@ public:
     vpProjectiveArmModel::maxJoints, or a kind is neither REVOLUTE nor PRISMATIC.
   */
   explicit vpProjectiveArmAcquisition(const std::vector<vpJointType> &types);
+  /*!
+    The acquisition of a chain of \e n joints whose types calibrate() identifies from the trials (each joint the type
+    that fits its trials better: vpProjectiveModelCheck). Trial amounts are then the joints' readings as they are
+    (radians for a revolute joint, a length unit for a prismatic one).
+    \exception vpProjectiveException (dimensionError) if \e n is 0 or above vpProjectiveArmModel::maxJoints.
+  */
+  explicit vpProjectiveArmAcquisition(unsigned int n);
+  /*!
+    The acquisition of a model computed elsewhere (read from a file): its joints, mounting, rig, zero-reference joints
+    and markers (ids 0 to K-1), without images. Calibration frames can be added (addCalibrationFrame()); calibrate()
+    needs a zero reference and trials.
+  */
+  explicit vpProjectiveArmAcquisition(const vpProjectiveArmModel &model);
 
   //! Number of joints \e n.
   unsigned int getNumberOfJoints() const { return static_cast<unsigned int>(m_types.size()); }
-  //! The kinds of the joints, base to tip.
+  /*!
+    The kinds of the joints, base to tip: as declared, or as the last successful calibrate() identified them
+    (REVOLUTE for every joint before, see hasDeclaredJointTypes()).
+  */
   const std::vector<vpJointType> &getJointTypes() const { return m_types; }
+  //! True if the joint types were given to the constructor; false if calibrate() identifies them.
+  bool hasDeclaredJointTypes() const { return m_declared; }
   /*!
     Sets where the rig is mounted (default EYE_TO_HAND). The trials are the same in both cases (one joint each):
     only motions of several joints tell the mountings apart, which vpProjectiveAcquisitionProcedure makes.
@@ -178,6 +202,46 @@ public:
   //! Number of markers of the zero reference.
   unsigned int getNumberOfMarkers() const { return static_cast<unsigned int>(m_zeroImages.size()); }
 
+  /*! \name Frames for the metric self-calibration (vpProjectiveSelfCalibration) */
+  //@{
+  /*!
+    Images of the zero reference's markers, in its order, at any configuration: the joints' encoder readings \e q
+    (n x 1, as addTrialMotion(const vpColVector &, ...) takes them): a servo's or an observation's frame. calibrate()
+    does not use them; the metric self-calibration adjusts the cameras and the arm over the zero reference, the trials
+    and every such frame. They are kept until the zero reference or the rig is set again.
+    \exception vpProjectiveException (notInitializedError) without a zero reference (or a model, see the constructor
+    from a model); (dimensionError, nonFiniteValueError) if \e q has not n finite entries, or the images are not one
+    finite pair per marker. Nothing is recorded on error.
+  */
+  void addCalibrationFrame(const vpColVector &q, const std::vector<vpImagePoint> &left,
+                           const std::vector<vpImagePoint> &right);
+  /*!
+    The same with identified markers (\e ids[j] names left[j] and right[j], in any order, as the identified trials):
+    the frame may miss some of the zero reference's markers.
+    \exception vpProjectiveException as the other overload, (dimensionError, invalidValueError) if \e ids has not one
+    id per marker or repeats one, and (notEnoughPointsError) if the frame shows none of the zero reference's markers.
+  */
+  void addCalibrationFrame(const vpColVector &q, const std::vector<int> &ids, const std::vector<vpImagePoint> &left,
+                           const std::vector<vpImagePoint> &right);
+  //! Number of calibration frames added since the zero reference.
+  unsigned int getNumberOfCalibrationFrames() const { return static_cast<unsigned int>(m_frames.size()); }
+  //! Forgets the calibration frames (the zero reference and the trials stay).
+  void clearCalibrationFrames() { m_frames.clear(); }
+
+  //! One stereo image of the markers at known joint readings.
+  struct vpFrame {
+    vpProjectiveArmModel::JointVector q; //!< The joints' encoder readings (n x 1).
+    std::vector<Eigen::Vector4d> s;      //!< (u, v, u', v') of each zero-reference marker, pixels (NaN if not seen).
+    std::vector<bool> seen;              //!< Marker j is observed (shown, and not an outlier of calibrate()).
+  };
+  /*!
+    Every stereo image of the acquisition at its readings: the zero reference, each trial (the zero reference's
+    readings with the trial's amount added; the observations the last calibrate() left out as outliers not seen),
+    then the calibration frames. Empty without a zero reference but for the calibration frames.
+  */
+  std::vector<vpFrame> getFrames() const;
+  //@}
+
   /*!
     Mismatched markers in the acquisition images (a wrong blob tracked, two markers swapped): with \e pixels > 0,
     calibrate() finds them in each trial by the 5-point consensus of vpProjectiveDisplacement::estimateRobust(),
@@ -193,14 +257,41 @@ public:
   double getOutlierThreshold() const { return m_outlierThreshold; }
 
   /*!
-    Computes the model (see the class documentation). On success the outlier flags and the residuals describe this
-    calibration; on failure nothing changes.
+    Computes the model (see the class documentation) and checks it (getModelCheck()). On success the outlier flags,
+    the residuals and, without declared types, the joint types describe this calibration; on failure nothing changes
+    but getModelCheck().
     \exception vpProjectiveException (notInitializedError) if a joint has no trial motion or the zero reference is
     missing; (degenerateConfigurationError) if a trial did not move the markers (a blocked joint, a too small trial) or
     a zero-reference marker's left and right images disagree beyond the outlier threshold; (estimationFailedError) if
-    the upgrade or the bundle adjustment fails.
+    the upgrade or the bundle adjustment fails; (modelRejectedError) if the check refuses the model: the message
+    ranks the probable causes (vpProjectiveModelCheck::getMessage()).
   */
   vpProjectiveArmModel calibrate();
+  /*!
+    The image noise (pixels per coordinate, >= 0) that the model check takes as a lower bound of its own estimate from
+    the acquisition's images (vpProjectiveModelCheck::getNoise()): measured on frames at rest (the differences of two
+    images of the markers without motion, divided by sqrt(2)), or known. Default 0: the estimate alone.
+    \exception vpProjectiveException (invalidValueError) if negative or not finite.
+  */
+  void setImageNoise(double pixels);
+  //! The noise of setImageNoise().
+  double getImageNoise() const { return m_imageNoise; }
+  /*!
+    calibrate() refuses a model whose residual, or a joint's trials' residual, exceeds \e factor times the image noise
+    (and 0.5 px): see vpProjectiveModelCheck. Default 3; 0 accepts any model (the joint types are still identified or
+    checked, and getModelCheck() still says what it found).
+    \exception vpProjectiveException (invalidValueError) if negative or not finite.
+  */
+  void setResidualTolerance(double factor);
+  //! The factor of setResidualTolerance().
+  double getResidualTolerance() const { return m_tolerance; }
+  /*!
+    What the last calibrate() that reached a model checked: the residual against the image noise, the joint types,
+    and for a refused model its probable causes, ranked (calibrate() then threw vpProjectiveException
+    (modelRejectedError) with getMessage()).
+  */
+  const vpProjectiveModelCheck &getModelCheck() const { return m_check; }
+
   //! RMS pixel residual per coordinate of the last calibrate()'s bundle adjustment (the self-check: ~ noise level).
   double getCalibrationResidual() const { return m_residual; }
   //! RMS pixel residual of the algebraic generators alone (before the upgrade and the adjustment), for comparison.
@@ -227,20 +318,27 @@ private:
     std::vector<Eigen::Vector4d> s; // (u, v, u', v') of each marker (NaN where not seen)
     std::vector<bool> seen;         // [marker]: the trial shows it
   };
+  // The images of the zero reference's markers among identified ones (NaN where not shown, seen[j] false), and how
+  // many are shown.
   std::vector<Eigen::Vector4d> matchByIds(const std::vector<int> &ids, const std::vector<vpImagePoint> &left,
                                           const std::vector<vpImagePoint> &right, const std::string &where,
-                                          std::vector<bool> &seen) const;
+                                          std::vector<bool> &seen, unsigned int &shown) const;
   // The trial of identified markers: the plain overload \e addPlainTrial checks the joint and the amount on the zero
   // reference's images, then this trial's matched images replace them.
   void addIdentifiedTrial(
       const std::vector<int> &ids, const std::vector<vpImagePoint> &left, const std::vector<vpImagePoint> &right,
       const std::function<void(const std::vector<vpImagePoint> &, const std::vector<vpImagePoint> &)> &addPlainTrial);
   std::vector<vpTrial> m_trials;
-  std::vector<int> m_ids; // of the zero reference's markers, ascending
+  std::vector<int> m_ids;        // of the zero reference's markers, ascending
+  std::vector<vpFrame> m_frames; // calibration frames
   double m_outlierThreshold;
   std::vector<std::vector<bool>> m_inlier; // [trial][marker]: used by the last calibrate() (false where not seen)
   double m_residual;
   double m_algebraicResidual;
+  bool m_declared = true;    // the types were given (false: calibrate() identifies them)
+  double m_imageNoise = 0.0; // setImageNoise()
+  double m_tolerance = 3.0;  // setResidualTolerance()
+  vpProjectiveModelCheck m_check;
 };
 
 END_VISP_NAMESPACE

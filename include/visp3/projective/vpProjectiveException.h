@@ -49,7 +49,9 @@ public:
     pointAtInfinityError,         //!< A point cannot be projected: it lies on a camera's focal plane or behind it.
     fileError,                    //!< A model file is missing, truncated, corrupted or of another version.
     estimationFailedError,        //!< An estimator did not converge to a usable result.
-    robotMotionError              //!< A robot did not reach a commanded position within its timeout.
+    robotMotionError,             //!< A robot did not reach a commanded position within its timeout.
+    modelRejectedError            //!< A calibrated model fits its images far worse than their noise: refused, with
+                                  //!< its probable causes (vpProjectiveModelCheck).
   };
 
   //! An error of kind \e code (errorProjectiveCodeEnum) with a message saying what was wrong and what to do.

@@ -94,10 +94,21 @@ public:
     \exception vpProjectiveException if there are no joints, more than maxJoints, or a type is invalid.
   */
   explicit vpProjectiveRobot(const std::vector<vpJointType> &joints);
+  /*!
+    A chain of \e n joints whose types calibrate() (or vpProjectiveAcquisitionProcedure::run()) identifies from the
+    trials: each joint the type that fits its trials better (vpProjectiveArmAcquisition(unsigned int),
+    vpProjectiveModelCheck). getJointType() is known once calibrated.
+    \exception vpProjectiveException (dimensionError) if \e n is 0 or more than maxJoints.
+  */
+  explicit vpProjectiveRobot(unsigned int n);
 
   //! Number of joints \e n.
   unsigned int getNumberOfJoints() const { return m_acquisition.getNumberOfJoints(); }
-  //! Type of joint \e i. \exception vpProjectiveException (dimensionError) on a bad index.
+  /*!
+    Type of joint \e i.
+    \exception vpProjectiveException (dimensionError) on a bad index; (notInitializedError) for a robot of a joint
+    count alone before calibrate() identified the types.
+  */
   vpJointType getJointType(unsigned int i) const;
   /*!
     Sets where the rig is mounted (default EYE_TO_HAND). The trial motions look the same in both cases (one joint
@@ -142,10 +153,24 @@ public:
   void addTrialMotion(const vpColVector &q, const std::vector<vpImagePoint> &left,
                       const std::vector<vpImagePoint> &right);
   /*!
+    A frame for the metric self-calibration: the images of the zero reference's markers, in its order, at any
+    configuration, \e q the encoder readings (n x 1, as addTrialMotion() takes them); a servo's or an observation's
+    frame. getMetricStereoRig() and getMetricJointAxes() adjust the cameras and the arm over the acquisition and every
+    such frame (vpProjectiveSelfCalibration, which also gives each estimate's uncertainty:
+    <tt>vpProjectiveSelfCalibration(robot.getModel(), robot.getAcquisition().getFrames())</tt>; after updateRig(),
+    only the last getNumberOfCalibrationFrames() of them show the current rig). Before or after calibrate() or
+    loadModel(); the model is not changed. updateRig() (a moved camera) forgets them.
+    \exception vpProjectiveException as vpProjectiveArmAcquisition::addCalibrationFrame(): no zero reference, \e q not
+    n finite readings, not one finite image pair per marker. Nothing is recorded on error.
+  */
+  void addCalibrationFrame(const vpColVector &q, const std::vector<vpImagePoint> &left,
+                           const std::vector<vpImagePoint> &right);
+  /*!
     Computes the model: algebraic generators, metric upgrade, then Ceres bundle adjustment (see
-    vpProjectiveArmAcquisition). On failure the robot keeps the model it had.
+    vpProjectiveArmAcquisition), and checks it against the image noise and the joint types the trials show
+    (getAcquisition().getModelCheck(), vpProjectiveModelCheck). On failure the robot keeps the model it had.
     \exception vpProjectiveException if a joint has no trial motion, the zero reference is missing, or the data is
-    degenerate.
+    degenerate; (modelRejectedError) if the check refuses the model: the message ranks its probable causes.
   */
   void calibrate();
   //! True once calibrate() or loadModel() succeeded.
@@ -205,7 +230,9 @@ public:
   /*!
     The metric stereo rig hidden in the model: the intrinsics of both cameras (3x3, pixels, skew included) and the
     right camera's pose in the left camera's frame (\f$ X_l = {}^l M_r X_r \f$), its translation in the prismatic
-    joints' encoder unit (least squares over them), or of unit length when the arm has no prismatic joint.
+    joints' encoder unit, or of unit length when the arm has no prismatic joint. The metric bundle adjustment of
+    vpProjectiveSelfCalibration over the acquisition's images and every calibration frame (addCalibrationFrame();
+    after updateRig() only the frames added since), started from the model's metric upgrade.
     \exception vpProjectiveException (notInitializedError) before calibrate() or loadModel();
     (degenerateConfigurationError) if the model gives no metric upgrade.
   */
@@ -364,10 +391,14 @@ public:
 
   /*! \name Model file (see vpProjectiveModelFile) */
   //@{
-  //! Writes the acquired model to a versioned, checksummed JSON file (e.g. "arm.json").
+  /*!
+    Writes the acquired model to a versioned, checksummed JSON file (e.g. "arm.json"), with the frames of its metric
+    self-calibration (see getMetricStereoRig()).
+  */
   void saveModel(const std::string &filename) const;
   /*!
-    Reads a model written by saveModel(). On failure the robot keeps the model it had.
+    Reads a model written by saveModel(); the frames it holds become calibration frames. On failure the robot keeps
+    the model it had.
     \exception vpProjectiveException (fileError) if the file is missing, truncated, corrupted, of another version, or
     inconsistent.
   */
@@ -375,6 +406,8 @@ public:
   //@}
 
 private:
+  //! The frames of the metric self-calibration: those that show the current rig (see getMetricStereoRig()).
+  std::vector<vpProjectiveArmAcquisition::vpFrame> selfCalibrationFrames() const;
   //! Takes \e model, calibrated from \e acquisition with these residuals, as the robot's model.
   void adopt(const vpProjectiveArmAcquisition &acquisition, const vpProjectiveArmModel &model, double residual,
              double algebraicResidual);

@@ -27,6 +27,7 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpImage.h>
 #include <visp3/core/vpImagePoint.h>
+#include <visp3/projective/vpProjectiveCellFingerprint.h>
 #include <visp3/projective/vpProjectiveJoint.h>
 
 BEGIN_VISP_NAMESPACE
@@ -60,6 +61,20 @@ class vpProjectiveSessionWriter;
     so that calibrating the session (vpProjectiveSessionCalibration::setRecordedMarkers(), \c visp-projective
     \c calibrate \c --recorded-markers) uses exactly what the program used; readers of version 1 that do not know
     the key ignore it.
+  - \c cameras: optional, which cameras took the left and the right images, as the recording knew them
+    (vpStereoImageSource::getCameraIdentities(): vpStereoGrabberSource on V4L2 devices, \c visp-projective \c record):
+    \code{.json}
+    "cameras": { "left":  { "device": "/dev/video0", "name": "HD Webcam C920", "bus": "usb-0000:00:14.0-1",
+                            "serial": "8A3F1C2E" },
+                 "right": { "device": "/dev/video2", "name": "HD Webcam C920", "bus": "usb-0000:00:14.0-2" } }
+    \endcode
+    (each field a string, those not known left out). The model calibrated from the session keeps them, and checking
+    it against a later session names cameras exchanged or replaced (vpProjectiveSessionCalibration::check()).
+  - \c camera_layout: optional, \c "left-right" (the default: upright cameras, the left one on the left seen from
+    behind them) or \c "any" (a camera mounted upside down or seen through a mirror): whether calibrating the session
+    may refuse it as one whose left and right images are exchanged (vpProjectiveCellFingerprint::cameraSide()).
+  Both keys are top-level, beside \c joint_types; sessions without them (older ones) read as before, and a reader of
+  version 1 that does not know them ignores them.
 
   read() validates everything and throws a vpProjectiveException (fileError) whose one-line message names the file
   or the frame, what is wrong and what to do: a missing or unreadable session.json, text that is not JSON, another
@@ -162,6 +177,17 @@ public:
   unsigned int getWidth() const { return m_width; }
   //! Height of the left images (pixels; 0 if not known).
   unsigned int getHeight() const { return m_height; }
+  //! True if the session recorded which cameras took its images (its \c cameras entry).
+  bool hasCameras() const
+  {
+    return vpProjectiveCellFingerprint::isKnown(m_cameras[0]) || vpProjectiveCellFingerprint::isKnown(m_cameras[1]);
+  }
+  //! The camera that took the left images (empty fields: not recorded).
+  const vpStereoImageSource::vpCameraIdentity &getLeftCamera() const { return m_cameras[0]; }
+  //! The camera that took the right images (empty fields: not recorded).
+  const vpStereoImageSource::vpCameraIdentity &getRightCamera() const { return m_cameras[1]; }
+  //! The cameras' layout (its \c camera_layout entry; LAYOUT_LEFT_RIGHT if it has none).
+  vpProjectiveCellFingerprint::vpCameraLayout getCameraLayout() const { return m_layout; }
 
   //! The role's name in session.json ("zero", "trial", "observation", "target", "servo").
   static std::string toString(vpFrameRole role);
@@ -181,6 +207,8 @@ private:
   std::vector<int> m_trialJoint; // per frame: the joint a trial moved, -1 otherwise
   int m_zero;                    // index of the zero frame, -1 if none yet
   unsigned int m_width, m_height;
+  vpStereoImageSource::vpCameraIdentity m_cameras[2]; // left, right
+  vpProjectiveCellFingerprint::vpCameraLayout m_layout;
 };
 
 END_VISP_NAMESPACE

@@ -30,6 +30,7 @@
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/projective/vpProjectiveAcquisitionProcedure.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpProjectiveCellFingerprint.h>
 #include <visp3/projective/vpProjectiveSession.h>
 #include <visp3/projective/vpProjectiveSessionWriter.h>
 #include <visp3/projective/vpStereoImageSource.h>
@@ -49,7 +50,8 @@ BEGIN_VISP_NAMESPACE
   and their pixels (ViSP's convention: the centre of pixel (i, j) is (u, v) = (j, i)). The AprilTag detector of the
   plugin is such a function; tests give one of their own.
 
-  <b>calibrate()</b> reads the zero, trial and observation frames (target and servo frames are not needed), then
+  <b>calibrate()</b> reads the zero, trial and observation frames (and, for the metric self-calibration, the target
+  and servo frames), then
   - extracts the markers of each, one progress line per frame; a frame without any marker is an error;
   - keeps the markers of the zero frame (at least 5), in identifier order; a trial frame may miss some of them
     (occluded, turned away), matched by identifier (vpProjectiveArmAcquisition's identified markers), as long as it
@@ -64,15 +66,37 @@ BEGIN_VISP_NAMESPACE
     adjustment;
   - tells the rig's mounting from the observation frames when there are some (the model of each mounting predicts
     them; the better one is kept), else keeps setMounting()'s (eye-to-hand by default);
+  - tells which camera is left (vpProjectiveCellFingerprint::cameraSide(): the metric self-calibration's baseline in
+    the left camera's frame) and refuses a session whose right camera sits to the left of its left one, i.e. whose
+    left and right images are exchanged, unless the cameras' layout is LAYOUT_ANY (setCameraLayout(), or the
+    session's \c camera_layout);
+  - adds the observation, target and servo frames as calibration frames (vpProjectiveArmAcquisition::
+    addCalibrationFrame(); a frame that shows none of the model's markers is left out, with a progress line) and
+    says what the metric self-calibration over all of them determines (vpProjectiveSelfCalibration: the noise, the
+    largest uncertainty);
   - summarises each joint: its trials, their range and the model's RMS prediction error on them.
-  saveModel() then writes the model with the markers' identifiers (vpProjectiveModelFile), to a temporary file that
-  is renamed: the model file is complete or absent.
+  saveModel() then writes the model with the markers' identifiers, the self-calibration's frames and the fingerprint
+  of the cell (getFingerprint(): the image size, the cameras the session recorded, their layout and side)
+  (vpProjectiveModelFile), to a temporary file that is renamed: the model file is complete or absent.
 
   <b>check()</b> predicts, for each frame of a session, the markers of the model seen in it at the frame's encoder
   readings, and compares with the extracted ones: RMS per coordinate in the left image, in the right image, and both.
-  A frame fits when both are within setMismatchThreshold(). A camera moved since the model was made shows as a large
-  error in its own image only (its projection changed, the other camera's did not); both images off means both
-  cameras moved, or the markers moved on the tool, or the readings are not the model's encoders.
+  A frame fits when both are within setMismatchThreshold(). When some do not, the probable causes are ranked, each
+  by a diagnostic (getDiagnosis(), likeliest first; \ref page_sessions_checks):
+  - the left and right images exchanged: the model's prediction with the session's images exchanged, the matches'
+    distance to the model's epipolar lines with \f$ F \f$ and with \f$ F^T \f$, the cameras' identities;
+  - a camera moved (left, right, or both): the error in each image (a camera moved alone leaves the other image
+    fitting), and the residual of the rig re-registered on the session (vpProjectiveRigRegistration);
+  - the markers moved on the tool: the residual of the markers refitted on the session (the matches meet the model's
+    epipolar geometry: the rig did not change);
+  - readings that are not the model's encoders (another arm, joints in another order, other units or zero): the
+    residual of a free projective displacement per frame, which fits when the markers are the model's but their
+    motion is not the one the readings say;
+  - a session of another cell: what its fingerprint says against the model's (image size, cameras, marker
+    identifiers), or no fix fitting.
+  A cause is likely when its fix brings the residual within the threshold or a fact shows it; the likely ones come
+  first, those that change least first (exchanged images, one camera, the markers, both cameras, the readings), then
+  the others.
 
   Every error is a vpProjectiveException with a one-line message naming the frame and what to do.
 */
@@ -115,12 +139,25 @@ public:
     bool fits;                             //!< True if left and right are within the mismatch threshold.
   };
 
-  //! What check() concludes about the rig.
+  //! What check() concludes: every frame fits, or the likeliest cause of those that do not.
   enum vpRigState {
     RIG_UNCHANGED,      //!< Every frame fits.
     LEFT_CAMERA_MOVED,  //!< The left images are off, the right ones fit.
     RIGHT_CAMERA_MOVED, //!< The right images are off, the left ones fit.
-    BOTH_CAMERAS_MOVED  //!< Both are off (both cameras moved, the markers moved, or other encoders).
+    BOTH_CAMERAS_MOVED, //!< Both are off and a re-registered rig fits them: both cameras moved (or another rig).
+    CAMERAS_SWAPPED,    //!< The session's left images are the model's right camera's and the other way round.
+    MARKERS_MOVED,      //!< The rig is the model's, the markers moved on the tool (or in the scene, eye-in-hand).
+    OTHER_READINGS,     //!< The readings are not the model's encoders (another arm, joint order, units or zero).
+    OTHER_CELL          //!< A session of another cell: its fingerprint differs, or no fix fits.
+  };
+
+  //! A probable cause of frames that do not fit (check()), with its diagnostic.
+  struct vpCheckDiagnosis {
+    vpRigState cause;       //!< The cause (never RIG_UNCHANGED).
+    bool likely;            //!< The diagnostic points at it (its fix fits within the threshold, or a fact shows it).
+    double residualIfFixed; //!< RMS per coordinate (px) with the cause fixed; NaN where no fix is tried.
+    std::string finding;    //!< What the session shows, with the diagnostic's value.
+    std::string fix;        //!< What to do.
   };
 
   /*!
@@ -173,6 +210,12 @@ public:
   //! The mounting (default MOUNTING_AUTO).
   void setMounting(vpMountingChoice mounting) { m_mounting = mounting; }
   /*!
+    The cameras' layout that calibrate() assumes (default LAYOUT_LEFT_RIGHT): with LAYOUT_ANY here or in the
+    session (its \c camera_layout), a session whose right camera sits to the left of its left one is calibrated
+    rather than refused as one with exchanged images (a camera mounted upside down, a mirror).
+  */
+  void setCameraLayout(vpProjectiveCellFingerprint::vpCameraLayout layout) { m_layout = layout; }
+  /*!
     Epipolar inlier threshold of the rig's estimation (pixels, > 0; default 2).
     \exception vpProjectiveException (invalidValueError) if not positive or not finite.
   */
@@ -209,6 +252,8 @@ public:
   double getAlgebraicResidual() const { return m_algebraicResidual; }
   //! What the last calibrate() found about each joint.
   const std::vector<vpJointSummary> &getJointSummaries() const { return m_joints; }
+  //! The fingerprint of the last calibrate()'s cell (saved with the model).
+  const vpProjectiveCellFingerprint &getFingerprint() const { return m_fingerprint; }
   /*!
     Writes the last calibrate()'s model with its residuals and marker identifiers to \e filename, atomically.
     \exception vpProjectiveException (notInitializedError) before calibrate(); (fileError) if the file cannot be
@@ -223,25 +268,39 @@ public:
   static void checkWritable(const std::string &filename);
 
   /*!
-    The prediction error of \e model (whose markers have the identifiers \e ids) on every frame of \e session, one
-    progress line per frame.
+    The prediction error of \e model (whose markers have the identifiers \e ids, its cell the fingerprint \e cell:
+    vpProjectiveModelFile::load() gives it, empty if not known) on every frame of \e session, one progress line per
+    frame, then the probable causes of the frames that do not fit (see the class documentation).
     \exception vpProjectiveException (dimensionError) if the session's joints are not the model's or \e ids does not
-    have one identifier per marker; (fileError) if a frame shows no marker of the model (naming it); and the
-    extraction function's errors.
+    have one identifier per marker (a session of another cell); (fileError) if a frame shows no marker of the model
+    (naming it, and the markers it shows instead); and the extraction function's errors.
   */
   std::vector<vpFrameCheck> check(const vpProjectiveArmModel &model, const std::vector<int> &ids,
-                                  const vpProjectiveSession &session);
-  //! What the last check() concludes.
+                                  const vpProjectiveSession &session,
+                                  const vpProjectiveCellFingerprint &cell = vpProjectiveCellFingerprint());
+  //! What the last check() concludes: RIG_UNCHANGED, or the likeliest cause (getDiagnosis()'s first).
   vpRigState getRigState() const { return m_state; }
+  //! The probable causes of the last check()'s frames that do not fit, likeliest first (empty if every frame fits).
+  const std::vector<vpCheckDiagnosis> &getDiagnosis() const { return m_diagnosis; }
+  /*!
+    The last check()'s conclusion in one line: toString(getRigState()) when every frame fits, else the likeliest
+    cause with its finding and fix, then the other likely causes, then those the diagnostics rule out.
+  */
+  std::string getDiagnosisMessage() const;
   //! RMS per coordinate of the left images over the frames of the last check() (px).
   double getLeftResidual() const { return m_leftResidual; }
   //! RMS per coordinate of the right images over the frames of the last check() (px).
   double getRightResidual() const { return m_rightResidual; }
-  //! A sentence for a rig state.
+  //! A sentence for a rig state (a cause's finding in general words, and what to do).
   static std::string toString(vpRigState state);
 
 private:
   void progress(const std::string &line) const;
+  /*!
+    The fingerprint of the cell of \e session calibrated into \e model; refuses (invalidValueError) a model whose
+    right camera sits to the left of its left one unless the layout is LAYOUT_ANY.
+  */
+  vpProjectiveCellFingerprint cellOf(const vpProjectiveArmModel &model, const vpProjectiveSession &session) const;
 
   vpMarkerExtractor m_extractor;
   std::ostream *m_os;
@@ -250,11 +309,15 @@ private:
   bool m_calibrated;
   vpProjectiveArmModel m_model;
   std::vector<int> m_ids;
+  std::vector<vpProjectiveArmAcquisition::vpFrame> m_frames; // of the metric self-calibration
   double m_residual, m_algebraicResidual;
   std::vector<vpJointSummary> m_joints;
   vpRigState m_state;
   double m_leftResidual, m_rightResidual;
   bool m_recorded;
+  vpProjectiveCellFingerprint::vpCameraLayout m_layout;
+  vpProjectiveCellFingerprint m_fingerprint;
+  std::vector<vpCheckDiagnosis> m_diagnosis;
 };
 
 END_VISP_NAMESPACE

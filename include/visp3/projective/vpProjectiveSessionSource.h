@@ -60,6 +60,13 @@ public:
     \exception vpProjectiveException (fileError) if an image cannot be read (naming the frame and the file).
   */
   bool acquire(vpImage<unsigned char> &Ileft, vpImage<unsigned char> &Iright) override;
+  //! The cameras the session recorded (vpProjectiveSession::getLeftCamera()); false if it recorded none.
+  bool getCameraIdentities(vpCameraIdentity &left, vpCameraIdentity &right) const override
+  {
+    left = m_session.getLeftCamera();
+    right = m_session.getRightCamera();
+    return m_session.hasCameras();
+  }
   //! Width of the session's left images (pixels).
   unsigned int getWidth() const override { return m_session.getWidth(); }
   //! Height of the session's left images (pixels).

@@ -114,6 +114,28 @@ public:
                                                        const vpImage<unsigned char> &Iright);
 
   /*!
+    Which cameras take the left and the right images (the session's \c cameras entry), e.g. those of
+    vpStereoImageSource::getCameraIdentities() (vpProjectiveSessionCalibration::markerSource() sets them so); written
+    to session.json at once.
+    \exception vpProjectiveException (fileError) as save().
+  */
+  void setCameras(const vpStereoImageSource::vpCameraIdentity &left,
+                  const vpStereoImageSource::vpCameraIdentity &right);
+  /*!
+    The cameras of \e images (vpStereoImageSource::getCameraIdentities()) when it knows them, as setCameras(); nothing
+    otherwise. Returns whether it knew them.
+    \exception vpProjectiveException (fileError) as save().
+  */
+  bool setCameras(const vpStereoImageSource &images);
+  /*!
+    The cameras' layout (the session's \c camera_layout entry; default LAYOUT_LEFT_RIGHT): LAYOUT_ANY for a rig whose
+    cameras are not upright side by side with the left one on the left (see vpProjectiveCellFingerprint). Written to
+    session.json at once.
+    \exception vpProjectiveException (fileError) as save().
+  */
+  void setCameraLayout(vpProjectiveCellFingerprint::vpCameraLayout layout);
+
+  /*!
     Save points (see the class documentation): session.json is written when \e frames frames (>= 1; at least an
     eighth of those already saved) were added since the last save, or when \e seconds (> 0; infinity: no time bound)
     have passed since it and a frame is added.

@@ -104,6 +104,8 @@ public:
   static constexpr vpServoStatus SERVO_MODEL_MISMATCH = vpServoProjectiveReport::SERVO_MODEL_MISMATCH;
   //! Planned task on the model's predictions of the features set aside.
   static constexpr vpServoStatus SERVO_OPEN_LOOP = vpServoProjectiveReport::SERVO_OPEN_LOOP;
+  //! The arm does not make the commanded motion (getArmFollowing()): \f$ \dot q = 0 \f$.
+  static constexpr vpServoStatus SERVO_ARM_NOT_FOLLOWING = vpServoProjectiveReport::SERVO_ARM_NOT_FOLLOWING;
 
   //! The unit of the task error \f$ e \f$ that the gain sees (see setErrorUnit()).
   enum vpErrorUnit {
@@ -235,7 +237,7 @@ public:
   /*!
     Model-mismatch threshold (pixels, default 5; 0: off): SERVO_MODEL_MISMATCH, \f$ \dot q = 0 \f$, when every usable
     feature (at least two) lies farther than \e pixels from the image of its remembered point moved by \f$ H(q) \f$,
-    on 2 consecutive calls (vpServoModelMismatch); it takes precedence over every other status.
+    on 2 consecutive calls (vpServoModelMismatch); it takes precedence over every status but SERVO_ARM_NOT_FOLLOWING.
     \exception vpProjectiveException if \e pixels is negative or not finite.
   */
   void setModelMismatchThreshold(double pixels);
@@ -379,6 +381,8 @@ public:
     robot's joints as the task's does; computeControlLaw() does.
   */
   vpServoJointLimitAvoidance &getJointLimitAvoidance() { return m_jointLimits; }
+  //! Arm-following check (\ref servo_task_following): settings, reset(); verdict: getReport().getArmFollowing().
+  vpServoArmFollowing &getArmFollowing() { return m_follow; }
   //@}
 
   //! Prints the task in the layout of vpServo::print(vpServo::ALL) (J in place of Ls), then the status, each
@@ -388,10 +392,8 @@ public:
 private:
   typedef vpProjectiveArmModel::JointMatrix JointMatrix;
   typedef vpProjectiveArmModel::JointVector JointVector;
-
   //! What one computeControlLaw() computes (vpServoProjectiveReport); kept only when it succeeds.
   typedef vpServoProjectiveReport vpIteration;
-
   //! The robot of setRobot(), attached: it tells the task of a new model or rig (vpProjectiveRobot::vpListener).
   struct vpRobotLink : public vpProjectiveRobot::vpListener {
     const vpProjectiveRobot *robot = nullptr;
@@ -446,6 +448,7 @@ private:
   vpServoFeatureHealth m_health;
   vpServoJointLimitAvoidance m_jointLimits;
   vpServoModelMismatch m_mismatch;
+  vpServoArmFollowing m_follow;
   std::vector<vpTarget> m_targets;
   // m_iterations[m_lastIteration]: the last successful call, read by the getters; commit() flips to the other.
   vpIteration m_iterations[2];

@@ -26,6 +26,7 @@
 
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpMatrix.h>
+#include <visp3/projective/vpServoArmFollowing.h>
 #include <visp3/projective/vpServoDampedLeastSquares.h>
 #include <visp3/projective/vpServoFeatureHealth.h>
 #include <visp3/projective/vpServoJointLimitAvoidance.h>
@@ -68,9 +69,13 @@ public:
                           //!< \f$ \dot q = 0 \f$.
     SERVO_MODEL_MISMATCH, //!< Every usable feature disagrees with the model's prediction on consecutive calls (a
                           //!< moved camera; vpServoModelMismatch): \f$ \dot q = 0 \f$; re-register the rig.
-    SERVO_OPEN_LOOP       //!< Planned task: the active features no longer constrain every joint, and the features
+    SERVO_OPEN_LOOP,      //!< Planned task: the active features no longer constrain every joint, and the features
                           //!< set aside are replaced by the model's predictions at the measured joints, for at most
                           //!< vpServoProjective::setMaxOpenLoopTime() (\ref servo_task_open_loop).
+    //! The arm did not make the commanded joint motion on consecutive calls (a velocity sent in another frame, a
+    //! robot not in velocity control, a joint at a limit, a clipped velocity; vpServoArmFollowing):
+    //! \f$ \dot q = 0 \f$ until vpServoProjective::getArmFollowing().reset().
+    SERVO_ARM_NOT_FOLLOWING
   };
 
   //! The report before any call: SERVO_RUNNING, no feature.
@@ -90,6 +95,9 @@ public:
   bool isFollowingPath() const { return m_following; }
   //! Consecutive calls that ended in SERVO_OPEN_LOOP, up to this one (0 when it did not).
   unsigned int getOpenLoopCalls() const { return m_openLoopCalls; }
+  //! The arm-following check after the call: its settings, its verdict and, after SERVO_ARM_NOT_FOLLOWING, its cause
+  //! and each joint's motion (vpServoArmFollowing::getDiagnosis()).
+  const vpServoArmFollowing &getArmFollowing() const { return m_arm; }
   //@}
 
   /*! \name The law */
@@ -153,6 +161,7 @@ private:
   std::vector<vpFeatureState> m_states; // per feature
   vpServoDampedLeastSquares m_law;      // the law's settings at the call (for P)
   vpServoJointLimitAvoidance m_limits;  // the limits' settings at the call (for P)
+  vpServoArmFollowing m_arm;            // the arm-following check after the call
 };
 
 END_VISP_NAMESPACE

@@ -23,8 +23,11 @@
 #include <visp3/projective/vpProjectiveConfig.h>
 
 #include <chrono>
+#include <deque>
+#include <utility>
 
 #include <visp3/core/vpColVector.h>
+#include <visp3/core/vpGaussRand.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpSimulatorArm.h>
@@ -65,7 +68,13 @@ BEGIN_VISP_NAMESPACE
 
   <b>Encoders.</b> Real arms read absolute encoders whose zero is not the model's: setEncoderOffset() gives the
   readings \f$ q_{enc} = q_{arm} + offset \f$. getPosition(), setPosition(), getJointMin() and getJointMax() are in
-  encoder readings; getArmJoints() gives the joints of the vpSimulatorArm (getArm()), to render the cell.
+  encoder readings; getArmJoints() gives the joints of the vpSimulatorArm (getArm()), to render the cell. A real
+  encoder's readings are noisy at rest: setEncoderNoise() adds a seeded Gaussian noise to each getPosition().
+
+  <b>Time.</b> getTime() is the simulated time the arm has moved for. The arm keeps its joints over the last
+  seconds (getArmJointsAt()): a simulated camera renders the arm as it was when its image was taken, before the
+  encoders were read (vpSimulatorStereoCell::setTiming()). wait() lets time pass at the current command, as a program
+  that waits for a camera does.
 */
 class VISP_EXPORT vpSimulatorRobotArm : public vpRobot
 {
@@ -172,6 +181,24 @@ public:
   vpColVector getArmJoints();
   //! Simulated time (seconds) the arm has moved for since construction: sampling periods and position moves.
   double getTime() const { return m_time; }
+  /*!
+    The arm's joints (n x 1, without the encoder offset) at the simulated time \e t (seconds, getTime()'s clock):
+    interpolated in the motion of the last 10 s (the joints move linearly between two commands); before that, the
+    oldest joints kept; after getTime(), the joints now.
+  */
+  vpColVector getArmJointsAt(double t);
+  /*!
+    Lets \e seconds (>= 0) of simulated time pass at the current command: the arm moves on at its velocity in
+    STATE_VELOCITY_CONTROL and stays put otherwise; in real time the call sleeps for that long.
+    \exception vpProjectiveException (invalidValueError) if negative or not finite.
+  */
+  void wait(double seconds);
+  /*!
+    Standard deviation \e sigma (>= 0, rad for a revolute joint, m for a prismatic one) of a Gaussian noise added to
+    each joint of every getPosition(), from the seed \e seed; 0 (default): exact readings.
+    \exception vpProjectiveException (invalidValueError) if negative or not finite.
+  */
+  void setEncoderNoise(double sigma, long seed = 1);
 
 private:
   void requireJointSpace(vpRobot::vpControlFrameType frame, const char *method) const;
@@ -179,6 +206,7 @@ private:
   vpColVector maxVelocities() const;
   void advance(double dt);
   void catchUp();
+  void remember();
 
   vpSimulatorArm m_arm;
   vpColVector m_q;         // arm joints
@@ -188,7 +216,10 @@ private:
   bool m_constantSampling;
   double m_samplingTime;
   double m_time;
-  std::chrono::steady_clock::time_point m_last; // real time: the instant the motion was integrated to
+  std::chrono::steady_clock::time_point m_last;         // real time: the instant the motion was integrated to
+  std::deque<std::pair<double, vpColVector>> m_history; // (time, arm joints) at each change of the motion
+  double m_encoderNoise;
+  vpGaussRand m_encoderRand;
 };
 
 END_VISP_NAMESPACE

@@ -103,10 +103,32 @@ public:
   const vpSimulatorStereoRig &getStereoRig() const { return m_rig; }
 
   /*!
-    Renders the two images at the arm's current joints (vpSimulatorRobotArm::getArmJoints()). Always true: a
-    rendered cell never runs out of images.
+    The cameras' timing, as a real cell has it. Default (\e frameRate 0): every acquire() renders the arm as it is
+    now. With \e frameRate > 0 (Hz), frame k is taken at \f$ k / \f$ \e frameRate seconds of the robot's simulated
+    time (vpSimulatorRobotArm::getTime()) by the left camera and \e skew seconds later (negative: earlier) by the
+    right one, and delivered \e latency (>= 0) seconds after the later of the two; it is lost with the probability
+    \e dropRate (0 to 0.9; each frame's fate drawn from \e seed and its number, whatever the calls). acquire() then
+    gives the newest frame delivered by now that it did not give yet (older ones are skipped, as a grabber that keeps
+    the latest frame does) and, when there is none, lets the time pass until the next one arrives
+    (vpSimulatorRobotArm::wait(): the arm moves on at its command, as a real one does while the program waits for a
+    camera); each image shows the arm when it was taken (vpSimulatorRobotArm::getArmJointsAt()), and getTimestamps()
+    tells those instants.
+    \exception vpProjectiveException (invalidValueError) on a negative or non-finite rate or latency, a non-finite
+    skew, or a drop rate outside [0, 0.9]; nothing changes then.
+  */
+  void setTiming(double frameRate, double latency = 0.0, double skew = 0.0, double dropRate = 0.0, long seed = 1);
+
+  /*!
+    Renders the two images of the next frame: the arm at its current joints (vpSimulatorRobotArm::getArmJoints()),
+    or, with setTiming(), at the instants the images were taken. Always true: a rendered cell never runs out of
+    images.
   */
   bool acquire(vpImage<unsigned char> &Ileft, vpImage<unsigned char> &Iright) override;
+  /*!
+    The instants (robot's simulated time, seconds) the images of the last acquire() show: the robot's time at the
+    call without setTiming(). False before the first acquire().
+  */
+  bool getTimestamps(double &left, double &right) const override;
   //! Image width (pixels).
   unsigned int getWidth() const override { return m_rig.getWidth(); }
   //! Image height (pixels).
@@ -124,7 +146,8 @@ private:
     unsigned int index;      // in the renderer
     vpHomogeneousMatrix tMg; // tool frame to tag
   };
-  void update();
+  void update(const vpColVector &q);
+  bool dropped(long frame) const;
 
   vpSimulatorRobotArm m_robot;
   vpSimulatorStereoRig m_rig0; // the rig at the joints of setEyeInHand() (or the fixed one)
@@ -133,7 +156,12 @@ private:
   std::vector<ToolTag> m_toolTags;
   std::vector<vpHomogeneousMatrix> m_sceneTags; // wMg of the scene tags, by renderer index (identity for tool tags)
   bool m_eyeInHand;
-  vpHomogeneousMatrix m_eMw0; // eye-in-hand: last link to world at setEyeInHand()
+  vpHomogeneousMatrix m_eMw0;                        // eye-in-hand: last link to world at setEyeInHand()
+  double m_frameRate, m_latency, m_skew, m_dropRate; // setTiming()
+  long m_timingSeed;
+  long m_lastFrame;                 // the number of the last frame acquire() gave (setTiming())
+  double m_stampLeft, m_stampRight; // when the images of the last acquire() were taken (NaN: none yet)
+  vpImage<unsigned char> m_scratch; // the image rendered at the other camera's instant, when they differ
 };
 
 END_VISP_NAMESPACE

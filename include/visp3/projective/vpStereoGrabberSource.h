@@ -44,7 +44,10 @@ BEGIN_VISP_NAMESPACE
     grabber...), which must outlive this object.
 
   The two cameras are not synchronised by this class: take images of a still scene (the acquisition procedure stops
-  the arm before each pair), or use cameras triggered together.
+  the arm before each pair), or use cameras triggered together. V4L2 cameras stamp each image (the driver's buffer
+  time, CLOCK_MONOTONIC for uvcvideo and most drivers): getTimestamps() gives both stamps, so that vpProjectiveCell
+  aligns each image with the encoder readings and refuses pairs taken too far apart (vpProjectiveCell::vpSettings
+  maxSkew, maxLatency). Other grabbers give no stamps.
   \code
   vpStereoGrabberSource cameras("/dev/video0", "/dev/video2");
   vpImage<unsigned char> Il, Ir;
@@ -73,6 +76,17 @@ public:
     \exception vpProjectiveException (fileError) if a grabber fails, naming the camera.
   */
   bool acquire(vpImage<unsigned char> &Ileft, vpImage<unsigned char> &Iright) override;
+  /*!
+    The instants (s, CLOCK_MONOTONIC) the last acquire()'s images were taken: true only if both cameras are V4L2
+    devices whose driver stamped them on that clock (a stamp in the future or more than 10 s old, as the wall clock
+    some drivers use gives, counts as none).
+  */
+  bool getTimestamps(double &left, double &right) const override;
+  /*!
+    The identities of the V4L2 cameras opened by the first constructor: the device names given, V4L2's card name and
+    bus_info, and a USB camera's serial number (from sysfs) when it has one. False for grabbers given by the caller.
+  */
+  bool getCameraIdentities(vpCameraIdentity &left, vpCameraIdentity &right) const override;
   //! Width of the left camera's images (pixels).
   unsigned int getWidth() const override { return m_left->getWidth(); }
   //! Height of the left camera's images (pixels).
@@ -85,6 +99,9 @@ private:
   std::unique_ptr<vpFrameGrabber> m_ownedLeft, m_ownedRight;
   vpFrameGrabber *m_left, *m_right;
   std::string m_leftName, m_rightName;
+  double m_stamps[2];               // the last images' instants (s, CLOCK_MONOTONIC)
+  bool m_stamped;                   // both stamps valid
+  vpCameraIdentity m_identities[2]; // left, right: the V4L2 cameras opened by the first constructor
 };
 
 END_VISP_NAMESPACE

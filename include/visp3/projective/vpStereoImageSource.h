@@ -21,6 +21,8 @@
 
 #include <visp3/projective/vpProjectiveConfig.h>
 
+#include <string>
+
 #include <visp3/core/vpImage.h>
 
 BEGIN_VISP_NAMESPACE
@@ -43,7 +45,27 @@ BEGIN_VISP_NAMESPACE
 class VISP_EXPORT vpStereoImageSource
 {
 public:
+  //! What identifies one camera of the pair, so that a later run tells its left camera from its right one.
+  struct vpCameraIdentity {
+    std::string device; //!< The device it was opened as (e.g. "/dev/video0"); empty if not known.
+    std::string name;   //!< The driver's name of the camera (V4L2: its card name, e.g. "HD Pro Webcam C920").
+    std::string bus;    //!< Where it is plugged (V4L2: its bus_info, e.g. "usb-0000:00:14.0-2").
+    std::string serial; //!< Its serial number where the driver gives one (a USB camera's iSerial), else empty.
+  };
+
   virtual ~vpStereoImageSource() {}
+  /*!
+    The identities of the left and right cameras, when the source knows them (vpStereoGrabberSource on V4L2 devices,
+    a replayed session that recorded them); false (the default) otherwise. A session records them
+    (vpProjectiveSessionWriter::setCameras()) and its model keeps them, so that a later session with the cameras
+    exchanged is named as such.
+  */
+  virtual bool getCameraIdentities(vpCameraIdentity &left, vpCameraIdentity &right) const
+  {
+    (void)left;
+    (void)right;
+    return false;
+  }
   /*!
     Takes the next pair of images (8-bit grey; colour images are converted) into \e Ileft and \e Iright. Returns
     false when the source has no more images (the end of a replayed session); a live source waits for its cameras.
@@ -55,6 +77,19 @@ public:
   virtual unsigned int getWidth() const = 0;
   //! Height of the images (pixels).
   virtual unsigned int getHeight() const = 0;
+  /*!
+    The instants (seconds) the images of the last acquire() were taken, left and right, on the clock of the robot's
+    encoder readings (vpProjectiveCellArm::getJoints(): CLOCK_MONOTONIC, std::chrono::steady_clock, for a real cell;
+    the simulated time for a rendered one); false if the source does not know them (the default). A servo loop aligns
+    each image's features to the time of the readings with them (vpProjectiveCell), and an acquisition waits for
+    images taken after the arm stopped.
+  */
+  virtual bool getTimestamps(double &left, double &right) const
+  {
+    (void)left;
+    (void)right;
+    return false;
+  }
 };
 
 END_VISP_NAMESPACE
