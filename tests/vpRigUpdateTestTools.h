@@ -48,7 +48,6 @@
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpServoProjective.h>
 
-#include "study-world.h" // the worlds of the study (apps/projective-study): arms, random rigs
 #include "vpModelFileChecksum.h"
 #include "vpProjectiveArmTestTools.h"
 
@@ -84,25 +83,14 @@ inline const char *bumpName(BumpKind kind)
   return kind == BUMP_LEFT ? "left camera" : (kind == BUMP_RIGHT ? "right camera" : "whole rig");
 }
 
-//! What a bump does to the camera: turns it, shifts it, or both.
-enum BumpMotion { BUMP_TURN_AND_SHIFT, BUMP_TURN, BUMP_SHIFT };
-
-inline const char *bumpMotionName(BumpMotion motion)
-{
-  return motion == BUMP_TURN ? "turned" : (motion == BUMP_SHIFT ? "shifted" : "turned and shifted");
-}
-
 /*!
-  \e s with a camera (or the rig) moved by 1-3 deg about a random axis and 0.5-2 cm along a random direction (\e
-  motion: both, or only the turn or only the shift; the same draws), in the moved camera's frame (the rig's left
-  camera for the whole rig).
+  \e s with a camera (or the rig) moved by 1-3 deg about a random axis and 0.5-2 cm along a random direction, in the
+  moved camera's frame (the rig's left camera for the whole rig).
 */
-inline ArmSetup bumped(const ArmSetup &s, BumpKind kind, vpUniRand &rng, BumpMotion motion = BUMP_TURN_AND_SHIFT)
+inline ArmSetup bumped(const ArmSetup &s, BumpKind kind, vpUniRand &rng)
 {
-  const double degrees = rng.uniform(1.0, 3.0); // drawn whatever the motion: the case's later draws stay the same
-  const double shift = rng.uniform(0.005, 0.02);
-  const double angle = motion == BUMP_SHIFT ? 0.0 : vpMath::rad(degrees);
-  const double length = motion == BUMP_TURN ? 0.0 : shift;
+  const double angle = vpMath::rad(rng.uniform(1.0, 3.0));
+  const double length = rng.uniform(0.005, 0.02);
   const vpColVector axis = randomDirection(rng), direction = randomDirection(rng);
   const vpHomogeneousMatrix d(vpTranslationVector(length * direction[0], length * direction[1], length * direction[2]),
                               vpThetaUVector(angle * axis[0], angle * axis[1], angle * axis[2]));
@@ -118,26 +106,13 @@ inline ArmSetup bumped(const ArmSetup &s, BumpKind kind, vpUniRand &rng, BumpMot
   return b;
 }
 
-//! True if the arm joints of model joints \e q are within the arm's joint limits.
-inline bool withinLimits(const ArmSetup &s, const vpColVector &q)
-{
-  const vpColVector qArm = s.armJoints(q);
-  for (unsigned int i = 0; i < s.n(); ++i) {
-    if (qArm[i] < s.arm.getJointMin()[i] || qArm[i] > s.arm.getJointMax()[i]) {
-      return false;
-    }
-  }
-  return true;
-}
-
-//! Model joints drawn by \e draw until they are within the joint limits and every marker is in view in all \e setups
-//! (\e fallback if none in 100000 draws).
+//! Model joints drawn by \e draw until every marker is in view in all \e setups (\e fallback if none in 100000 draws).
 inline vpColVector drawInView(const std::vector<const ArmSetup *> &setups, const std::function<vpColVector()> &draw,
                               const vpColVector &fallback)
 {
   for (int attempt = 0; attempt < 100000; ++attempt) {
     const vpColVector q = draw();
-    bool ok = withinLimits(*setups[0], q);
+    bool ok = true;
     for (const ArmSetup *setup : setups) {
       ok = ok && setup->visible(setup->armJoints(q), 20.0);
     }
@@ -165,70 +140,20 @@ inline vpColVector visibleJoints(const std::vector<const ArmSetup *> &setups, vp
       vpColVector(s.n(), 0.0));
 }
 
-//! Model joints within +-range[i] of \e center (joint i) with every marker in view in all \e setups.
+//! Model joints within +-range of \e center (per joint) with every marker in view in all \e setups.
 inline vpColVector jointsNear(const std::vector<const ArmSetup *> &setups, vpUniRand &rng, const vpColVector &center,
-                              const vpColVector &range)
+                              double range)
 {
   return drawInView(
       setups,
       [&] {
         vpColVector q = center;
         for (unsigned int i = 0; i < q.getRows(); ++i) {
-          q[i] += rng.uniform(-range[i], range[i]);
+          q[i] += rng.uniform(-range, range);
         }
         return q;
       },
       center);
-}
-
-//! Model joints within +-range of \e center (every joint) with every marker in view in all \e setups.
-inline vpColVector jointsNear(const std::vector<const ArmSetup *> &setups, vpUniRand &rng, const vpColVector &center,
-                              double range)
-{
-  return jointsNear(setups, rng, center, vpColVector(center.getRows(), range));
-}
-
-/*!
-  The box of a task of \e s: +-degrees for a revolute joint, and for a prismatic one the metres of the study's worlds
-  (study::World::prismaticPerDeg per degree: 2 mm, so 20 deg is 4 cm).
-*/
-inline vpColVector jointBox(const ArmSetup &s, double degrees)
-{
-  vpColVector range(s.n());
-  for (unsigned int i = 0; i < s.n(); ++i) {
-    range[i] = s.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? study::World().prismaticPerDeg * degrees
-                                                                   : vpMath::rad(degrees);
-  }
-  return range;
-}
-
-/*!
-  The world \e armName of the study (apps/projective-study: "puma", "viper850" or "prismatic", the R-R-P-R-R-R arm;
-  study::makeWorld()) as an ArmSetup seen eye-to-hand by the paper's rig, or if \e randomRig by the study's random
-  verged rig of task \e seed (study::randomRig(): 0.7-1.4 m away, 10-30 deg of vergence, 640 x 480 to 1280 x 960
-  pixels, a 30-55 cm field, turned by up to 20 deg), verging on all 7 markers. The study's arms have their zero
-  reference at q = 0 and their true joint limits. A trial that would take a marker out of view is halved until none
-  does, as the study's acquisition does.
-*/
-inline ArmSetup studySetup(const std::string &armName, bool randomRig, unsigned int seed)
-{
-  study::World world = study::makeWorld(armName);
-  study::RigDraw draw;
-  const vpSimulatorStereoRig rig = randomRig ? study::randomRig(world, seed, draw) : world.rig;
-  ArmSetup s(armName + (randomRig ? " (random rig)" : ""), world.arm, vpColVector(world.arm.getNumberOfJoints(), 0.0),
-             rig);
-  s.trialAmounts = world.trials;
-  for (unsigned int i = 0; i < s.n(); ++i) {
-    for (double sign : {-1.0, 1.0}) {
-      vpColVector q(s.n(), 0.0);
-      q[i] = sign * s.trialAmounts[i];
-      while (!s.visible(s.armJoints(q)) && std::abs(q[i]) > 1e-3 * world.trials[i]) {
-        s.trialAmounts[i] /= 2.0;
-        q[i] = sign * s.trialAmounts[i];
-      }
-    }
-  }
-  return s;
 }
 
 inline vpProjectiveRobot acquiredRobot(const ArmSetup &s, vpGaussRand &noise, double sigma = kSigma)
@@ -264,8 +189,7 @@ struct Observation {
 
 inline std::vector<Observation> reRegister(vpProjectiveRobot &robot, const ArmSetup &s, unsigned int count,
                                            vpUniRand &rng, vpGaussRand &noise,
-                                           const vpColVector &center = vpColVector(),
-                                           const vpColVector &range = vpColVector())
+                                           const vpColVector &center = vpColVector(), double range = 0.0)
 {
   std::vector<Observation> observations(count);
   for (Observation &o : observations) {
@@ -302,7 +226,6 @@ struct ServoRun {
     task.setLambda(0.5);
     task.setMaxJointVelocity(vpMath::rad(10.0));
     task.setPathPlanning(true); // plans from the model: no task ends in another branch (issue 11)
-    task.setJointLimits(setup.arm.getJointMin() - setup.qRef, setup.arm.getJointMax() - setup.qRef);
     for (size_t k = 0; k < kTracked.size(); ++k) {
       task.addFeature(s[k], sStar[k]);
     }
@@ -373,7 +296,7 @@ inline BumpedRun runBumped(const ArmSetup &s, const ArmSetup &b, const vpProject
       r.detectedAfter = it;
     }
   }
-  reRegister(robot, b, poses, rng, noise, q, jointBox(s, 20.0));
+  reRegister(robot, b, poses, rng, noise, q, vpMath::rad(20.0));
   vpColVector qRest(s.n(), 0.0);
   for (int it = 0; it < 150; ++it) {
     run.step(b, q, kSigma, noise);
@@ -405,26 +328,13 @@ struct BumpCase {
   double unbumpedMetres = 0.0;
 };
 
-//! What runBumpCase() runs besides the bumped task from 3 observation poses and the unbumped one.
-struct BumpOptions {
-  bool ratios = true;             // the re-registered prediction errors (ratio3, ratio10, ratio3General)
-  bool from10 = true;             // the bumped task from 10 observation poses
-  bool withoutRefinement = false; // the bumped task from 3 poses without the refinement
-};
-
-/*!
-  One bump case of \e s, seeded: the acquisition at 0.5 px, the bump (\e kind, \e motion), a task within 20 deg of
-  the zero reference (a prismatic joint: jointBox()) starting within 15 deg of its target, run unbumped at 0.5 and
-  1 px and bumped after 6 calls (runBumped()), plus what \e options asks.
-*/
-inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind, BumpMotion motion = BUMP_TURN_AND_SHIFT,
-                            const BumpOptions &options = BumpOptions())
+inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind, bool withoutRefinement = false)
 {
   BumpCase c;
   vpUniRand rng(seed);
   vpGaussRand noise(1.0, 0.0, seed);
   const vpProjectiveRobot acquired = acquiredRobot(s, noise);
-  const ArmSetup b = bumped(s, kind, rng, motion);
+  const ArmSetup b = bumped(s, kind, rng);
 
   // Prediction error before the bump, and after re-registration from 3 and 10 observations (same test poses).
   std::vector<vpColVector> testPoses;
@@ -432,17 +342,17 @@ inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind, BumpMot
     testPoses.push_back(visibleJoints({&s, &b}, rng));
   }
   c.preError = predictionError(acquired, s, testPoses, noise);
-  if (options.ratios) {
+  {
     vpProjectiveRobot robot = acquired;
     reRegister(robot, b, 3, rng, noise);
     c.ratio3 = predictionError(robot, b, testPoses, noise) / c.preError;
   }
-  if (options.ratios) {
+  {
     vpProjectiveRobot robot = acquired;
     reRegister(robot, b, 10, rng, noise);
     c.ratio10 = predictionError(robot, b, testPoses, noise) / c.preError;
   }
-  if (options.ratios) {
+  {
     vpProjectiveRobot robot = acquired;
     robot.setRigRegistrationMode(vpProjectiveRigRegistration::GENERAL);
     reRegister(robot, b, 3, rng, noise);
@@ -450,8 +360,8 @@ inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind, BumpMot
   }
 
   // A task of the servo tests' kind: target within 20 deg of the zero reference, start within 15 deg of it.
-  const vpColVector qTarget = jointsNear({&s, &b}, rng, vpColVector(s.n(), 0.0), jointBox(s, 20.0));
-  const vpColVector qStart = jointsNear({&s, &b}, rng, qTarget, jointBox(s, 15.0));
+  const vpColVector qTarget = jointsNear({&s, &b}, rng, vpColVector(s.n(), 0.0), vpMath::rad(20.0));
+  const vpColVector qStart = jointsNear({&s, &b}, rng, qTarget, vpMath::rad(15.0));
 
   // No false alarm in unbumped runs to the target, at 0.5 and 1 px.
   for (double sigma : {0.5, 1.0}) {
@@ -473,10 +383,8 @@ inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind, BumpMot
   // The bumped runs, their poses and noise seeded by the case: from 3 poses (with and, if asked, without the task's
   // refinement, the same poses) and from 10.
   c.from3 = runBumped(s, b, acquired, qTarget, qStart, 3, true, 7 * seed + 1);
-  if (options.from10) {
-    c.from10 = runBumped(s, b, acquired, qTarget, qStart, 10, true, 7 * seed + 2);
-  }
-  if (options.withoutRefinement) {
+  c.from10 = runBumped(s, b, acquired, qTarget, qStart, 10, true, 7 * seed + 2);
+  if (withoutRefinement) {
     c.from3Alone = runBumped(s, b, acquired, qTarget, qStart, 3, false, 7 * seed + 1);
   }
   c.detectedAfter = c.from3.detectedAfter;
