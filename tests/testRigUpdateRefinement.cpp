@@ -47,7 +47,7 @@ Eigen::Matrix<double, 3, 8> cameras(const vpProjectiveRobot &robot)
 struct BumpedTask {
   explicit BumpedTask(bool modifiable = true)
       : t(41, BUMP_LEFT), run(t.s, t.robot, t.qTarget, 0.0, t.noise),
-        q(jointsNear({&t.s, &t.b}, t.rng, t.qTarget, vpMath::rad(10.0)))
+        q(jointsNear({&t.s, &t.b}, t.rng, t.qTarget, 10.0))
   {
     if (modifiable) {
       run.task.setRobot(t.robot);
@@ -64,7 +64,7 @@ struct BumpedTask {
     for (int it = 0; it < 4 && !detected; ++it) {
       detected = run.step(t.b, q, 0.0, t.noise) == vpServoProjective::SERVO_MODEL_MISMATCH;
     }
-    reRegister(t.robot, t.b, 3, t.rng, t.noise, q, vpMath::rad(20.0));
+    reRegister(t.robot, t.b, 3, t.rng, t.noise, q, 20.0);
     return detected;
   }
 
@@ -282,7 +282,7 @@ TEST(RigRefinement, PointsInTheFrameOfTheRigThatSawThem)
   vpUniRand rng(18);
   const vpProjectiveRobot robot = acquiredRobot(s, noise);
   const vpProjectiveArmModel &model = robot.getModel();
-  const vpColVector q = jointsNear({&s}, rng, vpColVector(s.n(), 0.0), vpMath::rad(20.0));
+  const vpColVector q = jointsNear({&s}, rng, vpColVector(s.n(), 0.0), 20.0);
   const unsigned int K = static_cast<unsigned int>(model.markers().size());
   vpProjectiveArmModel::JointVector qe(q.getRows());
   for (unsigned int i = 0; i < q.getRows(); ++i) {
