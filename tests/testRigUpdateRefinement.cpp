@@ -272,9 +272,10 @@ TEST(RigRefinement, RobotRefineRigChecksAndFailures)
 }
 
 // The points the refinement pairs with the images after a re-registration are the old rig's triangulations
-// (vpServoModelMismatch::getTriangulatedMemory()), the frame of the task's re-expressed s*, even for the acquired
-// markers, which the mismatch check remembers as the model's points: these differ from what the rig saw by the arm
-// model's own error (a model acquired at 0.5 px), which a rig fitted to them near the target carried into s*.
+// (vpServoModelMismatch::getTriangulatedMemory()), the frame of the task's re-expressed s*; for an acquired marker,
+// which the mismatch check remembers as the model's point, the mean of both (vpServoRigRefinement::start()). The two
+// memories differ: the model's point from what the rig saw by the arm model's own error (a model acquired at 0.5 px),
+// the triangulations by the noise of the few calls they average (none here: noise-free images).
 TEST(RigRefinement, PointsInTheFrameOfTheRigThatSawThem)
 {
   const ArmSetup s = pumaEyeToHand();
