@@ -57,7 +57,7 @@ TEST(RigUpdate, MismatchPrecedenceAndSwitch)
 {
   NoiseFreeBump t(31, BUMP_LEFT);
   const ArmSetup &s = t.s, &b = t.b;
-  const vpColVector qStart = jointsNear({&s, &b}, t.rng, t.qTarget, vpMath::rad(8.0));
+  const vpColVector qStart = jointsNear({&s, &b}, t.rng, t.qTarget, 8.0);
   for (double threshold : {5.0, 0.0}) {
     ServoRun run(s, t.robot, t.qTarget, 0.0, t.noise);
     run.task.setOutlierThreshold(3.0);
@@ -99,7 +99,7 @@ TEST(RigUpdate, TaskReExpressesItsDesiredFeatures)
   NoiseFreeBump t(21, BUMP_RIG);
   const ArmSetup &s = t.s, &b = t.b;
   ServoRun run(s, t.robot, t.qTarget, 0.0, t.noise);
-  vpColVector q = jointsNear({&s, &b}, t.rng, t.qTarget, vpMath::rad(8.0));
+  vpColVector q = jointsNear({&s, &b}, t.rng, t.qTarget, 8.0);
   run.step(s, q, 0.0, t.noise);
   EXPECT_EQ(toEigen4(run.task.getDesiredFeature(0)), run.sStar[0].getFeature());
   vpColVector qObs;

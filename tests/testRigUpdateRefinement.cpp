@@ -47,7 +47,7 @@ Eigen::Matrix<double, 3, 8> cameras(const vpProjectiveRobot &robot)
 struct BumpedTask {
   explicit BumpedTask(bool modifiable = true)
       : t(41, BUMP_LEFT), run(t.s, t.robot, t.qTarget, 0.0, t.noise),
-        q(jointsNear({&t.s, &t.b}, t.rng, t.qTarget, vpMath::rad(10.0)))
+        q(jointsNear({&t.s, &t.b}, t.rng, t.qTarget, 10.0))
   {
     if (modifiable) {
       run.task.setRobot(t.robot);
@@ -64,7 +64,7 @@ struct BumpedTask {
     for (int it = 0; it < 4 && !detected; ++it) {
       detected = run.step(t.b, q, 0.0, t.noise) == vpServoProjective::SERVO_MODEL_MISMATCH;
     }
-    reRegister(t.robot, t.b, 3, t.rng, t.noise, q, vpMath::rad(20.0));
+    reRegister(t.robot, t.b, 3, t.rng, t.noise, q, 20.0);
     return detected;
   }
 
@@ -272,9 +272,10 @@ TEST(RigRefinement, RobotRefineRigChecksAndFailures)
 }
 
 // The points the refinement pairs with the images after a re-registration are the old rig's triangulations
-// (vpServoModelMismatch::getTriangulatedMemory()), the frame of the task's re-expressed s*, even for the acquired
-// markers, which the mismatch check remembers as the model's points: these differ from what the rig saw by the arm
-// model's own error (a model acquired at 0.5 px), which a rig fitted to them near the target carried into s*.
+// (vpServoModelMismatch::getTriangulatedMemory()), the frame of the task's re-expressed s*; for an acquired marker,
+// which the mismatch check remembers as the model's point, the mean of both (vpServoRigRefinement::start()). The two
+// memories differ: the model's point from what the rig saw by the arm model's own error (a model acquired at 0.5 px),
+// the triangulations by the noise of the few calls they average (none here: noise-free images).
 TEST(RigRefinement, PointsInTheFrameOfTheRigThatSawThem)
 {
   const ArmSetup s = pumaEyeToHand();
@@ -282,7 +283,7 @@ TEST(RigRefinement, PointsInTheFrameOfTheRigThatSawThem)
   vpUniRand rng(18);
   const vpProjectiveRobot robot = acquiredRobot(s, noise);
   const vpProjectiveArmModel &model = robot.getModel();
-  const vpColVector q = jointsNear({&s}, rng, vpColVector(s.n(), 0.0), vpMath::rad(20.0));
+  const vpColVector q = jointsNear({&s}, rng, vpColVector(s.n(), 0.0), 20.0);
   const unsigned int K = static_cast<unsigned int>(model.markers().size());
   vpProjectiveArmModel::JointVector qe(q.getRows());
   for (unsigned int i = 0; i < q.getRows(); ++i) {

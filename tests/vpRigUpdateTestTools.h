@@ -106,13 +106,28 @@ inline ArmSetup bumped(const ArmSetup &s, BumpKind kind, vpUniRand &rng)
   return b;
 }
 
-//! Model joints drawn by \e draw until every marker is in view in all \e setups (\e fallback if none in 100000 draws).
+//! True if the arm joints of model joints \e q are within the arm's joint limits.
+inline bool withinLimits(const ArmSetup &s, const vpColVector &q)
+{
+  const vpColVector qArm = s.armJoints(q);
+  for (unsigned int i = 0; i < s.n(); ++i) {
+    if (qArm[i] < s.arm.getJointMin()[i] || qArm[i] > s.arm.getJointMax()[i]) {
+      return false;
+    }
+  }
+  return true;
+}
+
+/*!
+  Model joints drawn by \e draw until they are within the joint limits and every marker is in view in all \e setups
+  (\e fallback if none in 100000 draws).
+*/
 inline vpColVector drawInView(const std::vector<const ArmSetup *> &setups, const std::function<vpColVector()> &draw,
                               const vpColVector &fallback)
 {
   for (int attempt = 0; attempt < 100000; ++attempt) {
     const vpColVector q = draw();
-    bool ok = true;
+    bool ok = withinLimits(*setups[0], q);
     for (const ArmSetup *setup : setups) {
       ok = ok && setup->visible(setup->armJoints(q), 20.0);
     }
@@ -140,20 +155,40 @@ inline vpColVector visibleJoints(const std::vector<const ArmSetup *> &setups, vp
       vpColVector(s.n(), 0.0));
 }
 
-//! Model joints within +-range of \e center (per joint) with every marker in view in all \e setups.
+//! Model joints within +-range[i] of \e center (joint i) with every marker in view in all \e setups.
 inline vpColVector jointsNear(const std::vector<const ArmSetup *> &setups, vpUniRand &rng, const vpColVector &center,
-                              double range)
+                              const vpColVector &range)
 {
   return drawInView(
       setups,
       [&] {
         vpColVector q = center;
         for (unsigned int i = 0; i < q.getRows(); ++i) {
-          q[i] += rng.uniform(-range, range);
+          q[i] += rng.uniform(-range[i], range[i]);
         }
         return q;
       },
       center);
+}
+
+/*!
+  A box of +-degrees about every joint of \e s, a prismatic joint's side 2 mm per degree (20 deg: 4 cm, the
+  R-R-P-R-R-R arm's trial on its slide).
+*/
+inline vpColVector jointBox(const ArmSetup &s, double degrees)
+{
+  vpColVector range(s.n());
+  for (unsigned int i = 0; i < s.n(); ++i) {
+    range[i] = s.jointTypes()[i] == vpProjectiveRobot::PRISMATIC ? 0.002 * degrees : vpMath::rad(degrees);
+  }
+  return range;
+}
+
+//! Model joints within jointBox(degrees) of \e center with every marker in view in all \e setups.
+inline vpColVector jointsNear(const std::vector<const ArmSetup *> &setups, vpUniRand &rng, const vpColVector &center,
+                              double degrees)
+{
+  return jointsNear(setups, rng, center, jointBox(*setups[0], degrees));
 }
 
 inline vpProjectiveRobot acquiredRobot(const ArmSetup &s, vpGaussRand &noise, double sigma = kSigma)
@@ -179,8 +214,8 @@ inline double predictionError(const vpProjectiveRobot &robot, const ArmSetup &s,
 }
 
 /*!
-  Adds \e count observations of \e s at random configurations in view (around \e center within +-range if given,
-  else within 0.6 times the trial amounts of the zero reference) and updates the rig.
+  Adds \e count observations of \e s at random configurations in view (around \e center within jointBox(degrees) if
+  given, else within 0.6 times the trial amounts of the zero reference) and updates the rig.
 */
 struct Observation {
   vpColVector q;
@@ -189,11 +224,11 @@ struct Observation {
 
 inline std::vector<Observation> reRegister(vpProjectiveRobot &robot, const ArmSetup &s, unsigned int count,
                                            vpUniRand &rng, vpGaussRand &noise,
-                                           const vpColVector &center = vpColVector(), double range = 0.0)
+                                           const vpColVector &center = vpColVector(), double degrees = 0.0)
 {
   std::vector<Observation> observations(count);
   for (Observation &o : observations) {
-    o.q = center.getRows() > 0 ? jointsNear({&s}, rng, center, range) : visibleJoints({&s}, rng);
+    o.q = center.getRows() > 0 ? jointsNear({&s}, rng, center, degrees) : visibleJoints({&s}, rng);
     s.images(s.armJoints(o.q), o.left, o.right, kSigma, noise, -1e9);
     robot.addRigObservation(o.q, o.left, o.right);
   }
@@ -296,7 +331,7 @@ inline BumpedRun runBumped(const ArmSetup &s, const ArmSetup &b, const vpProject
       r.detectedAfter = it;
     }
   }
-  reRegister(robot, b, poses, rng, noise, q, vpMath::rad(20.0));
+  reRegister(robot, b, poses, rng, noise, q, 20.0);
   vpColVector qRest(s.n(), 0.0);
   for (int it = 0; it < 150; ++it) {
     run.step(b, q, kSigma, noise);
@@ -328,7 +363,19 @@ struct BumpCase {
   double unbumpedMetres = 0.0;
 };
 
-inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind, bool withoutRefinement = false)
+//! What runBumpCase() runs besides the unbumped task and the bumped one from 3 observation poses.
+struct BumpOptions {
+  bool ratios = true;             // the re-registered prediction errors (ratio3, ratio10, ratio3General)
+  bool from10 = true;             // the bumped task from 10 observation poses
+  bool withoutRefinement = false; // the bumped task from 3 poses without the task's refinement
+};
+
+/*!
+  One bump case of \e s, seeded: the acquisition at 0.5 px, the bump (\e kind), a task whose target is within 20 deg
+  of the zero reference and start within 15 deg of the target (a slide: jointBox()), joints within the arm's limits,
+  run unbumped at 0.5 and 1 px and bumped six calls after its start (runBumped()), and what \e options asks.
+*/
+inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind, const BumpOptions &options = BumpOptions())
 {
   BumpCase c;
   vpUniRand rng(seed);
@@ -342,17 +389,17 @@ inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind, bool wi
     testPoses.push_back(visibleJoints({&s, &b}, rng));
   }
   c.preError = predictionError(acquired, s, testPoses, noise);
-  {
+  if (options.ratios) {
     vpProjectiveRobot robot = acquired;
     reRegister(robot, b, 3, rng, noise);
     c.ratio3 = predictionError(robot, b, testPoses, noise) / c.preError;
   }
-  {
+  if (options.ratios) {
     vpProjectiveRobot robot = acquired;
     reRegister(robot, b, 10, rng, noise);
     c.ratio10 = predictionError(robot, b, testPoses, noise) / c.preError;
   }
-  {
+  if (options.ratios) {
     vpProjectiveRobot robot = acquired;
     robot.setRigRegistrationMode(vpProjectiveRigRegistration::GENERAL);
     reRegister(robot, b, 3, rng, noise);
@@ -360,8 +407,8 @@ inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind, bool wi
   }
 
   // A task of the servo tests' kind: target within 20 deg of the zero reference, start within 15 deg of it.
-  const vpColVector qTarget = jointsNear({&s, &b}, rng, vpColVector(s.n(), 0.0), vpMath::rad(20.0));
-  const vpColVector qStart = jointsNear({&s, &b}, rng, qTarget, vpMath::rad(15.0));
+  const vpColVector qTarget = jointsNear({&s, &b}, rng, vpColVector(s.n(), 0.0), 20.0);
+  const vpColVector qStart = jointsNear({&s, &b}, rng, qTarget, 15.0);
 
   // No false alarm in unbumped runs to the target, at 0.5 and 1 px.
   for (double sigma : {0.5, 1.0}) {
@@ -383,8 +430,10 @@ inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind, bool wi
   // The bumped runs, their poses and noise seeded by the case: from 3 poses (with and, if asked, without the task's
   // refinement, the same poses) and from 10.
   c.from3 = runBumped(s, b, acquired, qTarget, qStart, 3, true, 7 * seed + 1);
-  c.from10 = runBumped(s, b, acquired, qTarget, qStart, 10, true, 7 * seed + 2);
-  if (withoutRefinement) {
+  if (options.from10) {
+    c.from10 = runBumped(s, b, acquired, qTarget, qStart, 10, true, 7 * seed + 2);
+  }
+  if (options.withoutRefinement) {
     c.from3Alone = runBumped(s, b, acquired, qTarget, qStart, 3, false, 7 * seed + 1);
   }
   c.detectedAfter = c.from3.detectedAfter;
@@ -402,7 +451,7 @@ inline double quantile(std::vector<double> x, double p)
 struct NoiseFreeBump {
   NoiseFreeBump(long seed, BumpKind kind)
       : s(pumaEyeToHand()), rng(seed), noise(1.0, 0.0, seed), robot(acquiredRobot(s, noise, 0.0)),
-        b(bumped(s, kind, rng)), qTarget(jointsNear({&s, &b}, rng, vpColVector(s.n(), 0.0), vpMath::rad(20.0)))
+        b(bumped(s, kind, rng)), qTarget(jointsNear({&s, &b}, rng, vpColVector(s.n(), 0.0), 20.0))
   {
   }
   const ArmSetup s;

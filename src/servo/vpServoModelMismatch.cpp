@@ -134,7 +134,10 @@ bool vpServoModelMismatch::endIteration()
       }
     }
   }
-  const bool disagrees = m_threshold > 0.0 && evaluated >= 2 && disagreeing == evaluated;
+  // Most features, not all: a camera turned about the line of sight of one feature leaves that feature where it was
+  // (a 2.9 deg turn about the optical axis moves a marker near the image centre by 4 px, the others by 7-13 px). A
+  // single feature off its prediction is vpServoFeatureHealth's, not a moved camera.
+  const bool disagrees = m_threshold > 0.0 && evaluated >= 2 && 2 * disagreeing > evaluated;
   m_disagreeing = disagrees ? m_disagreeing + 1 : 0;
   m_mismatch = m_disagreeing >= m_iterations;
   if (!disagrees && m_model != nullptr) {

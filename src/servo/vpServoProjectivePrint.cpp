@@ -64,7 +64,7 @@ const char *statusName(vpServoProjective::vpServoStatus status)
   case vpServoProjective::SERVO_NO_PLAN:
     return "SERVO_NO_PLAN (path planning found no plan for the target: qdot = 0)";
   case vpServoProjective::SERVO_MODEL_MISMATCH:
-    return "SERVO_MODEL_MISMATCH (every feature disagrees with the model's prediction at the joint readings: "
+    return "SERVO_MODEL_MISMATCH (most features disagree with the model's prediction at the joint readings: "
            "re-register a moved rig, or check the rig mounting, that the readings are the model's joints (their "
            "order, signs and units) and that the left and right images are not swapped; qdot = 0)";
   case vpServoProjective::SERVO_OPEN_LOOP:

@@ -72,8 +72,12 @@ void vpServoRigRefinement::start(const vpServoModelMismatch &mismatch, unsigned 
   // mean of the iterations that agreed), not the acquired markers' points: the task re-expresses s* from its point
   // triangulated through that rig, so the refined rig must map that rig's points, not the arm model's, to the new
   // images. The model's points differ from them by its own error (0.2 px RMS at a target), which a rig fitted to them
-  // near the target carried into s* (a median 0.3 mm of tool pose, issue 18). A feature without a memory keeps its
-  // point of an earlier re-registration, if any (the same model and features: stop() forgets them otherwise).
+  // near the target carried into s* (a median 0.3 mm of tool pose, issue 18). But the triangulations are those of the
+  // few calls before the move, whose noise the refined rig takes in as an error common to the features (issue 30: with
+  // those calls noise-free, 96-98 % of the bumped tasks reached their target instead of 93-94 %). For a feature that
+  // is an acquired marker, the mean of both points: errors of similar size (a few tenths of a pixel) and independent,
+  // the model's and the triangulations' noise. A feature without a memory keeps its point of an earlier
+  // re-registration, if any (the same model and features: stop() forgets them otherwise).
   m_active = false;
   m_calls = m_done = m_failed = 0;
   m_X.clear();
@@ -87,6 +91,10 @@ void vpServoRigRefinement::start(const vpServoModelMismatch &mismatch, unsigned 
   for (unsigned int i = 0; i < nbFeatures; ++i) {
     Eigen::Vector4d M;
     if (i < mismatch.getNumberOfFeatures() && mismatch.getTriangulatedMemory(i, M)) {
+      Eigen::Vector4d A;
+      if (mismatch.isMemoryExact(i) && mismatch.getMemory(i, A)) {
+        M = (M + (M.dot(A) < 0.0 ? Eigen::Vector4d(-A) : A)).normalized();
+      }
       m_zero[i] = M;
       m_hasZero[i] = 1;
     }

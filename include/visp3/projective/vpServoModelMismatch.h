@@ -33,7 +33,7 @@ BEGIN_VISP_NAMESPACE
 /*!
   \class vpServoModelMismatch
   \ingroup group_projective
-  \brief Tells when every feature of a servo task disagrees with the model's prediction, consistently over
+  \brief Tells when most features of a servo task disagree with the model's prediction, consistently over
   consecutive iterations: the cameras moved (a bumped camera, a moved rig) or the markers slipped, so that the model
   no longer describes what the cameras see. It complements vpServoFeatureHealth, which sets single features aside.
 
@@ -61,11 +61,14 @@ BEGIN_VISP_NAMESPACE
   one is then not computed), else the smaller of the two. A bump is sudden: both memories, frozen from the iteration
   before it, disagree at once and stay so.
 
-  <b>Decision.</b> An iteration disagrees when at least two features have a prediction and every one of them is
-  farther than the threshold (setThreshold(), default 5 px: well above the noise of a tracked feature and the
-  prediction error of an acquired model, well below the image motion of a camera turned by 1 degree or moved by
-  5 mm at 1 m with a 12.5 mm lens). The model mismatches when the last setConsecutiveIterations() iterations (default
-  2) all disagreed. Memories are updated only by the features that agree, never in an iteration that disagrees.
+  <b>Decision.</b> An iteration disagrees when at least two features have a prediction and more than half of them
+  (both of two, 2 of 3, 4 of 7) are farther than the threshold (setThreshold(), default 5 px: well above the noise of
+  a tracked feature and the prediction error of an acquired model, well below the image motion of a camera turned by
+  1 degree or moved by 5 mm at 1 m with a 12.5 mm lens). Not all of them: a camera turned about the line of sight of
+  one feature (about its optical axis, for a feature near the image centre) barely moves that feature; one feature
+  alone off its prediction is a tracking fault (vpServoFeatureHealth). The model mismatches when the last
+  setConsecutiveIterations() iterations (default 2) all disagreed. Memories are updated only by the features that agree,
+  never in an iteration that disagrees.
 
   Usage: startIteration(), observe() for every feature, endIteration(); reset() when the rig or the model changed.
   No allocation once the features are added.

@@ -39,7 +39,8 @@ BEGIN_VISP_NAMESPACE
   robot's rig was re-registered (vpProjectiveRobot::updateRig(), from as few as 3 observation poses), the task
   records, at each call that moves the arm, the images of its active features (pixels, 4x1 each) with their points at
   the zero reference (4x1, the model's projective frame) as the model-mismatch check triangulated them through the rig
-  before the re-registration (the frame of the task's \f$ s^* \f$ point), moved by \f$ H(q) \f$ (34). Every \e period
+  before the re-registration (the frame of the task's \f$ s^* \f$ point; for a feature recognised as an acquired
+  marker, the mean of that and the marker's point), moved by \f$ H(q) \f$ (34). Every \e period
   such calls it re-registers the rig from the update's observations and all the frames recorded so far
   (vpProjectiveRobot::refineRig()), \e count times, then stops recording (\ref servo_meas_mismatch).
 
@@ -72,9 +73,10 @@ public:
   /*!
     Starts recording after a re-registration, if enabled: the zero-reference points of the \e nbFeatures features are
     \e mismatch's means of their triangulations through the rig before the move
-    (vpServoModelMismatch::getTriangulatedMemory(): that rig's frame, as the task's re-expressed \f$ s^* \f$), taken
-    before it forgets them. Without any memory (the mismatch check off, or no feature ever agreed), nothing is
-    recorded.
+    (vpServoModelMismatch::getTriangulatedMemory(): that rig's frame, as the task's re-expressed \f$ s^* \f$), for a
+    feature recognised as an acquired marker (vpServoModelMismatch::isMemoryExact()) the unit mean of that and the
+    marker's point, taken before it forgets them. Without any memory (the mismatch check off, or no feature ever
+    agreed), nothing is recorded.
   */
   void start(const vpServoModelMismatch &mismatch, unsigned int nbFeatures);
   //! Stops recording and forgets the recorded frames and the features' points (another model or set of features).
