@@ -4,7 +4,10 @@
 # that ViSP build tree (find_package(VISP COMPONENTS visp_projective)).
 #
 # Usage (as root on Debian 12, after scripts/install-deps.sh):
-#   bash tests/contrib/build-visp-with-module.sh [WORK_DIR]
+#   bash tests/contrib/build-visp-with-module.sh [--configure-only] [WORK_DIR]
+# --configure-only stops after ViSP's configuration: ViSP found the module, its dependencies (ViSP modules, Ceres,
+# OpenCV, Eigen, nlohmann-json) and its sources (CI does that: about a minute; the build below took about 13 of CI's
+# minutes, for sources the main build compiles as they are).
 # WORK_DIR defaults to build/contrib-visp in the repository (.ci/run uses that). The source download and the ViSP
 # build are reused by later runs (incremental). JOBS (default 2) sets the build parallelism. About 9 minutes from
 # scratch on 2 shared cores (ViSP 8 min of it), seconds when nothing changed.
@@ -13,6 +16,11 @@
 # no tests, examples, tutorials, demos, apps or Java; every optional 3rd party off except Eigen3 (ViSP's matrix
 # back-end), a BLAS/LAPACK when found, pthread and X11 (for visp_gui).
 set -euo pipefail
+configure_only=0
+if [ "${1:-}" = "--configure-only" ]; then
+  configure_only=1
+  shift
+fi
 
 repo="$(cd "$(dirname "$0")/../.." && pwd)"
 work="$(mkdir -p "${1:-$repo/build/contrib-visp}" && cd "${1:-$repo/build/contrib-visp}" && pwd)"
@@ -62,6 +70,12 @@ cmake -S "$src" -B "$build" -Wno-dev -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAG
   -DVISP_CONTRIB_MODULES_PATH="$repo/modules" > "$work/visp-configure.log"
 grep -A3 "ViSP modules:" "$work/visp-configure.log" || true
 grep -q "visp_projective" "$build/VISPModules.cmake" 2>/dev/null || { echo "visp_projective not among the configured modules" >&2; exit 1; }
+if [ "$configure_only" -eq 1 ]; then
+  grep -q "To be built:.* projective" "$work/visp-configure.log" \
+    || { echo "ViSP configured without its visp_projective module" >&2; exit 1; }
+  step "ViSP configured with the visp_projective module (--configure-only: not built)"
+  exit 0
+fi
 
 step "building ViSP with -j$jobs"
 cmake --build "$build" -j"$jobs" > "$work/visp-build.log" 2>&1 || { tail -50 "$work/visp-build.log"; exit 1; }

@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets on the model loader and on the session reader with clang++-14
-# (-fsanitize=fuzzer,address,undefined, the library sources instrumented too) in their own build directory, writes
+# (-fsanitize=fuzzer,address,undefined, the library's parsers instrumented too) in their own build directory, writes
 # the seed corpora and fuzzes both at once, each for half the given time (the total stays the given time).
 #   bash tests/fuzz/run-fuzz.sh [seconds (60)] [build directory (build-fuzz)]
 # A build directory already configured with -DVISP_PROJECTIVE_FUZZ=ON (for instance a clang++-14 sanitizer build of the
-# tests configured with both -DVISP_PROJECTIVE_SANITIZE=ON and -DVISP_PROJECTIVE_FUZZ=ON; CI uses its own build-fuzz)
-# is used as it is: its library is already instrumented for libFuzzer, only the fuzz targets are built there.
+# tests configured with both -DVISP_PROJECTIVE_SANITIZE=ON and -DVISP_PROJECTIVE_FUZZ=ON, as CI's build-asan) is used
+# as it is: its library's parsers are already instrumented for libFuzzer, only the fuzz targets are built there.
 # Fails if a fuzzer finds anything (crash, sanitizer report, leak, timeout, an exception other than vpException, a
 # broken property); the reproducer is then under <build>/fuzz/<target>/artifacts/ (replay:
 # <build>/tests/fuzz/<target> <file>).
