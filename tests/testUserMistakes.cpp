@@ -299,6 +299,54 @@ TEST(UserMistakes, LeftAndRightSwappedEverywhere)
   }
 }
 
+// Left and right images swapped in the servo only (the acquisition had them right: a program that builds its features
+// with the images in the other order): SERVO_MODEL_MISMATCH naming the exchange, on ten tasks per arm.
+TEST(UserMistakes, LeftAndRightSwappedInTheServoOnly)
+{
+  for (const ArmCase &arm : kMistakeArms) {
+    const ArmSetup s = arm.make();
+    const vpProjectiveRobot model = calibratedRobot(s, 0.3, 2);
+    LoopSettings user = userLoop();
+    user.swapImages = true;
+    int latest = 0;
+    for (long seed = 40; seed < 50; ++seed) {
+      const ServoOutcome o = servoWithMistake(s, model, user, seed);
+      expectStopped("left and right images swapped (servo only)", arm.label, o, 0, {"SERVO_MODEL_MISMATCH"},
+                    "the left and right images are exchanged");
+      latest = std::max(latest, o.stoppedAt());
+    }
+    row("left and right images swapped (servo only)", arm.label,
+        "SERVO_MODEL_MISMATCH at call " + std::to_string(latest) + " at the latest of 10 tasks",
+        "the left and right images are exchanged ...");
+  }
+}
+
+// Left and right images swapped in the acquisition only, against the rig's F given to it (the procedure): the model
+// learns the exchanged cameras, and the servo, which gives the images in the right order, stops at once naming the
+// exchange.
+TEST(UserMistakes, LeftAndRightSwappedInTheAcquisitionOnly)
+{
+  for (const ArmCase &arm : kMistakeArms) {
+    const ArmSetup s = arm.make();
+    const ProcedureRun run =
+        runProcedure(s, 32, [](const vpColVector &, std::vector<vpImagePoint> &left, std::vector<vpImagePoint> &right) {
+          std::swap(left, right);
+          return true;
+        });
+    ASSERT_EQ(run.code, -1) << arm.label << ": " << run.message;
+    int latest = 0;
+    for (long seed = 50; seed < 53; ++seed) {
+      const ServoOutcome o = servoWithMistake(s, run.model, userLoop(), seed);
+      expectStopped("left and right images swapped (acquisition only)", arm.label, o, 0, {"SERVO_MODEL_MISMATCH"},
+                    "the left and right images are exchanged");
+      latest = std::max(latest, o.stoppedAt());
+    }
+    row("left and right images swapped (acquisition only, the rig's F given)", arm.label,
+        "SERVO_MODEL_MISMATCH at call " + std::to_string(latest) + " at the latest of 3 tasks",
+        "the left and right images are exchanged ...");
+  }
+}
+
 // A session of another cell: a model calibrated from a session of this cell (vpProjectiveSessionCalibration) checked
 // against a session recorded in another cell of the same arm and markers, whose rig stands 6 cm and 4 deg elsewhere
 // (vpProjectiveSessionCalibration::check(), the sessions without recorded cameras). Every frame is refused, both

@@ -170,7 +170,10 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
         status == vpServoProjective::SERVO_ARM_NOT_FOLLOWING) {
       result.end = SERVO_STATUS;
       why << "the task stopped: " << vpServoProjective::toString(status);
-      if (status == vpServoProjective::SERVO_MODEL_MISMATCH) {
+      if (status == vpServoProjective::SERVO_MODEL_MISMATCH && task.getModelMismatch().isImagesExchanged()) {
+        why << "; the left and right images are exchanged: the stereo image source gives the model's left camera "
+               "as its right one (check the order of the cameras given to it)";
+      } else if (status == vpServoProjective::SERVO_MODEL_MISMATCH) {
         why << "; run visp-projective check on the recorded session: if a camera moved, re-register the rig or "
                "acquire again";
       } else if (status == vpServoProjective::SERVO_NO_PLAN) {

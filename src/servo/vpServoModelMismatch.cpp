@@ -35,11 +35,24 @@ Eigen::Vector4d alignedWith(const Eigen::Vector4d &reference, const Eigen::Vecto
 {
   return reference.dot(M) < 0.0 ? Eigen::Vector4d(-M) : M;
 }
+
+//! The stereo point \e s = (u, v, u', v') with its left and right images exchanged.
+Eigen::Vector4d exchanged(const Eigen::Vector4d &s)
+{
+  return Eigen::Vector4d(s(2), s(3), s(0), s(1));
+}
+
+//! The larger over both images of the distance between the stereo points \e a and \e b (pixels).
+double stereoDistance(const Eigen::Vector4d &a, const Eigen::Vector4d &b)
+{
+  // max(sqrt x, sqrt y) = sqrt(max(x, y)): one square root.
+  return std::sqrt(std::max((a.head<2>() - b.head<2>()).squaredNorm(), (a.tail<2>() - b.tail<2>()).squaredNorm()));
+}
 } // namespace
 
 vpServoModelMismatch::vpServoModelMismatch()
-    : m_records(), m_threshold(5.0), m_iterations(2), m_disagreeing(0), m_mismatch(false), m_model(nullptr),
-      m_data(nullptr)
+    : m_records(), m_threshold(5.0), m_iterations(2), m_disagreeing(0), m_exchangedIterations(0), m_mismatch(false),
+      m_model(nullptr), m_data(nullptr)
 {
 }
 
@@ -74,11 +87,14 @@ void vpServoModelMismatch::reset()
     r.triangulated.setZero();
     r.s.setZero();
     r.distance = -1.0;
+    r.exchangedDistance = -1.0;
+    r.marker = -1;
     r.usable = false;
     r.hasMemory = false;
     r.exact = false;
   }
   m_disagreeing = 0;
+  m_exchangedIterations = 0;
   m_mismatch = false;
 }
 
@@ -95,27 +111,28 @@ void vpServoModelMismatch::observe(unsigned int i, bool usable)
   r.s = s;
   r.usable = usable && s.allFinite();
   r.distance = -1.0;
+  r.exchangedDistance = -1.0;
   if (!r.usable || !r.hasMemory || m_model == nullptr) {
     return;
   }
   // The recent prediction first (it follows the model's drift, offset to where the feature last agreed): within the
   // threshold plus a tenth of the motion it predicts since then, the feature agrees and the absolute prediction is not
-  // needed; otherwise the smaller of both distances (each the larger over both images).
-  // Each distance is the larger over both images with one square root: max(sqrt a, sqrt b) = sqrt(max(a, b)), sqrt
-  // being monotone. The absolute memory is normalised only when the recent prediction does not settle it.
+  // needed; otherwise the smaller of both distances (each the larger over both images). The absolute memory is
+  // normalised only when the recent prediction does not settle it.
   for (int k = 0; k < 2; ++k) {
     Eigen::Vector4d sHat;
     if (m_data->predict(k == 0 ? r.recent : Eigen::Vector4d(r.sum.normalized()), sHat)) {
       double slack = 0.0;
       if (k == 0) {
         sHat += r.offset; // the model's motion from where the feature last agreed
-        slack = kMotionTolerance * std::sqrt(std::max((sHat.head<2>() - r.last.head<2>()).squaredNorm(),
-                                                      (sHat.tail<2>() - r.last.tail<2>()).squaredNorm()));
+        slack = kMotionTolerance * stereoDistance(sHat, r.last);
       }
-      const double d = std::max(0.0, std::sqrt(std::max((sHat.head<2>() - s.head<2>()).squaredNorm(),
-                                                        (sHat.tail<2>() - s.tail<2>()).squaredNorm())) -
-                                         slack);
+      const double d = std::max(0.0, stereoDistance(sHat, s) - slack);
       r.distance = r.distance < 0.0 ? d : std::min(r.distance, d);
+      if (r.exact) { // an acquired marker's images, exchanged, against the same prediction
+        const double dx = std::max(0.0, stereoDistance(sHat, exchanged(s)) - slack);
+        r.exchangedDistance = r.exchangedDistance < 0.0 ? dx : std::min(r.exchangedDistance, dx);
+      }
     }
     if (r.distance >= 0.0 && r.distance <= m_threshold) {
       break;
@@ -125,22 +142,40 @@ void vpServoModelMismatch::observe(unsigned int i, bool usable)
 
 bool vpServoModelMismatch::endIteration()
 {
-  unsigned int evaluated = 0, disagreeing = 0;
-  for (const vpRecord &r : m_records) {
+  unsigned int evaluated = 0, disagreeing = 0, exchangedOnly = 0, givenOnly = 0;
+  for (vpRecord &r : m_records) {
     if (r.distance >= 0.0) {
       ++evaluated;
       if (r.distance > m_threshold) {
         ++disagreeing;
       }
     }
+    // Left and right exchanged: an acquired marker predicted, or recognised, only with its images exchanged.
+    r.marker = -1;
+    if (!r.usable || m_model == nullptr) {
+      continue;
+    }
+    bool given = false, other = false;
+    if (r.exact) {
+      given = r.distance >= 0.0 && r.distance <= m_threshold;
+      other = r.exchangedDistance >= 0.0 && r.exchangedDistance <= m_threshold;
+    } else {
+      r.marker = m_model->matchMarker(m_data->getDisplacement(), r.s);
+      given = r.marker >= 0;
+      other = m_model->matchMarker(m_data->getDisplacement(), exchanged(r.s)) >= 0;
+    }
+    exchangedOnly += other && !given ? 1 : 0;
+    givenOnly += given && !other ? 1 : 0;
   }
   // Most features, not all: a camera turned about the line of sight of one feature leaves that feature where it was
   // (a 2.9 deg turn about the optical axis moves a marker near the image centre by 4 px, the others by 7-13 px). A
   // single feature off its prediction is vpServoFeatureHealth's, not a moved camera.
   const bool disagrees = m_threshold > 0.0 && evaluated >= 2 && 2 * disagreeing > evaluated;
+  const bool exchangedImages = m_threshold > 0.0 && exchangedOnly >= 1 && givenOnly == 0;
   m_disagreeing = disagrees ? m_disagreeing + 1 : 0;
-  m_mismatch = m_disagreeing >= m_iterations;
-  if (!disagrees && m_model != nullptr) {
+  m_exchangedIterations = exchangedImages ? m_exchangedIterations + 1 : 0;
+  m_mismatch = m_disagreeing >= m_iterations || m_exchangedIterations >= m_iterations;
+  if (!disagrees && !exchangedImages && m_model != nullptr) {
     for (size_t i = 0; i < m_records.size(); ++i) {
       vpRecord &r = m_records[i];
       if (!r.usable || (r.hasMemory && (r.distance < 0.0 || r.distance > m_threshold))) {
@@ -160,9 +195,8 @@ bool vpServoModelMismatch::endIteration()
       }
       // A feature that is an acquired marker is remembered as that marker's point: one stereo pair's depth error,
       // turned sideways by a large motion, would otherwise exceed the threshold for every feature of a 3-point task.
-      const int j = m_model->matchMarker(m_data->getDisplacement(), r.s);
-      if (j >= 0) {
-        r.sum = m_model->markers()[static_cast<size_t>(j)].normalized();
+      if (r.marker >= 0) { // recognised above
+        r.sum = m_model->markers()[static_cast<size_t>(r.marker)].normalized();
         r.hasMemory = r.exact = true;
         continue;
       }

@@ -426,7 +426,7 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
       m_refinement.refine(*m_link.modifiable);
     }
   }
-  noticeServoStatus(last(), m_planner); // a program that never reads the status hears of it once
+  noticeServoStatus(last(), m_planner, m_mismatch); // a program that never reads the status hears of it once
 }
 
 vpColVector vpServoProjective::computeControlLaw(const vpColVector &q)

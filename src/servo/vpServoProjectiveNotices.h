@@ -19,6 +19,7 @@
 #define _vpServoProjectiveNotices_h_
 
 #include <visp3/projective/vpProjectivePathPlanner.h>
+#include <visp3/projective/vpServoModelMismatch.h>
 #include <visp3/projective/vpServoProjectiveReport.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -30,10 +31,12 @@ namespace vpProjectiveInternal
 /*!
   After each computeControlLaw(): the first time in the process that a call ends in a status other than
   SERVO_RUNNING (the task stopped, degraded or left the user's plan), one line on std::cerr names the status, what
-  it means and the fix (vpServoProjective::toString()), with the arm-following check's diagnosis or the planner's
-  description when they say more. Nothing is built otherwise.
+  it means and the fix (vpServoProjective::toString()), with the arm-following check's diagnosis, the planner's
+  description or the model-mismatch check's finding of exchanged images when they say more. Nothing is built
+  otherwise.
 */
-void noticeServoStatus(const vpServoProjectiveReport &report, const vpProjectivePathPlanner &planner);
+void noticeServoStatus(const vpServoProjectiveReport &report, const vpProjectivePathPlanner &planner,
+                       const vpServoModelMismatch &mismatch);
 } // namespace vpProjectiveInternal
 
 #endif

@@ -52,6 +52,12 @@ const char *stateName(vpServoFeatureHealth::vpFeatureState state)
   return "?";
 }
 
+//! What the model-mismatch check's finding of exchanged images means, and the fix.
+const char *const kImagesExchanged =
+    "the left and right images are exchanged: the acquired markers are where the model predicts them only with the "
+    "left image taken for the right one and the converse; give the left camera's image first, as in the "
+    "acquisition, to vpFeatureStereoPoint::buildFrom(ipLeft, ipRight); qdot = 0";
+
 const char *statusName(vpServoProjective::vpServoStatus status)
 {
   switch (status) {
@@ -152,7 +158,10 @@ void vpServoProjective::print(std::ostream &os) const
   os << "Status and settings\n";
   if (computed) {
     os << "  Status: " << statusName(last().m_status) << "\n";
-    if (last().m_status == SERVO_MODEL_MISMATCH && m_link.robot != nullptr && m_link.robot->getRigGeneration() == 0) {
+    if (last().m_status == SERVO_MODEL_MISMATCH && m_mismatch.isImagesExchanged()) {
+      os << "  The images: " << kImagesExchanged << "\n";
+    } else if (last().m_status == SERVO_MODEL_MISMATCH && m_link.robot != nullptr &&
+               m_link.robot->getRigGeneration() == 0) {
       // No re-registration since the acquisition: the model may never have fit, whatever moved.
       os << "  Model never re-registered since its acquisition: if it never fit, check the rig mounting ("
          << (m_link.robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "EYE_IN_HAND" : "EYE_TO_HAND")
@@ -252,7 +261,8 @@ std::string vpServoProjective::toString(vpServoStatus status)
 }
 
 void vpProjectiveInternal::noticeServoStatus(const vpServoProjectiveReport &report,
-                                             const vpProjectivePathPlanner &planner)
+                                             const vpProjectivePathPlanner &planner,
+                                             const vpServoModelMismatch &mismatch)
 {
   // Once per status kind and process (vpProjectiveNotices): the line is built only when it is printed.
   const vpServoProjectiveReport::vpServoStatus status = report.getStatus();
@@ -260,7 +270,9 @@ void vpProjectiveInternal::noticeServoStatus(const vpServoProjectiveReport &repo
     return;
   }
   std::string line = std::string("vpServoProjective: ") + statusName(status);
-  if (status == vpServoProjectiveReport::SERVO_ARM_NOT_FOLLOWING) {
+  if (status == vpServoProjectiveReport::SERVO_MODEL_MISMATCH && mismatch.isImagesExchanged()) {
+    line = std::string("vpServoProjective: SERVO_MODEL_MISMATCH (") + kImagesExchanged + ")";
+  } else if (status == vpServoProjectiveReport::SERVO_ARM_NOT_FOLLOWING) {
     line += ": " + report.getArmFollowing().getDiagnosis();
   } else if (status == vpServoProjectiveReport::SERVO_NO_PLAN) {
     line += ": " + planner.getDescription();

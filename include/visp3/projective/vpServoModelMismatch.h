@@ -70,6 +70,17 @@ BEGIN_VISP_NAMESPACE
   setConsecutiveIterations() iterations (default 2) all disagreed. Memories are updated only by the features that agree,
   never in an iteration that disagrees.
 
+  <b>Left and right images exchanged.</b> A program that gives the right camera's image as the left one (and the
+  converse) after an acquisition that had them right: a feature that is an acquired marker is then recognised
+  (vpProjectiveArmModel::matchMarker()) or predicted within the threshold only with its two images exchanged. An
+  iteration is exchanged when a feature is so and none is recognised or predicted only as given (a feature whose two
+  images nearly coincide, as near the fixation point of verged cameras, tells neither; nor does a feature that is no
+  acquired marker); the model mismatches, isImagesExchanged() true, when the last setConsecutiveIterations()
+  iterations all were, from the first call on: features triangulated from exchanged images would otherwise be
+  remembered as points that no arm carries, and the disagreement would show only after the arm moved far enough.
+  Memories are not updated in such an iteration. A task without acquired markers among its features does not tell
+  it.
+
   Usage: startIteration(), observe() for every feature, endIteration(); reset() when the rig or the model changed.
   No allocation once the features are added.
 */
@@ -116,6 +127,11 @@ public:
 
   //! True if the last endIteration() found a mismatch.
   bool isMismatch() const { return m_mismatch; }
+  /*!
+    True if the mismatch of the last endIteration() is of left and right images exchanged (see the class
+    documentation): give the left camera's image first.
+  */
+  bool isImagesExchanged() const { return m_mismatch && m_exchangedIterations >= m_iterations; }
   //! Prediction distance (pixels) of feature \e i at the last iteration, -1 if not evaluated (no check of \e i).
   double getDistance(unsigned int i) const { return m_records[i].distance; }
   /*!
@@ -158,6 +174,8 @@ private:
     Eigen::Vector4d sum;          // sum of the sign-aligned unit points at the zero reference
     Eigen::Vector4d s;            // this iteration's value
     double distance;              // this iteration's distance, -1: not evaluated
+    double exchangedDistance;     // the same with the two images exchanged (an acquired marker's prediction), or -1
+    int marker;                   // this iteration's vpProjectiveArmModel::matchMarker() of a non-exact memory, or -1
     bool usable;                  // this iteration
     bool hasMemory;               // sum is set
     bool exact;                   // sum is an acquired marker's point (vpProjectiveArmModel::matchMarker())
@@ -171,6 +189,7 @@ private:
   double m_threshold;
   unsigned int m_iterations;
   unsigned int m_disagreeing;
+  unsigned int m_exchangedIterations; // consecutive iterations seeing the left and right images exchanged
   bool m_mismatch;
   const vpProjectiveArmModel *m_model;
   const vpServoProjectiveData *m_data;
