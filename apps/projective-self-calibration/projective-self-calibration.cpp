@@ -70,11 +70,7 @@ selfcal::RigErrors selfCalibrate(const vpProjectiveRobot &robot, const selfcal::
                                  const selfcal::SkewedRig &rig,
                                  const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames)
 {
-  vpProjectiveSelfCalibration calibration(robot.getModel(), frames);
-  if (arm.name != "prismatic") { // two markers whose distance was measured with a ruler
-    const std::vector<vpColVector> X = arm.arm.getMarkers(arm.qRef);
-    calibration.setScale(vpProjectiveSelfCalibration::SCALE_MARKER_DISTANCE, 0, 1, (X[0] - X[1]).frobeniusNorm());
-  }
+  const vpProjectiveSelfCalibration calibration = selfcal::selfCalibration(robot, arm, frames);
   Eigen::Matrix3d Kl, Kr;
   Eigen::Matrix4d lMr;
   calibration.getMetricStereoRig(Kl, Kr, lMr);
@@ -160,11 +156,9 @@ int main(int argc, char **argv)
       std::vector<selfcal::RigErrors> runs[METHODS];
       std::vector<double> grids; // the grid's width (cm): smaller than asked when both views cannot see it whole
       for (unsigned int seed = first; seed < first + seeds; ++seed) {
-        // Separate streams: the rig, the robot's views, the grid's.
-        vpUniRand rigRng(1000003ul * seed + a), viewRng(2000003ul * seed + a), gridRng(3000017ul * seed + a);
-        vpGaussRand noise(1.0, 0.0, static_cast<long>(4000037ul * seed + a));
-        const selfcal::SkewedRig rig = selfcal::randomRig(arm, rigRng);
-        const vpProjectiveRobot robot = selfcal::acquire(arm, rig, sigma, frames, range, noise, viewRng);
+        selfcal::WorldStreams streams(seed, a);
+        const selfcal::SkewedRig rig = selfcal::randomRig(arm, streams.rig);
+        const vpProjectiveRobot robot = selfcal::acquire(arm, rig, sigma, frames, range, streams.noise, streams.view);
         std::vector<vpProjectiveArmAcquisition::vpFrame> all = robot.getAcquisition().getFrames();
         const std::vector<vpProjectiveArmAcquisition::vpFrame> acquisition(
             all.begin(), all.end() - robot.getAcquisition().getNumberOfCalibrationFrames());
@@ -177,11 +171,13 @@ int main(int argc, char **argv)
         Eigen::Matrix3d Kl, Kr;
         Eigen::Matrix4d lMr;
         double used = 0.0;
-        selfcal::planarCalibration(rig, views, gridPoints, gridWidth, sigma, noise, gridRng, Kl, Kr, lMr, used);
+        selfcal::planarCalibration(rig, views, gridPoints, gridWidth, sigma, streams.noise, streams.grid, Kl, Kr, lMr,
+                                   used);
         grids.push_back(100.0 * used);
         runs[GRID].push_back(selfcal::compare(Kl, Kr, lMr, rig, true));
         const selfcal::SkewedRig natural = selfcal::withoutSkew(rig);
-        selfcal::planarCalibration(natural, views, gridPoints, gridWidth, sigma, noise, gridRng, Kl, Kr, lMr, used);
+        selfcal::planarCalibration(natural, views, gridPoints, gridWidth, sigma, streams.noise, streams.grid, Kl, Kr,
+                                   lMr, used);
         runs[GRID_NO_SKEW].push_back(selfcal::compare(Kl, Kr, lMr, natural, true));
       }
       std::cout << std::defaultfloat << std::setprecision(3) << "\n"
