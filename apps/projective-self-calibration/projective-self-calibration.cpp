@@ -32,8 +32,12 @@
   seeds, and how often the self-calibration's stated standard deviations cover its errors (every component within
   3 sigma).
 
+  With --bound, instead of vpCalibration: what the data allows (what-the-data-allows.cpp), the Cramer-Rao bound of
+  these frames at the true parameters beside the self-calibration's errors and stated deviations, with parameters
+  known, and of more, wider and suggested frames.
+
   Usage: projective-self-calibration [--seeds N] [--first S] [--noise SIGMA] [--frames N] [--range DEG] [--arm NAME]
-                                     [--grid-points N] [--grid-width M] [--grid-views N] [--grid-seeds N]
+                                     [--grid-points N] [--grid-width M] [--grid-views N] [--grid-seeds N] [--bound]
   (vpCalibration's virtual visual servoing takes most of the time: about 10 s of CPU per camera with 43 views.)
   Exits with 1 if a self-calibration's median focal length error exceeds 1 % or its rig rotation 1 deg.
 */
@@ -50,6 +54,7 @@
 
 #include "calibration-world.h"
 #include "command-line.h"
+#include "information-bound.h"
 #include "paper-world.h"
 #include "planar-calibration.h"
 #include "rig-errors.h"
@@ -127,6 +132,7 @@ int main(int argc, char **argv)
   unsigned int seeds = 10, first = 1, frames = 30, gridPoints = 7, gridViews = 0, gridSeeds = 0;
   double sigma = 0.5, range = 30.0, gridWidth = 0.30;
   std::string armName = "all";
+  bool bound = false;
   app::CommandLine cmd;
   cmd.add("--seeds", seeds, "N", "number of seeds (worlds) per arm", 1)
       .add("--first", first, "S", "the first seed")
@@ -138,7 +144,9 @@ int main(int argc, char **argv)
       .add("--grid-width", gridWidth, "M", "the planar grid's width (m)", 0.01)
       .add("--grid-views", gridViews, "N", "the grid's views (0: as many as the self-calibration's images)")
       .add("--grid-seeds", gridSeeds, "N",
-           "vpCalibration on the first N seeds only (0: all; it takes most of the time)");
+           "vpCalibration on the first N seeds only (0: all; it takes most of the time)")
+      .flag("--bound", bound, true,
+            "instead of vpCalibration, what the data allows: the Cramer-Rao bound of these and other frames");
   int exitCode = 0;
   if (!cmd.parse(argc, argv, exitCode)) {
     return exitCode;
@@ -146,6 +154,9 @@ int main(int argc, char **argv)
   try {
     const std::vector<std::string> arms = armName == "all" ? std::vector<std::string>{"puma", "viper850", "prismatic"}
                                                            : std::vector<std::string>{armName};
+    if (bound) {
+      return selfcal::whatTheDataAllows(arms, seeds, first, sigma, frames, range);
+    }
     bool ok = true;
     std::cout << std::setprecision(3) << "Errors at " << sigma << " px, " << frames << " frames within +-" << range
               << " deg, vpCalibration on a " << gridPoints << " x " << gridPoints << " grid " << 100 * gridWidth
