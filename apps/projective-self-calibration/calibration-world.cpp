@@ -34,8 +34,6 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace selfcal
 {
-namespace
-{
 Eigen::Matrix4d eigenOf(const vpHomogeneousMatrix &M)
 {
   Eigen::Matrix4d E;
@@ -47,6 +45,8 @@ Eigen::Matrix4d eigenOf(const vpHomogeneousMatrix &M)
   return E;
 }
 
+namespace
+{
 vpHomogeneousMatrix homogeneousOf(const Eigen::Matrix4d &E)
 {
   vpHomogeneousMatrix M;
@@ -256,5 +256,22 @@ vpProjectiveRobot acquire(const StudyArm &arm, const SkewedRig &rig, double sigm
     robot.addCalibrationFrame(q[k], left[k], right[k]);
   }
   return robot;
+}
+
+WorldStreams::WorldStreams(unsigned int seed, size_t a)
+    : rig(1000003ul * seed + a), view(2000003ul * seed + a), grid(3000017ul * seed + a),
+      noise(1.0, 0.0, static_cast<long>(4000037ul * seed + a))
+{
+}
+
+vpProjectiveSelfCalibration selfCalibration(const vpProjectiveRobot &robot, const StudyArm &arm,
+                                            const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames)
+{
+  vpProjectiveSelfCalibration calibration(robot.getModel(), frames);
+  if (arm.name != "prismatic") { // two markers whose distance was measured with a ruler
+    const std::vector<vpColVector> X = arm.arm.getMarkers(arm.qRef);
+    calibration.setScale(vpProjectiveSelfCalibration::SCALE_MARKER_DISTANCE, 0, 1, (X[0] - X[1]).frobeniusNorm());
+  }
+  return calibration;
 }
 } // namespace selfcal

@@ -34,6 +34,7 @@
 #include <visp3/core/vpUniRand.h>
 
 #include <visp3/projective/vpProjectiveRobot.h>
+#include <visp3/projective/vpProjectiveSelfCalibration.h>
 #include <visp3/projective/vpSimulatorArm.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -42,6 +43,9 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace selfcal
 {
+//! \e M as an Eigen matrix.
+Eigen::Matrix4d eigenOf(const vpHomogeneousMatrix &M);
+
 //! A stereo rig of two pinhole cameras with full intrinsics (skew included), and its images.
 struct SkewedRig {
   Eigen::Matrix3d Kl, Kr;  //!< intrinsics (K(2, 2) = 1)
@@ -95,6 +99,21 @@ SkewedRig withoutSkew(const SkewedRig &rig);
 */
 vpProjectiveRobot acquire(const StudyArm &arm, const SkewedRig &rig, double sigma, unsigned int frames, double rangeDeg,
                           vpGaussRand &noise, vpUniRand &rng);
+
+//! The random streams of a study's world, seed \e seed, arm \e a of the run: the rig's, the robot's views', the
+//! grid's and the pixel noise.
+struct WorldStreams {
+  vpUniRand rig, view, grid;
+  vpGaussRand noise;
+  WorldStreams(unsigned int seed, size_t a);
+};
+
+/*!
+  The self-calibration of \e robot over \e frames, its lengths in the prismatic joint's unit or, for the other arms,
+  in metres from the distance of markers 0 and 1 (measured with a ruler).
+*/
+vpProjectiveSelfCalibration selfCalibration(const vpProjectiveRobot &robot, const StudyArm &arm,
+                                            const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames);
 } // namespace selfcal
 
 #endif

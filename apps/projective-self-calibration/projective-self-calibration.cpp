@@ -32,8 +32,12 @@
   seeds, and how often the self-calibration's stated standard deviations cover its errors (every component within
   3 sigma).
 
+  With --bound, instead of vpCalibration: what the data allows (what-the-data-allows.cpp), the Cramer-Rao bound of
+  these frames at the true parameters beside the self-calibration's errors and stated deviations, with parameters
+  known, and of more, wider and suggested frames.
+
   Usage: projective-self-calibration [--seeds N] [--first S] [--noise SIGMA] [--frames N] [--range DEG] [--arm NAME]
-                                     [--grid-points N] [--grid-width M] [--grid-views N] [--grid-seeds N]
+                                     [--grid-points N] [--grid-width M] [--grid-views N] [--grid-seeds N] [--bound]
   (vpCalibration's virtual visual servoing takes most of the time: about 10 s of CPU per camera with 43 views.)
   Exits with 1 if a self-calibration's median focal length error exceeds 1 % or its rig rotation 1 deg.
 */
@@ -50,6 +54,7 @@
 
 #include "calibration-world.h"
 #include "command-line.h"
+#include "information-bound.h"
 #include "paper-world.h"
 #include "planar-calibration.h"
 #include "rig-errors.h"
@@ -70,11 +75,7 @@ selfcal::RigErrors selfCalibrate(const vpProjectiveRobot &robot, const selfcal::
                                  const selfcal::SkewedRig &rig,
                                  const std::vector<vpProjectiveArmAcquisition::vpFrame> &frames)
 {
-  vpProjectiveSelfCalibration calibration(robot.getModel(), frames);
-  if (arm.name != "prismatic") { // two markers whose distance was measured with a ruler
-    const std::vector<vpColVector> X = arm.arm.getMarkers(arm.qRef);
-    calibration.setScale(vpProjectiveSelfCalibration::SCALE_MARKER_DISTANCE, 0, 1, (X[0] - X[1]).frobeniusNorm());
-  }
+  const vpProjectiveSelfCalibration calibration = selfcal::selfCalibration(robot, arm, frames);
   Eigen::Matrix3d Kl, Kr;
   Eigen::Matrix4d lMr;
   calibration.getMetricStereoRig(Kl, Kr, lMr);
@@ -131,6 +132,7 @@ int main(int argc, char **argv)
   unsigned int seeds = 10, first = 1, frames = 30, gridPoints = 7, gridViews = 0, gridSeeds = 0;
   double sigma = 0.5, range = 30.0, gridWidth = 0.30;
   std::string armName = "all";
+  bool bound = false;
   app::CommandLine cmd;
   cmd.add("--seeds", seeds, "N", "number of seeds (worlds) per arm", 1)
       .add("--first", first, "S", "the first seed")
@@ -142,7 +144,9 @@ int main(int argc, char **argv)
       .add("--grid-width", gridWidth, "M", "the planar grid's width (m)", 0.01)
       .add("--grid-views", gridViews, "N", "the grid's views (0: as many as the self-calibration's images)")
       .add("--grid-seeds", gridSeeds, "N",
-           "vpCalibration on the first N seeds only (0: all; it takes most of the time)");
+           "vpCalibration on the first N seeds only (0: all; it takes most of the time)")
+      .flag("--bound", bound, true,
+            "instead of vpCalibration, what the data allows: the Cramer-Rao bound of these and other frames");
   int exitCode = 0;
   if (!cmd.parse(argc, argv, exitCode)) {
     return exitCode;
@@ -150,6 +154,9 @@ int main(int argc, char **argv)
   try {
     const std::vector<std::string> arms = armName == "all" ? std::vector<std::string>{"puma", "viper850", "prismatic"}
                                                            : std::vector<std::string>{armName};
+    if (bound) {
+      return selfcal::whatTheDataAllows(arms, seeds, first, sigma, frames, range);
+    }
     bool ok = true;
     std::cout << std::setprecision(3) << "Errors at " << sigma << " px, " << frames << " frames within +-" << range
               << " deg, vpCalibration on a " << gridPoints << " x " << gridPoints << " grid " << 100 * gridWidth
@@ -160,11 +167,9 @@ int main(int argc, char **argv)
       std::vector<selfcal::RigErrors> runs[METHODS];
       std::vector<double> grids; // the grid's width (cm): smaller than asked when both views cannot see it whole
       for (unsigned int seed = first; seed < first + seeds; ++seed) {
-        // Separate streams: the rig, the robot's views, the grid's.
-        vpUniRand rigRng(1000003ul * seed + a), viewRng(2000003ul * seed + a), gridRng(3000017ul * seed + a);
-        vpGaussRand noise(1.0, 0.0, static_cast<long>(4000037ul * seed + a));
-        const selfcal::SkewedRig rig = selfcal::randomRig(arm, rigRng);
-        const vpProjectiveRobot robot = selfcal::acquire(arm, rig, sigma, frames, range, noise, viewRng);
+        selfcal::WorldStreams streams(seed, a);
+        const selfcal::SkewedRig rig = selfcal::randomRig(arm, streams.rig);
+        const vpProjectiveRobot robot = selfcal::acquire(arm, rig, sigma, frames, range, streams.noise, streams.view);
         std::vector<vpProjectiveArmAcquisition::vpFrame> all = robot.getAcquisition().getFrames();
         const std::vector<vpProjectiveArmAcquisition::vpFrame> acquisition(
             all.begin(), all.end() - robot.getAcquisition().getNumberOfCalibrationFrames());
@@ -177,11 +182,13 @@ int main(int argc, char **argv)
         Eigen::Matrix3d Kl, Kr;
         Eigen::Matrix4d lMr;
         double used = 0.0;
-        selfcal::planarCalibration(rig, views, gridPoints, gridWidth, sigma, noise, gridRng, Kl, Kr, lMr, used);
+        selfcal::planarCalibration(rig, views, gridPoints, gridWidth, sigma, streams.noise, streams.grid, Kl, Kr, lMr,
+                                   used);
         grids.push_back(100.0 * used);
         runs[GRID].push_back(selfcal::compare(Kl, Kr, lMr, rig, true));
         const selfcal::SkewedRig natural = selfcal::withoutSkew(rig);
-        selfcal::planarCalibration(natural, views, gridPoints, gridWidth, sigma, noise, gridRng, Kl, Kr, lMr, used);
+        selfcal::planarCalibration(natural, views, gridPoints, gridWidth, sigma, streams.noise, streams.grid, Kl, Kr,
+                                   lMr, used);
         runs[GRID_NO_SKEW].push_back(selfcal::compare(Kl, Kr, lMr, natural, true));
       }
       std::cout << std::defaultfloat << std::setprecision(3) << "\n"
