@@ -70,8 +70,8 @@ TEST(ProjectiveSessionWriter, SessionJsonHoldsTheFramesUpToTheLastSavePoint)
   vpColVector lastWritten;
   for (unsigned int k = 0; k < 10; ++k) {
     lastWritten = servoJoints(k);
-    writer.addFrame(k == 0 ? vpProjectiveSession::ZERO : vpProjectiveSession::SERVO, lastWritten, 0.04 * k,
-                    keyImage(k), keyImage(k));
+    writer.addFrame(k == 0 ? vpProjectiveSession::ZERO : vpProjectiveSession::SERVO, lastWritten, 0.04 * k, keyImage(k),
+                    keyImage(k));
     const int expected = k + 1 >= 8 ? 8 : (k + 1 >= 4 ? 4 : -1);
     EXPECT_EQ(framesOnDisk(folder), expected) << "after frame " << k; // a crash now leaves this session
     EXPECT_EQ(writer.getNumberOfSavedFrames(), static_cast<unsigned int>(std::max(expected, 0))) << k;
