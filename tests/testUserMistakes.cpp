@@ -299,6 +299,26 @@ TEST(UserMistakes, LeftAndRightSwappedEverywhere)
   }
 }
 
+namespace
+{
+// \e tasks tasks of the setup (seeds from \e firstSeed) run by the program \e user with \e model: each stops on
+// SERVO_MODEL_MISMATCH naming the left and right images exchanged; the row gives the latest stop.
+void expectExchangeNamed(const char *mistake, const ArmCase &arm, const ArmSetup &s, const vpProjectiveRobot &model,
+                         const LoopSettings &user, long firstSeed, int tasks)
+{
+  int latest = 0;
+  for (long seed = firstSeed; seed < firstSeed + tasks; ++seed) {
+    const ServoOutcome o = servoWithMistake(s, model, user, seed);
+    expectStopped(mistake, arm.label, o, 0, {"SERVO_MODEL_MISMATCH"}, "the left and right images are exchanged");
+    latest = std::max(latest, o.stoppedAt());
+  }
+  row(mistake, arm.label,
+      "SERVO_MODEL_MISMATCH at call " + std::to_string(latest) + " at the latest of " + std::to_string(tasks) +
+          " tasks",
+      "the left and right images are exchanged ...");
+}
+} // namespace
+
 // Left and right images swapped in the servo only (the acquisition had them right: a program that builds its features
 // with the images in the other order): SERVO_MODEL_MISMATCH naming the exchange, on ten tasks per arm.
 TEST(UserMistakes, LeftAndRightSwappedInTheServoOnly)
@@ -308,16 +328,7 @@ TEST(UserMistakes, LeftAndRightSwappedInTheServoOnly)
     const vpProjectiveRobot model = calibratedRobot(s, 0.3, 2);
     LoopSettings user = userLoop();
     user.swapImages = true;
-    int latest = 0;
-    for (long seed = 40; seed < 50; ++seed) {
-      const ServoOutcome o = servoWithMistake(s, model, user, seed);
-      expectStopped("left and right images swapped (servo only)", arm.label, o, 0, {"SERVO_MODEL_MISMATCH"},
-                    "the left and right images are exchanged");
-      latest = std::max(latest, o.stoppedAt());
-    }
-    row("left and right images swapped (servo only)", arm.label,
-        "SERVO_MODEL_MISMATCH at call " + std::to_string(latest) + " at the latest of 10 tasks",
-        "the left and right images are exchanged ...");
+    expectExchangeNamed("left and right images swapped (servo only)", arm, s, model, user, 40, 10);
   }
 }
 
@@ -334,16 +345,8 @@ TEST(UserMistakes, LeftAndRightSwappedInTheAcquisitionOnly)
           return true;
         });
     ASSERT_EQ(run.code, -1) << arm.label << ": " << run.message;
-    int latest = 0;
-    for (long seed = 50; seed < 53; ++seed) {
-      const ServoOutcome o = servoWithMistake(s, run.model, userLoop(), seed);
-      expectStopped("left and right images swapped (acquisition only)", arm.label, o, 0, {"SERVO_MODEL_MISMATCH"},
-                    "the left and right images are exchanged");
-      latest = std::max(latest, o.stoppedAt());
-    }
-    row("left and right images swapped (acquisition only, the rig's F given)", arm.label,
-        "SERVO_MODEL_MISMATCH at call " + std::to_string(latest) + " at the latest of 3 tasks",
-        "the left and right images are exchanged ...");
+    expectExchangeNamed("left and right images swapped (acquisition only, the rig's F given)", arm, s, run.model,
+                        userLoop(), 50, 3);
   }
 }
 
