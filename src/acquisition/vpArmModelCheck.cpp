@@ -161,16 +161,19 @@ double epipolarGap(const vpProjectiveStereoRig &rig, const Eigen::Vector4d &s)
   return rig.project(M, p) ? (p - s).squaredNorm() : kInfinity;
 }
 
-double epipolarNoise(const ArmCalibrationData &data)
+double epipolarNoise(const ArmCalibrationData &data, bool exchanged)
 {
   std::vector<double> gaps;
+  const auto gap = [&](const Eigen::Vector4d &s) {
+    return epipolarGap(data.rig, exchanged ? Eigen::Vector4d(s(2), s(3), s(0), s(1)) : s);
+  };
   for (const Eigen::Vector4d &s : data.zeroImages) {
-    gaps.push_back(epipolarGap(data.rig, s));
+    gaps.push_back(gap(s));
   }
   for (const ArmTrial &trial : data.trials) {
     for (size_t j = 0; j < trial.s.size(); ++j) {
       if (trial.seen[j]) {
-        gaps.push_back(epipolarGap(data.rig, trial.s[j]));
+        gaps.push_back(gap(trial.s[j]));
       }
     }
   }
@@ -212,12 +215,41 @@ std::string pixelsText(double px)
   return os.str();
 }
 
+bool refuseExchangedImages(const ArmCheckInput &in, ArmCheck &check)
+{
+  const double exchanged = epipolarNoise(in.data, true);
+  if (!(exchanged < 0.5 * check.epipolarNoise)) {
+    return false;
+  }
+  vpProjectiveModelCheck::vpDiagnosis d;
+  d.cause = vpProjectiveModelCheck::CAUSE_IMAGES_EXCHANGED;
+  d.likely = true;
+  d.residualIfFixed = kNaN;
+  d.evidence = check.epipolarNoise / exchanged;
+  d.joint = d.trial = d.marker = d.other = -1;
+  std::ostringstream finding;
+  finding << "the images meet the rig's epipolar geometry within " << pixelsText(exchanged)
+          << " RMS with left and right exchanged, " << pixelsText(check.epipolarNoise) << " as given";
+  d.finding = finding.str();
+  d.fix = "give each frame's left camera image first, in the order of the rig's fundamental matrix (m'^T F m = 0, m "
+          "in the left image), or estimate the rig from images in the acquisition's order";
+  check.exchanged = true;
+  check.accepted = false;
+  check.causes.assign(1, d);
+  check.message = "the model is refused: left and right images are swapped against the rig (" + d.finding +
+                  "); fix: " + d.fix + ".";
+  return true;
+}
+
 ArmCheck checkArmModel(const ArmCheckInput &in)
 {
   ArmCheck check;
   check.epipolarNoise = epipolarNoise(in.data);
   check.noise = std::max(check.epipolarNoise, in.givenNoise);
   check.limit = in.tolerance > 0.0 ? std::max(in.tolerance * check.noise, kLimitFloor) : kInfinity;
+  if (in.tolerance > 0.0 && refuseExchangedImages(in, check)) {
+    return check; // a model of the exchanged cameras would fit them, and mislead the servo: refused before any fit
+  }
   settleJointTypes(in, check);
   bool within = check.fit.ok && check.fit.residual <= check.limit;
   for (const vpProjectiveModelCheck::vpJointTypeFit &joint : check.joints) {

@@ -79,6 +79,7 @@ struct ArmCheck {
   // For the diagnosis: the joints whose declared type the trials contradict, and the fit with them changed.
   std::vector<unsigned int> contradicted;
   ArmFit typesFixed;
+  bool exchanged = false; // refused before any fit: the images meet the rig only with left and right exchanged
 };
 
 //! The fit of \e data's types from scratch (fitArmModel()); a failure of the estimation is reported, not thrown.
@@ -93,9 +94,10 @@ ArmFit refitData(const ArmFit &from, const ArmCalibrationData &data, bool quick 
 /*!
   The image noise (px per coordinate) of the acquisition's images against the rig's epipolar geometry: each
   observation's optimal-triangulation reprojection error (squared, summed over its 4 coordinates: sigma^2 chi^2_1),
-  the mean of the smallest 90 % divided by 0.6233. 0 with fewer than 5 observations.
+  the mean of the smallest 90 % divided by 0.6233. 0 with fewer than 5 observations. \e exchanged: the same with
+  every observation's left and right images exchanged, (u', v', u, v).
 */
-double epipolarNoise(const ArmCalibrationData &data);
+double epipolarNoise(const ArmCalibrationData &data, bool exchanged = false);
 
 //! Squared epipolar gap (px^2) of one observation (u, v, u', v') in \e rig: infinite if it cannot be projected.
 double epipolarGap(const vpProjectiveStereoRig &rig, const Eigen::Vector4d &s);
@@ -115,6 +117,14 @@ inline vpProjectiveJoint::vpJointType otherType(vpProjectiveJoint::vpJointType t
 */
 void settleJointTypes(const ArmCheckInput &in, ArmCheck &check);
 
+/*!
+  Left and right images exchanged against the rig (a rig given with its F, the images right first): true, and
+  check refused with that one cause and its message, when the acquisition's epipolar noise with every observation's
+  images exchanged is below half of it as given. With the images in the rig's order the epipolar gaps are the noise
+  alone and exchanging them can only add a gap; a rig whose F is nearly skew-symmetric (parallel cameras) cannot tell
+  the order, and the servo tells it then (vpServoModelMismatch). Needs check.epipolarNoise.
+*/
+bool refuseExchangedImages(const ArmCheckInput &in, ArmCheck &check);
 //! The ranked causes of a refused model and the message (vpArmDiagnosis.cpp).
 void diagnoseRefusal(const ArmCheckInput &in, ArmCheck &check);
 

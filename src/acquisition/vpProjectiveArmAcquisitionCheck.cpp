@@ -130,7 +130,7 @@ vpProjectiveArmModel vpProjectiveArmAcquisition::calibrate()
   result.m_joints = check.joints;
   result.m_causes = check.causes;
   result.m_message = check.message;
-  if (!check.fit.ok && check.contradicted.empty()) {
+  if (!check.fit.ok && check.contradicted.empty() && !check.exchanged) {
     throw vpProjectiveException(check.fit.failureCode, check.fit.failure); // no model of any type: the fit's error
   }
   m_check = result;

@@ -39,6 +39,8 @@ std::string vpProjectiveModelCheck::toString(vpCause cause)
     return "markers swapped";
   case CAUSE_MOUNTING:
     return "the rig's mounting";
+  case CAUSE_IMAGES_EXCHANGED:
+    return "left and right images exchanged";
   default:
     return "image errors";
   }

@@ -70,6 +70,12 @@ class vpProjectiveArmAcquisition;
   (joint types changed, revolute readings taken as degrees, a trial predicted with a second joint's motion, two
   markers exchanged), or a ratio that shows it (the epipolar gap of a marker's two images, the epipolar noise against
   the noise at rest). getMessage() says it in one line, with what to do.
+
+  <b>Left and right exchanged.</b> Before any fit, the epipolar noise is measured again with every observation's left
+  and right images exchanged: below half of it as given, the images were given right first against the rig's
+  $ F $, and the model is refused with CAUSE_IMAGES_EXCHANGED alone (a model of the exchanged cameras would fit
+  them). In the rig's order the gaps are the noise alone and exchanging can only add to them; a rig whose $ F $ is
+  nearly skew-symmetric (nearly parallel cameras) cannot tell the order (vpServoModelMismatch tells it in the servo).
 */
 class VISP_EXPORT vpProjectiveModelCheck
 {
@@ -82,7 +88,9 @@ public:
     CAUSE_MARKERS_SWAPPED, //!< Markers swapped between the left and right images of a frame, or between frames.
     CAUSE_MOUNTING,        //!< The rig's mounting (trials of one joint look the same in both: only a motion of
                            //!< several joints tells, as vpProjectiveAcquisitionProcedure makes).
-    CAUSE_IMAGE_ERRORS     //!< Errors the model has no part for: lens distortion, a tracker's bias, a rig that moved.
+    CAUSE_IMAGE_ERRORS,    //!< Errors the model has no part for: lens distortion, a tracker's bias, a rig that moved.
+    CAUSE_IMAGES_EXCHANGED //!< Left and right images exchanged against the rig's F (the acquisition's images meet it
+                           //!< only so): refused before any fit, the only cause then.
   };
 
   //! One probable cause of a refused model and its diagnostic.
