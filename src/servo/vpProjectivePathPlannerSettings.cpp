@@ -42,10 +42,9 @@ vpProjectivePathPlanner::vpProjectivePathPlanner()
     : m_groups(), m_minGroupArea(0.3), m_groupArea(), m_groupsOn(true), m_hasLimits(false), m_qmin(), m_qmax(),
       m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0), m_maxExcursion(-1.0), m_starts(24),
       m_maxResidual(5.0), m_refused(), m_refusedRadius(0.0), m_limitMargin(0.0), m_front(), m_points(), m_sStar(),
-      m_hasLaw(false), m_gain(), m_errorScale(1.0), m_law(), m_avoidance(), m_rehearsalBudget(50), m_rehearsalOk(false),
-      m_rehearsalIterations(0), m_rehearsalResidual(-1.0), m_rehearsalSlow(false), m_status(PLAN_NONE), m_branches(),
-      m_residuals(), m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE),
-      m_description("no plan yet")
+      m_hasLaw(false), m_law(), m_rehearsalBudget(50), m_rehearsalOk(false), m_rehearsalIterations(0),
+      m_rehearsalResidual(-1.0), m_rehearsalSlow(false), m_status(PLAN_NONE), m_branches(), m_residuals(), m_branch(0),
+      m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE), m_description("no plan yet")
 {
 }
 
@@ -106,7 +105,7 @@ void vpProjectivePathPlanner::setMaxExcursion(double excursion)
 
 double vpProjectivePathPlanner::getMaxJointStep() const
 {
-  const double saturation = m_hasLaw ? m_law.getMaxJointVelocity() : 0.0;
+  const double saturation = m_hasLaw ? m_law.getDampedLeastSquares().getMaxJointVelocity() : 0.0;
   return saturation > 0.0 ? std::min(m_maxStep, 2.0 / 3.0 * saturation) : m_maxStep;
 }
 
@@ -167,18 +166,4 @@ void vpProjectivePathPlanner::setNumberOfStarts(unsigned int starts)
          "the inverse kinematics needs at least one random start to look for other branches");
   }
   m_starts = starts;
-}
-
-void vpProjectivePathPlanner::setControlLaw(const vpGain &gain, const vpServoDampedLeastSquares &law,
-                                            const vpServoJointLimitAvoidance &avoidance, double errorScale)
-{
-  if (!gain || !std::isfinite(errorScale) || !(errorScale > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, plannerAt("setControlLaw()"),
-         "give a gain function and a positive, finite error scale (1 for pixels)");
-  }
-  m_gain = gain;
-  m_errorScale = errorScale;
-  m_law = law;
-  m_avoidance = avoidance;
-  m_hasLaw = true;
 }

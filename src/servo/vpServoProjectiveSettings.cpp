@@ -62,11 +62,7 @@ double estimatedFocalLength(const vpProjectiveRobot &robot, const std::string &w
 
 void vpServoProjective::setAdaptiveGainInput(vpGainInput input)
 {
-  if (input != GAIN_INPUT_ERROR && input != GAIN_INPUT_JOINT_VELOCITY) {
-    fail(vpProjectiveException::invalidValueError, at("setAdaptiveGainInput()"),
-         "unknown input; use GAIN_INPUT_ERROR or GAIN_INPUT_JOINT_VELOCITY");
-  }
-  m_gainInput = input;
+  m_control.setAdaptiveGainInput(input);
 }
 
 void vpServoProjective::setErrorUnit(vpErrorUnit unit, double focalLength)
@@ -89,7 +85,7 @@ void vpServoProjective::setErrorUnit(vpErrorUnit unit, double focalLength)
   }
   m_errorUnit = unit;
   m_focalLength = focalLength;
-  m_errorScale = scale;                               // 0 until setRobot() estimates it
+  m_control.setErrorScale(scale);                     // 0 until setRobot() estimates it
   m_iterations[m_lastIteration].m_errorScale = scale; // the report's getters follow the unit
 }
 
@@ -100,8 +96,9 @@ void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
          "the robot model is not acquired; call calibrate() or loadModel() on it first");
   }
   if (m_errorUnit == ERROR_NORMALIZED && m_focalLength == 0.0) {
-    m_errorScale = estimatedFocalLength(robot, at("setRobot()")); // before anything changes
-    m_iterations[m_lastIteration].m_errorScale = m_errorScale;
+    const double scale = estimatedFocalLength(robot, at("setRobot()")); // before anything changes
+    m_control.setErrorScale(scale);
+    m_iterations[m_lastIteration].m_errorScale = scale;
   }
   if (m_link.robot != &robot) {
     m_mismatch.reset(); // memories of another robot's model
@@ -164,54 +161,33 @@ void vpServoProjective::vpRobotLink::robotModelChanged(bool rigOnly)
 
 void vpServoProjective::setLambda(double lambda)
 {
-  const std::string where = at("setLambda()");
-  requireFinite(lambda, where, "the gain");
-  if (!(lambda > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, where, "the gain must be positive");
-  }
-  m_lambda.initFromConstant(lambda);
+  m_control.setLambda(lambda);
 }
 
 void vpServoProjective::setLambda(const vpAdaptiveGain &lambda)
 {
-  m_lambda = lambda;
+  m_control.setLambda(lambda);
 }
 
 void vpServoProjective::setLambda(double gainAtZero, double gainAtInfinity, double slopeAtZero)
 {
-  const std::string where = at("setLambda()");
-  requireFinite(gainAtZero, where, "the gain at zero");
-  requireFinite(gainAtInfinity, where, "the gain at infinity");
-  requireFinite(slopeAtZero, where, "the slope at zero");
-  if (!(gainAtZero > 0.0) || !(gainAtInfinity > 0.0) || !(gainAtZero >= gainAtInfinity) || slopeAtZero < 0.0) {
-    fail(vpProjectiveException::invalidValueError, where,
-         "an adaptive gain needs gainAtZero >= gainAtInfinity > 0 and a non-negative slope");
-  }
-  m_lambda.initStandard(gainAtZero, gainAtInfinity, slopeAtZero);
+  m_control.setLambda(gainAtZero, gainAtInfinity, slopeAtZero);
 }
 
 void vpServoProjective::setDamping(double sigmaThreshold, double maxDamping)
 {
-  m_law.setDamping(sigmaThreshold, maxDamping);
+  m_control.setDamping(sigmaThreshold, maxDamping);
 }
 
 void vpServoProjective::setMaxJointVelocity(double qdotMax)
 {
-  m_law.setMaxJointVelocity(qdotMax * m_period); // throws on a bad value, before anything changes
-  m_qdotMax = qdotMax;
+  m_control.setMaxJointVelocity(qdotMax);
 }
 
 void vpServoProjective::setControlPeriod(double seconds)
 {
-  if (!std::isfinite(seconds) || !(seconds > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, at("setControlPeriod()"),
-         "the control period is the time between two calls of computeControlLaw(), in seconds: positive and finite");
-  }
-  // Inside, the law works per call (a joint step, as the planner's paths and rehearsals do); the user's gain and
-  // saturation are per second.
-  m_law.setMaxJointVelocity(m_qdotMax * seconds);
-  m_follow.setControlPeriod(seconds); // the arm's motion per call is judged against it
-  m_period = seconds;
+  m_control.setControlPeriod(seconds); // throws on a bad value, before anything changes
+  m_follow.setControlPeriod(seconds);  // the arm's motion per call is judged against it
 }
 
 void vpServoProjective::setMaxOpenLoopTime(double seconds)
@@ -222,7 +198,7 @@ void vpServoProjective::setMaxOpenLoopTime(double seconds)
 
 void vpServoProjective::setPseudoInverseThreshold(double threshold)
 {
-  m_law.setPseudoInverseThreshold(threshold);
+  m_control.setPseudoInverseThreshold(threshold);
 }
 
 void vpServoProjective::setRankTolerance(double tolerance)
@@ -266,7 +242,8 @@ void vpServoProjective::setOutlierThreshold(double pixels)
 void vpServoProjective::setJointLimits(const vpColVector &qmin, const vpColVector &qmax, double rho, double rho1,
                                        double lambdaTune)
 {
-  vpServoJointLimitAvoidance limits = m_jointLimits; // validated aside: a failed call changes nothing
+  vpServoJointLimitAvoidance limits =
+      m_control.getJointLimitAvoidance(); // validated aside: a failed call changes nothing
   limits.setJointLimits(qmin, qmax, rho, rho1, lambdaTune);
   if (m_link.robot != nullptr && limits.getNumberOfJoints() != m_link.robot->getNumberOfJoints()) {
     std::ostringstream os;
@@ -283,12 +260,12 @@ void vpServoProjective::setJointLimits(const vpColVector &qmin, const vpColVecto
   }
   requireJointUnits(qmin, revolute, at("setJointLimits()"), "qmin");
   requireJointUnits(qmax, revolute, at("setJointLimits()"), "qmax");
-  m_jointLimits = limits;
+  m_control.getJointLimitAvoidance() = limits;
 }
 
 void vpServoProjective::clearJointLimits()
 {
-  m_jointLimits.clearJointLimits();
+  m_control.getJointLimitAvoidance().clearJointLimits();
 }
 
 void vpServoProjective::setSettling(bool settling)
@@ -299,19 +276,4 @@ void vpServoProjective::setSettling(bool settling)
 void vpServoProjective::setRigRefinement(bool refine, unsigned int period, unsigned int refinements)
 {
   m_refinement.setRefinement(refine, period, refinements);
-}
-
-double vpServoProjective::taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale,
-                                   const JointMatrix &JtJ, const JointVector &Jte, double errorInf)
-{
-  if (input == GAIN_INPUT_ERROR) {
-    return lambda.value_const(errorInf / errorScale);
-  }
-  // vpServo's e1 = J^+ e (full column rank here: J^T J is invertible unless the task is singular, then the gain at
-  // infinity); fixed-size storage, no allocation.
-  const Eigen::LDLT<JointMatrix> ldlt(JtJ);
-  const JointVector e1 = ldlt.solve(Jte);
-  const double x = e1.allFinite() && ldlt.info() == Eigen::Success ? e1.cwiseAbs().maxCoeff()
-                                                                   : std::numeric_limits<double>::infinity();
-  return lambda.value_const(x);
 }

@@ -212,23 +212,17 @@ bool vpServoProjective::planIfNeeded(const JointVector &q, const vpServoProjecti
       sStar.push_back(m_targets[i].effective);
     }
     vpProjectivePathPlanner::JointVector qmin, qmax;
-    if (m_jointLimits.hasJointLimits()) {
-      qmin = toEigenVector<JointVector>(m_jointLimits.getLowerLimits(), q.size(), at("computeControlLaw()"), "qmin");
-      qmax = toEigenVector<JointVector>(m_jointLimits.getUpperLimits(), q.size(), at("computeControlLaw()"), "qmax");
+    const vpServoJointLimitAvoidance &limits = m_control.getJointLimitAvoidance();
+    if (limits.hasJointLimits()) {
+      qmin = toEigenVector<JointVector>(limits.getLowerLimits(), q.size(), at("computeControlLaw()"), "qmin");
+      qmax = toEigenVector<JointVector>(limits.getUpperLimits(), q.size(), at("computeControlLaw()"), "qmax");
     }
     m_planner.setJointLimits(qmin, qmax);
     m_planner.setImageSize(m_health.getImageWidth(), m_health.getImageHeight(), m_health.getImageBorder());
     if (m_lawLeftRehearsal) {
       m_planner.clearControlLaw();
     } else {
-      const vpAdaptiveGain lambda = m_lambda;
-      const vpGainInput input = m_gainInput;
-      const double scale = m_errorScale, period = m_period;
-      m_planner.setControlLaw( // rehearsed per call, as the task runs it (setControlPeriod())
-          [lambda, input, scale, period](const JointMatrix &JtJ, const JointVector &Jte, double errorInf) {
-            return period * taskGain(lambda, input, scale, JtJ, Jte, errorInf);
-          },
-          m_law, m_jointLimits, scale);
+      m_planner.setControlLaw(m_control); // rehearsed per call, as the task runs it
     }
     m_planner.plan(model, q, points, sStar);
     m_plannedFor = sStar;

@@ -31,9 +31,8 @@
 #include <visp3/projective/vpFeatureStereoPoint.h>
 #include <visp3/projective/vpProjectivePathPlanner.h>
 #include <visp3/projective/vpProjectiveRobot.h>
-#include <visp3/projective/vpServoDampedLeastSquares.h>
+#include <visp3/projective/vpServoControlLaw.h>
 #include <visp3/projective/vpServoFeatureHealth.h>
-#include <visp3/projective/vpServoJointLimitAvoidance.h>
 #include <visp3/projective/vpServoModelMismatch.h>
 #include <visp3/projective/vpServoProjectiveReport.h>
 #include <visp3/projective/vpServoRigRefinement.h>
@@ -113,11 +112,12 @@ public:
     ERROR_NORMALIZED //!< Pixels divided by a focal length in pixels, the unit of vpServo's \f$ x = (u - u_0)/p_x \f$.
   };
 
-  //! What an adaptive gain is a function of (see setAdaptiveGainInput()).
-  enum vpGainInput {
-    GAIN_INPUT_ERROR,         //!< \f$ \|e\|_\infty \f$ in the unit of setErrorUnit() (the default).
-    GAIN_INPUT_JOINT_VELOCITY //!< \f$ \|J^+ e\|_\infty \f$ (joint units): what vpServo evaluates its gain on.
-  };
+  //! What an adaptive gain is a function of (see setAdaptiveGainInput()): vpServoControlLaw::vpGainInput.
+  typedef vpServoControlLaw::vpGainInput vpGainInput;
+  //! \f$ \|e\|_\infty \f$ in the unit of setErrorUnit() (the default).
+  static constexpr vpGainInput GAIN_INPUT_ERROR = vpServoControlLaw::GAIN_INPUT_ERROR;
+  //! \f$ \|J^+ e\|_\infty \f$ (joint units): what vpServo evaluates its gain on.
+  static constexpr vpGainInput GAIN_INPUT_JOINT_VELOCITY = vpServoControlLaw::GAIN_INPUT_JOINT_VELOCITY;
 
   //! A task without robot or feature: gain 0.5, damping (1, 10), no saturation, no check, no joint limit.
   vpServoProjective();
@@ -156,7 +156,7 @@ public:
   */
   void setAdaptiveGainInput(vpGainInput input);
   //! What the adaptive gain is evaluated on (setAdaptiveGainInput()).
-  vpGainInput getAdaptiveGainInput() const { return m_gainInput; }
+  vpGainInput getAdaptiveGainInput() const { return m_control.getAdaptiveGainInput(); }
   /*!
     The unit of \f$ e \f$ for its getters, print(), the large projection thresholds and an adaptive gain: pixels
     (ERROR_PIXELS, default) or \f$ (s - s^*) / f \f$ (ERROR_NORMALIZED), \f$ f \f$ = \e focalLength (pixels) if
@@ -169,7 +169,7 @@ public:
   //! The unit of setErrorUnit().
   vpErrorUnit getErrorUnit() const { return m_errorUnit; }
   //! Pixels per unit of the error: 1 for ERROR_PIXELS, the focal length \f$ f \f$ for ERROR_NORMALIZED.
-  double getErrorScale() const { return m_errorScale; }
+  double getErrorScale() const { return m_control.getErrorScale(); }
   /*!
     Settling (default off): once converged, the gain becomes \f$ \lambda / (1 + \lambda k) \f$ at the \f$ k \f$-th
     settled call (vpServoSettling): the joint error falls as \f$ 1/\sqrt{k} \f$ below the single-frame floor; the
@@ -198,7 +198,7 @@ public:
   */
   void setControlPeriod(double seconds);
   //! The control period (seconds; see setControlPeriod()).
-  double getControlPeriod() const { return m_period; }
+  double getControlPeriod() const { return m_control.getControlPeriod(); }
   /*!
     Relative threshold \f$ \tau_+ \f$ (default \f$ 10^{-6} \f$, as vpServo::setPseudoInverseThreshold()): singular
     values of \f$ J \f$ below \f$ \tau_+ \sigma_{max} \f$ count as zero in \f$ I_n - J^+ J \f$ of the large
@@ -369,18 +369,18 @@ public:
   /*! \name The parts of the task */
   //@{
   //! The control law and its settings (setDamping(), setMaxJointVelocity(), setPseudoInverseThreshold()).
-  const vpServoDampedLeastSquares &getDampedLeastSquares() const { return m_law; }
+  const vpServoDampedLeastSquares &getDampedLeastSquares() const { return m_control.getDampedLeastSquares(); }
   //! The feature checks, their settings (setImageSize(), setOutlierThreshold(), setFeatureTracked(): read with
   //! isFeatureTracked()) and their last verdicts: active features, each feature's epipolar and prediction distances.
   const vpServoFeatureHealth &getFeatureHealth() const { return m_health; }
   //! The joint-limit avoidance and its settings (setJointLimits(); hasJointLimits(), the thresholds of \f$ P \f$).
-  const vpServoJointLimitAvoidance &getJointLimitAvoidance() const { return m_jointLimits; }
+  const vpServoJointLimitAvoidance &getJointLimitAvoidance() const { return m_control.getJointLimitAvoidance(); }
   /*!
     The same, to change the thresholds \f$ 0 \le e_0 < e_1 \f$ of \f$ P \f$ (unit of setErrorUnit(); default vpServo's
     0.1, 0.7): vpServoJointLimitAvoidance::setLargeProjectionThresholds(). Its setJointLimits() does not check the
     robot's joints as the task's does; computeControlLaw() does.
   */
-  vpServoJointLimitAvoidance &getJointLimitAvoidance() { return m_jointLimits; }
+  vpServoJointLimitAvoidance &getJointLimitAvoidance() { return m_control.getJointLimitAvoidance(); }
   //! Arm-following check (\ref servo_task_following): settings, reset(); verdict: getReport().getArmFollowing().
   vpServoArmFollowing &getArmFollowing() { return m_follow; }
   //@}
@@ -415,10 +415,7 @@ private:
   void buildTask(const JointVector &q, vpIteration &it, const char *method);
   vpServoStatus decideStatus(const vpIteration &it) const;
   void computePrimaryVelocity(const JointVector &q, vpIteration &it, JointVector &qdot);
-  static double taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale, const JointMatrix &JtJ,
-                         const JointVector &Jte, double errorInf);
   void addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const;
-  void keepInside(const JointVector &q, const vpIteration &it, JointVector &qdot) const;
   void stop(vpIteration &it, JointVector &qdot);
   void commit();
   const vpServoProjectiveReport &last() const { return m_iterations[m_lastIteration]; }
@@ -442,11 +439,11 @@ private:
   vpRobotLink m_link;
   std::vector<vpFeatureStereoPoint *> m_features;
   std::vector<vpFeatureStereoPoint *> m_desired;
-  vpAdaptiveGain m_lambda;
+  // Law (47): the gain and its input, the period, the damped least squares with saturation, the joint limits, the
+  // error's unit; the planner rehearses a copy of it.
+  vpServoControlLaw m_control;
   double m_rankTolerance;
-  vpServoDampedLeastSquares m_law;
   vpServoFeatureHealth m_health;
-  vpServoJointLimitAvoidance m_jointLimits;
   vpServoModelMismatch m_mismatch;
   vpServoArmFollowing m_follow;
   std::vector<vpTarget> m_targets;
@@ -477,14 +474,10 @@ private:
   std::vector<Eigen::Vector4d> m_seenPoints;
   std::vector<char> m_hasSeenPoint;
   std::vector<char> m_activeNow; // per feature: active in the iteration in progress (buildTask())
-  double m_period;               // seconds per computeControlLaw() call (setControlPeriod())
-  double m_qdotMax;              // the user's saturation, per second (the law's is per call: m_qdotMax * m_period)
 
-  // setErrorUnit(): the unit, the focal length given (0: estimated), pixels per unit of error; setJointPositions().
-  vpGainInput m_gainInput;
+  // setErrorUnit(): the unit, the focal length given (0: estimated; the scale is the law's); setJointPositions().
   vpErrorUnit m_errorUnit;
   double m_focalLength;
-  double m_errorScale;
   JointVector m_q;
   bool m_qFresh;
   // setSettling(): the settling gain, and the generation of the task's targets (refreshTargets()) it settles on.
