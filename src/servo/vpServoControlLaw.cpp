@@ -30,7 +30,7 @@ const vpErrorSite at("vpServoControlLaw");
 
 vpServoControlLaw::vpServoControlLaw()
     : m_lambda(0.5), m_gainInput(GAIN_INPUT_ERROR), m_period(1.0), m_qdotMax(0.0), m_errorScale(1.0), m_dls(),
-      m_limits()
+      m_limits(), m_settling()
 {
 }
 

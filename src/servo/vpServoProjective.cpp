@@ -32,13 +32,12 @@ using namespace vpProjectiveInternal;
 const vpErrorSite at("vpServoProjective");
 
 vpServoProjective::vpServoProjective()
-    : m_link(), m_features(), m_desired(), m_control(), m_rankTolerance(1e-6), m_health(), m_mismatch(), m_follow(),
-      m_targets(), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(), m_pathSample(0),
+    : m_link(), m_features(), m_desired(), m_control(), m_health(), m_mismatch(), m_follow(), m_targets(),
+      m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(), m_pathSample(0),
       m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0), m_replanFailed(false), m_stallSum(),
-      m_stallSumSq(), m_stallHalves{0.0, 0.0}, m_stallCount(0), m_followGain(1.0), m_maxOpenLoopTime(2.0),
-      m_openLoopCalls(0), m_seenPoints(), m_hasSeenPoint(), m_activeNow(), m_errorUnit(ERROR_PIXELS),
-      m_focalLength(0.0), m_q(), m_qFresh(false), m_settling(), m_targetGeneration(0), m_refinement(),
-      m_rigUpdatesSeen(0)
+      m_stallSumSq(), m_stallHalves{0.0, 0.0}, m_stallCount(0), m_openLoopCalls(0), m_seenPoints(), m_hasSeenPoint(),
+      m_activeNow(), m_errorUnit(ERROR_PIXELS), m_focalLength(0.0), m_q(), m_qFresh(false), m_targetGeneration(0),
+      m_refinement(), m_rigUpdatesSeen(0)
 {
 }
 
@@ -178,9 +177,9 @@ inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vp
   if (it.m_data.m_nbActive == m_features.size()) {
     return SERVO_RUNNING;
   }
-  const bool stopped =
-      3 * static_cast<Eigen::Index>(it.m_data.m_nbActive) < it.m_data.m_JtJ.rows() ||
-      !(vpServoProjectiveReport::singularValueRatio(it.m_data.m_JtJ, m_rankTolerance) >= m_rankTolerance);
+  const bool stopped = 3 * static_cast<Eigen::Index>(it.m_data.m_nbActive) < it.m_data.m_JtJ.rows() ||
+                       !(vpServoProjectiveReport::singularValueRatio(it.m_data.m_JtJ, m_health.getRankTolerance()) >=
+                         m_health.getRankTolerance());
   return stopped ? SERVO_STOPPED : SERVO_REDUCED;
 }
 
@@ -191,8 +190,9 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
   // predicted: its remembered point moved by this iteration's H(q). At rest, a lost feature stops the task as before.
   const bool planned = m_planning && m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND &&
                        m_pathSample < m_planner.getPath().size();
-  if (!planned || !(m_maxOpenLoopTime > 0.0) ||
-      (m_openLoopCalls + 1) * m_control.getControlPeriod() > m_maxOpenLoopTime * (1.0 + 1e-9)) {
+  const double maxOpenLoopTime = m_planner.getMaxOpenLoopTime();
+  if (!planned || !(maxOpenLoopTime > 0.0) ||
+      (m_openLoopCalls + 1) * m_control.getControlPeriod() > maxOpenLoopTime * (1.0 + 1e-9)) {
     return false;
   }
   vpServoProjectiveData &d = it.m_data;
@@ -240,7 +240,7 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
 
 inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot)
 {
-  m_settling.reset(); // stopped: converge anew before settling
+  m_control.getSettling().reset(); // stopped: converge anew before settling
   qdot.setZero(it.m_data.m_JtJ.rows());
   it.m_qdot2.setZero(it.m_data.m_JtJ.rows());
   it.m_lambda = 0.0;
@@ -253,18 +253,19 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
   // qdot1 = -lambda (J^T J + mu^2 I)^-1 J^T e, saturated: the motion the arm really makes. Along a planned path it is
   // the path's step to the next sample (feedforward) plus the law on the error to the current sample (feedback, with
   // the follower's gain), saturated as a whole.
-  it.m_lambda = m_following ? m_followGain
+  it.m_lambda = m_following ? m_planner.getPathFollowingGain()
                             : m_control.gain(it.m_data.m_JtJ, it.m_data.m_Jte, it.m_data.m_e.cwiseAbs().maxCoeff());
   if (m_following || it.m_status == SERVO_OPEN_LOOP) {
-    m_settling.reset(); // a path (or a prediction) is not a rest: settle on law (47), on the images, after it
-  } else if (m_settling.isEnabled()) {
+    m_control.getSettling()
+        .reset(); // a path (or a prediction) is not a rest: settle on law (47), on the images, after it
+  } else if (m_control.getSettling().isEnabled()) {
     // Settling restarts with another set of active features or another target (their signature).
     unsigned long context = m_targetGeneration;
     for (unsigned int i = 0; i < m_features.size(); ++i) {
       context = 31 * context + (m_health.getFeatureState(i) == FEATURE_ACTIVE ? i + 1 : 0);
     }
-    it.m_lambda = m_settling.gain(it.m_lambda, it.m_data.m_JtJ, it.m_data.m_Jte, it.m_data.m_e.squaredNorm(),
-                                  4 * it.m_data.m_nbActive, context);
+    it.m_lambda = m_control.getSettling().gain(it.m_lambda, it.m_data.m_JtJ, it.m_data.m_Jte,
+                                               it.m_data.m_e.squaredNorm(), 4 * it.m_data.m_nbActive, context);
   }
   m_control.computePrimaryStep(it.m_data.m_JtJ, it.m_data.m_Jte, it.m_lambda, qdot);
   const vpServoDampedLeastSquares &law = m_control.getDampedLeastSquares();
@@ -320,7 +321,7 @@ inline void vpServoProjective::commit()
 {
   m_lastIteration = 1 - m_lastIteration;
   m_health.endIteration();
-  m_settling.commit();
+  m_control.getSettling().commit();
   const vpIteration &it = m_iterations[m_lastIteration];
   const vpServoStatus status = it.m_status;
   // The open loop's memory: each active feature's point at the zero reference (no allocation), and the count of
@@ -349,7 +350,7 @@ inline void vpServoProjective::commit()
   report.m_following = m_following;
   report.m_openLoopCalls = m_openLoopCalls;
   report.m_errorScale = m_control.getErrorScale();
-  report.m_rankTolerance = m_rankTolerance;
+  report.m_rankTolerance = m_health.getRankTolerance();
   report.m_law = m_control.getDampedLeastSquares();
   report.m_limits = m_control.getJointLimitAvoidance();
   report.m_arm = m_follow;

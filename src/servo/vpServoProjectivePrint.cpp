@@ -97,7 +97,7 @@ void vpServoProjective::print(std::ostream &os) const
 {
   // The sections of vpServo::print(vpServo::ALL), in its order and with its titles, then what only this task has.
   const bool computed =
-      last().m_data.m_J.rows() == static_cast<Eigen::Index>(getDimension()) && last().m_data.m_J.rows() > 0;
+      last().m_data.m_J.rows() == static_cast<Eigen::Index>(4 * m_features.size()) && last().m_data.m_J.rows() > 0;
   const char *const unit = m_errorUnit == ERROR_PIXELS ? "pixels" : "normalised: pixels / f";
   os << "Visual servoing task: non-metric stereo (vpServoProjective)\n";
   os << "Type of control law\n";
@@ -110,7 +110,7 @@ void vpServoProjective::print(std::ostream &os) const
        << " joints, J from the projective model\n";
   }
   os << "List of visual features : s (" << m_features.size() << " stereo points s = (u, v, u', v') (pixels), task "
-     << "dimension " << getDimension();
+     << "dimension " << 4 * m_features.size();
   if (computed) {
     os << ", " << m_health.getNumberOfActiveFeatures() << " active at the last computeControlLaw()";
   }
@@ -150,7 +150,8 @@ void vpServoProjective::print(std::ostream &os) const
     os << "not yet computed (No computeControlLaw() yet)\n";
   }
   os << "Gain : " << m_control.getLambda() << " (of "
-     << (m_control.getAdaptiveGainInput() == GAIN_INPUT_ERROR ? "||e||_inf" : "||J^+ e||_inf, as vpServo");
+     << (m_control.getAdaptiveGainInput() == vpServoControlLaw::GAIN_INPUT_ERROR ? "||e||_inf"
+                                                                                 : "||J^+ e||_inf, as vpServo");
   if (m_errorUnit == ERROR_NORMALIZED) {
     os << "; f = " << m_control.getErrorScale() << " px" << (m_focalLength > 0.0 ? " given" : " estimated");
   }
@@ -175,11 +176,12 @@ void vpServoProjective::print(std::ostream &os) const
        << (last().m_saturated ? "saturated" : "not saturated") << "\n";
   }
   os << "  Settling: ";
-  if (!m_settling.isEnabled()) {
+  if (!m_control.getSettling().isEnabled()) {
     os << "off (law (47) with the task's gain)\n";
-  } else if (m_settling.isSettled()) {
-    os << "settled for " << m_settling.getSettledIterations() << " calls (gain lambda / (1 + lambda k)), noise "
-       << m_settling.getNoiseEstimate() << " px per row\n";
+  } else if (m_control.getSettling().isSettled()) {
+    os << "settled for " << m_control.getSettling().getSettledIterations()
+       << " calls (gain lambda / (1 + lambda k)), noise " << m_control.getSettling().getNoiseEstimate()
+       << " px per row\n";
   } else {
     os << "on, not settled (full gain until the error a joint motion explains is within the noise)\n";
   }
@@ -191,7 +193,7 @@ void vpServoProjective::print(std::ostream &os) const
     os << "off";
   }
   os << "; pseudo-inverse threshold " << m_control.getDampedLeastSquares().getPseudoInverseThreshold()
-     << "; rank tolerance " << m_rankTolerance << "\n";
+     << "; rank tolerance " << m_health.getRankTolerance() << "\n";
   os << "  Feature checks: image window ";
   if (m_health.getImageWidth() > 0) {
     os << m_health.getImageWidth() << " x " << m_health.getImageHeight() << ", border " << m_health.getImageBorder()
@@ -257,7 +259,7 @@ void vpServoProjective::print(std::ostream &os) const
   os << std::endl;
 }
 
-std::string vpServoProjective::toString(vpServoStatus status)
+std::string vpServoProjectiveReport::toString(vpServoStatus status)
 {
   return statusName(status);
 }

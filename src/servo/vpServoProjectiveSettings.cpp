@@ -60,11 +60,6 @@ double estimatedFocalLength(const vpProjectiveRobot &robot, const std::string &w
 }
 } // namespace
 
-void vpServoProjective::setAdaptiveGainInput(vpGainInput input)
-{
-  m_control.setAdaptiveGainInput(input);
-}
-
 void vpServoProjective::setErrorUnit(vpErrorUnit unit, double focalLength)
 {
   const std::string where = at("setErrorUnit()");
@@ -174,43 +169,10 @@ void vpServoProjective::setLambda(double gainAtZero, double gainAtInfinity, doub
   m_control.setLambda(gainAtZero, gainAtInfinity, slopeAtZero);
 }
 
-void vpServoProjective::setDamping(double sigmaThreshold, double maxDamping)
-{
-  m_control.setDamping(sigmaThreshold, maxDamping);
-}
-
-void vpServoProjective::setMaxJointVelocity(double qdotMax)
-{
-  m_control.setMaxJointVelocity(qdotMax);
-}
-
 void vpServoProjective::setControlPeriod(double seconds)
 {
   m_control.setControlPeriod(seconds); // throws on a bad value, before anything changes
   m_follow.setControlPeriod(seconds);  // the arm's motion per call is judged against it
-}
-
-void vpServoProjective::setMaxOpenLoopTime(double seconds)
-{
-  m_maxOpenLoopTime = nonNegative(seconds, at("setMaxOpenLoopTime()"), "the longest open loop on the model",
-                                  "seconds of consecutive calls; 0 stops the task as soon as the features are too few");
-}
-
-void vpServoProjective::setPseudoInverseThreshold(double threshold)
-{
-  m_control.setPseudoInverseThreshold(threshold);
-}
-
-void vpServoProjective::setRankTolerance(double tolerance)
-{
-  const std::string where = at("setRankTolerance()");
-  requireFinite(tolerance, where, "the rank tolerance");
-  if (!(tolerance > 0.0) || !(tolerance < 1.0)) {
-    fail(vpProjectiveException::invalidValueError, where,
-         "the rank tolerance is a ratio of singular values and must be in (0, 1), e.g. 1e-6");
-  }
-  m_rankTolerance = tolerance;
-  m_iterations[m_lastIteration].m_rankTolerance = tolerance;
 }
 
 void vpServoProjective::setImageSize(unsigned int width, unsigned int height, double border)
@@ -232,11 +194,6 @@ void vpServoProjective::setFeatureTracked(unsigned int i, bool tracked)
 {
   checkFeatureIndex(i, "setFeatureTracked()");
   m_health.setFeatureTracked(i, tracked);
-}
-
-void vpServoProjective::setOutlierThreshold(double pixels)
-{
-  m_health.setOutlierThreshold(pixels);
 }
 
 void vpServoProjective::setJointLimits(const vpColVector &qmin, const vpColVector &qmax, double rho, double rho1,
@@ -263,17 +220,8 @@ void vpServoProjective::setJointLimits(const vpColVector &qmin, const vpColVecto
   m_control.getJointLimitAvoidance() = limits;
 }
 
-void vpServoProjective::clearJointLimits()
-{
-  m_control.getJointLimitAvoidance().clearJointLimits();
-}
-
 void vpServoProjective::setSettling(bool settling)
 {
-  m_settling.setEnabled(settling, m_settling.getHorizon());
-}
-
-void vpServoProjective::setRigRefinement(bool refine, unsigned int period, unsigned int refinements)
-{
-  m_refinement.setRefinement(refine, period, refinements);
+  vpServoSettling &settling_ = m_control.getSettling();
+  settling_.setEnabled(settling, settling_.getHorizon());
 }

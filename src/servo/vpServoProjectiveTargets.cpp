@@ -108,11 +108,6 @@ bool vpServoProjective::detectMismatch(const vpServoProjectiveData &data)
   return m_mismatch.endIteration();
 }
 
-void vpServoProjective::setModelMismatchThreshold(double pixels)
-{
-  m_mismatch.setThreshold(pixels);
-}
-
 vpColVector vpServoProjective::getDesiredFeature(unsigned int i) const
 {
   checkFeatureIndex(i, "getDesiredFeature()");
@@ -243,15 +238,6 @@ void vpServoProjective::setPathPlanning(bool planning)
   m_planning = planning;
   m_plannedFor.clear(); // plan anew
   m_following = false;
-}
-
-void vpServoProjective::setPathFollowingGain(double gain)
-{
-  if (!std::isfinite(gain) || !(gain > 0.0) || gain > 1.0) {
-    fail(vpProjectiveException::invalidValueError, at("setPathFollowingGain()"),
-         "the path-following gain is the fraction of the way to the next sample covered per call: in (0, 1]");
-  }
-  m_followGain = gain;
 }
 
 vpColVector vpServoProjective::getPlannedTarget() const

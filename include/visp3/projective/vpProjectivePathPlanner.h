@@ -234,6 +234,24 @@ public:
     \exception vpProjectiveException if it is not positive and finite.
   */
   void setMaxResidual(double pixels);
+  //! Gain of the path following's feedback (default 1): the fraction of the error to the sample's predicted
+  //! features that vpServoProjective corrects per call. \exception vpProjectiveException if it is not in (0, 1].
+  void setPathFollowingGain(double gain);
+  //! The gain of setPathFollowingGain().
+  double getPathFollowingGain() const { return m_followGain; }
+  /*!
+    Open loop on the model (default 2 s; 0: off): while a plan is under way and the active features no longer
+    constrain every joint (a tag turned edge-on, an occlusion), vpServoProjective replaces each feature set aside that
+    was active before by its prediction \f$ \hat s_i = (P, P')\, H(q)\, H(q_l)^{-1} M_l \f$ at the measured joints
+    (\f$ M_l \f$ its point at the last call \f$ q_l \f$ where it was active): SERVO_OPEN_LOOP for at most \e seconds
+    of consecutive calls (vpServoProjective::setControlPeriod()), then SERVO_STOPPED until the features return
+    (\ref servo_task_open_loop).
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if \e seconds is negative or not
+    finite; the setting is then unchanged.
+  */
+  void setMaxOpenLoopTime(double seconds);
+  //! The bound of setMaxOpenLoopTime() (seconds; 0: off).
+  double getMaxOpenLoopTime() const { return m_maxOpenLoopTime; }
 
   /*!
     Plans the task (see the class documentation) from the joint values \e q (n x 1) for the points \e points (4x1
@@ -333,8 +351,10 @@ private:
   double m_maxExcursion; // negative: twice m_maxStep
   unsigned int m_starts;
   double m_maxResidual;
-  JointVector m_refused;  // setRefusedTarget(): empty, or where the law stalled in the images
-  double m_refusedRadius; // how near a branch must be to m_refused to be left out
+  double m_followGain;      // setPathFollowingGain()
+  double m_maxOpenLoopTime; // setMaxOpenLoopTime(), seconds
+  JointVector m_refused;    // setRefusedTarget(): empty, or where the law stalled in the images
+  double m_refusedRadius;   // how near a branch must be to m_refused to be left out
   double m_limitMargin;
   std::vector<Eigen::Vector2d> m_front;  // per point: its depths in both cameras at the planning q
   std::vector<Eigen::Vector4d> m_points; // the planned points (zero reference) and their desired pixels

@@ -24,6 +24,7 @@
 #include <visp3/projective/vpProjectiveArmModel.h>
 #include <visp3/projective/vpServoDampedLeastSquares.h>
 #include <visp3/projective/vpServoJointLimitAvoidance.h>
+#include <visp3/projective/vpServoSettling.h>
 #include <visp3/vs/vpAdaptiveGain.h>
 
 BEGIN_VISP_NAMESPACE
@@ -88,7 +89,8 @@ public:
   vpGainInput getAdaptiveGainInput() const { return m_gainInput; }
   /*!
     The time \e T (seconds) between two steps (default 1: one step of the discrete law). The gain and the saturation
-    are per second; a step is \f$ T \f$ times the velocity.
+    are per second; a step is \f$ T \f$ times the velocity. A task sets it with vpServoProjective::setControlPeriod(),
+    which tells its arm-following check too.
     \exception vpProjectiveException (invalidValueError) if not positive and finite; nothing is changed then.
   */
   void setControlPeriod(double seconds);
@@ -119,6 +121,11 @@ public:
   const vpServoJointLimitAvoidance &getJointLimitAvoidance() const { return m_limits; }
   //! The same, to set or clear the limits and the thresholds (vpServoJointLimitAvoidance).
   vpServoJointLimitAvoidance &getJointLimitAvoidance() { return m_limits; }
+  //! The settling gain that vpServoProjective applies at rest (vpServoProjective::setSettling()): its settings and
+  //! state (settled, settled calls, noise estimate, last test statistic).
+  const vpServoSettling &getSettling() const { return m_settling; }
+  //! The same, to change its settings.
+  vpServoSettling &getSettling() { return m_settling; }
   //@}
 
   /*! \name One step of the law */
@@ -160,6 +167,7 @@ private:
   double m_errorScale;
   vpServoDampedLeastSquares m_dls;
   vpServoJointLimitAvoidance m_limits;
+  vpServoSettling m_settling;
 };
 
 END_VISP_NAMESPACE

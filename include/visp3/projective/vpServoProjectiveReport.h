@@ -22,6 +22,7 @@
 
 #include <visp3/projective/vpProjectiveConfig.h>
 
+#include <string>
 #include <vector>
 
 #include <visp3/core/vpColVector.h>
@@ -85,6 +86,9 @@ public:
   //@{
   //! The status of the call.
   vpServoStatus getStatus() const { return m_status; }
+  //! A status's name and what it means (as vpServoProjective::print() gives it), e.g. for a program's log when it
+  //! stops.
+  static std::string toString(vpServoStatus status);
   //! Number of features \f$ N \f$ of the call.
   unsigned int getNumberOfFeatures() const { return static_cast<unsigned int>(m_states.size()); }
   //! State of feature \e i at the call. \exception vpProjectiveException (dimensionError) if \f$ i \ge N \f$.
