@@ -218,6 +218,10 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
   if (used == d.m_nbActive) {
     return false;
   }
+  // The images' normal equations, kept (fixed-size: no allocation) for a stop below instead of being built again.
+  const JointMatrix JtJ = d.m_JtJ;
+  const JointVector Jte = d.m_Jte;
+  const double errorNorm = d.m_errorNorm;
   vpServoDampedLeastSquares::computeNormalEquations(d.m_J, d.m_e, d.m_JtJ, d.m_Jte);
   const unsigned int active = d.m_nbActive;
   d.m_nbActive = used; // the rank test of decideStatus() on the measured and predicted features together
@@ -232,10 +236,13 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
         d.m_e.segment<4>(4 * static_cast<Eigen::Index>(i)).setZero();
       }
     }
-    vpServoDampedLeastSquares::computeNormalEquations(d.m_J, d.m_e, d.m_JtJ, d.m_Jte);
+    d.m_JtJ = JtJ;
+    d.m_Jte = Jte;
+    d.m_errorNorm = errorNorm;
+    return false;
   }
   d.m_errorNorm = d.m_e.norm() / m_control.getErrorScale();
-  return constrained;
+  return true;
 }
 
 inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot)
