@@ -492,9 +492,10 @@ struct RobustTask {
 
 std::string robustLabel(const vpServoProjective &task)
 {
-  static const char *const status[3] = {"running", "reduced", "stopped"};
+  // The status's name (every status: a stopped task's label says why), then the features and the avoidance.
+  const std::string status = vpServoProjectiveReport::toString(task.getStatus());
   char label[96];
-  std::snprintf(label, sizeof(label), "%s, %u/%u active, |q2| %.2g", status[task.getStatus()],
+  std::snprintf(label, sizeof(label), "%s, %u/%u active, |q2| %.2g", status.substr(0, status.find(' ')).c_str(),
                 task.getReport().getNumberOfActiveFeatures(), task.getReport().getNumberOfFeatures(),
                 task.getReport().getJointLimitVelocity().frobeniusNorm());
   return label;
