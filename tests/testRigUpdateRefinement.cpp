@@ -12,7 +12,7 @@
  */
 
 /*
-  The task refines a re-registered rig with its own frames (issue 18, point 5; vpServoProjective::setRigRefinement(),
+  The task refines a re-registered rig with its own frames (issue 18, point 5; vpServoRigRefinement::setRefinement(),
   vpProjectiveRobot::refineRig()): the switch and its settings, nothing without a re-registration, nothing when off or
   on a robot given as const, a failed refinement leaves everything as it was, features set aside never enter, the
   frames' points are in the frame of the rig that saw them. The rate at which the task then reaches its target is

@@ -86,7 +86,7 @@ public:
   static constexpr vpFeatureState FEATURE_OUT_OF_IMAGE = vpServoFeatureHealth::FEATURE_OUT_OF_IMAGE;
   //! Set aside: a coordinate of \f$ s_i \f$ or \f$ s^*_i \f$ is NaN or infinite.
   static constexpr vpFeatureState FEATURE_NOT_FINITE = vpServoFeatureHealth::FEATURE_NOT_FINITE;
-  //! Set aside: farther than setOutlierThreshold() from its epipolar line or its prediction.
+  //! Set aside: farther than getFeatureHealth().setOutlierThreshold() from its epipolar line or its prediction.
   static constexpr vpFeatureState FEATURE_OUTLIER = vpServoFeatureHealth::FEATURE_OUTLIER;
 
   //! Outcome of the last computeControlLaw() (\ref servo_task_features): see vpServoProjectiveReport::vpServoStatus.
@@ -123,7 +123,7 @@ public:
   */
   void setRobot(const vpProjectiveRobot &robot);
   /*!
-    The same, with leave to refine the robot's re-registered rig with the task's own frames (setRigRefinement()): a
+    The same, with leave to refine the robot's re-registered rig with the task's own frames (getRigRefinement()): a
     task given a robot it may not change never refines.
     \exception vpProjectiveException (notInitializedError) if the model is not acquired.
   */
@@ -131,7 +131,8 @@ public:
   //! Constant gain \f$ \lambda > 0 \f$ (per second; per call with the default period of 1 s).
   //! \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if not positive and finite.
   void setLambda(double lambda);
-  //! Adaptive gain (vpAdaptiveGain) of \f$ \|e\|_\infty \f$, or of \f$ \|J^+ e\|_\infty \f$ (setAdaptiveGainInput()).
+  //! Adaptive gain (vpAdaptiveGain) of \f$ \|e\|_\infty \f$, or of \f$ \|J^+ e\|_\infty \f$
+  //! (getControlLaw().setAdaptiveGainInput()).
   void setLambda(const vpAdaptiveGain &lambda);
   /*!
     Adaptive gain from its value at zero error, at infinite error and its slope at zero (per pixel).
@@ -398,7 +399,7 @@ private:
   bool m_qFresh;
   // The generation of the task's targets (refreshTargets()) that the settling gain settles on.
   unsigned long m_targetGeneration;
-  // setRigRefinement(): the refinement, and the robot's re-registrations (getRigUpdateCount()) taken into account.
+  // getRigRefinement(): the refinement, and the robot's re-registrations (getRigUpdateCount()) taken into account.
   vpServoRigRefinement m_refinement;
   unsigned long m_rigUpdatesSeen;
 };
