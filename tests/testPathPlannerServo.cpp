@@ -50,8 +50,8 @@ int runServo(const ArmSetup &s, const vpProjectiveRobot &robot, const std::vecto
   vpServoProjective task;
   task.setRobot(robot);
   task.setLambda(0.5);
-  task.setMaxJointVelocity(vpMath::rad(15.0));
-  task.setDamping(30.0, 30.0);
+  task.getControlLaw().setMaxJointVelocity(vpMath::rad(15.0));
+  task.getControlLaw().setDamping(30.0, 30.0);
   task.setImageSize(s.width, s.height, 10.0);
   task.setJointLimits(qmin, qmax);
   task.setPathPlanning(planning);
@@ -161,13 +161,13 @@ TEST_F(PathPlanner, PlannedServoCrossesAShortLossOfTheFeatures)
     vpServoProjective task;
     task.setRobot(robot);
     task.setLambda(0.5);
-    task.setMaxJointVelocity(vpMath::rad(3.0)); // path samples 2 deg apart: some 16 calls of following
+    task.getControlLaw().setMaxJointVelocity(vpMath::rad(3.0)); // path samples 2 deg apart: some 16 calls of following
     task.setImageSize(s.width, s.height, 10.0);
     task.setJointLimits(qmin, qmax);
     task.setPathPlanning(true);
     task.getPathPlanner().setRehearsalBudget(0); // a path, followed
-    EXPECT_EQ(task.getMaxOpenLoopTime(), 2.0);
-    task.setMaxOpenLoopTime(maxOpenLoop);
+    EXPECT_EQ(task.getPathPlanner().getMaxOpenLoopTime(), 2.0);
+    task.getPathPlanner().setMaxOpenLoopTime(maxOpenLoop);
     for (size_t k = 0; k < tracked.size(); ++k) {
       fStar[k].buildFrom(sStar[k](0), sStar[k](1), sStar[k](2), sStar[k](3));
       task.addFeature(f[k], fStar[k]);
@@ -228,7 +228,7 @@ TEST_F(PathPlanner, PlannedServoCrossesAShortLossOfTheFeatures)
   EXPECT_EQ(count(vpServoProjective::SERVO_STOPPED), 4);
 
   vpServoProjective task;
-  EXPECT_THROW(task.setMaxOpenLoopTime(-1.0), vpException);
-  EXPECT_THROW(task.setMaxOpenLoopTime(std::nan("")), vpException);
-  EXPECT_EQ(task.getMaxOpenLoopTime(), 2.0);
+  EXPECT_THROW(task.getPathPlanner().setMaxOpenLoopTime(-1.0), vpException);
+  EXPECT_THROW(task.getPathPlanner().setMaxOpenLoopTime(std::nan("")), vpException);
+  EXPECT_EQ(task.getPathPlanner().getMaxOpenLoopTime(), 2.0);
 }

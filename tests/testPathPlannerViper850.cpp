@@ -137,7 +137,7 @@ NoisyRun runNoisy(const ViperWorld &w, vpColVector q, const vpColVector &qTarget
   vpServoProjective task;
   task.setRobot(w.robot);
   task.setLambda(0.5);
-  task.setMaxJointVelocity(qdotMax);
+  task.getControlLaw().setMaxJointVelocity(qdotMax);
   task.setJointLimits(w.qmin, w.qmax);
   task.setImageSize(640, 480, 10.0);
   task.setPathPlanning(planning);

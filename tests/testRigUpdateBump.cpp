@@ -60,8 +60,8 @@ TEST(RigUpdate, MismatchPrecedenceAndSwitch)
   const vpColVector qStart = jointsNear({&s, &b}, t.rng, t.qTarget, 8.0);
   for (double threshold : {5.0, 0.0}) {
     ServoRun run(s, t.robot, t.qTarget, 0.0, t.noise);
-    run.task.setOutlierThreshold(3.0);
-    run.task.setModelMismatchThreshold(threshold);
+    run.task.getFeatureHealth().setOutlierThreshold(3.0);
+    run.task.getModelMismatch().setThreshold(threshold);
     vpColVector q = qStart;
     for (int it = 0; it < 3; ++it) {
       EXPECT_EQ(run.step(s, q, 0.0, t.noise), vpServoProjective::SERVO_RUNNING);

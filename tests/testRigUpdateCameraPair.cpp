@@ -251,11 +251,11 @@ TEST(RigUpdate, BadInputsThrowAndChangeNothing)
 
   // The task's threshold.
   vpServoProjective task;
-  EXPECT_TRUE(
-      throwsWith([&] { task.setModelMismatchThreshold(-1.0); }, vpProjectiveException::invalidValueError, "pixels"));
-  EXPECT_TRUE(throwsWith([&] { task.setModelMismatchThreshold(std::numeric_limits<double>::quiet_NaN()); },
+  EXPECT_TRUE(throwsWith([&] { task.getModelMismatch().setThreshold(-1.0); }, vpProjectiveException::invalidValueError,
+                         "pixels"));
+  EXPECT_TRUE(throwsWith([&] { task.getModelMismatch().setThreshold(std::numeric_limits<double>::quiet_NaN()); },
                          vpProjectiveException::nonFiniteValueError, "threshold"));
   EXPECT_EQ(task.getModelMismatch().getThreshold(), 5.0);
-  task.setModelMismatchThreshold(8.0);
+  task.getModelMismatch().setThreshold(8.0);
   EXPECT_EQ(task.getModelMismatch().getThreshold(), 8.0);
 }

@@ -51,7 +51,7 @@ long fromEnvironment(const char *name, long fallback)
 /*
   Monte-Carlo of 120 seeded bumps at 0.5 px (one camera or the whole rig, 1-3 deg and 0.5-2 cm): the figures of
   issue 12 with loose bounds, and issue 18's (point 5): after updateRig() from 3 observation poses the task refines the
-  rig with its own frames (vpServoProjective::setRigRefinement(), on by default) and reaches its original target as
+  rig with its own frames (vpServoRigRefinement::setRefinement(), on by default) and reaches its original target as
   often as from 10 poses (the measured values are printed). VISP_PROJECTIVE_BUMP_CASES and VISP_PROJECTIVE_BUMP_SEED
   (first seed, default 1000) run other cases; VISP_PROJECTIVE_BUMP_WITHOUT=1 adds the runs from 3 poses without the
   refinement, for comparison.

@@ -12,7 +12,7 @@
  */
 
 /*
-  The task refines a re-registered rig with its own frames (issue 18, point 5; vpServoProjective::setRigRefinement(),
+  The task refines a re-registered rig with its own frames (issue 18, point 5; vpServoRigRefinement::setRefinement(),
   vpProjectiveRobot::refineRig()): the switch and its settings, nothing without a re-registration, nothing when off or
   on a robot given as const, a failed refinement leaves everything as it was, features set aside never enter, the
   frames' points are in the frame of the rig that saw them. The rate at which the task then reaches its target is
@@ -78,24 +78,24 @@ struct BumpedTask {
 TEST(RigRefinement, SettingsAndTheirErrors)
 {
   vpServoProjective task;
-  EXPECT_TRUE(task.getRigRefinementState().isEnabled());
-  EXPECT_EQ(task.getRigRefinementState().getPeriod(), 40u);
-  EXPECT_EQ(task.getRigRefinementState().getCount(), 3u);
-  EXPECT_FALSE(task.getRigRefinementState().isActive());
-  task.setRigRefinement(true, 25, 2);
-  EXPECT_EQ(task.getRigRefinementState().getPeriod(), 25u);
-  EXPECT_EQ(task.getRigRefinementState().getCount(), 2u);
-  EXPECT_TRUE(throwsWith([&] { task.setRigRefinement(true, 0, 3); }, vpProjectiveException::invalidValueError,
-                         "must be positive"));
-  EXPECT_TRUE(throwsWith([&] { task.setRigRefinement(false, 40, 0); }, vpProjectiveException::invalidValueError,
-                         "must be positive"));
-  EXPECT_TRUE(throwsWith([&] { task.setRigRefinement(true, 1000, 1000); }, vpProjectiveException::invalidValueError,
-                         "exceeds 100000"));
-  EXPECT_TRUE(task.getRigRefinementState().isEnabled());
-  EXPECT_EQ(task.getRigRefinementState().getPeriod(), 25u);
-  EXPECT_EQ(task.getRigRefinementState().getCount(), 2u);
-  task.setRigRefinement(false);
-  EXPECT_FALSE(task.getRigRefinementState().isEnabled());
+  EXPECT_TRUE(task.getRigRefinement().isEnabled());
+  EXPECT_EQ(task.getRigRefinement().getPeriod(), 40u);
+  EXPECT_EQ(task.getRigRefinement().getCount(), 3u);
+  EXPECT_FALSE(task.getRigRefinement().isActive());
+  task.getRigRefinement().setRefinement(true, 25, 2);
+  EXPECT_EQ(task.getRigRefinement().getPeriod(), 25u);
+  EXPECT_EQ(task.getRigRefinement().getCount(), 2u);
+  EXPECT_TRUE(throwsWith([&] { task.getRigRefinement().setRefinement(true, 0, 3); },
+                         vpProjectiveException::invalidValueError, "must be positive"));
+  EXPECT_TRUE(throwsWith([&] { task.getRigRefinement().setRefinement(false, 40, 0); },
+                         vpProjectiveException::invalidValueError, "must be positive"));
+  EXPECT_TRUE(throwsWith([&] { task.getRigRefinement().setRefinement(true, 1000, 1000); },
+                         vpProjectiveException::invalidValueError, "exceeds 100000"));
+  EXPECT_TRUE(task.getRigRefinement().isEnabled());
+  EXPECT_EQ(task.getRigRefinement().getPeriod(), 25u);
+  EXPECT_EQ(task.getRigRefinement().getCount(), 2u);
+  task.getRigRefinement().setRefinement(false);
+  EXPECT_FALSE(task.getRigRefinement().isEnabled());
 }
 
 // Without a re-registration nothing is recorded nor refined, even on a modifiable robot.
@@ -105,9 +105,9 @@ TEST(RigRefinement, NothingWithoutReRegistration)
   for (int it = 0; it < 100; ++it) {
     b.run.step(b.t.s, b.q, 0.0, b.t.noise);
   }
-  EXPECT_FALSE(b.run.task.getRigRefinementState().isActive());
-  EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfPoints(), 0u);
-  EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfRefinements(), 0u);
+  EXPECT_FALSE(b.run.task.getRigRefinement().isActive());
+  EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfPoints(), 0u);
+  EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfRefinements(), 0u);
   EXPECT_EQ(b.t.robot.getRigGeneration(), 0u);
 }
 
@@ -119,19 +119,19 @@ TEST(RigRefinement, RefinesOnlyWhenOnAndAllowed)
   for (int variant = 0; variant < 3; ++variant) {
     const bool on = variant != 1, modifiable = variant != 2;
     BumpedTask b(modifiable);
-    b.run.task.setRigRefinement(on);
+    b.run.task.getRigRefinement().setRefinement(on);
     ASSERT_TRUE(b.bumpAndReRegister());
     EXPECT_EQ(b.t.robot.getRigGeneration(), 1u);
     const Eigen::Matrix<double, 3, 8> registered = cameras(b.t.robot);
     for (int it = 0; it < 39; ++it) {
       b.run.step(b.t.b, b.q, 0.0, b.t.noise);
     }
-    EXPECT_EQ(b.run.task.getRigRefinementState().isActive(), on && modifiable) << variant;
+    EXPECT_EQ(b.run.task.getRigRefinement().isActive(), on && modifiable) << variant;
     std::ostringstream printed;
     b.run.task.print(printed);
     const char *expected = !on ? "Rig refinement: off" : (modifiable ? "refining: 0 done" : "not with this robot");
     EXPECT_NE(printed.str().find(expected), std::string::npos) << printed.str();
-    EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfPoints(), on && modifiable ? 39u * kTracked.size() : 0u)
+    EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfPoints(), on && modifiable ? 39u * kTracked.size() : 0u)
         << variant;
     EXPECT_EQ(b.t.robot.getRigGeneration(), 1u);
     for (int it = 39; it < 200; ++it) {
@@ -141,9 +141,9 @@ TEST(RigRefinement, RefinesOnlyWhenOnAndAllowed)
         EXPECT_GT((cameras(b.t.robot) - registered).norm(), 0.0);
       }
     }
-    EXPECT_FALSE(b.run.task.getRigRefinementState().isActive());
-    EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfRefinements(), on && modifiable ? 3u : 0u) << variant;
-    EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfFailures(), 0u) << variant;
+    EXPECT_FALSE(b.run.task.getRigRefinement().isActive());
+    EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfRefinements(), on && modifiable ? 3u : 0u) << variant;
+    EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfFailures(), 0u) << variant;
     EXPECT_EQ(b.t.robot.getRigGeneration(), on && modifiable ? 4u : 1u) << variant;
     EXPECT_EQ(b.t.robot.getRigUpdateCount(), 1u) << variant;
     if (!(on && modifiable)) {
@@ -161,13 +161,13 @@ TEST(RigRefinement, RefinesOnlyWhenOnAndAllowed)
 TEST(RigRefinement, FeaturesSetAsideNeverEnter)
 {
   BumpedTask b;
-  b.run.task.setOutlierThreshold(3.0);
+  b.run.task.getFeatureHealth().setOutlierThreshold(3.0);
   ASSERT_TRUE(b.bumpAndReRegister());
   for (int it = 0; it < 5; ++it) {
     b.run.step(b.t.b, b.q, 0.0, b.t.noise);
   }
   const unsigned int N = static_cast<unsigned int>(kTracked.size());
-  unsigned int before = b.run.task.getRigRefinementState().getNumberOfPoints();
+  unsigned int before = b.run.task.getRigRefinement().getNumberOfPoints();
   EXPECT_EQ(before, 5 * N);
   // Feature 2 jumps by 20 px: an outlier, left out of this call's frame.
   ServoRun::measure(b.t.b, b.q, 0.0, b.t.noise, b.run.s);
@@ -175,12 +175,12 @@ TEST(RigRefinement, FeaturesSetAsideNeverEnter)
   b.run.s[2].buildFrom(s2(0) + 20.0, s2(1), s2(2), s2(3));
   b.run.task.computeControlLaw(b.q);
   ASSERT_EQ(b.run.task.getReport().getFeatureState(2), vpServoProjective::FEATURE_OUTLIER);
-  EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfPoints(), before + N - 1);
+  EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfPoints(), before + N - 1);
   // Feature 4 not tracked: left out too.
-  before = b.run.task.getRigRefinementState().getNumberOfPoints();
+  before = b.run.task.getRigRefinement().getNumberOfPoints();
   b.run.task.setFeatureTracked(4, false);
   b.run.step(b.t.b, b.q, 0.0, b.t.noise);
-  EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfPoints(), before + N - 1);
+  EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfPoints(), before + N - 1);
 }
 
 // A refinement that fails (frames no camera explains) leaves the robot, its rig and the task's targets as they were;
@@ -188,11 +188,11 @@ TEST(RigRefinement, FeaturesSetAsideNeverEnter)
 TEST(RigRefinement, FailureLeavesEverythingAsItWas)
 {
   BumpedTask b;
-  b.run.task.setRigRefinement(true, 10, 1);
+  b.run.task.getRigRefinement().setRefinement(true, 10, 1);
   ASSERT_TRUE(b.bumpAndReRegister());
-  b.run.step(b.t.b, b.q, 0.0, b.t.noise);         // re-expresses s* in the re-registered rig
-  b.run.task.setModelMismatchThreshold(0.0);      // the garbage below must reach the recording, not stop the task
-  b.run.task.getArmFollowing().setEnabled(false); // nor the arm kept still below
+  b.run.step(b.t.b, b.q, 0.0, b.t.noise);          // re-expresses s* in the re-registered rig
+  b.run.task.getModelMismatch().setThreshold(0.0); // the garbage below must reach the recording, not stop the task
+  b.run.task.getArmFollowing().setEnabled(false);  // nor the arm kept still below
   const Eigen::Matrix<double, 3, 8> registered = cameras(b.t.robot);
   std::vector<Eigen::Vector4d> desired;
   for (unsigned int i = 0; i < kTracked.size(); ++i) {
@@ -212,9 +212,9 @@ TEST(RigRefinement, FailureLeavesEverythingAsItWas)
     }
     b.run.task.computeControlLaw(q);
   }
-  EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfFailures(), 1u);
-  EXPECT_EQ(b.run.task.getRigRefinementState().getNumberOfRefinements(), 0u);
-  EXPECT_FALSE(b.run.task.getRigRefinementState().isActive());
+  EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfFailures(), 1u);
+  EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfRefinements(), 0u);
+  EXPECT_FALSE(b.run.task.getRigRefinement().isActive());
   EXPECT_EQ(cameras(b.t.robot), registered);
   EXPECT_EQ(b.t.robot.getRigGeneration(), 1u);
   b.run.step(b.t.b, b.q, 0.0, b.t.noise);

@@ -409,7 +409,7 @@ TEST(ServoArmFollowing, resetAfterTheFixResumes)
   Task t(s, model, {0, 1, 2}, qStart, qTarget);
   t.task.setLambda(2.0);
   t.task.setControlPeriod(0.05);
-  t.task.setMaxJointVelocity(0.5); // within the robot's 0.7 rad/s
+  t.task.getControlLaw().setMaxJointVelocity(0.5); // within the robot's 0.7 rad/s
   vpSimulatorRobotArm robot(s.arm, s.armJoints(qStart));
   robot.setSamplingTime(0.05);
   robot.setEncoderOffset(-1.0 * s.qRef);

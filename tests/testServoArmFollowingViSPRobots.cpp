@@ -186,7 +186,7 @@ LoopResult runViSP(Robot &robot, const Cell<Robot, Kinematics> &cell, const vpPr
   vpServoProjective task;
   task.setRobot(model);
   task.setLambda(3.0);
-  task.setMaxJointVelocity(0.5); // the simulators' 0.7 rad/s (and m/s, joint space) above it
+  task.getControlLaw().setMaxJointVelocity(0.5); // the simulators' 0.7 rad/s (and m/s, joint space) above it
   if (constantSampling) {
     task.setControlPeriod(robot.getSamplingTime());
   }

@@ -117,9 +117,9 @@ TEST(ServoControlPeriod, lawIsTheSameForEveryPeriod)
     Task a, b;
     a.task.setLambda(0.8);
     b.task.setLambda(0.8);
-    a.task.setMaxJointVelocity(saturation);
+    a.task.getControlLaw().setMaxJointVelocity(saturation);
     b.task.setControlPeriod(0.01);
-    b.task.setMaxJointVelocity(saturation);
+    b.task.getControlLaw().setMaxJointVelocity(saturation);
     const vpColVector q = paperTaskStart();
     a.update(q, a.s);
     b.update(q, b.s);
@@ -139,8 +139,8 @@ TEST(ServoControlPeriod, plannedServoInAVelocityLoop)
   Task t;
   t.task.setLambda(1.0);
   t.task.setControlPeriod(dt);
-  t.task.setMaxJointVelocity(vpMath::rad(30.0));
-  t.task.setDamping(30.0, 30.0);
+  t.task.getControlLaw().setMaxJointVelocity(vpMath::rad(30.0));
+  t.task.getControlLaw().setDamping(30.0, 30.0);
   t.task.setJointLimits(t.setup.arm.getJointMin(), t.setup.arm.getJointMax());
   t.task.setImageSize(t.rig.getWidth(), t.rig.getHeight(), 10.0);
   t.task.setPathPlanning(true);
@@ -164,6 +164,6 @@ TEST(ServoControlPeriod, badPeriodThrows)
   task.setControlPeriod(0.02);
   for (double bad : {0.0, -0.01, std::nan(""), HUGE_VAL}) {
     EXPECT_THROW(task.setControlPeriod(bad), vpException);
-    EXPECT_EQ(task.getControlPeriod(), 0.02);
+    EXPECT_EQ(task.getControlLaw().getControlPeriod(), 0.02);
   }
 }

@@ -69,7 +69,7 @@ struct Task {
   {
     task.setRobot(robot);
     task.setLambda(0.5);
-    task.setMaxJointVelocity(vpMath::rad(15.0));
+    task.getControlLaw().setMaxJointVelocity(vpMath::rad(15.0));
     for (unsigned int k = 0; k < 4; ++k) {
       const Eigen::Vector4d target = setup.imageOf(setup.armJoints(paperTaskTarget()), k);
       sStar[k].buildFrom(target(0), target(1), target(2), target(3));
@@ -158,7 +158,7 @@ TEST(ServoProjectiveData, OneDisplacementPerIterationWithEveryCheckOn)
   // Every check on: image window, outlier rejection with predictions, a lost feature, joint limits, settling.
   Task checked(setup, robot);
   checked.task.setImageSize(setup.width, setup.height, 10);
-  checked.task.setOutlierThreshold(5.0);
+  checked.task.getFeatureHealth().setOutlierThreshold(5.0);
   vpColVector qmin(6), qmax(6);
   for (unsigned int i = 0; i < 6; ++i) {
     qmin[i] = checked.q[i] - vpMath::rad(100.0);

@@ -14,8 +14,8 @@
 /*
   Tests of vpServoProjective's interface: the Eigen overload and the feature references; misuse throws a
   vpProjectiveException with a meaningful code and message (the law's and the robustness checks' settings); print(),
-  getDimension(), getTaskSingularValues() (an SVD's) and setPseudoInverseThreshold() (the projector I - J^+ J of the
-  large projection operator only); a call that throws leaves every getter and memory as it was; the const getters
+  the number of features, getTaskSingularValues() (an SVD's) and setPseudoInverseThreshold() (the projector I - J^+ J of
+  the large projection operator only); a call that throws leaves every getter and memory as it was; the const getters
   write nothing and agree when two threads call them.
 */
 
@@ -35,7 +35,7 @@ TEST_F(ServoProjectivePuma, EigenOverloadAndFeatureReferences)
   vpColVector q, qStar;
   randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
   Task task(s, robot, {0, 1, 2}, q, qStar);
-  EXPECT_EQ(task.task.getNumberOfFeatures(), 3u);
+  EXPECT_EQ(task.task.getFeatureHealth().getNumberOfFeatures(), 3u);
   const vpColVector qdot = task.task.computeControlLaw(q);
   vpProjectiveRobot::JointVector qe(6), qdotE(6);
   for (unsigned int i = 0; i < 6; ++i) {
@@ -49,7 +49,7 @@ TEST_F(ServoProjectivePuma, EigenOverloadAndFeatureReferences)
   EXPECT_EQ(task.task.getError().frobeniusNorm(), 0.0);
   EXPECT_EQ(atTarget.frobeniusNorm(), 0.0);
   task.task.clearFeatures();
-  EXPECT_EQ(task.task.getNumberOfFeatures(), 0u);
+  EXPECT_EQ(task.task.getFeatureHealth().getNumberOfFeatures(), 0u);
   EXPECT_TRUE(throwsProjective([&] { task.task.computeControlLaw(q); }, vpProjectiveException::notInitializedError,
                                "addFeature"));
 }
@@ -97,10 +97,10 @@ TEST_F(ServoProjectivePuma, BadInputsThrow)
   EXPECT_TRUE(throwsProjective([&] { task.setLambda(nan); }, nonFinite, "gain"));
   EXPECT_TRUE(throwsProjective([&] { task.setLambda(0.1, 1.0, 3.0); }, invalid, "gainAtZero"));
   EXPECT_TRUE(throwsProjective([&] { task.setLambda(1.0, 0.1, -3.0); }, invalid, "slope"));
-  EXPECT_TRUE(throwsProjective([&] { task.setDamping(-1.0, 1.0); }, invalid, "non-negative"));
-  EXPECT_TRUE(throwsProjective([&] { task.setDamping(1.0, nan); }, nonFinite, "damping"));
-  EXPECT_TRUE(throwsProjective([&] { task.setMaxJointVelocity(-1.0); }, invalid, "positive"));
-  EXPECT_TRUE(throwsProjective([&] { task.setMaxJointVelocity(nan); }, nonFinite, "velocity"));
+  EXPECT_TRUE(throwsProjective([&] { task.getControlLaw().setDamping(-1.0, 1.0); }, invalid, "non-negative"));
+  EXPECT_TRUE(throwsProjective([&] { task.getControlLaw().setDamping(1.0, nan); }, nonFinite, "damping"));
+  EXPECT_TRUE(throwsProjective([&] { task.getControlLaw().setMaxJointVelocity(-1.0); }, invalid, "positive"));
+  EXPECT_TRUE(throwsProjective([&] { task.getControlLaw().setMaxJointVelocity(nan); }, nonFinite, "velocity"));
 }
 
 TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
@@ -128,18 +128,22 @@ TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
   EXPECT_NO_THROW(task.setImageSize(640, 480, 239.5));
   EXPECT_NO_THROW(task.setImageSize(0, 0));
   // Outlier threshold, rank tolerance, large projection thresholds.
-  EXPECT_TRUE(throwsProjective([&] { task.setOutlierThreshold(-1.0); }, invalid, "must be non-negative"));
-  EXPECT_TRUE(throwsProjective([&] { task.setOutlierThreshold(nan); }, nonFinite, "outlier threshold"));
-  EXPECT_NO_THROW(task.setOutlierThreshold(0.0));
-  EXPECT_TRUE(throwsProjective([&] { task.setRankTolerance(0.0); }, invalid, "(0, 1)"));
-  EXPECT_TRUE(throwsProjective([&] { task.setRankTolerance(1.0); }, invalid, "(0, 1)"));
-  EXPECT_TRUE(throwsProjective([&] { task.setRankTolerance(nan); }, nonFinite, "rank tolerance"));
-  EXPECT_TRUE(throwsProjective([&] { task.getJointLimitAvoidance().setLargeProjectionThresholds(0.7, 0.1); }, invalid,
-                               "0 <= e0 < e1"));
-  EXPECT_TRUE(throwsProjective([&] { task.getJointLimitAvoidance().setLargeProjectionThresholds(-1.0, 1.0); }, invalid,
-                               "0 <= e0 < e1"));
   EXPECT_TRUE(
-      throwsProjective([&] { task.getJointLimitAvoidance().setLargeProjectionThresholds(0.1, nan); }, nonFinite, "e1"));
+      throwsProjective([&] { task.getFeatureHealth().setOutlierThreshold(-1.0); }, invalid, "must be non-negative"));
+  EXPECT_TRUE(
+      throwsProjective([&] { task.getFeatureHealth().setOutlierThreshold(nan); }, nonFinite, "outlier threshold"));
+  EXPECT_NO_THROW(task.getFeatureHealth().setOutlierThreshold(0.0));
+  EXPECT_TRUE(throwsProjective([&] { task.getFeatureHealth().setRankTolerance(0.0); }, invalid, "(0, 1)"));
+  EXPECT_TRUE(throwsProjective([&] { task.getFeatureHealth().setRankTolerance(1.0); }, invalid, "(0, 1)"));
+  EXPECT_TRUE(throwsProjective([&] { task.getFeatureHealth().setRankTolerance(nan); }, nonFinite, "rank tolerance"));
+  EXPECT_TRUE(
+      throwsProjective([&] { task.getControlLaw().getJointLimitAvoidance().setLargeProjectionThresholds(0.7, 0.1); },
+                       invalid, "0 <= e0 < e1"));
+  EXPECT_TRUE(
+      throwsProjective([&] { task.getControlLaw().getJointLimitAvoidance().setLargeProjectionThresholds(-1.0, 1.0); },
+                       invalid, "0 <= e0 < e1"));
+  EXPECT_TRUE(throwsProjective(
+      [&] { task.getControlLaw().getJointLimitAvoidance().setLargeProjectionThresholds(0.1, nan); }, nonFinite, "e1"));
   // Joint limits.
   const vpColVector lo(6, -1.0), hi(6, 1.0);
   EXPECT_TRUE(throwsProjective([&] { task.setJointLimits(vpColVector(5, -1.0), hi); }, dim, "qmin has 5 entries"));
@@ -161,11 +165,11 @@ TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
   EXPECT_TRUE(throwsProjective([&] { task.setJointLimits(lo, hi, 0.1, 1.5); }, invalid, "rho1"));
   EXPECT_TRUE(throwsProjective([&] { task.setJointLimits(lo, hi, 0.1, 0.3, -0.1); }, invalid, "lambdaTune"));
   EXPECT_TRUE(throwsProjective([&] { task.setJointLimits(lo, hi, 0.1, 0.3, 1.1); }, invalid, "lambdaTune"));
-  EXPECT_FALSE(task.getJointLimitAvoidance().hasJointLimits()); // nothing was set by the failed calls
+  EXPECT_FALSE(task.getControlLaw().getJointLimitAvoidance().hasJointLimits()); // nothing was set by the failed calls
   EXPECT_NO_THROW(task.setJointLimits(lo, hi, 0.5, 1.0, 0.0));
-  EXPECT_TRUE(task.getJointLimitAvoidance().hasJointLimits());
-  task.clearJointLimits();
-  EXPECT_FALSE(task.getJointLimitAvoidance().hasJointLimits());
+  EXPECT_TRUE(task.getControlLaw().getJointLimitAvoidance().hasJointLimits());
+  task.getControlLaw().getJointLimitAvoidance().clearJointLimits();
+  EXPECT_FALSE(task.getControlLaw().getJointLimitAvoidance().hasJointLimits());
   // Joint limits given before the robot, of the wrong size: caught by computeControlLaw().
   vpServoProjective early;
   std::vector<vpFeatureStereoPoint> f(2), fStar(2);
@@ -187,7 +191,7 @@ TEST_F(ServoProjectivePuma, PrintDimensionSingularValuesAndPseudoInverseThreshol
   randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
   Task t(s, robot, {0, 1, 2}, q, qStar);
   configure(t.task);
-  EXPECT_EQ(t.task.getDimension(), 12u);
+  EXPECT_EQ(t.task.getFeatureHealth().getNumberOfFeatures(), 3u);
   EXPECT_EQ(t.task.getReport().getTaskSingularValues().size(), 0u);
   std::ostringstream before;
   t.task.print(before);
@@ -218,7 +222,7 @@ TEST_F(ServoProjectivePuma, PrintDimensionSingularValuesAndPseudoInverseThreshol
   // below e0 (here ||e|| < e0 = 1e3 px) P = I - J^+ J, 0 for a full-rank J; at a threshold above sigma_min / sigma_max
   // the right singular vector of sigma_min counts as a null direction.
   t.task.setFeatureTracked(1, true);
-  t.task.getJointLimitAvoidance().setLargeProjectionThresholds(1e3, 2e3);
+  t.task.getControlLaw().getJointLimitAvoidance().setLargeProjectionThresholds(1e3, 2e3);
   const Eigen::VectorXd qdotDefault = toEigenV(t.task.computeControlLaw(q));
   EXPECT_EQ(toEigenX(t.task.getReport().getLargeProjectionOperator()).norm(), 0.0);
   const Eigen::MatrixXd J = toEigenX(t.task.getReport().getTaskJacobian());
@@ -227,16 +231,17 @@ TEST_F(ServoProjectivePuma, PrintDimensionSingularValuesAndPseudoInverseThreshol
   EXPECT_LT((toEigenV(t.task.getReport().getTaskSingularValues()) - svd.singularValues()).norm(),
             1e-12 * svd.singularValues()(0));
   EXPECT_NEAR(t.task.getReport().getConditionNumber(), 1.0 / ratio, 1e-6 / ratio);
-  t.task.setPseudoInverseThreshold(1.5 * ratio);
-  EXPECT_EQ(t.task.getDampedLeastSquares().getPseudoInverseThreshold(), 1.5 * ratio);
+  t.task.getControlLaw().setPseudoInverseThreshold(1.5 * ratio);
+  EXPECT_EQ(t.task.getControlLaw().getDampedLeastSquares().getPseudoInverseThreshold(), 1.5 * ratio);
   EXPECT_EQ(toEigenV(t.task.computeControlLaw(q)), qdotDefault);
   const Eigen::VectorXd v = svd.matrixV().col(5);
   EXPECT_LT((toEigenX(t.task.getReport().getLargeProjectionOperator()) - v * v.transpose()).norm(), 1e-6);
-  EXPECT_TRUE(throwsProjective([&] { t.task.setPseudoInverseThreshold(1.0); }, vpProjectiveException::invalidValueError,
-                               "[0, 1)"));
-  EXPECT_TRUE(throwsProjective([&] { t.task.setPseudoInverseThreshold(std::numeric_limits<double>::quiet_NaN()); },
-                               vpProjectiveException::nonFiniteValueError, "pseudo-inverse threshold"));
-  EXPECT_EQ(t.task.getDampedLeastSquares().getPseudoInverseThreshold(), 1.5 * ratio);
+  EXPECT_TRUE(throwsProjective([&] { t.task.getControlLaw().setPseudoInverseThreshold(1.0); },
+                               vpProjectiveException::invalidValueError, "[0, 1)"));
+  EXPECT_TRUE(throwsProjective(
+      [&] { t.task.getControlLaw().setPseudoInverseThreshold(std::numeric_limits<double>::quiet_NaN()); },
+      vpProjectiveException::nonFiniteValueError, "pseudo-inverse threshold"));
+  EXPECT_EQ(t.task.getControlLaw().getDampedLeastSquares().getPseudoInverseThreshold(), 1.5 * ratio);
 }
 
 TEST_F(ServoProjectivePuma, AFailedCallLeavesTheTaskAsItWas)
@@ -253,7 +258,7 @@ TEST_F(ServoProjectivePuma, AFailedCallLeavesTheTaskAsItWas)
   Task failing(s, robot, tracked, q, qStar), twin(s, robot, tracked, q, qStar);
   for (Task *t : {&failing, &twin}) {
     configure(t->task);
-    t->task.setOutlierThreshold(5.0);
+    t->task.getFeatureHealth().setOutlierThreshold(5.0);
     t->task.setJointLimits(vpColVector(6, -M_PI), vpColVector(6, M_PI));
     t->task.setFeatureTracked(2, false);
     t->task.computeControlLaw(q);
@@ -360,8 +365,9 @@ TEST_F(ServoProjectivePuma, ReportIsTheLastSuccessfulCallWithItsSettings)
   EXPECT_EQ(after.getTaskJacobian().getCols(), 6u);
   // P is the call's: thresholds changed afterwards do not change it, the next call does.
   const Eigen::MatrixXd P = toEigenX(after.getLargeProjectionOperator());
-  t.task.getJointLimitAvoidance().setLargeProjectionThresholds(1e6,
-                                                               2e6); // ||e|| below e0: I - J^+ J from the next call on
+  t.task.getControlLaw().getJointLimitAvoidance().setLargeProjectionThresholds(
+      1e6,
+      2e6); // ||e|| below e0: I - J^+ J from the next call on
   EXPECT_EQ(toEigenX(t.task.getReport().getLargeProjectionOperator()), P);
   // A copy is a snapshot; a call that throws changes nothing.
   const vpServoProjectiveReport snapshot = t.task.getReport();

@@ -150,7 +150,7 @@ TEST_F(ServoProjectivePuma, LargeProjectionOperatorAndJointLimitTaskMatchViSP)
         qmax[i] = qmin[i] + range;
       }
       t.task.setLambda(0.05); // small primary steps: b < 1 for every joint in a band (checked below)
-      t.task.setDamping(c == 2 ? 1.0 : 0.0, c == 2 ? 10.0 : 0.0);
+      t.task.getControlLaw().setDamping(c == 2 ? 1.0 : 0.0, c == 2 ? 10.0 : 0.0);
       t.task.setJointLimits(qmin, qmax, rho, rho1);
       const Eigen::VectorXd qdot = toEigenV(t.task.computeControlLaw(q));
       const Eigen::VectorXd q2 = toEigenV(t.task.getReport().getJointLimitVelocity());

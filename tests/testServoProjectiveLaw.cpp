@@ -41,7 +41,7 @@ TEST_F(ServoProjectivePuma, ControlLawIsPseudoInverseAwayFromSingularities)
     Task task(s, robot, tracked, q, qStar);
     task.task.setLambda(0.4);
     // e and J as documented.
-    task.task.setDamping(0.0, 0.0);
+    task.task.getControlLaw().setDamping(0.0, 0.0);
     const vpColVector qdot = task.task.computeControlLaw(q);
     const Eigen::VectorXd e = toEigenV(task.task.getError());
     const Eigen::MatrixXd J = toEigenX(task.task.getReport().getTaskJacobian());
@@ -64,7 +64,7 @@ TEST_F(ServoProjectivePuma, ControlLawIsPseudoInverseAwayFromSingularities)
     EXPECT_LT((toEigenV(qdot) - expected).norm() / expected.norm(), 1e-9);
     // Below sigma_0 the documented damping: mu^2 = mu_max^2 (1 - (sigma_min / sigma_0)^2).
     const double sigma0 = 2.0 * sv(5), muMax = 0.5 * sv(5);
-    task.task.setDamping(sigma0, muMax);
+    task.task.getControlLaw().setDamping(sigma0, muMax);
     const Eigen::VectorXd qdotDamped = toEigenV(task.task.computeControlLaw(q));
     const double mu2 = muMax * muMax * (1.0 - 0.25);
     EXPECT_NEAR(task.task.getReport().getDamping(), std::sqrt(mu2), 1e-9 * std::sqrt(mu2));
@@ -73,7 +73,7 @@ TEST_F(ServoProjectivePuma, ControlLawIsPseudoInverseAwayFromSingularities)
     EXPECT_LT((qdotDamped - dls).norm() / dls.norm(), 1e-9);
     EXPECT_LT(qdotDamped.norm(), toEigenV(qdot).norm()); // damping shortens the step
     // Just above sigma_min: no damping again.
-    task.task.setDamping(0.99 * sv(5), muMax);
+    task.task.getControlLaw().setDamping(0.99 * sv(5), muMax);
     task.task.computeControlLaw(q);
     EXPECT_EQ(task.task.getReport().getDamping(), 0.0);
   }
@@ -90,7 +90,7 @@ TEST_F(ServoProjectivePuma, AdaptiveGain)
   for (int pass = 0; pass < 2; ++pass) {
     const vpColVector q = pass == 0 ? qFar : qStar + 0.01 * (qFar - qStar);
     Task task(s, robot, tracked, q, qStar);
-    task.task.setDamping(0.0, 0.0);
+    task.task.getControlLaw().setDamping(0.0, 0.0);
     task.task.setLambda(gain);
     const Eigen::VectorXd qdot = toEigenV(task.task.computeControlLaw(q));
     const Eigen::VectorXd e = toEigenV(task.task.getError());
@@ -119,13 +119,13 @@ TEST_F(ServoProjectivePuma, VelocitySaturationKeepsDirection)
   const Eigen::VectorXd free = toEigenV(task.task.computeControlLaw(q));
   EXPECT_FALSE(task.task.getReport().isSaturated());
   const double cap = 0.25 * free.cwiseAbs().maxCoeff();
-  task.task.setMaxJointVelocity(cap);
+  task.task.getControlLaw().setMaxJointVelocity(cap);
   const Eigen::VectorXd capped = toEigenV(task.task.computeControlLaw(q));
   EXPECT_TRUE(task.task.getReport().isSaturated());
   EXPECT_NEAR(capped.cwiseAbs().maxCoeff(), cap, 1e-15);
   EXPECT_LT((capped - 0.25 * free).norm(), 1e-12 * free.norm());
   // A cap above the step changes nothing.
-  task.task.setMaxJointVelocity(2.0 * free.cwiseAbs().maxCoeff());
+  task.task.getControlLaw().setMaxJointVelocity(2.0 * free.cwiseAbs().maxCoeff());
   EXPECT_EQ(toEigenV(task.task.computeControlLaw(q)), free);
   EXPECT_FALSE(task.task.getReport().isSaturated());
 }
@@ -135,7 +135,7 @@ TEST(ServoProjective, DampingKeepsSingularTasksFinite)
   const double muMax = 10.0, lambda = 0.5;
   auto check = [&](Task &task, const vpColVector &q, int expectedRank, const char *what) {
     task.task.setLambda(lambda);
-    task.task.setDamping(1.0, muMax);
+    task.task.getControlLaw().setDamping(1.0, muMax);
     const Eigen::VectorXd qdot = toEigenV(task.task.computeControlLaw(q));
     const Eigen::VectorXd e = toEigenV(task.task.getError());
     const Eigen::MatrixXd J = toEigenX(task.task.getReport().getTaskJacobian());
@@ -185,10 +185,10 @@ TEST(ServoProjective, DampingKeepsSingularTasksFinite)
   qNear[4] += vpMath::rad(0.01);
   Task nearTask(viper, viperRobot, {0, 1, 2, 3, 4, 5, 6}, qNear, qTarget);
   nearTask.task.setLambda(lambda);
-  nearTask.task.setDamping(1.0, muMax);
+  nearTask.task.getControlLaw().setDamping(1.0, muMax);
   const double damped = toEigenV(nearTask.task.computeControlLaw(qNear)).norm();
   EXPECT_GT(nearTask.task.getReport().getDamping(), 0.9 * muMax);
-  nearTask.task.setDamping(0.0, 0.0);
+  nearTask.task.getControlLaw().setDamping(0.0, 0.0);
   const double undamped = toEigenV(nearTask.task.computeControlLaw(qNear)).norm();
   testLog() << "[ measured ] 0.01 deg from the wrist singularity: |qdot| " << damped << " damped, " << undamped
             << " undamped" << std::endl;
@@ -206,10 +206,10 @@ TEST_F(ServoProjectivePuma, ItsVelocityIsTheDampedLeastSquaresLawOfItsTask)
     Task t(s, robot, {0, 1, 2, 3}, q, qStar);
     t.task.setLambda(2.0, 0.2, 0.05);
     for (int c = 0; c < 3; ++c) {
-      t.task.setDamping(c == 0 ? 0.0 : 1e3, 50.0);
-      t.task.setMaxJointVelocity(c == 2 ? vpMath::rad(1.0) : 0.0);
+      t.task.getControlLaw().setDamping(c == 0 ? 0.0 : 1e3, 50.0);
+      t.task.getControlLaw().setMaxJointVelocity(c == 2 ? vpMath::rad(1.0) : 0.0);
       const Eigen::VectorXd qdot = toEigenV(t.task.computeControlLaw(q));
-      vpServoDampedLeastSquares law = t.task.getDampedLeastSquares();
+      vpServoDampedLeastSquares law = t.task.getControlLaw().getDampedLeastSquares();
       const Eigen::VectorXd expected = toEigenV(
           law.computeVelocity(t.task.getReport().getTaskJacobian(), t.task.getError(), t.task.getReport().getLambda()));
       EXPECT_EQ(qdot, expected) << "pair " << p << ", case " << c;

@@ -42,7 +42,7 @@ TEST_F(ServoProjectivePuma, OutlierDistancesAreTheDocumentedOnes)
     EXPECT_EQ(t.task.getFeatureHealth().getEpipolarDistance(k), -1.0); // rejection off: not evaluated
     EXPECT_EQ(t.task.getFeatureHealth().getPredictionDistance(k), -1.0);
   }
-  t.task.setOutlierThreshold(2.0);
+  t.task.getFeatureHealth().setOutlierThreshold(2.0);
   vpColVector qNext = q;
   for (int it = 0; it < 3; ++it) {
     const vpColVector qdot = t.task.computeControlLaw(qNext);
@@ -110,7 +110,7 @@ TEST_F(ServoProjectivePuma, GrossOutliersAreRejected)
       Task t(s, robot, tracked, q, qTarget);
       configure(t.task);
       if (run == 1) {
-        t.task.setOutlierThreshold(threshold);
+        t.task.getFeatureHealth().setOutlierThreshold(threshold);
       }
       double sum = 0.0;
       int count = 0;
@@ -179,13 +179,13 @@ TEST_F(ServoProjectivePuma, NewChecksChangeNothingWhenThereIsNothingToCatch)
   configure(plain.task);
   configure(checked.task);
   EXPECT_EQ(plain.task.getStatus(), vpServoProjective::SERVO_RUNNING);
-  EXPECT_FALSE(plain.task.getJointLimitAvoidance().hasJointLimits());
+  EXPECT_FALSE(plain.task.getControlLaw().getJointLimitAvoidance().hasJointLimits());
   for (unsigned int k = 0; k < 3; ++k) {
     EXPECT_TRUE(plain.task.getFeatureHealth().isFeatureTracked(k));
     EXPECT_EQ(plain.task.getReport().getFeatureState(k), vpServoProjective::FEATURE_ACTIVE);
   }
   checked.task.setImageSize(s.width, s.height, 5.0);
-  checked.task.setOutlierThreshold(5.0);
+  checked.task.getFeatureHealth().setOutlierThreshold(5.0);
   checked.task.setJointLimits(vpColVector(6, -M_PI), vpColVector(6, M_PI));
   for (int it = 0; it < 40; ++it) {
     setFeatures(s, q, tracked, plain.s);

@@ -202,8 +202,8 @@ TEST_F(ServoProjectiveParity, AnAdaptiveGainGetsVpServosValueAtEveryIteration)
       modeTask.addFeature(modeFeatures[k], modeStar[k]);
     }
     modeTask.setLambda(gain);
-    modeTask.setAdaptiveGainInput(mode == 0 ? vpServoProjective::GAIN_INPUT_JOINT_VELOCITY
-                                            : vpServoProjective::GAIN_INPUT_ERROR);
+    modeTask.getControlLaw().setAdaptiveGainInput(mode == 0 ? vpServoControlLaw::GAIN_INPUT_JOINT_VELOCITY
+                                                            : vpServoControlLaw::GAIN_INPUT_ERROR);
     modeTask.setErrorUnit(mode == 2 ? vpServoProjective::ERROR_NORMALIZED : vpServoProjective::ERROR_PIXELS, f);
 
     // The vpServo program: the same stereo error with the true Jacobian of the arm, through ViSP's own
@@ -230,7 +230,7 @@ TEST_F(ServoProjectiveParity, AnAdaptiveGainGetsVpServosValueAtEveryIteration)
         EXPECT_NEAR(ratio, 1.0, 1e-5) << "iteration " << it;
         EXPECT_LT((qdot - qdotViSP).frobeniusNorm(), 1e-4 * qdotViSP.frobeniusNorm()) << "iteration " << it;
       }
-      if (std::sqrt(modeTask.getError().sumSquare() / (4 * nb)) * modeTask.getErrorScale() < 1e-3) {
+      if (std::sqrt(modeTask.getError().sumSquare() / (4 * nb)) * modeTask.getControlLaw().getErrorScale() < 1e-3) {
         break; // converged: 1e-3 px RMS
       }
       q = s.arm.integrate(s.armJoints(q), qdot, 0.1) - s.qRef; // a velocity (1/s) applied for 0.1 s
@@ -290,8 +290,7 @@ TEST_F(ServoProjectiveParity, TheUnitChangesNeitherAConstantGainsLawNorThePixelS
   const vpColVector ePixels = task.getError();
   const vpMatrix JPixels = task.getReport().getTaskJacobian();
   const vpColVector svPixels = task.getReport().getTaskSingularValues();
-  EXPECT_EQ(task.getErrorUnit(), vpServoProjective::ERROR_PIXELS);
-  EXPECT_EQ(task.getErrorScale(), 1.0);
+  EXPECT_EQ(task.getControlLaw().getErrorScale(), 1.0);
 
   task.setErrorUnit(vpServoProjective::ERROR_NORMALIZED, 1000.0);
   const vpColVector qdot = task.computeControlLaw(q);
@@ -307,19 +306,19 @@ TEST_F(ServoProjectiveParity, TheUnitChangesNeitherAConstantGainsLawNorThePixelS
   // Bad values are refused and change nothing.
   EXPECT_THROW(task.setErrorUnit(vpServoProjective::ERROR_NORMALIZED, -1.0), vpProjectiveException);
   EXPECT_THROW(task.setErrorUnit(vpServoProjective::ERROR_NORMALIZED, std::nan("")), vpProjectiveException);
-  EXPECT_EQ(task.getErrorScale(), 1000.0);
+  EXPECT_EQ(task.getControlLaw().getErrorScale(), 1000.0);
 
   // Estimated: the mean focal length of the model's metric self-calibration, the simulator's px = py here.
   task.setErrorUnit(vpServoProjective::ERROR_NORMALIZED);
   const double f = s.camLeft.get_px();
-  testLog() << "[ measured ] estimated focal length " << task.getErrorScale() << " px, true " << f << " px"
-            << std::endl;
-  EXPECT_NEAR(task.getErrorScale(), f, 0.01 * f);
+  testLog() << "[ measured ] estimated focal length " << task.getControlLaw().getErrorScale() << " px, true " << f
+            << " px" << std::endl;
+  EXPECT_NEAR(task.getControlLaw().getErrorScale(), f, 0.01 * f);
   // Chosen before the robot: estimated by setRobot().
   vpServoProjective later;
   later.setErrorUnit(vpServoProjective::ERROR_NORMALIZED);
   later.setRobot(robot);
-  EXPECT_DOUBLE_EQ(later.getErrorScale(), task.getErrorScale());
+  EXPECT_DOUBLE_EQ(later.getControlLaw().getErrorScale(), task.getControlLaw().getErrorScale());
 }
 
 TEST_F(ServoProjectiveParity, ComputeControlLawWithoutArgumentUsesTheJointsSetForIt)

@@ -111,7 +111,7 @@ TEST_F(ServoProjectivePuma, ReducedTaskIsTheDampedLawOfTheActiveFeatures)
     Task three(s, robot, {0, 1, 3}, q, qStar);
     four.s[2].setRaw(four.s[2].get_u() + 300.0, four.s[2].get_v(), four.s[2].get_up() + 300.0, four.s[2].get_vp());
     four.task.setFeatureTracked(2, false);
-    three.task.setDamping(0.0, 0.0);
+    three.task.getControlLaw().setDamping(0.0, 0.0);
     three.task.computeControlLaw(q);
     const Eigen::MatrixXd J3 = toEigenX(three.task.getReport().getTaskJacobian());
     const Eigen::VectorXd e3 = toEigenV(three.task.getError());
@@ -119,7 +119,7 @@ TEST_F(ServoProjectivePuma, ReducedTaskIsTheDampedLawOfTheActiveFeatures)
     const double sigma0 = 2.0 * sv3(5), muMax = sv3(5);
     for (Task *t : {&four, &three}) {
       t->task.setLambda(gain);
-      t->task.setDamping(sigma0, muMax);
+      t->task.getControlLaw().setDamping(sigma0, muMax);
     }
     const Eigen::VectorXd qdot4 = toEigenV(four.task.computeControlLaw(q));
     const Eigen::VectorXd qdot3 = toEigenV(three.task.computeControlLaw(q));
@@ -169,7 +169,7 @@ TEST(ServoProjective, StopsWhenTheActiveFeaturesNoLongerConstrainEveryJoint)
       randomPair(s, rng, vpMath::rad(eyeInHand ? 3.0 : 20.0), vpMath::rad(eyeInHand ? 2.0 : 10.0), q, qStar);
       Task t(s, robot, {0, 1, 2, 3}, q, qStar);
       configure(t.task);
-      t.task.setDamping(0.1, 10.0);
+      t.task.getControlLaw().setDamping(0.1, 10.0);
       vpProjectiveRobot::JointVector qe(6), qdotE(6);
       for (unsigned int i = 0; i < 6; ++i) {
         qe(i) = q[i];

@@ -121,8 +121,8 @@ void configure(vpServoProjective &task, const vpProjectiveRobot &robot, bool set
   const PaperTask &w = paperTask();
   task.setRobot(robot);
   task.setLambda(0.5);
-  task.setMaxJointVelocity(vpMath::rad(15.0));
-  task.setDamping(30.0, 30.0);
+  task.getControlLaw().setMaxJointVelocity(vpMath::rad(15.0));
+  task.getControlLaw().setDamping(30.0, 30.0);
   task.setJointLimits(w.setup.arm.getJointMin(), w.setup.arm.getJointMax());
   task.setImageSize(w.rig.getWidth(), w.rig.getHeight(), 10.0);
   task.setPathPlanning(true);
@@ -274,33 +274,34 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
   };
   // Settles within 15 calls, then follows lambda / (1 + lambda k) with no false alarm over 25 calls.
   unsigned int calls = 0;
-  while (!task.getSettlingState().isSettled() && calls < 15) {
+  while (!task.getControlLaw().getSettling().isSettled() && calls < 15) {
     step();
     ++calls;
   }
-  ASSERT_TRUE(task.getSettlingState().isSettled()) << "not settled after " << calls << " calls";
+  ASSERT_TRUE(task.getControlLaw().getSettling().isSettled()) << "not settled after " << calls << " calls";
   EXPECT_FALSE(task.getReport().isFollowingPath());
   for (unsigned int c = 0; c < 25; ++c) {
     step();
-    ASSERT_TRUE(task.getSettlingState().isSettled()) << "a false alarm " << c << " calls after settling";
-    const double k = task.getSettlingState().getSettledIterations();
+    ASSERT_TRUE(task.getControlLaw().getSettling().isSettled()) << "a false alarm " << c << " calls after settling";
+    const double k = task.getControlLaw().getSettling().getSettledIterations();
     EXPECT_NEAR(task.getReport().getLambda(), 0.5 / (1.0 + 0.5 * k), 1e-12);
     EXPECT_GE(k, c + 1.0);
   }
-  EXPECT_NEAR(task.getSettlingState().getNoiseEstimate(), sigma, 0.3 * sigma); // 16 frames: ~1.03 sigma per row
+  EXPECT_NEAR(task.getControlLaw().getSettling().getNoiseEstimate(), sigma,
+              0.3 * sigma); // 16 frames: ~1.03 sigma per row
 
   // A bump: 1 deg on joint 0 (18 single-frame floors). The next call has the full gain, then the task settles again.
   const Eigen::VectorXd floor = w.floor(sigma);
   q[0] += vpMath::rad(1.0);
   step();
-  EXPECT_FALSE(task.getSettlingState().isSettled()) << "the bump went unnoticed";
+  EXPECT_FALSE(task.getControlLaw().getSettling().isSettled()) << "the bump went unnoticed";
   EXPECT_EQ(task.getReport().getLambda(), 0.5);
   calls = 0;
-  while (!task.getSettlingState().isSettled() && calls < 15) {
+  while (!task.getControlLaw().getSettling().isSettled() && calls < 15) {
     step();
     ++calls;
   }
-  EXPECT_TRUE(task.getSettlingState().isSettled()) << "not settled again after the bump";
+  EXPECT_TRUE(task.getControlLaw().getSettling().isSettled()) << "not settled again after the bump";
   for (unsigned int c = 0; c < 20; ++c) {
     step();
   }
@@ -314,13 +315,13 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
   }
   teach(t.sStar, qTarget2, 16, sigma, noise);
   step();
-  EXPECT_FALSE(task.getSettlingState().isSettled()) << "the new target went unnoticed";
+  EXPECT_FALSE(task.getControlLaw().getSettling().isSettled()) << "the new target went unnoticed";
   EXPECT_TRUE(task.getReport().isFollowingPath() || task.getReport().getLambda() == 0.5)
       << "neither the plan nor the full gain";
   for (unsigned int c = 0; c < 40; ++c) {
     step();
   }
-  EXPECT_TRUE(task.getSettlingState().isSettled()) << "not settled on the new target";
+  EXPECT_TRUE(task.getControlLaw().getSettling().isSettled()) << "not settled on the new target";
   for (unsigned int i = 0; i < 6; ++i) {
     EXPECT_LT(std::abs(q[i] - qTarget2[i]), 2.0 * floor(i)) << "joint " << i << " after the target step";
   }
@@ -329,10 +330,10 @@ TEST(ServoSettling, ReengagesFullGainAfterABumpATargetStepOrALostFeature)
   task.setFeatureTracked(2, false);
   step();
   EXPECT_EQ(task.getStatus(), vpServoProjective::SERVO_STOPPED);
-  EXPECT_FALSE(task.getSettlingState().isSettled());
+  EXPECT_FALSE(task.getControlLaw().getSettling().isSettled());
   task.setFeatureTracked(2, true);
   step();
-  EXPECT_FALSE(task.getSettlingState().isSettled()) << "settling must converge anew after a stop";
+  EXPECT_FALSE(task.getControlLaw().getSettling().isSettled()) << "settling must converge anew after a stop";
   EXPECT_EQ(task.getReport().getLambda(), 0.5);
 }
 
@@ -345,7 +346,7 @@ TEST(ServoSettling, OffIsLawFortySevenAsIs)
   vpGaussRand noise(1.0, 0.0, 3);
   std::vector<vpFeatureStereoPoint> s(3), sStar(3);
   vpServoProjective plain, off, toggled;
-  EXPECT_FALSE(plain.getSettlingState().isEnabled());
+  EXPECT_FALSE(plain.getControlLaw().getSettling().isEnabled());
   configure(off, robot, false);
   configure(toggled, robot, true);
   configure(plain, robot, false);
@@ -360,16 +361,16 @@ TEST(ServoSettling, OffIsLawFortySevenAsIs)
   for (unsigned int it = 0; it < 30; ++it) {
     ASSERT_TRUE(observe(s, q, sigma, noise));
     if (it == 20) {
-      EXPECT_TRUE(toggled.getSettlingState().isSettled());
+      EXPECT_TRUE(toggled.getControlLaw().getSettling().isSettled());
       toggled.setSettling(false);
     }
     const vpColVector qdot = plain.computeControlLaw(q);
     const vpColVector qdotOff = off.computeControlLaw(q);
     EXPECT_EQ((qdot - qdotOff).frobeniusNorm(), 0.0) << "iteration " << it;
-    EXPECT_FALSE(off.getSettlingState().isSettled());
+    EXPECT_FALSE(off.getControlLaw().getSettling().isSettled());
     const vpColVector qdotToggled = toggled.computeControlLaw(q);
     if (it >= 20) {
-      EXPECT_FALSE(toggled.getSettlingState().isSettled());
+      EXPECT_FALSE(toggled.getControlLaw().getSettling().isSettled());
       EXPECT_EQ(toggled.getReport().getLambda(), plain.getReport().getLambda());
     }
     q = w.setup.arm.integrate(q, qdot, 1.0);

@@ -259,7 +259,7 @@ struct ServoRun {
     s = sStar;
     task.setRobot(robot);
     task.setLambda(0.5);
-    task.setMaxJointVelocity(vpMath::rad(10.0));
+    task.getControlLaw().setMaxJointVelocity(vpMath::rad(10.0));
     task.setPathPlanning(true); // plans from the model: no task ends in another branch (issue 11)
     for (size_t k = 0; k < kTracked.size(); ++k) {
       task.addFeature(s[k], sStar[k]);
@@ -318,7 +318,7 @@ inline BumpedRun runBumped(const ArmSetup &s, const ArmSetup &b, const vpProject
   vpProjectiveRobot robot = acquired;
   ServoRun run(s, robot, qTarget, kSigma, noise);
   run.task.setRobot(robot); // modifiable: the task may refine the robot's rig
-  run.task.setRigRefinement(refine);
+  run.task.getRigRefinement().setRefinement(refine);
   const std::vector<vpFeatureStereoPoint> userStar = run.sStar;
   vpColVector q = qStart;
   for (int it = 0; it < 6; ++it) {
@@ -340,8 +340,8 @@ inline BumpedRun runBumped(const ArmSetup &s, const ArmSetup &b, const vpProject
     }
   }
   toolPoseError(s, qRest, qTarget, r.deg, r.metres);
-  r.refinements = run.task.getRigRefinementState().getNumberOfRefinements();
-  r.failedRefinements = run.task.getRigRefinementState().getNumberOfFailures();
+  r.refinements = run.task.getRigRefinement().getNumberOfRefinements();
+  r.failedRefinements = run.task.getRigRefinement().getNumberOfFailures();
   for (size_t k = 0; k < userStar.size(); ++k) {
     r.userStarUnchanged = r.userStarUnchanged && userStar[k].get_s() == run.sStar[k].get_s();
   }

@@ -148,7 +148,7 @@ inline LoopResult runLoop(const ArmSetup &s, const vpProjectiveRobot &model, con
   vpServoProjective task;
   task.setRobot(model);
   task.setLambda(settings.lambda);
-  task.setMaxJointVelocity(settings.qdotMax);
+  task.getControlLaw().setMaxJointVelocity(settings.qdotMax);
   if (settings.givePeriod) {
     task.setControlPeriod(settings.period);
   }

@@ -140,8 +140,8 @@ inline int servo(const ArmSetup &s, const vpProjectiveRobot &robot, const std::v
 {
   Task t(s, robot, tracked, q, qTarget);
   t.task.setLambda(0.5);
-  t.task.setDamping(sigma0, 10.0);
-  t.task.setMaxJointVelocity(vpMath::rad(10.0));
+  t.task.getControlLaw().setDamping(sigma0, 10.0);
+  t.task.getControlLaw().setMaxJointVelocity(vpMath::rad(10.0));
   for (int it = 0; it <= maxIterations; ++it) {
     setFeatures(s, q, tracked, t.s); // the tracker: images of the true arm
     const vpColVector qdot = t.task.computeControlLaw(q);
@@ -190,14 +190,14 @@ protected:
 inline void configure(vpServoProjective &task)
 {
   task.setLambda(0.5);
-  task.setDamping(1.0, 10.0);
-  task.setMaxJointVelocity(vpMath::rad(10.0));
+  task.getControlLaw().setDamping(1.0, 10.0);
+  task.getControlLaw().setMaxJointVelocity(vpMath::rad(10.0));
 }
 
 //! RMS (px) of the error of the active features.
 inline double activeRms(const vpServoProjective &task)
 {
-  const unsigned int active = task.getFeatureHealth().getNumberOfActiveFeatures();
+  const unsigned int active = task.getReport().getNumberOfActiveFeatures();
   return active == 0 ? 0.0 : task.getError().frobeniusNorm() / std::sqrt(4.0 * active);
 }
 
@@ -210,9 +210,9 @@ inline double jointError(const vpColVector &q, const vpColVector &qTarget)
 inline Eigen::MatrixXd activeRows(const vpServoProjective &task)
 {
   const Eigen::MatrixXd J = toEigenX(task.getReport().getTaskJacobian());
-  Eigen::MatrixXd Ja(4 * task.getFeatureHealth().getNumberOfActiveFeatures(), J.cols());
+  Eigen::MatrixXd Ja(4 * task.getReport().getNumberOfActiveFeatures(), J.cols());
   Eigen::Index r = 0;
-  for (unsigned int i = 0; i < task.getNumberOfFeatures(); ++i) {
+  for (unsigned int i = 0; i < task.getReport().getNumberOfFeatures(); ++i) {
     if (task.getReport().getFeatureState(i) == vpServoProjective::FEATURE_ACTIVE) {
       Ja.middleRows(r, 4) = J.middleRows(4 * i, 4);
       r += 4;

@@ -165,8 +165,8 @@ int main(int argc, char **argv)
       task.addFeature(p[i], pd[i]);
     }
     task.setLambda(0.8); // a vpAdaptiveGain tuned on vpServo would need setAdaptiveGainInput(GAIN_INPUT_JOINT_VELOCITY)
-    std::cout << "Focal length from the model: " << task.getErrorScale() << " px (simulated cameras: " << cam.get_px()
-              << ")" << std::endl;
+    std::cout << "Focal length from the model: " << task.getControlLaw().getErrorScale()
+              << " px (simulated cameras: " << cam.get_px() << ")" << std::endl;
     //! [Task]
 
     if (opt_display) {
@@ -216,7 +216,7 @@ int main(int argc, char **argv)
         stereo.plot(e, q);
       }
       std::cout << "|| s - s* || " << e.sumSquare() << std::endl;
-      rms = std::sqrt(e.sumSquare() / e.size()) * task.getErrorScale(); // pixels
+      rms = std::sqrt(e.sumSquare() / e.size()) * task.getControlLaw().getErrorScale(); // pixels
       if (iter == 1) {
         rmsStart = rms;
       }

@@ -158,7 +158,7 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
     task.setRobot(model);
     task.setControlPeriod(robot.getSamplingTime()); // one call per camera frame: qdot is sent as a velocity
     task.setLambda(1.0);
-    task.setMaxJointVelocity(vpMath::rad(30.0));
+    task.getControlLaw().setMaxJointVelocity(vpMath::rad(30.0));
     task.setJointLimits(robot.getJointMin(), robot.getJointMax());
     task.setImageSize(cell.getWidth(), cell.getHeight(), 10.0);
     task.setPathPlanning(true); // rehearse law (47) on the model, plan a path if it would fail
@@ -201,7 +201,8 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
       lost = task.getStatus() == vpServoProjective::SERVO_STOPPED ? lost + 1 : 0; // this frame: qdot = 0
       if (lost > 25 || task.getStatus() == vpServoProjective::SERVO_MODEL_MISMATCH ||
           task.getStatus() == vpServoProjective::SERVO_NO_PLAN) {
-        std::cout << "Stopped at iteration " << it << ": " << vpServoProjective::toString(task.getStatus()) << "\n";
+        std::cout << "Stopped at iteration " << it << ": " << vpServoProjectiveReport::toString(task.getStatus())
+                  << "\n";
         break;
       }
       robot.setVelocity(vpRobot::ARTICULAR_FRAME, qdot);

@@ -145,8 +145,8 @@ int main(int argc, char **argv)
     vpServoProjective task;
     task.setRobot(robot);
     task.setLambda(0.5);
-    task.setMaxJointVelocity(vpMath::rad(15.0)); // joint steps of at most 15 deg
-    task.setDamping(30.0, 30.0);                 // damped below 30 px/rad of J's smallest singular value
+    task.getControlLaw().setMaxJointVelocity(vpMath::rad(15.0)); // joint steps of at most 15 deg
+    task.getControlLaw().setDamping(30.0, 30.0); // damped below 30 px/rad of J's smallest singular value
     // Global servoing: the model plans the task (a joint path inside the limits that keeps the markers 10 px inside
     // the images), the task follows it, and law (47) finishes.
     task.setJointLimits(world_arm.getJointMin(), world_arm.getJointMax());

@@ -188,8 +188,8 @@ int main(int argc, char **argv)
     vpServoProjective task; // the settings of projective-paper.cpp
     task.setRobot(robot);
     task.setLambda(0.5);
-    task.setMaxJointVelocity(vpMath::rad(15.0));
-    task.setDamping(30.0, 30.0);
+    task.getControlLaw().setMaxJointVelocity(vpMath::rad(15.0));
+    task.getControlLaw().setDamping(30.0, 30.0);
     std::vector<vpFeatureStereoPoint> s(K), s_star(K); // s from the tracked centres, s* from the taught ones
     for (size_t k = 0; k < K; ++k) {
       s_star[k].buildFrom(leftStar[k], rightStar[k]);
@@ -293,7 +293,7 @@ int main(int argc, char **argv)
               << " px\n"
               << "Final joint error: largest " << worstDeg << " deg; tool pose error " << poseDeg << " deg, " << poseMm
               << " mm (ground truth, for the report only); refinements of the rig with the task's own frames: "
-              << task.getRigRefinementState().getNumberOfRefinements() << "\n";
+              << task.getRigRefinement().getNumberOfRefinements() << "\n";
     // Re-registered once (updateRig()); the task's own refinements of the rig (setRigRefinement()) do not count.
     const bool ok = detectedAt >= 0 && robot.getRigUpdateCount() == 1 && poseDeg <= 2.0 && poseMm <= 2.0;
     std::cout << (ok ? "Bump detected, rig re-registered, task ended at its original target"

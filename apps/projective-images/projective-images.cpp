@@ -94,8 +94,8 @@ ServoRun servo(Session &session, const vpProjectiveRobot &robot, TrackingAccurac
   vpServoProjective task;
   task.setRobot(robot);
   task.setLambda(0.5);
-  task.setMaxJointVelocity(vpMath::rad(15.0)); // as in the main job
-  task.setDamping(30.0, 30.0);
+  task.getControlLaw().setMaxJointVelocity(vpMath::rad(15.0)); // as in the main job
+  task.getControlLaw().setDamping(30.0, 30.0);
   for (unsigned int k = 0; k < nbPoints; ++k) {
     s_star[k].buildFrom(run.leftTarget[k], run.rightTarget[k]);
     task.addFeature(s[k], s_star[k]);

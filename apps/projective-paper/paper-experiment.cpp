@@ -59,8 +59,8 @@ void configureTask(vpServoProjective &task, const PaperWorld &world, const vpPro
   task.setLambda(0.5);
   // The task starts 240 px away from its target: joint steps are limited to 15 deg and damped when the smallest
   // singular value of J falls below 30 px/rad, so that no step leaves the domain where J is a good linearisation.
-  task.setMaxJointVelocity(vpMath::rad(15.0));
-  task.setDamping(30.0, 30.0);
+  task.getControlLaw().setMaxJointVelocity(vpMath::rad(15.0));
+  task.getControlLaw().setDamping(30.0, 30.0);
   // Global servoing: the model plans the task once (inverse kinematics of s*, a path inside the joint limits that
   // keeps the markers 10 px inside the images), the task follows it, and law (47) finishes.
   task.setJointLimits(world.arm.getJointMin(), world.arm.getJointMax());

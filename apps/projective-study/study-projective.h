@@ -73,8 +73,8 @@ public:
   {
     m_task.setRobot(robot);
     m_task.setLambda(settings.lambda);
-    m_task.setMaxJointVelocity(settings.qdotMax);
-    m_task.setDamping(settings.sigmaThreshold, settings.maxDamping);
+    m_task.getControlLaw().setMaxJointVelocity(settings.qdotMax);
+    m_task.getControlLaw().setDamping(settings.sigmaThreshold, settings.maxDamping);
     for (size_t k = 0; k < m_s.size(); ++k) {
       m_sStar[k].buildFrom(leftTarget[k], rightTarget[k]);
       m_task.addFeature(m_s[k], m_sStar[k]);
@@ -89,7 +89,7 @@ public:
   {
     m_robust = true;
     m_task.setImageSize(width, height);
-    m_task.setOutlierThreshold(outlierThreshold);
+    m_task.getFeatureHealth().setOutlierThreshold(outlierThreshold);
     m_task.setJointLimits(qmin, qmax);
   }
 

@@ -195,8 +195,8 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
     task.setRobot(model);
     task.setControlPeriod(settings.period);
     task.setLambda(1.0);
-    task.setMaxJointVelocity(vpMath::rad(30.0));
-    task.setDamping(30.0, 30.0);
+    task.getControlLaw().setMaxJointVelocity(vpMath::rad(30.0));
+    task.getControlLaw().setDamping(30.0, 30.0);
     task.setJointLimits(robot.getJointMin(), robot.getJointMax());
     task.setImageSize(cell.getWidth(), cell.getHeight(), 10.0);
     task.setPathPlanning(true);
@@ -257,7 +257,7 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
     calls.push_back(call);
     positionErrors.push_back(positionMm);
     csv << settings.seed + t << "," << success << "," << call << "," << errorRms << "," << positionMm << ","
-        << rotationDeg << "," << vpServoProjective::toString(status) << "\n";
+        << rotationDeg << "," << vpServoProjectiveReport::toString(status) << "\n";
   }
   const double rate = drawn > 0 ? 100.0 * successes / drawn : 0.0;
   auto median = [](std::vector<double> v) {

@@ -144,8 +144,8 @@ app::ServoRun servo(const World &world, vpSimulatorViper850 &robot, const vpProj
   // qdot is a velocity: lambda = 0.5 per control period, joint steps limited to maxStep per period, and damping when
   // the smallest singular value of J falls below world.damping (px/rad).
   task.setLambda(0.5 / robot.getSamplingTime());
-  task.setMaxJointVelocity(maxStep / robot.getSamplingTime());
-  task.setDamping(world.damping, world.damping);
+  task.getControlLaw().setMaxJointVelocity(maxStep / robot.getSamplingTime());
+  task.getControlLaw().setDamping(world.damping, world.damping);
   for (unsigned int k = 0; k < nbPoints; ++k) {
     s_star[k].buildFrom(run.leftTarget[k], run.rightTarget[k]);
     task.addFeature(s[k], s_star[k]);

@@ -154,36 +154,55 @@ void bindServoContract(TaskClass &task)
 //! Every other public method (see the file's comment).
 void bindServoMore(TaskClass &task)
 {
-  task.def("setAdaptiveGainInput", &vpServoProjective::setAdaptiveGainInput, py::arg("input"))
-      .def("getAdaptiveGainInput", &vpServoProjective::getAdaptiveGainInput)
+  // The Python names of the settings that moved to the task's parts (getControlLaw(), getFeatureHealth(),
+  // getModelMismatch(), getRigRefinement(), getPathPlanner()) stay on ServoProjective.
+  typedef vpServoProjective T;
+  task.def(
+          "setAdaptiveGainInput",
+          [](T &t, vpServoControlLaw::vpGainInput i) { t.getControlLaw().setAdaptiveGainInput(i); }, py::arg("input"))
+      .def("getAdaptiveGainInput", [](T &t) { return t.getControlLaw().getAdaptiveGainInput(); })
       .def("setErrorUnit", &vpServoProjective::setErrorUnit, py::arg("unit"), py::arg("focalLength") = 0.0)
-      .def("getErrorUnit", &vpServoProjective::getErrorUnit)
-      .def("getErrorScale", &vpServoProjective::getErrorScale)
-      .def("setDamping", &vpServoProjective::setDamping, py::arg("sigmaThreshold"), py::arg("maxDamping"))
-      .def("setMaxJointVelocity", &vpServoProjective::setMaxJointVelocity, py::arg("qdotMax"))
+      .def("getErrorScale", [](T &t) { return t.getControlLaw().getErrorScale(); })
+      .def(
+          "setDamping", [](T &t, double s0, double mu) { t.getControlLaw().setDamping(s0, mu); },
+          py::arg("sigmaThreshold"), py::arg("maxDamping"))
+      .def(
+          "setMaxJointVelocity", [](T &t, double v) { t.getControlLaw().setMaxJointVelocity(v); }, py::arg("qdotMax"))
       .def("setControlPeriod", &vpServoProjective::setControlPeriod, py::arg("seconds"))
-      .def("getControlPeriod", &vpServoProjective::getControlPeriod)
-      .def("setPseudoInverseThreshold", &vpServoProjective::setPseudoInverseThreshold, py::arg("threshold"))
-      .def("setRankTolerance", &vpServoProjective::setRankTolerance, py::arg("tolerance"))
+      .def("getControlPeriod", [](T &t) { return t.getControlLaw().getControlPeriod(); })
+      .def(
+          "setPseudoInverseThreshold", [](T &t, double x) { t.getControlLaw().setPseudoInverseThreshold(x); },
+          py::arg("threshold"))
+      .def(
+          "setRankTolerance", [](T &t, double x) { t.getFeatureHealth().setRankTolerance(x); }, py::arg("tolerance"))
       .def("setFeatureTracked", &vpServoProjective::setFeatureTracked, py::arg("i"), py::arg("tracked"))
-      .def("setOutlierThreshold", &vpServoProjective::setOutlierThreshold, py::arg("pixels"))
-      .def("setModelMismatchThreshold", &vpServoProjective::setModelMismatchThreshold, py::arg("pixels"))
+      .def(
+          "setOutlierThreshold", [](T &t, double px) { t.getFeatureHealth().setOutlierThreshold(px); },
+          py::arg("pixels"))
+      .def(
+          "setModelMismatchThreshold", [](T &t, double px) { t.getModelMismatch().setThreshold(px); },
+          py::arg("pixels"))
       .def("getDesiredFeature", &vpServoProjective::getDesiredFeature, py::arg("i"))
-      .def("setRigRefinement", &vpServoProjective::setRigRefinement, py::arg("refine"), py::arg("period") = 40,
-           py::arg("refinements") = 3)
-      .def("clearJointLimits", &vpServoProjective::clearJointLimits)
+      .def(
+          "setRigRefinement",
+          [](T &t, bool refine, unsigned int period, unsigned int n) {
+            t.getRigRefinement().setRefinement(refine, period, n);
+          },
+          py::arg("refine"), py::arg("period") = 40, py::arg("refinements") = 3)
+      .def("clearJointLimits", [](T &t) { t.getControlLaw().getJointLimitAvoidance().clearJointLimits(); })
       .def("clearFeatures", &vpServoProjective::clearFeatures)
-      .def("getNumberOfFeatures", &vpServoProjective::getNumberOfFeatures)
-      .def("getDimension", &vpServoProjective::getDimension)
+      .def("getNumberOfFeatures", [](T &t) { return t.getFeatureHealth().getNumberOfFeatures(); })
+      .def("getDimension", [](T &t) { return 4 * t.getFeatureHealth().getNumberOfFeatures(); })
       .def("setJointPositions", &vpServoProjective::setJointPositions, py::arg("q"))
       .def("computeControlLaw", py::overload_cast<>(&vpServoProjective::computeControlLaw), ReleaseGil())
-      .def_static("toString", &vpServoProjective::toString, py::arg("status"))
+      .def_static("toString", &vpServoProjectiveReport::toString, py::arg("status"))
       .def("getReport", &vpServoProjective::getReport, py::return_value_policy::copy,
            "A copy of the report of the last computeControlLaw().")
-      .def("getPathPlanning", &vpServoProjective::getPathPlanning)
-      .def("setPathFollowingGain", &vpServoProjective::setPathFollowingGain, py::arg("gain"))
-      .def("setMaxOpenLoopTime", &vpServoProjective::setMaxOpenLoopTime, py::arg("seconds"))
-      .def("getMaxOpenLoopTime", &vpServoProjective::getMaxOpenLoopTime)
+      .def(
+          "setPathFollowingGain", [](T &t, double g) { t.getPathPlanner().setPathFollowingGain(g); }, py::arg("gain"))
+      .def(
+          "setMaxOpenLoopTime", [](T &t, double s) { t.getPathPlanner().setMaxOpenLoopTime(s); }, py::arg("seconds"))
+      .def("getMaxOpenLoopTime", [](T &t) { return t.getPathPlanner().getMaxOpenLoopTime(); })
       .def("getPathPlanner", py::overload_cast<>(&vpServoProjective::getPathPlanner),
            py::return_value_policy::reference_internal, "The task's planner: change its settings before the loop.")
       .def("__str__", [](const vpServoProjective &t) {
@@ -207,9 +226,9 @@ void bindServo(py::module_ &m)
       .value("ERROR_PIXELS", vpServoProjective::ERROR_PIXELS)
       .value("ERROR_NORMALIZED", vpServoProjective::ERROR_NORMALIZED)
       .export_values();
-  py::enum_<vpServoProjective::vpGainInput>(task, "GainInput")
-      .value("GAIN_INPUT_ERROR", vpServoProjective::GAIN_INPUT_ERROR)
-      .value("GAIN_INPUT_JOINT_VELOCITY", vpServoProjective::GAIN_INPUT_JOINT_VELOCITY)
+  py::enum_<vpServoControlLaw::vpGainInput>(task, "GainInput")
+      .value("GAIN_INPUT_ERROR", vpServoControlLaw::GAIN_INPUT_ERROR)
+      .value("GAIN_INPUT_JOINT_VELOCITY", vpServoControlLaw::GAIN_INPUT_JOINT_VELOCITY)
       .export_values();
   py::object report = m.attr("ServoProjectiveReport");
   for (const char *name : {"ServoStatus", "FeatureState"}) {

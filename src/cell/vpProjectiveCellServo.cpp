@@ -68,14 +68,15 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
   task.setLambda(m_settings.gain);
   task.setControlPeriod(m_settings.period);
   const bool anyRevolute = std::find(m_types.begin(), m_types.end(), vpProjectiveJoint::REVOLUTE) != m_types.end();
-  task.setMaxJointVelocity(anyRevolute ? m_settings.maxRotationSpeed : m_settings.maxTranslationSpeed);
+  task.getControlLaw().setMaxJointVelocity(anyRevolute ? m_settings.maxRotationSpeed : m_settings.maxTranslationSpeed);
   if (m_lower.size() != 0) {
     task.setJointLimits(m_lower, m_upper);
   }
   task.setImageSize(m_cameras.getWidth(), m_cameras.getHeight(), m_settings.imageBorder);
   task.setPathPlanning(m_settings.planning);
   task.setSettling(true);
-  task.setMaxOpenLoopTime(m_settings.maxLostTime);  // blind along the plan no longer than the arm may go without tags
+  task.getPathPlanner().setMaxOpenLoopTime(
+      m_settings.maxLostTime);                      // blind along the plan no longer than the arm may go without tags
   std::map<int, std::vector<unsigned int>> corners; // of each tag: a planar group, kept facing the cameras
   for (unsigned int k = 0; k < N; ++k) {
     sStar[k].buildFrom(m_targetLeft[k], m_targetRight[k]);
@@ -110,7 +111,8 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
       t0 = t;
     } else if (t > tPrev) { // the loop's own period, smoothed, for what the task does per call
       const double estimate = 0.7 * period + 0.3 * (t - tPrev);
-      if (std::abs(estimate - task.getControlPeriod()) > 0.2 * task.getControlPeriod()) {
+      if (std::abs(estimate - task.getControlLaw().getControlPeriod()) >
+          0.2 * task.getControlLaw().getControlPeriod()) {
         task.setControlPeriod(estimate);
       }
       period = estimate;
@@ -169,7 +171,7 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
     if (status == vpServoProjective::SERVO_MODEL_MISMATCH || status == vpServoProjective::SERVO_NO_PLAN ||
         status == vpServoProjective::SERVO_ARM_NOT_FOLLOWING) {
       result.end = SERVO_STATUS;
-      why << "the task stopped: " << vpServoProjective::toString(status);
+      why << "the task stopped: " << vpServoProjectiveReport::toString(status);
       if (status == vpServoProjective::SERVO_MODEL_MISMATCH && task.getModelMismatch().isImagesExchanged()) {
         why << "; the left and right images are exchanged: the stereo image source gives the model's left camera "
                "as its right one (check the order of the cameras given to it)";
@@ -209,7 +211,7 @@ vpProjectiveCell::vpServoResult vpProjectiveCell::servo()
     if (shown < 0.0 || t - shown >= 1.0) {
       std::ostringstream os;
       os << "servo " << t - t0 << " s: image error " << result.error << " px RMS, " << seen << "/" << N << " corners, "
-         << vpServoProjective::toString(status).substr(0, vpServoProjective::toString(status).find(' '));
+         << vpServoProjectiveReport::toString(status).substr(0, vpServoProjectiveReport::toString(status).find(' '));
       progress(os.str());
       shown = t;
     }

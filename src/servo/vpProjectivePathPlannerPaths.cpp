@@ -254,12 +254,10 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
                                           const std::vector<Eigen::Vector4d> &sStar, std::vector<JointVector> &path,
                                           std::vector<std::vector<Eigen::Vector4d>> &features)
 {
-  // Law (47) as the task runs it (vpServoProjective::computeControlLaw(): gain of the largest error component, damped
-  // least squares with saturation, joint-limit avoidance added and saturated again), on the model's predictions, one
-  // step q <- q + qdot per iteration. Planning time, not the loop's: the stacked J and e may allocate.
+  // Law (47) as the task runs it (vpServoControlLaw::computeStep(), the task's implementation), on the model's
+  // predictions, one step q <- q + qdot per iteration. Planning time, not the loop's: the stacked J and e may allocate.
   const Eigen::Index n = q.size();
   const Eigen::Index rows = 4 * static_cast<Eigen::Index>(points.size());
-  vpServoDampedLeastSquares law = m_law; // computeVelocity() writes its report: a copy keeps the setting const
   Eigen::MatrixXd J(rows, n);
   Eigen::VectorXd e(rows);
   vpProjectiveArmModel::JointMatrix JtJ;
@@ -306,12 +304,7 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
       return false; // the budget, or a fixed point of the law that is not the solution
     }
     vpServoDampedLeastSquares::computeNormalEquations(J, e, JtJ, Jte);
-    law.computeVelocity(JtJ, Jte, m_gain(JtJ, Jte, e.cwiseAbs().maxCoeff()), qdot);
-    if (m_avoidance.hasJointLimits()) {
-      m_avoidance.computeVelocity(qk, qdot, JtJ, Jte, e.norm() / m_errorScale, law, qdot2);
-      qdot += qdot2;
-      law.saturate(qdot);
-    }
+    m_law.computeStep(qk, JtJ, Jte, e.cwiseAbs().maxCoeff(), e.norm() / m_law.getErrorScale(), qdot, qdot2);
     if (!qdot.allFinite()) {
       return false;
     }

@@ -41,11 +41,11 @@ using namespace vpProjectiveInternal;
 vpProjectivePathPlanner::vpProjectivePathPlanner()
     : m_groups(), m_minGroupArea(0.3), m_groupArea(), m_groupsOn(true), m_hasLimits(false), m_qmin(), m_qmax(),
       m_width(0), m_height(0), m_border(0.0), m_maxStep(M_PI / 36.0), m_maxExcursion(-1.0), m_starts(24),
-      m_maxResidual(5.0), m_refused(), m_refusedRadius(0.0), m_limitMargin(0.0), m_front(), m_points(), m_sStar(),
-      m_hasLaw(false), m_gain(), m_errorScale(1.0), m_law(), m_avoidance(), m_rehearsalBudget(50), m_rehearsalOk(false),
-      m_rehearsalIterations(0), m_rehearsalResidual(-1.0), m_rehearsalSlow(false), m_status(PLAN_NONE), m_branches(),
-      m_residuals(), m_branch(0), m_target(), m_path(), m_features(), m_kind(PATH_JOINT_LINE),
-      m_description("no plan yet")
+      m_maxResidual(5.0), m_followGain(1.0), m_maxOpenLoopTime(2.0), m_refused(), m_refusedRadius(0.0),
+      m_limitMargin(0.0), m_front(), m_points(), m_sStar(), m_hasLaw(false), m_law(), m_rehearsalBudget(50),
+      m_rehearsalOk(false), m_rehearsalIterations(0), m_rehearsalResidual(-1.0), m_rehearsalSlow(false),
+      m_status(PLAN_NONE), m_branches(), m_residuals(), m_branch(0), m_target(), m_path(), m_features(),
+      m_kind(PATH_JOINT_LINE), m_description("no plan yet")
 {
 }
 
@@ -106,7 +106,7 @@ void vpProjectivePathPlanner::setMaxExcursion(double excursion)
 
 double vpProjectivePathPlanner::getMaxJointStep() const
 {
-  const double saturation = m_hasLaw ? m_law.getMaxJointVelocity() : 0.0;
+  const double saturation = m_hasLaw ? m_law.getDampedLeastSquares().getMaxJointVelocity() : 0.0;
   return saturation > 0.0 ? std::min(m_maxStep, 2.0 / 3.0 * saturation) : m_maxStep;
 }
 
@@ -169,16 +169,17 @@ void vpProjectivePathPlanner::setNumberOfStarts(unsigned int starts)
   m_starts = starts;
 }
 
-void vpProjectivePathPlanner::setControlLaw(const vpGain &gain, const vpServoDampedLeastSquares &law,
-                                            const vpServoJointLimitAvoidance &avoidance, double errorScale)
+void vpProjectivePathPlanner::setPathFollowingGain(double gain)
 {
-  if (!gain || !std::isfinite(errorScale) || !(errorScale > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, plannerAt("setControlLaw()"),
-         "give a gain function and a positive, finite error scale (1 for pixels)");
+  if (!std::isfinite(gain) || !(gain > 0.0) || gain > 1.0) {
+    fail(vpProjectiveException::invalidValueError, plannerAt("setPathFollowingGain()"),
+         "the path-following gain is the fraction of the way to the next sample covered per call: in (0, 1]");
   }
-  m_gain = gain;
-  m_errorScale = errorScale;
-  m_law = law;
-  m_avoidance = avoidance;
-  m_hasLaw = true;
+  m_followGain = gain;
+}
+
+void vpProjectivePathPlanner::setMaxOpenLoopTime(double seconds)
+{
+  m_maxOpenLoopTime = nonNegative(seconds, plannerAt("setMaxOpenLoopTime()"), "the longest open loop on the model",
+                                  "seconds of consecutive calls; 0 stops the task as soon as the features are too few");
 }

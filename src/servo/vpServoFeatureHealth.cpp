@@ -71,8 +71,8 @@ double largerLineDistance(double residual, const Eigen::Vector3d &l, const Eigen
 
 vpServoFeatureHealth::vpServoFeatureHealth()
     : m_tracked(), m_records(), m_work(), m_nbActive(0), m_width(0), m_height(0), m_border(0.0),
-      m_outlierThreshold(0.0), m_iteration(0), m_classified(0), m_workActive(0), m_inIteration(false), m_predict(false),
-      m_model(nullptr), m_data(nullptr)
+      m_outlierThreshold(0.0), m_rankTolerance(1e-6), m_iteration(0), m_classified(0), m_workActive(0),
+      m_inIteration(false), m_predict(false), m_model(nullptr), m_data(nullptr)
 {
 }
 
@@ -148,6 +148,17 @@ void vpServoFeatureHealth::setOutlierThreshold(double pixels)
 {
   m_outlierThreshold =
       nonNegative(pixels, at("setOutlierThreshold()"), "the outlier threshold", "pixels; 0 disables the rejection");
+}
+
+void vpServoFeatureHealth::setRankTolerance(double tolerance)
+{
+  const std::string where = at("setRankTolerance()");
+  requireFinite(tolerance, where, "the rank tolerance");
+  if (!(tolerance > 0.0) || !(tolerance < 1.0)) {
+    fail(vpProjectiveException::invalidValueError, where,
+         "the rank tolerance is a ratio of singular values and must be in (0, 1), e.g. 1e-6");
+  }
+  m_rankTolerance = tolerance;
 }
 
 void vpServoFeatureHealth::startIteration(const vpProjectiveArmModel &model, const vpServoProjectiveData &data)

@@ -32,13 +32,12 @@ using namespace vpProjectiveInternal;
 const vpErrorSite at("vpServoProjective");
 
 vpServoProjective::vpServoProjective()
-    : m_link(), m_features(), m_desired(), m_lambda(0.5), m_rankTolerance(1e-6), m_law(), m_health(), m_jointLimits(),
-      m_mismatch(), m_follow(), m_targets(), m_iterations(), m_lastIteration(0), m_planning(false), m_planner(),
-      m_plannedFor(), m_pathSample(0), m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0),
-      m_replanFailed(false), m_stallSum(), m_stallSumSq(), m_stallHalves{0.0, 0.0}, m_stallCount(0), m_followGain(1.0),
-      m_maxOpenLoopTime(2.0), m_openLoopCalls(0), m_seenPoints(), m_hasSeenPoint(), m_activeNow(), m_period(1.0),
-      m_qdotMax(0.0), m_gainInput(GAIN_INPUT_ERROR), m_errorUnit(ERROR_PIXELS), m_focalLength(0.0), m_errorScale(1.0),
-      m_q(), m_qFresh(false), m_settling(), m_targetGeneration(0), m_refinement(), m_rigUpdatesSeen(0)
+    : m_link(), m_features(), m_desired(), m_control(), m_health(), m_mismatch(), m_follow(), m_targets(),
+      m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(), m_pathSample(0),
+      m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0), m_replanFailed(false), m_stallSum(),
+      m_stallSumSq(), m_stallHalves{0.0, 0.0}, m_stallCount(0), m_openLoopCalls(0), m_seenPoints(), m_hasSeenPoint(),
+      m_activeNow(), m_errorUnit(ERROR_PIXELS), m_focalLength(0.0), m_q(), m_qFresh(false), m_targetGeneration(0),
+      m_refinement(), m_rigUpdatesSeen(0)
 {
 }
 
@@ -111,9 +110,10 @@ inline void vpServoProjective::checkJoints(const JointVector &q, const char *met
   if (!q.allFinite()) {
     fail(vpProjectiveException::nonFiniteValueError, at(method), "q has a NaN or infinite entry");
   }
-  if (m_jointLimits.hasJointLimits() && m_jointLimits.getNumberOfJoints() != static_cast<unsigned int>(n)) {
+  const vpServoJointLimitAvoidance &limits = m_control.getJointLimitAvoidance();
+  if (limits.hasJointLimits() && limits.getNumberOfJoints() != static_cast<unsigned int>(n)) {
     std::ostringstream os;
-    os << "the joint limits have " << m_jointLimits.getNumberOfJoints() << " entries but the robot has " << n
+    os << "the joint limits have " << limits.getNumberOfJoints() << " entries but the robot has " << n
        << " joints; call setJointLimits() again";
     fail(vpProjectiveException::dimensionError, at(method), os.str());
   }
@@ -165,7 +165,8 @@ inline void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, 
   }
   d.m_nbActive = active;
   vpServoDampedLeastSquares::computeNormalEquations(d.m_J, d.m_e, d.m_JtJ, d.m_Jte);
-  d.m_errorNorm = d.m_e.norm() / m_errorScale; // in the unit of setErrorUnit(), for the large projection thresholds
+  d.m_errorNorm =
+      d.m_e.norm() / m_control.getErrorScale(); // in the unit of setErrorUnit(), for the large projection thresholds
 }
 
 inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vpIteration &it) const
@@ -176,9 +177,9 @@ inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vp
   if (it.m_data.m_nbActive == m_features.size()) {
     return SERVO_RUNNING;
   }
-  const bool stopped =
-      3 * static_cast<Eigen::Index>(it.m_data.m_nbActive) < it.m_data.m_JtJ.rows() ||
-      !(vpServoProjectiveReport::singularValueRatio(it.m_data.m_JtJ, m_rankTolerance) >= m_rankTolerance);
+  const bool stopped = 3 * static_cast<Eigen::Index>(it.m_data.m_nbActive) < it.m_data.m_JtJ.rows() ||
+                       !(vpServoProjectiveReport::singularValueRatio(it.m_data.m_JtJ, m_health.getRankTolerance()) >=
+                         m_health.getRankTolerance());
   return stopped ? SERVO_STOPPED : SERVO_REDUCED;
 }
 
@@ -189,7 +190,9 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
   // predicted: its remembered point moved by this iteration's H(q). At rest, a lost feature stops the task as before.
   const bool planned = m_planning && m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND &&
                        m_pathSample < m_planner.getPath().size();
-  if (!planned || !(m_maxOpenLoopTime > 0.0) || (m_openLoopCalls + 1) * m_period > m_maxOpenLoopTime * (1.0 + 1e-9)) {
+  const double maxOpenLoopTime = m_planner.getMaxOpenLoopTime();
+  if (!planned || !(maxOpenLoopTime > 0.0) ||
+      (m_openLoopCalls + 1) * m_control.getControlPeriod() > maxOpenLoopTime * (1.0 + 1e-9)) {
     return false;
   }
   vpServoProjectiveData &d = it.m_data;
@@ -215,6 +218,10 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
   if (used == d.m_nbActive) {
     return false;
   }
+  // The images' normal equations, kept (fixed-size: no allocation) for a stop below instead of being built again.
+  const JointMatrix JtJ = d.m_JtJ;
+  const JointVector Jte = d.m_Jte;
+  const double errorNorm = d.m_errorNorm;
   vpServoDampedLeastSquares::computeNormalEquations(d.m_J, d.m_e, d.m_JtJ, d.m_Jte);
   const unsigned int active = d.m_nbActive;
   d.m_nbActive = used; // the rank test of decideStatus() on the measured and predicted features together
@@ -229,15 +236,18 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
         d.m_e.segment<4>(4 * static_cast<Eigen::Index>(i)).setZero();
       }
     }
-    vpServoDampedLeastSquares::computeNormalEquations(d.m_J, d.m_e, d.m_JtJ, d.m_Jte);
+    d.m_JtJ = JtJ;
+    d.m_Jte = Jte;
+    d.m_errorNorm = errorNorm;
+    return false;
   }
-  d.m_errorNorm = d.m_e.norm() / m_errorScale;
-  return constrained;
+  d.m_errorNorm = d.m_e.norm() / m_control.getErrorScale();
+  return true;
 }
 
 inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot)
 {
-  m_settling.reset(); // stopped: converge anew before settling
+  m_control.getSettling().reset(); // stopped: converge anew before settling
   qdot.setZero(it.m_data.m_JtJ.rows());
   it.m_qdot2.setZero(it.m_data.m_JtJ.rows());
   it.m_lambda = 0.0;
@@ -250,21 +260,22 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
   // qdot1 = -lambda (J^T J + mu^2 I)^-1 J^T e, saturated: the motion the arm really makes. Along a planned path it is
   // the path's step to the next sample (feedforward) plus the law on the error to the current sample (feedback, with
   // the follower's gain), saturated as a whole.
-  it.m_lambda = m_following ? m_followGain
-                            : m_period * taskGain(m_lambda, m_gainInput, m_errorScale, it.m_data.m_JtJ, it.m_data.m_Jte,
-                                                  it.m_data.m_e.cwiseAbs().maxCoeff());
+  it.m_lambda = m_following ? m_planner.getPathFollowingGain()
+                            : m_control.gain(it.m_data.m_JtJ, it.m_data.m_Jte, it.m_data.m_e.cwiseAbs().maxCoeff());
   if (m_following || it.m_status == SERVO_OPEN_LOOP) {
-    m_settling.reset(); // a path (or a prediction) is not a rest: settle on law (47), on the images, after it
-  } else if (m_settling.isEnabled()) {
+    m_control.getSettling()
+        .reset(); // a path (or a prediction) is not a rest: settle on law (47), on the images, after it
+  } else if (m_control.getSettling().isEnabled()) {
     // Settling restarts with another set of active features or another target (their signature).
     unsigned long context = m_targetGeneration;
     for (unsigned int i = 0; i < m_features.size(); ++i) {
       context = 31 * context + (m_health.getFeatureState(i) == FEATURE_ACTIVE ? i + 1 : 0);
     }
-    it.m_lambda = m_settling.gain(it.m_lambda, it.m_data.m_JtJ, it.m_data.m_Jte, it.m_data.m_e.squaredNorm(),
-                                  4 * it.m_data.m_nbActive, context);
+    it.m_lambda = m_control.getSettling().gain(it.m_lambda, it.m_data.m_JtJ, it.m_data.m_Jte,
+                                               it.m_data.m_e.squaredNorm(), 4 * it.m_data.m_nbActive, context);
   }
-  m_law.computeVelocity(it.m_data.m_JtJ, it.m_data.m_Jte, it.m_lambda, qdot);
+  m_control.computePrimaryStep(it.m_data.m_JtJ, it.m_data.m_Jte, it.m_lambda, qdot);
+  const vpServoDampedLeastSquares &law = m_control.getDampedLeastSquares();
   if (m_following) {
     // The feedback corrects the model's error, a few pixels: bounded by half a path step, so that near a singular
     // configuration (where its least-squares step is large) it cannot throw the arm off its path.
@@ -273,39 +284,39 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
       qdot *= bound / largest;
     }
     qdot += m_planner.getPath()[m_pathSample] - m_planner.getPath()[m_pathSample - 1];
-    m_law.saturate(qdot);
+    law.saturate(qdot);
   } else if (m_planning) {
     m_planner.guardStep(m_link.robot->getModel(), q, qdot); // law (47) toward a planned task: no overshoot
   }
-  it.m_damping = m_law.getDamping();
-  it.m_saturated = m_law.isSaturated();
+  it.m_damping = law.getDamping();
+  it.m_saturated = law.isSaturated();
 }
 
 inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const
 {
-  it.m_qdot2.setZero(q.size());
-  if (!m_jointLimits.hasJointLimits()) {
-    return;
-  }
   // A planned path stays inside the limits and ends at a target inside them. While following it, no avoidance: the
   // path was checked inside the limits and no step crosses one, whereas the avoidance's push on a joint that starts
   // in its band, projected through the large projection operator, moved the other joints by up to 18 deg beside the
   // path's step and threw the features out of view. After the path, the avoidance lets the arm go to the planned
   // target (law (47) alone, even planned, is left as is); and the step never crosses a limit (the planned servo's
   // promise, which the avoidance alone cannot keep with a step of the path's size).
+  const vpServoJointLimitAvoidance &limits = m_control.getJointLimitAvoidance();
   const bool planned = m_planning && m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND &&
                        m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
+  const vpServoProjectiveData &d = it.m_data;
   if (!m_following) {
     const JointVector *target = planned ? &m_planner.getTarget() : nullptr;
-    m_jointLimits.computeVelocity(q, qdot, it.m_data.m_JtJ, it.m_data.m_Jte, it.m_data.m_errorNorm, m_law, it.m_qdot2,
-                                  target);
-    qdot += it.m_qdot2;
+    if (m_control.addJointLimitAvoidance(q, d.m_JtJ, d.m_Jte, d.m_errorNorm, qdot, it.m_qdot2, target)) {
+      it.m_saturated = true;
+    }
+  } else {
+    it.m_qdot2.setZero(q.size());
+    if (limits.hasJointLimits() && m_control.getDampedLeastSquares().saturate(qdot)) {
+      it.m_saturated = true;
+    }
   }
-  if (m_law.saturate(qdot)) {
-    it.m_saturated = true;
-  }
-  if (planned) {
-    keepInside(q, it, qdot);
+  if (planned && limits.hasJointLimits()) {
+    m_control.keepInside(q, d.m_JtJ, d.m_Jte, it.m_lambda, qdot); // a planned task never crosses a limit
   }
   if (!qdot.allFinite()) {
     fail(vpProjectiveException::estimationFailedError, at("computeControlLaw()"),
@@ -313,45 +324,11 @@ inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIt
   }
 }
 
-inline void vpServoProjective::keepInside(const JointVector &q, const vpIteration &it, JointVector &qdot) const
-{
-  // A planned task never crosses a limit. Scaling the whole step down to land a joint on its limit stops every joint
-  // once one is there and the law still pushes it outward (a target near a limit, the law's course bending to it): the
-  // task stalls, pixels from its goal, with every other joint free. Instead, each joint that would cross is held (its
-  // column out of the task: the law solved again with the others), until no joint crosses; the scaling is left for
-  // the rest (a joint already beyond its limit).
-  JointMatrix JtJ = it.m_data.m_JtJ;
-  JointVector Jte = it.m_data.m_Jte, alone;
-  vpServoDampedLeastSquares law = m_law; // computeVelocity() writes its report: the iteration's stays the first law's
-  const Eigen::Index n = q.size();
-  for (Eigen::Index pass = 0; pass < n && m_jointLimits.stepInside(q, qdot) < 1.0; ++pass) {
-    const double scale = JtJ.diagonal().cwiseAbs().maxCoeff();
-    bool held = false;
-    for (Eigen::Index i = 0; i < n; ++i) {
-      alone.setZero(n);
-      alone(i) = qdot(i);
-      if (m_jointLimits.stepInside(q, alone) < 1.0) {
-        JtJ.row(i).setZero();
-        JtJ.col(i).setZero();
-        JtJ(i, i) = scale > 0.0 ? scale : 1.0;
-        Jte(i) = 0.0;
-        held = true;
-      }
-    }
-    if (!held) {
-      break;
-    }
-    law.computeVelocity(JtJ, Jte, it.m_lambda, qdot);
-    law.saturate(qdot);
-  }
-  qdot *= m_jointLimits.stepInside(q, qdot);
-}
-
 inline void vpServoProjective::commit()
 {
   m_lastIteration = 1 - m_lastIteration;
   m_health.endIteration();
-  m_settling.commit();
+  m_control.getSettling().commit();
   const vpIteration &it = m_iterations[m_lastIteration];
   const vpServoStatus status = it.m_status;
   // The open loop's memory: each active feature's point at the zero reference (no allocation), and the count of
@@ -379,10 +356,10 @@ inline void vpServoProjective::commit()
   }
   report.m_following = m_following;
   report.m_openLoopCalls = m_openLoopCalls;
-  report.m_errorScale = m_errorScale;
-  report.m_rankTolerance = m_rankTolerance;
-  report.m_law = m_law;
-  report.m_limits = m_jointLimits;
+  report.m_errorScale = m_control.getErrorScale();
+  report.m_rankTolerance = m_health.getRankTolerance();
+  report.m_law = m_control.getDampedLeastSquares();
+  report.m_limits = m_control.getJointLimitAvoidance();
   report.m_arm = m_follow;
 }
 
@@ -412,7 +389,7 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
   } else {
     computePrimaryVelocity(q, it, qdot);
     addJointLimitAvoidance(q, it, qdot);
-    qdot /= m_period; // the step of this call, as a velocity held for one period
+    qdot /= m_control.getControlPeriod(); // the step of this call, as a velocity held for one period
   }
   m_follow.commit(q, qdot); // the command the arm must make by the next call
   commit();

@@ -31,7 +31,7 @@ namespace vpProjectiveInternal
 /*!
   After each computeControlLaw(): the first time in the process that a call ends in a status other than
   SERVO_RUNNING (the task stopped, degraded or left the user's plan), one line on std::cerr names the status, what
-  it means and the fix (vpServoProjective::toString()), with the arm-following check's diagnosis, the planner's
+  it means and the fix (vpServoProjectiveReport::toString()), with the arm-following check's diagnosis, the planner's
   description or the model-mismatch check's finding of exchanged images when they say more. Nothing is built
   otherwise.
 */

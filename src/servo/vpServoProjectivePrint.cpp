@@ -97,7 +97,7 @@ void vpServoProjective::print(std::ostream &os) const
 {
   // The sections of vpServo::print(vpServo::ALL), in its order and with its titles, then what only this task has.
   const bool computed =
-      last().m_data.m_J.rows() == static_cast<Eigen::Index>(getDimension()) && last().m_data.m_J.rows() > 0;
+      last().m_data.m_J.rows() == static_cast<Eigen::Index>(4 * m_features.size()) && last().m_data.m_J.rows() > 0;
   const char *const unit = m_errorUnit == ERROR_PIXELS ? "pixels" : "normalised: pixels / f";
   os << "Visual servoing task: non-metric stereo (vpServoProjective)\n";
   os << "Type of control law\n";
@@ -110,7 +110,7 @@ void vpServoProjective::print(std::ostream &os) const
        << " joints, J from the projective model\n";
   }
   os << "List of visual features : s (" << m_features.size() << " stereo points s = (u, v, u', v') (pixels), task "
-     << "dimension " << getDimension();
+     << "dimension " << 4 * m_features.size();
   if (computed) {
     os << ", " << m_health.getNumberOfActiveFeatures() << " active at the last computeControlLaw()";
   }
@@ -138,21 +138,22 @@ void vpServoProjective::print(std::ostream &os) const
   }
   os << "Task Jacobian J (" << unit << " per joint unit; vpServo's interaction matrix Ls)\n";
   if (computed) {
-    os << toVisp(last().m_data.m_J / m_errorScale) << "\n";
+    os << toVisp(last().m_data.m_J / m_control.getErrorScale()) << "\n";
   } else {
     os << "not yet computed\n";
   }
   os << "Error vector (s-s*) (" << unit << ", rows of the features set aside zero)\n";
   if (computed) {
-    os << toVispVector(last().m_data.m_e / m_errorScale).t() << "\n";
+    os << toVispVector(last().m_data.m_e / m_control.getErrorScale()).t() << "\n";
     os << "|e| = " << last().m_data.m_errorNorm << "\n";
   } else {
     os << "not yet computed (No computeControlLaw() yet)\n";
   }
-  os << "Gain : " << m_lambda << " (of "
-     << (m_gainInput == GAIN_INPUT_ERROR ? "||e||_inf" : "||J^+ e||_inf, as vpServo");
+  os << "Gain : " << m_control.getLambda() << " (of "
+     << (m_control.getAdaptiveGainInput() == vpServoControlLaw::GAIN_INPUT_ERROR ? "||e||_inf"
+                                                                                 : "||J^+ e||_inf, as vpServo");
   if (m_errorUnit == ERROR_NORMALIZED) {
-    os << "; f = " << m_errorScale << " px" << (m_focalLength > 0.0 ? " given" : " estimated");
+    os << "; f = " << m_control.getErrorScale() << " px" << (m_focalLength > 0.0 ? " given" : " estimated");
   }
   os << ")\n";
   os << "Status and settings\n";
@@ -175,23 +176,24 @@ void vpServoProjective::print(std::ostream &os) const
        << (last().m_saturated ? "saturated" : "not saturated") << "\n";
   }
   os << "  Settling: ";
-  if (!m_settling.isEnabled()) {
+  if (!m_control.getSettling().isEnabled()) {
     os << "off (law (47) with the task's gain)\n";
-  } else if (m_settling.isSettled()) {
-    os << "settled for " << m_settling.getSettledIterations() << " calls (gain lambda / (1 + lambda k)), noise "
-       << m_settling.getNoiseEstimate() << " px per row\n";
+  } else if (m_control.getSettling().isSettled()) {
+    os << "settled for " << m_control.getSettling().getSettledIterations()
+       << " calls (gain lambda / (1 + lambda k)), noise " << m_control.getSettling().getNoiseEstimate()
+       << " px per row\n";
   } else {
     os << "on, not settled (full gain until the error a joint motion explains is within the noise)\n";
   }
-  os << "  Damped least squares: sigma_0 " << m_law.getSigmaThreshold() << ", mu_max " << m_law.getMaxDamping()
-     << " (pixels per joint unit); saturation ";
-  if (m_qdotMax > 0.0) {
-    os << m_qdotMax << " joint units per second";
+  os << "  Damped least squares: sigma_0 " << m_control.getDampedLeastSquares().getSigmaThreshold() << ", mu_max "
+     << m_control.getDampedLeastSquares().getMaxDamping() << " (pixels per joint unit); saturation ";
+  if (m_control.getMaxJointVelocity() > 0.0) {
+    os << m_control.getMaxJointVelocity() << " joint units per second";
   } else {
     os << "off";
   }
-  os << "; pseudo-inverse threshold " << m_law.getPseudoInverseThreshold() << "; rank tolerance " << m_rankTolerance
-     << "\n";
+  os << "; pseudo-inverse threshold " << m_control.getDampedLeastSquares().getPseudoInverseThreshold()
+     << "; rank tolerance " << m_health.getRankTolerance() << "\n";
   os << "  Feature checks: image window ";
   if (m_health.getImageWidth() > 0) {
     os << m_health.getImageWidth() << " x " << m_health.getImageHeight() << ", border " << m_health.getImageBorder()
@@ -238,24 +240,26 @@ void vpServoProjective::print(std::ostream &os) const
     os << "\n";
   }
   double e0 = 0.0, e1 = 0.0;
-  m_jointLimits.getLargeProjectionThresholds(e0, e1);
+  m_control.getJointLimitAvoidance().getLargeProjectionThresholds(e0, e1);
   os << "  Joint limits: ";
-  if (m_jointLimits.hasJointLimits()) {
-    const vpColVector qmin = m_jointLimits.getLowerLimits(), qmax = m_jointLimits.getUpperLimits();
+  if (m_control.getJointLimitAvoidance().hasJointLimits()) {
+    const vpColVector qmin = m_control.getJointLimitAvoidance().getLowerLimits(),
+                      qmax = m_control.getJointLimitAvoidance().getUpperLimits();
     os << "qmin ";
     printVector(os, qmin);
     os << ", qmax ";
     printVector(os, qmax);
-    os << ", rho " << m_jointLimits.getRho() << ", rho1 " << m_jointLimits.getRho1() << ", lambda_t "
-       << m_jointLimits.getLambdaTune() << "; large projection thresholds e0 " << e0 << ", e1 " << e1
-       << (m_errorUnit == ERROR_PIXELS ? " px" : " (normalised)");
+    os << ", rho " << m_control.getJointLimitAvoidance().getRho() << ", rho1 "
+       << m_control.getJointLimitAvoidance().getRho1() << ", lambda_t "
+       << m_control.getJointLimitAvoidance().getLambdaTune() << "; large projection thresholds e0 " << e0 << ", e1 "
+       << e1 << (m_errorUnit == ERROR_PIXELS ? " px" : " (normalised)");
   } else {
     os << "none";
   }
   os << std::endl;
 }
 
-std::string vpServoProjective::toString(vpServoStatus status)
+std::string vpServoProjectiveReport::toString(vpServoStatus status)
 {
   return statusName(status);
 }

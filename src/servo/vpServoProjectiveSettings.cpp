@@ -60,15 +60,6 @@ double estimatedFocalLength(const vpProjectiveRobot &robot, const std::string &w
 }
 } // namespace
 
-void vpServoProjective::setAdaptiveGainInput(vpGainInput input)
-{
-  if (input != GAIN_INPUT_ERROR && input != GAIN_INPUT_JOINT_VELOCITY) {
-    fail(vpProjectiveException::invalidValueError, at("setAdaptiveGainInput()"),
-         "unknown input; use GAIN_INPUT_ERROR or GAIN_INPUT_JOINT_VELOCITY");
-  }
-  m_gainInput = input;
-}
-
 void vpServoProjective::setErrorUnit(vpErrorUnit unit, double focalLength)
 {
   const std::string where = at("setErrorUnit()");
@@ -89,7 +80,7 @@ void vpServoProjective::setErrorUnit(vpErrorUnit unit, double focalLength)
   }
   m_errorUnit = unit;
   m_focalLength = focalLength;
-  m_errorScale = scale;                               // 0 until setRobot() estimates it
+  m_control.setErrorScale(scale);                     // 0 until setRobot() estimates it
   m_iterations[m_lastIteration].m_errorScale = scale; // the report's getters follow the unit
 }
 
@@ -100,8 +91,9 @@ void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
          "the robot model is not acquired; call calibrate() or loadModel() on it first");
   }
   if (m_errorUnit == ERROR_NORMALIZED && m_focalLength == 0.0) {
-    m_errorScale = estimatedFocalLength(robot, at("setRobot()")); // before anything changes
-    m_iterations[m_lastIteration].m_errorScale = m_errorScale;
+    const double scale = estimatedFocalLength(robot, at("setRobot()")); // before anything changes
+    m_control.setErrorScale(scale);
+    m_iterations[m_lastIteration].m_errorScale = scale;
   }
   if (m_link.robot != &robot) {
     m_mismatch.reset(); // memories of another robot's model
@@ -164,77 +156,23 @@ void vpServoProjective::vpRobotLink::robotModelChanged(bool rigOnly)
 
 void vpServoProjective::setLambda(double lambda)
 {
-  const std::string where = at("setLambda()");
-  requireFinite(lambda, where, "the gain");
-  if (!(lambda > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, where, "the gain must be positive");
-  }
-  m_lambda.initFromConstant(lambda);
+  m_control.setLambda(lambda);
 }
 
 void vpServoProjective::setLambda(const vpAdaptiveGain &lambda)
 {
-  m_lambda = lambda;
+  m_control.setLambda(lambda);
 }
 
 void vpServoProjective::setLambda(double gainAtZero, double gainAtInfinity, double slopeAtZero)
 {
-  const std::string where = at("setLambda()");
-  requireFinite(gainAtZero, where, "the gain at zero");
-  requireFinite(gainAtInfinity, where, "the gain at infinity");
-  requireFinite(slopeAtZero, where, "the slope at zero");
-  if (!(gainAtZero > 0.0) || !(gainAtInfinity > 0.0) || !(gainAtZero >= gainAtInfinity) || slopeAtZero < 0.0) {
-    fail(vpProjectiveException::invalidValueError, where,
-         "an adaptive gain needs gainAtZero >= gainAtInfinity > 0 and a non-negative slope");
-  }
-  m_lambda.initStandard(gainAtZero, gainAtInfinity, slopeAtZero);
-}
-
-void vpServoProjective::setDamping(double sigmaThreshold, double maxDamping)
-{
-  m_law.setDamping(sigmaThreshold, maxDamping);
-}
-
-void vpServoProjective::setMaxJointVelocity(double qdotMax)
-{
-  m_law.setMaxJointVelocity(qdotMax * m_period); // throws on a bad value, before anything changes
-  m_qdotMax = qdotMax;
+  m_control.setLambda(gainAtZero, gainAtInfinity, slopeAtZero);
 }
 
 void vpServoProjective::setControlPeriod(double seconds)
 {
-  if (!std::isfinite(seconds) || !(seconds > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, at("setControlPeriod()"),
-         "the control period is the time between two calls of computeControlLaw(), in seconds: positive and finite");
-  }
-  // Inside, the law works per call (a joint step, as the planner's paths and rehearsals do); the user's gain and
-  // saturation are per second.
-  m_law.setMaxJointVelocity(m_qdotMax * seconds);
-  m_follow.setControlPeriod(seconds); // the arm's motion per call is judged against it
-  m_period = seconds;
-}
-
-void vpServoProjective::setMaxOpenLoopTime(double seconds)
-{
-  m_maxOpenLoopTime = nonNegative(seconds, at("setMaxOpenLoopTime()"), "the longest open loop on the model",
-                                  "seconds of consecutive calls; 0 stops the task as soon as the features are too few");
-}
-
-void vpServoProjective::setPseudoInverseThreshold(double threshold)
-{
-  m_law.setPseudoInverseThreshold(threshold);
-}
-
-void vpServoProjective::setRankTolerance(double tolerance)
-{
-  const std::string where = at("setRankTolerance()");
-  requireFinite(tolerance, where, "the rank tolerance");
-  if (!(tolerance > 0.0) || !(tolerance < 1.0)) {
-    fail(vpProjectiveException::invalidValueError, where,
-         "the rank tolerance is a ratio of singular values and must be in (0, 1), e.g. 1e-6");
-  }
-  m_rankTolerance = tolerance;
-  m_iterations[m_lastIteration].m_rankTolerance = tolerance;
+  m_control.setControlPeriod(seconds); // throws on a bad value, before anything changes
+  m_follow.setControlPeriod(seconds);  // the arm's motion per call is judged against it
 }
 
 void vpServoProjective::setImageSize(unsigned int width, unsigned int height, double border)
@@ -258,15 +196,11 @@ void vpServoProjective::setFeatureTracked(unsigned int i, bool tracked)
   m_health.setFeatureTracked(i, tracked);
 }
 
-void vpServoProjective::setOutlierThreshold(double pixels)
-{
-  m_health.setOutlierThreshold(pixels);
-}
-
 void vpServoProjective::setJointLimits(const vpColVector &qmin, const vpColVector &qmax, double rho, double rho1,
                                        double lambdaTune)
 {
-  vpServoJointLimitAvoidance limits = m_jointLimits; // validated aside: a failed call changes nothing
+  vpServoJointLimitAvoidance limits =
+      m_control.getJointLimitAvoidance(); // validated aside: a failed call changes nothing
   limits.setJointLimits(qmin, qmax, rho, rho1, lambdaTune);
   if (m_link.robot != nullptr && limits.getNumberOfJoints() != m_link.robot->getNumberOfJoints()) {
     std::ostringstream os;
@@ -283,35 +217,11 @@ void vpServoProjective::setJointLimits(const vpColVector &qmin, const vpColVecto
   }
   requireJointUnits(qmin, revolute, at("setJointLimits()"), "qmin");
   requireJointUnits(qmax, revolute, at("setJointLimits()"), "qmax");
-  m_jointLimits = limits;
-}
-
-void vpServoProjective::clearJointLimits()
-{
-  m_jointLimits.clearJointLimits();
+  m_control.getJointLimitAvoidance() = limits;
 }
 
 void vpServoProjective::setSettling(bool settling)
 {
-  m_settling.setEnabled(settling, m_settling.getHorizon());
-}
-
-void vpServoProjective::setRigRefinement(bool refine, unsigned int period, unsigned int refinements)
-{
-  m_refinement.setRefinement(refine, period, refinements);
-}
-
-double vpServoProjective::taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale,
-                                   const JointMatrix &JtJ, const JointVector &Jte, double errorInf)
-{
-  if (input == GAIN_INPUT_ERROR) {
-    return lambda.value_const(errorInf / errorScale);
-  }
-  // vpServo's e1 = J^+ e (full column rank here: J^T J is invertible unless the task is singular, then the gain at
-  // infinity); fixed-size storage, no allocation.
-  const Eigen::LDLT<JointMatrix> ldlt(JtJ);
-  const JointVector e1 = ldlt.solve(Jte);
-  const double x = e1.allFinite() && ldlt.info() == Eigen::Success ? e1.cwiseAbs().maxCoeff()
-                                                                   : std::numeric_limits<double>::infinity();
-  return lambda.value_const(x);
+  vpServoSettling &settling_ = m_control.getSettling();
+  settling_.setEnabled(settling, settling_.getHorizon());
 }

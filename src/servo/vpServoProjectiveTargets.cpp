@@ -108,11 +108,6 @@ bool vpServoProjective::detectMismatch(const vpServoProjectiveData &data)
   return m_mismatch.endIteration();
 }
 
-void vpServoProjective::setModelMismatchThreshold(double pixels)
-{
-  m_mismatch.setThreshold(pixels);
-}
-
 vpColVector vpServoProjective::getDesiredFeature(unsigned int i) const
 {
   checkFeatureIndex(i, "getDesiredFeature()");
@@ -212,23 +207,17 @@ bool vpServoProjective::planIfNeeded(const JointVector &q, const vpServoProjecti
       sStar.push_back(m_targets[i].effective);
     }
     vpProjectivePathPlanner::JointVector qmin, qmax;
-    if (m_jointLimits.hasJointLimits()) {
-      qmin = toEigenVector<JointVector>(m_jointLimits.getLowerLimits(), q.size(), at("computeControlLaw()"), "qmin");
-      qmax = toEigenVector<JointVector>(m_jointLimits.getUpperLimits(), q.size(), at("computeControlLaw()"), "qmax");
+    const vpServoJointLimitAvoidance &limits = m_control.getJointLimitAvoidance();
+    if (limits.hasJointLimits()) {
+      qmin = toEigenVector<JointVector>(limits.getLowerLimits(), q.size(), at("computeControlLaw()"), "qmin");
+      qmax = toEigenVector<JointVector>(limits.getUpperLimits(), q.size(), at("computeControlLaw()"), "qmax");
     }
     m_planner.setJointLimits(qmin, qmax);
     m_planner.setImageSize(m_health.getImageWidth(), m_health.getImageHeight(), m_health.getImageBorder());
     if (m_lawLeftRehearsal) {
       m_planner.clearControlLaw();
     } else {
-      const vpAdaptiveGain lambda = m_lambda;
-      const vpGainInput input = m_gainInput;
-      const double scale = m_errorScale, period = m_period;
-      m_planner.setControlLaw( // rehearsed per call, as the task runs it (setControlPeriod())
-          [lambda, input, scale, period](const JointMatrix &JtJ, const JointVector &Jte, double errorInf) {
-            return period * taskGain(lambda, input, scale, JtJ, Jte, errorInf);
-          },
-          m_law, m_jointLimits, scale);
+      m_planner.setControlLaw(m_control); // rehearsed per call, as the task runs it
     }
     m_planner.plan(model, q, points, sStar);
     m_plannedFor = sStar;
@@ -249,15 +238,6 @@ void vpServoProjective::setPathPlanning(bool planning)
   m_planning = planning;
   m_plannedFor.clear(); // plan anew
   m_following = false;
-}
-
-void vpServoProjective::setPathFollowingGain(double gain)
-{
-  if (!std::isfinite(gain) || !(gain > 0.0) || gain > 1.0) {
-    fail(vpProjectiveException::invalidValueError, at("setPathFollowingGain()"),
-         "the path-following gain is the fraction of the way to the next sample covered per call: in (0, 1]");
-  }
-  m_followGain = gain;
 }
 
 vpColVector vpServoProjective::getPlannedTarget() const

@@ -37,7 +37,7 @@ vpServoRigRefinement::vpServoRigRefinement()
 
 void vpServoRigRefinement::setRefinement(bool refine, unsigned int period, unsigned int count)
 {
-  const char *const where = "vpServoProjective::setRigRefinement()";
+  const char *const where = "vpServoRigRefinement::setRefinement()";
   if (period == 0 || count == 0) {
     fail(vpProjectiveException::invalidValueError, where,
          "the period (calls between two refinements) and the number of refinements must be positive, e.g. 40 and 3; "

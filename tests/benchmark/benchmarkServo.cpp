@@ -326,7 +326,7 @@ struct ProjectiveTask {
     const std::vector<vpColVector> targets = w.arm.getMarkers(degToRad(w.targetDeg));
     task.setRobot(robot);
     task.setLambda(0.5);
-    task.setMaxJointVelocity(vpMath::rad(15.0));
+    task.getControlLaw().setMaxJointVelocity(vpMath::rad(15.0));
     for (unsigned int k = 0; k < 3; ++k) {
       vpImagePoint l, r;
       w.rig.project(targets[w.tracked[k]], l, r, kNoiseSigma, noise);
@@ -374,7 +374,7 @@ void BM_vpServoProjective_Eigen(benchmark::State &state)
 void BM_vpServoProjective_Eigen_NoMismatchCheck(benchmark::State &state)
 {
   ProjectiveTask t(paperRobot());
-  t.task.setModelMismatchThreshold(0.0);
+  t.task.getModelMismatch().setThreshold(0.0);
   t.task.getArmFollowing().setEnabled(false);
   timeControlLaw(state, t.task, jointVector(t.q));
   state.SetLabel(taskLabel(t.task));
@@ -391,7 +391,7 @@ void BM_vpServoProjective_Eigen_DefaultChecks(benchmark::State &state)
   ProjectiveTask t(paperRobot());
   const PaperWorld &w = paperWorld();
   t.task.setImageSize(w.rig.getWidth(), w.rig.getHeight(), 10);
-  t.task.setOutlierThreshold(5.0);
+  t.task.getFeatureHealth().setOutlierThreshold(5.0);
   vpColVector qmin(6), qmax(6);
   for (unsigned int i = 0; i < 6; ++i) {
     qmin[i] = t.q[i] - vpMath::rad(100.0);
@@ -434,7 +434,7 @@ void BM_vpServoProjective_Eigen_Settling(benchmark::State &state)
     t.task.computeControlLaw(q, qdot); // converged: settled from the second call on
   }
   timeControlLaw(state, t.task, q);
-  state.SetLabel(t.task.getSettlingState().isSettled() ? "settled" : "NOT settled");
+  state.SetLabel(t.task.getControlLaw().getSettling().isSettled() ? "settled" : "NOT settled");
 }
 
 /*!
@@ -460,7 +460,7 @@ struct RobustTask {
     const unsigned int tracked[4] = {w.tracked[0], w.tracked[1], w.tracked[2], 3};
     task.setRobot(robot);
     task.setLambda(0.5);
-    task.setMaxJointVelocity(vpMath::rad(15.0));
+    task.getControlLaw().setMaxJointVelocity(vpMath::rad(15.0));
     for (unsigned int k = 0; k < 4; ++k) {
       vpImagePoint l, r;
       w.rig.project(markers[tracked[k]], l, r, kNoiseSigma, noise);
@@ -482,7 +482,7 @@ struct RobustTask {
       qmax[i] = qmin[i] + range;
     }
     task.setImageSize(w.rig.getWidth(), w.rig.getHeight());
-    task.setOutlierThreshold(5.0);
+    task.getFeatureHealth().setOutlierThreshold(5.0);
     task.setJointLimits(qmin, qmax);
     vpProjectiveRobot::JointVector qdot(6);
     task.computeControlLaw(q, qdot); // accepts the features once: the loop also evaluates their predictions
@@ -492,10 +492,11 @@ struct RobustTask {
 
 std::string robustLabel(const vpServoProjective &task)
 {
-  static const char *const status[3] = {"running", "reduced", "stopped"};
+  // The status's name (every status: a stopped task's label says why), then the features and the avoidance.
+  const std::string status = vpServoProjectiveReport::toString(task.getStatus());
   char label[96];
-  std::snprintf(label, sizeof(label), "%s, %u/%u active, |q2| %.2g", status[task.getStatus()],
-                task.getFeatureHealth().getNumberOfActiveFeatures(), task.getNumberOfFeatures(),
+  std::snprintf(label, sizeof(label), "%s, %u/%u active, |q2| %.2g", status.substr(0, status.find(' ')).c_str(),
+                task.getReport().getNumberOfActiveFeatures(), task.getReport().getNumberOfFeatures(),
                 task.getReport().getJointLimitVelocity().frobeniusNorm());
   return label;
 }

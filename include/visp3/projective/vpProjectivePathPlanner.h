@@ -23,7 +23,6 @@
 #include <visp3/projective/vpProjectiveConfig.h>
 
 #include <sstream>
-#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,8 +32,7 @@
 #include <Eigen/Core>
 
 #include <visp3/projective/vpProjectiveArmModel.h>
-#include <visp3/projective/vpServoDampedLeastSquares.h>
-#include <visp3/projective/vpServoJointLimitAvoidance.h>
+#include <visp3/projective/vpServoControlLaw.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -134,7 +132,7 @@ public:
   /*!
     The largest motion of a joint between two samples of the path (radians for revolute joints, encoder units for
     prismatic ones; default 5 deg): the follower moves by one sample per iteration at most. With a control law whose
-    velocity is saturated (setControlLaw(), vpServoDampedLeastSquares::setMaxJointVelocity()), the step is at most
+    velocity is saturated (setControlLaw(), vpServoControlLaw::setMaxJointVelocity()), the step is at most
     two thirds of that saturation: the follower adds its image feedback to the path's step, and a step that the
     saturation cuts would leave the arm behind its plan.
     \exception vpProjectiveException if it is not positive and finite.
@@ -165,22 +163,16 @@ public:
   //! The margin of setJointLimitMargin() (fraction of each joint's range).
   double getJointLimitMargin() const { return m_limitMargin; }
   /*!
-    The gain of the control law: from \f$ J^T J \f$ (n x n), \f$ J^T e \f$ (n x 1) and \f$ \|e\|_\infty \f$
-    (pixels) of the task, as the task computes it (vpServoProjective: setLambda(), setAdaptiveGainInput()).
+    The control law that the task runs when it follows no path (vpServoControlLaw: gain, damped least squares with
+    saturation, joint-limit avoidance in the joint values of plan()'s \e q), rehearsed on the model by plan() before
+    any path is planned (see the class documentation): the same implementation of law (47) as the task's.
+    vpServoProjective passes its own. Without a call, no rehearsal: a path is always planned.
   */
-  typedef std::function<double(const vpProjectiveArmModel::JointMatrix &JtJ,
-                               const vpProjectiveArmModel::JointVector &Jte, double errorInf)>
-      vpGain;
-  /*!
-    The control law that the task runs when it follows no path, rehearsed on the model by plan() before any path is
-    planned (see the class documentation): the gain \e gain, the damped least squares with its saturation \e law, the
-    joint-limit avoidance \e avoidance (in the joint values of plan()'s \e q; no limits: none) and the scale
-    \e errorScale of the error norm the avoidance's large projection thresholds are in (pixels per unit: 1 for pixels;
-    vpServoProjective::setErrorUnit()). vpServoProjective passes its own. Without a call, no rehearsal: a path is
-    always planned.
-  */
-  void setControlLaw(const vpGain &gain, const vpServoDampedLeastSquares &law,
-                     const vpServoJointLimitAvoidance &avoidance, double errorScale = 1.0);
+  void setControlLaw(const vpServoControlLaw &law)
+  {
+    m_law = law;
+    m_hasLaw = true;
+  }
   //! No control law: plan() rehearses nothing and always plans a path (its step no longer capped by a saturation).
   void clearControlLaw() { m_hasLaw = false; }
   /*!
@@ -242,6 +234,24 @@ public:
     \exception vpProjectiveException if it is not positive and finite.
   */
   void setMaxResidual(double pixels);
+  //! Gain of the path following's feedback (default 1): the fraction of the error to the sample's predicted
+  //! features that vpServoProjective corrects per call. \exception vpProjectiveException if it is not in (0, 1].
+  void setPathFollowingGain(double gain);
+  //! The gain of setPathFollowingGain().
+  double getPathFollowingGain() const { return m_followGain; }
+  /*!
+    Open loop on the model (default 2 s; 0: off): while a plan is under way and the active features no longer
+    constrain every joint (a tag turned edge-on, an occlusion), vpServoProjective replaces each feature set aside that
+    was active before by its prediction \f$ \hat s_i = (P, P')\, H(q)\, H(q_l)^{-1} M_l \f$ at the measured joints
+    (\f$ M_l \f$ its point at the last call \f$ q_l \f$ where it was active): SERVO_OPEN_LOOP for at most \e seconds
+    of consecutive calls (vpServoProjective::setControlPeriod()), then SERVO_STOPPED until the features return
+    (\ref servo_task_open_loop).
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if \e seconds is negative or not
+    finite; the setting is then unchanged.
+  */
+  void setMaxOpenLoopTime(double seconds);
+  //! The bound of setMaxOpenLoopTime() (seconds; 0: off).
+  double getMaxOpenLoopTime() const { return m_maxOpenLoopTime; }
 
   /*!
     Plans the task (see the class documentation) from the joint values \e q (n x 1) for the points \e points (4x1
@@ -341,17 +351,16 @@ private:
   double m_maxExcursion; // negative: twice m_maxStep
   unsigned int m_starts;
   double m_maxResidual;
-  JointVector m_refused;  // setRefusedTarget(): empty, or where the law stalled in the images
-  double m_refusedRadius; // how near a branch must be to m_refused to be left out
+  double m_followGain;      // setPathFollowingGain()
+  double m_maxOpenLoopTime; // setMaxOpenLoopTime(), seconds
+  JointVector m_refused;    // setRefusedTarget(): empty, or where the law stalled in the images
+  double m_refusedRadius;   // how near a branch must be to m_refused to be left out
   double m_limitMargin;
   std::vector<Eigen::Vector2d> m_front;  // per point: its depths in both cameras at the planning q
   std::vector<Eigen::Vector4d> m_points; // the planned points (zero reference) and their desired pixels
   std::vector<Eigen::Vector4d> m_sStar;
   bool m_hasLaw;
-  vpGain m_gain;
-  double m_errorScale;
-  vpServoDampedLeastSquares m_law;
-  vpServoJointLimitAvoidance m_avoidance;
+  vpServoControlLaw m_law;
   unsigned int m_rehearsalBudget;
   bool m_rehearsalOk;
   unsigned int m_rehearsalIterations;

@@ -71,7 +71,8 @@ BEGIN_VISP_NAMESPACE
   vpColVector qdot = law.computeVelocity(J, e, 0.5); // J 12x6, e 12x1
   if (law.isSaturated()) { ... }
   \endcode
-  vpServoProjective::getDampedLeastSquares() gives a servo task's law with its settings.
+  vpServoControlLaw::getDampedLeastSquares() gives a servo task's law with its settings
+  (vpServoProjective::getControlLaw()).
 */
 class VISP_EXPORT vpServoDampedLeastSquares
 {
@@ -120,7 +121,7 @@ public:
     It is neither the damping nor a rank test: the law itself never truncates singular values, it damps them below
     \f$ \sigma_0 \f$ (setDamping()), which is continuous in \f$ J \f$; and vpServoProjective decides that its
     active features no longer constrain every joint (SERVO_STOPPED) with its own, scale-free test
-    (vpServoProjective::setRankTolerance()). The singular values come from the eigenvalues of \f$ J^T J \f$, which
+    (vpServoFeatureHealth::setRankTolerance()). The singular values come from the eigenvalues of \f$ J^T J \f$, which
     resolve \f$ \sigma / \sigma_{max} \f$ down to about \f$ \sqrt{n \epsilon} \approx 4 \cdot 10^{-8} \f$: keep
     \f$ \tau_+ \f$ above.
     \exception vpProjectiveException (nonFiniteValueError, invalidValueError) if \e threshold is not finite or not in

@@ -130,6 +130,16 @@ public:
   double getImageBorder() const { return m_border; }
   //! Threshold (pixels) of setOutlierThreshold() (0: no outlier rejection).
   double getOutlierThreshold() const { return m_outlierThreshold; }
+  /*!
+    Tolerance \f$ \tau \in (0, 1) \f$ (default \f$ 10^{-6} \f$, above \f$ 4 \cdot 10^{-8} \f$) of the test that
+    vpServoProjective runs on a reduced task (features set aside): the active features still constrain every joint
+    when the scale-aware singular value ratio of \f$ D^{-1} J^T J D^{-1} \f$ is at least \f$ \tau \f$
+    (vpServoProjectiveReport::getSingularValueRatio()); otherwise SERVO_STOPPED.
+    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if not in (0, 1); nothing is changed.
+  */
+  void setRankTolerance(double tolerance);
+  //! The tolerance of setRankTolerance().
+  double getRankTolerance() const { return m_rankTolerance; }
   //@}
 
   /*! \name One iteration (see the class documentation) */
@@ -208,6 +218,7 @@ private:
   unsigned int m_height;
   double m_border;
   double m_outlierThreshold;
+  double m_rankTolerance;
 
   // The iteration in progress.
   unsigned long m_iteration; // its number, from 1

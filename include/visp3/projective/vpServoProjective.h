@@ -31,13 +31,11 @@
 #include <visp3/projective/vpFeatureStereoPoint.h>
 #include <visp3/projective/vpProjectivePathPlanner.h>
 #include <visp3/projective/vpProjectiveRobot.h>
-#include <visp3/projective/vpServoDampedLeastSquares.h>
+#include <visp3/projective/vpServoControlLaw.h>
 #include <visp3/projective/vpServoFeatureHealth.h>
-#include <visp3/projective/vpServoJointLimitAvoidance.h>
 #include <visp3/projective/vpServoModelMismatch.h>
 #include <visp3/projective/vpServoProjectiveReport.h>
 #include <visp3/projective/vpServoRigRefinement.h>
-#include <visp3/projective/vpServoSettling.h>
 #include <visp3/vs/vpAdaptiveGain.h>
 
 BEGIN_VISP_NAMESPACE
@@ -57,7 +55,7 @@ BEGIN_VISP_NAMESPACE
   The control law (47) is \f$ \dot q = -\lambda J^+ e \f$, with the pseudo-inverse damped near singular
   configurations: \f$ J^+ = (J^T J + \mu^2 I)^{-1} J^T \f$, \f$ \mu^2 = \mu_{max}^2 (1 - (\sigma_{min} /
   \sigma_0)^2) \f$ when the smallest singular value \f$ \sigma_{min} \f$ of J falls below \f$ \sigma_0 \f$, 0 otherwise,
-  then saturated (vpServoDampedLeastSquares, getDampedLeastSquares()).
+  then saturated (vpServoControlLaw, getControlLaw()).
 
   Like vpServo, the task keeps references to the features: the loop updates them and calls computeControlLaw()
   (\ref page_porting maps vpServo's calls to this task's). Each iteration computes its data once
@@ -88,7 +86,7 @@ public:
   static constexpr vpFeatureState FEATURE_OUT_OF_IMAGE = vpServoFeatureHealth::FEATURE_OUT_OF_IMAGE;
   //! Set aside: a coordinate of \f$ s_i \f$ or \f$ s^*_i \f$ is NaN or infinite.
   static constexpr vpFeatureState FEATURE_NOT_FINITE = vpServoFeatureHealth::FEATURE_NOT_FINITE;
-  //! Set aside: farther than setOutlierThreshold() from its epipolar line or its prediction.
+  //! Set aside: farther than getFeatureHealth().setOutlierThreshold() from its epipolar line or its prediction.
   static constexpr vpFeatureState FEATURE_OUTLIER = vpServoFeatureHealth::FEATURE_OUTLIER;
 
   //! Outcome of the last computeControlLaw() (\ref servo_task_features): see vpServoProjectiveReport::vpServoStatus.
@@ -113,12 +111,6 @@ public:
     ERROR_NORMALIZED //!< Pixels divided by a focal length in pixels, the unit of vpServo's \f$ x = (u - u_0)/p_x \f$.
   };
 
-  //! What an adaptive gain is a function of (see setAdaptiveGainInput()).
-  enum vpGainInput {
-    GAIN_INPUT_ERROR,         //!< \f$ \|e\|_\infty \f$ in the unit of setErrorUnit() (the default).
-    GAIN_INPUT_JOINT_VELOCITY //!< \f$ \|J^+ e\|_\infty \f$ (joint units): what vpServo evaluates its gain on.
-  };
-
   //! A task without robot or feature: gain 0.5, damping (1, 10), no saturation, no check, no joint limit.
   vpServoProjective();
 
@@ -131,7 +123,7 @@ public:
   */
   void setRobot(const vpProjectiveRobot &robot);
   /*!
-    The same, with leave to refine the robot's re-registered rig with the task's own frames (setRigRefinement()): a
+    The same, with leave to refine the robot's re-registered rig with the task's own frames (getRigRefinement()): a
     task given a robot it may not change never refines.
     \exception vpProjectiveException (notInitializedError) if the model is not acquired.
   */
@@ -139,7 +131,8 @@ public:
   //! Constant gain \f$ \lambda > 0 \f$ (per second; per call with the default period of 1 s).
   //! \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if not positive and finite.
   void setLambda(double lambda);
-  //! Adaptive gain (vpAdaptiveGain) of \f$ \|e\|_\infty \f$, or of \f$ \|J^+ e\|_\infty \f$ (setAdaptiveGainInput()).
+  //! Adaptive gain (vpAdaptiveGain) of \f$ \|e\|_\infty \f$, or of \f$ \|J^+ e\|_\infty \f$
+  //! (getControlLaw().setAdaptiveGainInput()).
   void setLambda(const vpAdaptiveGain &lambda);
   /*!
     Adaptive gain from its value at zero error, at infinite error and its slope at zero (per pixel).
@@ -148,67 +141,39 @@ public:
   */
   void setLambda(double gainAtZero, double gainAtInfinity, double slopeAtZero);
   /*!
-    What the adaptive gain of setLambda() is evaluated on: \f$ \lambda(x) \f$ with GAIN_INPUT_ERROR (default)
-    \f$ x = \|e\|_\infty \f$ (unit of setErrorUnit()), with GAIN_INPUT_JOINT_VELOCITY \f$ x = \|J^+ e\|_\infty \f$
-    (joint units, \f$ J^+ = (J^T J)^{-1} J^T \f$; \f$ x = \infty \f$ if singular), as vpServo does
-    (\ref servo_task_gain_input).
-    \exception vpProjectiveException (invalidValueError) on an unknown input.
-  */
-  void setAdaptiveGainInput(vpGainInput input);
-  //! What the adaptive gain is evaluated on (setAdaptiveGainInput()).
-  vpGainInput getAdaptiveGainInput() const { return m_gainInput; }
-  /*!
     The unit of \f$ e \f$ for its getters, print(), the large projection thresholds and an adaptive gain: pixels
     (ERROR_PIXELS, default) or \f$ (s - s^*) / f \f$ (ERROR_NORMALIZED), \f$ f \f$ = \e focalLength (pixels) if
     positive, else estimated from the model (\ref servo_task_error_unit). The control law does not depend on it.
     \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if \e focalLength is negative or not
     finite; (notInitializedError, estimationFailedError) if the estimate is needed and the model gives none. The
-    unit is then unchanged.
+    unit is then unchanged. The pixels per unit: getControlLaw().getErrorScale().
   */
   void setErrorUnit(vpErrorUnit unit, double focalLength = 0.0);
-  //! The unit of setErrorUnit().
-  vpErrorUnit getErrorUnit() const { return m_errorUnit; }
-  //! Pixels per unit of the error: 1 for ERROR_PIXELS, the focal length \f$ f \f$ for ERROR_NORMALIZED.
-  double getErrorScale() const { return m_errorScale; }
   /*!
     Settling (default off): once converged, the gain becomes \f$ \lambda / (1 + \lambda k) \f$ at the \f$ k \f$-th
     settled call (vpServoSettling): the joint error falls as \f$ 1/\sqrt{k} \f$ below the single-frame floor; the
-    full gain returns when an F-test at \f$ 10^{-4} \f$ sees a real error (\ref servo_task_settling).
+    full gain returns when an F-test at \f$ 10^{-4} \f$ sees a real error (\ref servo_task_settling). Its state:
+    getControlLaw().getSettling().
   */
   void setSettling(bool settling);
-  //! The settling gain: on or off (setSettling()), settled at the last call, settled calls, noise estimate, last
-  //! test statistic.
-  const vpServoSettling &getSettlingState() const { return m_settling; }
   //@}
 
-  /*! \name Control law (forwarded to vpServoDampedLeastSquares) */
+  /*! \name Control law (vpServoControlLaw: getControlLaw()) */
   //@{
-  //! Damping: \f$ \mu \f$ rises to \e maxDamping \f$ \mu_{max} \f$ when \f$ \sigma_{min}(J) \f$ falls below
-  //! \e sigmaThreshold \f$ \sigma_0 \f$ (both pixels per joint unit; defaults 1, 10; vpServoDampedLeastSquares).
-  //! \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if a value is negative or not finite.
-  void setDamping(double sigmaThreshold, double maxDamping);
-  //! Velocity saturation at \e qdotMax (joint units per second), keeping the direction of \f$ \dot q \f$; 0 (default):
-  //! none. \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if negative or not finite.
-  void setMaxJointVelocity(double qdotMax);
   /*!
     The time \e T (seconds) between two calls of computeControlLaw() (default 1: one call is one step of the
-    discrete law). The gain and the saturation are per second; what acts per call (path samples, rehearsal,
-    settling) is scaled by \f$ T \f$ (\ref servo_task_period).
+    discrete law), for the control law and the arm-following check. The gain and the saturation are per second; what
+    acts per call (path samples, rehearsal, settling) is scaled by \f$ T \f$ (\ref servo_task_period).
     \exception vpProjectiveException (invalidValueError) if not positive and finite; the period is then unchanged.
   */
   void setControlPeriod(double seconds);
-  //! The control period (seconds; see setControlPeriod()).
-  double getControlPeriod() const { return m_period; }
   /*!
-    Relative threshold \f$ \tau_+ \f$ (default \f$ 10^{-6} \f$, as vpServo::setPseudoInverseThreshold()): singular
-    values of \f$ J \f$ below \f$ \tau_+ \sigma_{max} \f$ count as zero in \f$ I_n - J^+ J \f$ of the large
-    projection operator only (vpServoDampedLeastSquares::setPseudoInverseThreshold()).
-    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if it is not in [0, 1) or not finite.
+    Law (47) and its settings: setLambda()'s gain and its input (setAdaptiveGainInput()), setDamping(),
+    setMaxJointVelocity() (per second), setPseudoInverseThreshold(), the joint-limit avoidance
+    (getJointLimitAvoidance(): thresholds of the large projection operator, clearJointLimits()), the error's scale
+    (setErrorUnit()) and the settling state (getSettling()). The planner rehearses a copy of it.
   */
-  void setPseudoInverseThreshold(double threshold);
-  //! Tolerance \f$ \tau \in (0, 1) \f$ (default \f$ 10^{-6} \f$, above \f$ 4 \cdot 10^{-8} \f$) of the rank test of a
-  //! reduced task on \f$ D^{-1} J^T J D^{-1} \f$. \exception vpProjectiveException if not in (0, 1).
-  void setRankTolerance(double tolerance);
+  vpServoControlLaw &getControlLaw() { return m_control; }
   //@}
 
   /*! \name Feature checks (forwarded to vpServoFeatureHealth) */
@@ -222,27 +187,17 @@ public:
   //! The tracker's verdict on feature \e i (addFeature() order; default true): false sets it aside
   //! (FEATURE_NOT_TRACKED) until set back. \exception vpProjectiveException (dimensionError) on a bad index.
   void setFeatureTracked(unsigned int i, bool tracked);
-  /*!
-    Outlier rejection (pixels; 0, the default, disables it): feature \e i is FEATURE_OUTLIER when its epipolar
-    distance \f$ d_F \f$ or, from its second acceptance on, the distance to its prediction, the image of
-    \f$ \hat M_i = H(q)\, H(q_l)^{-1} M_l \f$ (34), exceeds \e pixels (vpServoFeatureHealth,
-    \ref servo_task_outliers).
-    \exception vpProjectiveException if \e pixels is negative or not finite.
-  */
-  void setOutlierThreshold(double pixels);
   //@}
 
   /*! \name Model mismatch (forwarded to vpServoModelMismatch) and re-registered rigs */
   //@{
   /*!
-    Model-mismatch threshold (pixels, default 5; 0: off): SERVO_MODEL_MISMATCH, \f$ \dot q = 0 \f$, when every usable
-    feature (at least two) lies farther than \e pixels from the image of its remembered point moved by \f$ H(q) \f$,
-    on 2 consecutive calls (vpServoModelMismatch); it takes precedence over every status but SERVO_ARM_NOT_FOLLOWING.
-    \exception vpProjectiveException if \e pixels is negative or not finite.
+    The model-mismatch check (vpServoModelMismatch; default threshold 5 px, 0: off): SERVO_MODEL_MISMATCH,
+    \f$ \dot q = 0 \f$, when every usable feature (at least two) lies farther than its threshold from the image of its
+    remembered point moved by \f$ H(q) \f$, on 2 consecutive calls; it takes precedence over every status but
+    SERVO_ARM_NOT_FOLLOWING. Its settings (setThreshold()) and its last distances.
   */
-  void setModelMismatchThreshold(double pixels);
-  //! The detector, its threshold (getThreshold()) and its last distances.
-  const vpServoModelMismatch &getModelMismatch() const { return m_mismatch; }
+  vpServoModelMismatch &getModelMismatch() { return m_mismatch; }
   /*!
     The desired value (4x1, pixels) the task uses for feature \e i: the user's \f$ s^*_i \f$, or after the robot
     told of a re-registered rig (vpProjectiveRobot::updateRig()) the new rig's image of the point \f$ s^*_i \f$
@@ -250,16 +205,12 @@ public:
   */
   vpColVector getDesiredFeature(unsigned int i) const;
   /*!
-    Refinement of a re-registered rig with the task's own frames (default on, every 40 calls, 3 times): after
-    vpProjectiveRobot::updateRig() the task refines the rig with its active features every \e period calls that move
-    the arm, \e refinements times (vpServoRigRefinement, \ref servo_meas_mismatch). Needs the robot given to
-    setRobot() as modifiable and the model-mismatch check on. false: the rig stays as updateRig() left it.
-    \exception vpProjectiveException (invalidValueError) if \e period or \e refinements is 0 or their product above
-    100000; the settings are then unchanged.
+    Refinement of a re-registered rig with the task's own frames (vpServoRigRefinement::setRefinement(); default on,
+    every 40 calls, 3 times): after vpProjectiveRobot::updateRig() the task refines the rig with its active features
+    every period of calls that move the arm (\ref servo_meas_mismatch). Needs the robot given to setRobot() as
+    modifiable and the model-mismatch check on. Its settings and its state since the last re-registration.
   */
-  void setRigRefinement(bool refine, unsigned int period = 40, unsigned int refinements = 3);
-  //! The rig refinement's settings and its state since the last re-registration (setRigRefinement()).
-  const vpServoRigRefinement &getRigRefinementState() const { return m_refinement; }
+  vpServoRigRefinement &getRigRefinement() { return m_refinement; }
   //@}
 
   /*! \name Joint limits (forwarded to vpServoJointLimitAvoidance) */
@@ -274,23 +225,18 @@ public:
     \param lambdaTune : \f$ \lambda_t \in [0, 1] \f$, by how much the avoidance exceeds the primary motion.
     \exception vpProjectiveException if the sizes differ (or differ from the robot's joints), an entry is not
     finite, some \f$ q_i^{min} \ge q_i^{max} \f$, or a parameter is out of range. Nothing is changed then.
+    getControlLaw().getJointLimitAvoidance().clearJointLimits() removes them.
   */
   void setJointLimits(const vpColVector &qmin, const vpColVector &qmax, double rho = 0.1, double rho1 = 0.3,
                       double lambdaTune = 0.7);
-  //! Removes the joint limits set by setJointLimits().
-  void clearJointLimits();
   //@}
 
   /*! \name Features */
   //@{
   //! Adds a stereo point and its desired value, both kept by reference, like vpServo::addFeature().
   void addFeature(vpFeatureStereoPoint &s, vpFeatureStereoPoint &s_star);
-  //! Removes every feature.
+  //! Removes every feature (getFeatureHealth().getNumberOfFeatures() counts them).
   void clearFeatures();
-  //! Number of stereo point features \f$ N \f$ added.
-  unsigned int getNumberOfFeatures() const { return static_cast<unsigned int>(m_features.size()); }
-  //! Dimension \f$ 4N \f$ of the task: the rows of \f$ e \f$ and \f$ J \f$, as vpServo::getDimension().
-  unsigned int getDimension() const { return 4 * getNumberOfFeatures(); }
   //@}
 
   /*! \name The control law */
@@ -323,10 +269,9 @@ public:
   //! \f$ e = s - s^* \f$ (4N, in the unit of setErrorUnit(): pixels by default) of the last computeControlLaw(); the
   //! 4 rows of a feature set aside are zero.
   vpColVector getError() const { return last().getError(); }
-  //! Outcome of the last computeControlLaw() (SERVO_RUNNING before the first one).
+  //! Outcome of the last computeControlLaw() (SERVO_RUNNING before the first one); its name and meaning:
+  //! vpServoProjectiveReport::toString().
   vpServoStatus getStatus() const { return last().getStatus(); }
-  //! The status's name and what it means (as print() gives it), e.g. for a program's log when it stops.
-  static std::string toString(vpServoStatus status);
   //! Everything else the last computeControlLaw() did: features' states, J, gain, damping, saturation, ...
   const vpServoProjectiveReport &getReport() const { return last(); }
   //@}
@@ -340,47 +285,22 @@ public:
     SERVO_NO_PLAN and \f$ \dot q = 0 \f$ (\ref servo_task_planning).
   */
   void setPathPlanning(bool planning);
-  //! True if path planning is on.
-  bool getPathPlanning() const { return m_planning; }
   //! The joint values (n x 1) the plan ends at: the inverse kinematics of \f$ s^* \f$.
   //! \exception vpProjectiveException (notInitializedError) when no plan was found.
   vpColVector getPlannedTarget() const;
-  //! Gain of the path following's feedback (default 1): the fraction of the error to the sample's predicted
-  //! features corrected per call. \exception vpProjectiveException if it is not in (0, 1].
-  void setPathFollowingGain(double gain);
   /*!
-    Open loop on the model (default 2 s; 0: off): while a plan is under way and the active features no longer
-    constrain every joint (a tag turned edge-on, an occlusion), each feature set aside that was active before is
-    replaced by its prediction \f$ \hat s_i = (P, P')\, H(q)\, H(q_l)^{-1} M_l \f$ at the measured joints (\f$ M_l \f$
-    its point at the last call \f$ q_l \f$ where it was active): SERVO_OPEN_LOOP for at most \e seconds of consecutive
-    calls (setControlPeriod()), then SERVO_STOPPED until the features return (\ref servo_task_open_loop).
-    \exception vpProjectiveException (invalidValueError, nonFiniteValueError) if \e seconds is negative or not finite;
-    the setting is then unchanged.
+    The planner: its settings (setMaxJointStep(), setMaxExcursion(), setNumberOfStarts()), those of the path following
+    (setPathFollowingGain(), setMaxOpenLoopTime(): \ref servo_task_open_loop) and its last plan (target, branches,
+    path, description).
   */
-  void setMaxOpenLoopTime(double seconds);
-  //! The bound of setMaxOpenLoopTime() (seconds; 0: off).
-  double getMaxOpenLoopTime() const { return m_maxOpenLoopTime; }
-  //! The planner, its settings and its last plan (target, branches, path, description).
-  const vpProjectivePathPlanner &getPathPlanner() const { return m_planner; }
-  //! The planner, to change its settings (setMaxJointStep(), setMaxExcursion(), setNumberOfStarts()).
   vpProjectivePathPlanner &getPathPlanner() { return m_planner; }
   //@}
 
   /*! \name The parts of the task */
   //@{
-  //! The control law and its settings (setDamping(), setMaxJointVelocity(), setPseudoInverseThreshold()).
-  const vpServoDampedLeastSquares &getDampedLeastSquares() const { return m_law; }
-  //! The feature checks, their settings (setImageSize(), setOutlierThreshold(), setFeatureTracked(): read with
-  //! isFeatureTracked()) and their last verdicts: active features, each feature's epipolar and prediction distances.
-  const vpServoFeatureHealth &getFeatureHealth() const { return m_health; }
-  //! The joint-limit avoidance and its settings (setJointLimits(); hasJointLimits(), the thresholds of \f$ P \f$).
-  const vpServoJointLimitAvoidance &getJointLimitAvoidance() const { return m_jointLimits; }
-  /*!
-    The same, to change the thresholds \f$ 0 \le e_0 < e_1 \f$ of \f$ P \f$ (unit of setErrorUnit(); default vpServo's
-    0.1, 0.7): vpServoJointLimitAvoidance::setLargeProjectionThresholds(). Its setJointLimits() does not check the
-    robot's joints as the task's does; computeControlLaw() does.
-  */
-  vpServoJointLimitAvoidance &getJointLimitAvoidance() { return m_jointLimits; }
+  //! The feature checks, their settings (setOutlierThreshold(), setRankTolerance(); setImageSize() and
+  //! setFeatureTracked() on the task) and their last verdicts: active features, epipolar and prediction distances.
+  vpServoFeatureHealth &getFeatureHealth() { return m_health; }
   //! Arm-following check (\ref servo_task_following): settings, reset(); verdict: getReport().getArmFollowing().
   vpServoArmFollowing &getArmFollowing() { return m_follow; }
   //@}
@@ -415,10 +335,7 @@ private:
   void buildTask(const JointVector &q, vpIteration &it, const char *method);
   vpServoStatus decideStatus(const vpIteration &it) const;
   void computePrimaryVelocity(const JointVector &q, vpIteration &it, JointVector &qdot);
-  static double taskGain(const vpAdaptiveGain &lambda, vpGainInput input, double errorScale, const JointMatrix &JtJ,
-                         const JointVector &Jte, double errorInf);
   void addJointLimitAvoidance(const JointVector &q, vpIteration &it, JointVector &qdot) const;
-  void keepInside(const JointVector &q, const vpIteration &it, JointVector &qdot) const;
   void stop(vpIteration &it, JointVector &qdot);
   void commit();
   const vpServoProjectiveReport &last() const { return m_iterations[m_lastIteration]; }
@@ -442,11 +359,10 @@ private:
   vpRobotLink m_link;
   std::vector<vpFeatureStereoPoint *> m_features;
   std::vector<vpFeatureStereoPoint *> m_desired;
-  vpAdaptiveGain m_lambda;
-  double m_rankTolerance;
-  vpServoDampedLeastSquares m_law;
+  // Law (47): the gain and its input, the period, the damped least squares with saturation, the joint limits, the
+  // error's unit; the planner rehearses a copy of it.
+  vpServoControlLaw m_control;
   vpServoFeatureHealth m_health;
-  vpServoJointLimitAvoidance m_jointLimits;
   vpServoModelMismatch m_mismatch;
   vpServoArmFollowing m_follow;
   std::vector<vpTarget> m_targets;
@@ -469,28 +385,21 @@ private:
   Eigen::VectorXd m_stallSum, m_stallSumSq;
   double m_stallHalves[2];
   unsigned int m_stallCount;
-  double m_followGain;
-  // setMaxOpenLoopTime(): the bound, the consecutive open-loop calls, each feature's point (zero reference) at the last
-  // call where it was active and whether it has one.
-  double m_maxOpenLoopTime;
+  // The planner's setMaxOpenLoopTime(): the consecutive open-loop calls, each feature's point (zero reference) at the
+  // last call where it was active and whether it has one.
   unsigned int m_openLoopCalls;
   std::vector<Eigen::Vector4d> m_seenPoints;
   std::vector<char> m_hasSeenPoint;
   std::vector<char> m_activeNow; // per feature: active in the iteration in progress (buildTask())
-  double m_period;               // seconds per computeControlLaw() call (setControlPeriod())
-  double m_qdotMax;              // the user's saturation, per second (the law's is per call: m_qdotMax * m_period)
 
-  // setErrorUnit(): the unit, the focal length given (0: estimated), pixels per unit of error; setJointPositions().
-  vpGainInput m_gainInput;
+  // setErrorUnit(): the unit, the focal length given (0: estimated; the scale is the law's); setJointPositions().
   vpErrorUnit m_errorUnit;
   double m_focalLength;
-  double m_errorScale;
   JointVector m_q;
   bool m_qFresh;
-  // setSettling(): the settling gain, and the generation of the task's targets (refreshTargets()) it settles on.
-  vpServoSettling m_settling;
+  // The generation of the task's targets (refreshTargets()) that the settling gain settles on.
   unsigned long m_targetGeneration;
-  // setRigRefinement(): the refinement, and the robot's re-registrations (getRigUpdateCount()) taken into account.
+  // getRigRefinement(): the refinement, and the robot's re-registrations (getRigUpdateCount()) taken into account.
   vpServoRigRefinement m_refinement;
   unsigned long m_rigUpdatesSeen;
 };

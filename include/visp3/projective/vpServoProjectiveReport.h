@@ -22,6 +22,7 @@
 
 #include <visp3/projective/vpProjectiveConfig.h>
 
+#include <string>
 #include <vector>
 
 #include <visp3/core/vpColVector.h>
@@ -71,7 +72,7 @@ public:
                           //!< moved camera; vpServoModelMismatch): \f$ \dot q = 0 \f$; re-register the rig.
     SERVO_OPEN_LOOP,      //!< Planned task: the active features no longer constrain every joint, and the features
                           //!< set aside are replaced by the model's predictions at the measured joints, for at most
-                          //!< vpServoProjective::setMaxOpenLoopTime() (\ref servo_task_open_loop).
+                          //!< vpProjectivePathPlanner::setMaxOpenLoopTime() (\ref servo_task_open_loop).
     //! The arm did not make the commanded joint motion on consecutive calls (a velocity sent in another frame, a
     //! robot not in velocity control, a joint at a limit, a clipped velocity; vpServoArmFollowing):
     //! \f$ \dot q = 0 \f$ until vpServoProjective::getArmFollowing().reset().
@@ -85,6 +86,9 @@ public:
   //@{
   //! The status of the call.
   vpServoStatus getStatus() const { return m_status; }
+  //! A status's name and what it means (as vpServoProjective::print() gives it), e.g. for a program's log when it
+  //! stops.
+  static std::string toString(vpServoStatus status);
   //! Number of features \f$ N \f$ of the call.
   unsigned int getNumberOfFeatures() const { return static_cast<unsigned int>(m_states.size()); }
   //! State of feature \e i at the call. \exception vpProjectiveException (dimensionError) if \f$ i \ge N \f$.
@@ -132,7 +136,7 @@ public:
   //! eigenvalues of \f$ J^T J \f$ on demand.
   double getConditionNumber() const;
   //! \f$ \sigma_{min}(J D^{-1}) / \sigma_{max}(J D^{-1}) \f$, \f$ D \f$ the column norms of \f$ J \f$: what the rank
-  //! tolerance (vpServoProjective::setRankTolerance()) is compared with (0 if a column is below it). On demand.
+  //! tolerance (vpServoFeatureHealth::setRankTolerance()) is compared with (0 if a column is below it). On demand.
   double getSingularValueRatio() const;
   //! Pixels per unit of the error at the call: 1 (ERROR_PIXELS) or the focal length (ERROR_NORMALIZED).
   double getErrorScale() const { return m_errorScale; }

@@ -35,7 +35,7 @@ BEGIN_VISP_NAMESPACE
 /*!
   \class vpServoRigRefinement
   \ingroup group_projective
-  \brief A part of vpServoProjective (vpServoProjective::setRigRefinement(), getRigRefinementState()): after the
+  \brief A part of vpServoProjective (vpServoProjective::getRigRefinement()): after the
   robot's rig was re-registered (vpProjectiveRobot::updateRig(), from as few as 3 observation poses), the task
   records, at each call that moves the arm, the images of its active features (pixels, 4x1 each) with their points at
   the zero reference (4x1, the model's projective frame) as the model-mismatch check triangulated them through the rig
@@ -55,7 +55,7 @@ public:
   vpServoRigRefinement();
 
   /*!
-    The settings (vpServoProjective::setRigRefinement()).
+    The settings (vpServoProjective::getRigRefinement().setRefinement()).
     \param refine : true to refine after a re-registration, false never (a refinement under way stops).
     \param period : calls that move the arm between two refinements (> 0).
     \param count : refinements per re-registration (> 0).
