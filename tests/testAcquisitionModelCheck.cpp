@@ -74,7 +74,7 @@ TEST(AcquisitionModelCheck, AcceptsRightAcquisitionsOfEveryArm)
       EXPECT_NEAR(check.getEpipolarNoise(), sigma, 0.3 * sigma) << arm.label;
       EXPECT_DOUBLE_EQ(check.getLimit(), std::max(3.0 * check.getNoise(), 0.5));
       EXPECT_LT(check.getResidual(), check.getLimit()) << arm.label;
-      EXPECT_DOUBLE_EQ(check.getResidual(), robot.getCalibrationResidual());
+      EXPECT_DOUBLE_EQ(check.getResidual(), robot.getAcquisition().getCalibrationResidual());
       ASSERT_EQ(check.getJoints().size(), s.n());
       for (unsigned int i = 0; i < s.n(); ++i) {
         EXPECT_EQ(check.getJoints()[i].type, s.jointTypes()[i]) << arm.label << " joint " << i;
@@ -104,7 +104,7 @@ TEST(AcquisitionModelCheck, IdentifiesJointTypesFromJointCount)
       // A joint tried both ways: the type kept fits better (evidence > 0).
       EXPECT_TRUE(std::isnan(j.evidence) || j.evidence > 0.0) << arm.label << " joint " << i;
     }
-    EXPECT_LT(robot.getCalibrationResidual(), 0.5);
+    EXPECT_LT(robot.getAcquisition().getCalibrationResidual(), 0.5);
   }
 }
 
@@ -248,7 +248,7 @@ TEST(AcquisitionModelCheck, SettingsAndStateOnRefusal)
   vpProjectiveRobot right(s.jointTypes());
   ASSERT_TRUE(acquireWithMistakes(s, right, 0.3, 29));
   right.calibrate();
-  const double residual = right.getCalibrationResidual();
+  const double residual = right.getAcquisition().getCalibrationResidual();
   vpProjectiveRobot wrong(std::vector<vpProjectiveRobot::vpJointType>(6, vpProjectiveRobot::REVOLUTE));
   ASSERT_TRUE(acquireWithMistakes(s, wrong, 0.3, 29));
   EXPECT_THROW(wrong.calibrate(), vpProjectiveException);

@@ -91,7 +91,7 @@ TEST(AcquisitionModelCheckProcedure, GantryOfAJointCountIsIdentified)
   for (unsigned int i = 0; i < 6; ++i) {
     EXPECT_EQ(robot.getJointType(i), cell.s.jointTypes()[i]) << "joint " << i << "\n" << log;
   }
-  EXPECT_LT(robot.getCalibrationResidual(), 2.0 * cell.sigma);
+  EXPECT_LT(robot.getAcquisition().getCalibrationResidual(), 2.0 * cell.sigma);
   EXPECT_NEAR(procedure.getImageNoise(), cell.sigma, 0.5 * cell.sigma); // 28 differences: about 13 % spread
   EXPECT_DOUBLE_EQ(robot.getAcquisition().getModelCheck().getGivenNoise(), procedure.getImageNoise());
   EXPECT_TRUE(contains(log, "image noise at rest")) << log;

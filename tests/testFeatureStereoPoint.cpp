@@ -201,7 +201,7 @@ TEST(FeatureStereoPoint, InteractionTimesPointJacobianIsImageJacobian)
       s.buildFrom(sj(0), sj(1), sj(2), sj(3));
       s.setStereoRig(rig);
       const vpColVector M = rig.triangulate(s.getLeft(), s.getRight());
-      const Eigen::MatrixXd LJ = toEigenX(s.interaction()) * toEigenX(robot.getPointJacobian(q, M));
+      const Eigen::MatrixXd LJ = toEigenX(s.interaction()) * pointJacobian(robot.getModel(), q, M);
       const Eigen::MatrixXd J = toEigenX(robot.getImageJacobian(q, M));
       EXPECT_LT((LJ - J).norm() / J.norm(), 1e-10) << "marker " << j;
     }

@@ -121,8 +121,8 @@ TEST(ProjectiveAcquisitionProcedure, CalibratesTheFacadeFromAbsoluteReadings)
   procedure.run(s.robot, robot);
   ASSERT_TRUE(robot.isCalibrated());
   EXPECT_EQ(robot.getAcquisition().getNumberOfTrials(), 12u);
-  EXPECT_LT((robot.getZeroReferenceJoints() - qRef).frobeniusNorm(), 1e-12);
-  EXPECT_LT(robot.getCalibrationResidual(), 2.0 * s.sigma);
+  EXPECT_LT((robot.getAcquisition().getZeroReferenceJoints() - qRef).frobeniusNorm(), 1e-12);
+  EXPECT_LT(robot.getAcquisition().getCalibrationResidual(), 2.0 * s.sigma);
 
   // Encoder readings as they are: the markers predicted at qRef + dq against the true ones, within the noise.
   double sum = 0.0;
@@ -133,19 +133,19 @@ TEST(ProjectiveAcquisitionProcedure, CalibratesTheFacadeFromAbsoluteReadings)
     for (unsigned int j = 0; j < X.size(); ++j) {
       vpImagePoint l, r, lp, rp;
       s.sim.project(X[j], l, r);
-      robot.projectMarker(j, q, lp, rp);
+      robot.getModel().projectMarker(j, q, lp, rp);
       sum += vpImagePoint::sqrDistance(l, lp) + vpImagePoint::sqrDistance(r, rp);
       count += 4;
     }
   }
   EXPECT_LT(std::sqrt(sum / count), s.sigma);
 
-  const unsigned long generation = robot.getModelGeneration();
-  const vpMatrix G = robot.getProjectiveToMetric();
+  const unsigned long generation = robot.getRigUpdate().getModelGeneration();
+  const Eigen::Matrix4d G = robot.getModel().projectiveToMetric();
   procedure.setMinAmounts(vpColVector(6, vpMath::rad(89.0))); // no joint gets that far: run() throws
   EXPECT_THROW(procedure.run(s.robot, robot), vpProjectiveException);
-  EXPECT_EQ(robot.getModelGeneration(), generation);
-  EXPECT_EQ((robot.getProjectiveToMetric() - G).frobeniusNorm(), 0.0);
+  EXPECT_EQ(robot.getRigUpdate().getModelGeneration(), generation);
+  EXPECT_EQ((robot.getModel().projectiveToMetric() - G).norm(), 0.0);
   EXPECT_EQ(robot.getAcquisition().getNumberOfTrials(), 12u);
   EXPECT_LT((s.robot.q() - qRef).frobeniusNorm(), 3e-5); // back at the zero reference (1e-5 per joint)
 }

@@ -184,7 +184,7 @@ template <class Robot, class Kinematics> void acquire(Robot &robot, bool eyeInHa
   }());
   procedure.run(robot, model);
 
-  EXPECT_LT(model.getCalibrationResidual(), 2.0 * cell.sigma) << name << "\n" << log.str();
+  EXPECT_LT(model.getAcquisition().getCalibrationResidual(), 2.0 * cell.sigma) << name << "\n" << log.str();
   EXPECT_EQ(model.getRigMounting(), eyeInHand ? vpProjectiveRobot::EYE_IN_HAND : vpProjectiveRobot::EYE_TO_HAND)
       << name;
   EXPECT_TRUE(procedure.getMountingReport().checked) << name;

@@ -251,7 +251,7 @@ TEST(ProjectiveCell, EndToEndAcquisitionTeachingServoRecording)
   cell.setRecording(folder);
   cell.acquire();
   EXPECT_TRUE(arm.still());
-  EXPECT_LT(cell.getModel().getCalibrationResidual(), 0.5);
+  EXPECT_LT(cell.getModel().getAcquisition().getCalibrationResidual(), 0.5);
   std::ostringstream script, prompt;
   script << "move";
   for (unsigned int i = 0; i < 6; ++i) {
@@ -467,7 +467,7 @@ TEST(ProjectiveCell, ArrivalToleranceFollowsTheEncodersNoise)
   cell.setOutput(&progress);
   ASSERT_NO_THROW(cell.acquire()) << progress.str();
   EXPECT_NE(progress.str().find("(4 times the noise)"), std::string::npos) << progress.str();
-  EXPECT_LT(cell.getModel().getCalibrationResidual(), 0.1);
+  EXPECT_LT(cell.getModel().getAcquisition().getCalibrationResidual(), 0.1);
   EXPECT_TRUE(arm.still());
 }
 

@@ -44,15 +44,16 @@ TEST(ProjectiveRobot, CalibrationAtHalfPixelNoise)
   const double sigma = 0.5;
   for (long seed = 1; seed <= 5; ++seed) {
     const vpProjectiveRobot robot = calibratedRobot(s, sigma, seed);
-    const double residual = robot.getCalibrationResidual();
+    const double residual = robot.getAcquisition().getCalibrationResidual();
     EXPECT_GT(residual, 0.38) << "seed " << seed;
     EXPECT_LT(residual, 0.55) << "seed " << seed;
-    EXPECT_LT(residual, robot.getAlgebraicResidual()) << "the refinement must improve on the algebraic generators";
+    EXPECT_LT(residual, robot.getAcquisition().getAlgebraicResidual())
+        << "the refinement must improve on the algebraic generators";
     double worst = 0.0;
     const double rms = predictionRms(s, robot, std::vector<double>(6, vpMath::rad(30.0)), 100 + seed, worst);
     testLog() << "[ measured ] seed " << seed << ": calibration residual " << residual << " px (algebraic "
-              << robot.getAlgebraicResidual() << " px), prediction RMS " << rms << " px, worst " << worst << " px"
-              << std::endl;
+              << robot.getAcquisition().getAlgebraicResidual() << " px), prediction RMS " << rms << " px, worst "
+              << worst << " px" << std::endl;
     EXPECT_LE(rms, 1.0) << "seed " << seed;
   }
 }
@@ -240,7 +241,7 @@ TEST(ProjectiveRobot, NoiseFreeAcquisitionWithEstimatedRig)
     }
   }
   robot.calibrate();
-  EXPECT_LT(robot.getCalibrationResidual(), 1e-6);
+  EXPECT_LT(robot.getAcquisition().getCalibrationResidual(), 1e-6);
   const Eigen::Matrix4d H = s.Hpe(rig);
   for (unsigned int i = 0; i < 6; ++i) {
     EXPECT_LT(relativeError(toEigen<4, 4>(robot.getGenerator(i)), s.trueGenerator(i, H)), 1e-6) << "joint " << i;
@@ -263,7 +264,7 @@ TEST(ProjectiveRobot, SeveralTrialsPerJoint)
     robot.addTrialMotion(i, q[i], left, right);
   }
   robot.calibrate();
-  EXPECT_LT(robot.getCalibrationResidual(), 1e-8);
+  EXPECT_LT(robot.getAcquisition().getCalibrationResidual(), 1e-8);
   const Eigen::Matrix4d H = s.Hpe(robot.getStereoRig());
   for (unsigned int i = 0; i < 6; ++i) {
     EXPECT_LT(relativeError(toEigen<4, 4>(robot.getGenerator(i)), s.trueGenerator(i, H)), 1e-9);

@@ -102,11 +102,9 @@ TEST(ProjectiveRobot, BadInputsThrow)
   const vpColVector q0(6, 0.0);
   const vpColVector M(4, 1.0);
   EXPECT_TRUE(throwsProjective([&] { robot.getImageJacobian(q0, M); }, notInit, "not acquired"));
-  EXPECT_TRUE(throwsProjective([&] { robot.getPointJacobian(q0, M); }, notInit, "not acquired"));
   EXPECT_TRUE(throwsProjective([&] { robot.getDisplacement(q0); }, notInit, "not acquired"));
   EXPECT_TRUE(throwsProjective([&] { robot.getGenerator(0); }, notInit, "not acquired"));
-  EXPECT_TRUE(throwsProjective([&] { robot.getJointMotion(0, q0); }, notInit, "not acquired"));
-  EXPECT_TRUE(throwsProjective([&] { robot.getZeroReferencePoints(); }, notInit, "not acquired"));
+  EXPECT_TRUE(throwsProjective([&] { robot.getModel(); }, notInit, "not acquired"));
 
   // With a model: sizes, indices, non-finite values, degenerate points.
   const vpProjectiveRobot model = calibratedRobot(s);
@@ -120,7 +118,6 @@ TEST(ProjectiveRobot, BadInputsThrow)
   vpColVector MNaN(4, 1.0);
   MNaN[1] = nan;
   EXPECT_TRUE(throwsProjective([&] { model.getImageJacobian(q0, MNaN); }, nonFinite, "M"));
-  EXPECT_TRUE(throwsProjective([&] { model.getPointJacobian(q0, MNaN); }, nonFinite, "M"));
   EXPECT_TRUE(throwsProjective([&] { model.getImageJacobian(q0, vpColVector(4, 0.0)); }, invalid, "zero vector"));
   // P = [I | 0]: M = (1, 0, 0, 0) has P M = (1, 0, 0), on the left camera's focal plane.
   vpColVector Mfocal(4, 0.0);
@@ -128,11 +125,12 @@ TEST(ProjectiveRobot, BadInputsThrow)
   EXPECT_TRUE(throwsProjective([&] { model.getImageJacobian(q0, Mfocal); }, vpProjectiveException::pointAtInfinityError,
                                "focal plane"));
   EXPECT_TRUE(throwsProjective([&] { model.getGenerator(6); }, dim, "out of range"));
-  EXPECT_TRUE(throwsProjective([&] { model.getTwist(6); }, dim, "out of range"));
-  EXPECT_TRUE(throwsProjective([&] { model.getJointMotion(6, q0); }, dim, "out of range"));
   EXPECT_TRUE(throwsProjective([&] { model.getJointType(6); }, dim, "out of range"));
   vpImagePoint l, r;
-  EXPECT_TRUE(throwsProjective([&] { model.projectMarker(7, q0, l, r); }, dim, "marker index"));
+  const vpProjectiveArmModel &arm = model.getModel(); // the model's own checked ViSP-typed call
+  EXPECT_TRUE(throwsProjective([&] { arm.projectMarker(7, q0, l, r); }, dim, "marker index"));
+  EXPECT_TRUE(throwsProjective([&] { arm.projectMarker(0, vpColVector(5, 0.0), l, r); }, dim, "q must have 6"));
+  EXPECT_TRUE(throwsProjective([&] { arm.projectMarker(0, qNaN, l, r); }, nonFinite, "joint value"));
 
   // Setting another rig clears the acquisition.
   vpProjectiveRobot again = calibratedRobot(s);
@@ -148,10 +146,10 @@ TEST(ProjectiveRobot, SetCalibrationTakesAModelOfItsJointsOnly)
   const vpColVector q(6, 0.3);
   // What vpProjectiveAcquisitionProcedure::run() does: a model computed outside the robot, taken as calibrate() would.
   vpProjectiveRobot other(model.getModel().jointTypes());
-  other.setCalibration(model.getAcquisition(), model.getModel(), model.getCalibrationResidual());
+  other.setCalibration(model.getAcquisition(), model.getModel(), model.getAcquisition().getCalibrationResidual());
   EXPECT_TRUE(other.isCalibrated());
-  EXPECT_EQ(other.getCalibrationResidual(), model.getCalibrationResidual());
-  EXPECT_EQ(other.getAlgebraicResidual(), model.getAlgebraicResidual());
+  EXPECT_EQ(other.getAcquisition().getCalibrationResidual(), model.getAcquisition().getCalibrationResidual());
+  EXPECT_EQ(other.getAcquisition().getAlgebraicResidual(), model.getAcquisition().getAlgebraicResidual());
   EXPECT_EQ((other.getDisplacement(q) - model.getDisplacement(q)).frobeniusNorm(), 0.0);
   // Another arm's model, or a residual that is no RMS error: refused, the robot unchanged.
   vpProjectiveRobot five(std::vector<vpProjectiveRobot::vpJointType>(5, vpProjectiveRobot::REVOLUTE));

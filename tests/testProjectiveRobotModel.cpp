@@ -87,11 +87,11 @@ TEST_P(ProjectiveRobotSetup, NoiseFreeAcquisition)
   EXPECT_EQ(robot.getNumberOfJoints(), s.n());
   EXPECT_EQ(robot.getRigMounting(), s.mounting);
   // Measured 2e-12..5e-12 px (bundle adjustment) and 3e-10..9e-10 px (algebraic generators: linear estimates).
-  testLog() << "[ measured ] " << s.name << ": calibration residual " << robot.getCalibrationResidual()
-            << " px, algebraic " << robot.getAlgebraicResidual() << " px" << std::endl;
-  EXPECT_LT(robot.getCalibrationResidual(), 1e-8);
-  EXPECT_LT(robot.getAlgebraicResidual(), 1e-6);
-  EXPECT_EQ(robot.getZeroReferencePoints().size(), s.numberOfMarkers());
+  testLog() << "[ measured ] " << s.name << ": calibration residual " << robot.getAcquisition().getCalibrationResidual()
+            << " px, algebraic " << robot.getAcquisition().getAlgebraicResidual() << " px" << std::endl;
+  EXPECT_LT(robot.getAcquisition().getCalibrationResidual(), 1e-8);
+  EXPECT_LT(robot.getAcquisition().getAlgebraicResidual(), 1e-6);
+  EXPECT_EQ(robot.getModel().markers().size(), s.numberOfMarkers());
 }
 
 TEST_P(ProjectiveRobotSetup, GeneratorsMatchGroundTruth)
@@ -99,7 +99,7 @@ TEST_P(ProjectiveRobotSetup, GeneratorsMatchGroundTruth)
   const ArmSetup s = GetParam().make();
   const vpProjectiveRobot robot = calibratedRobot(s);
   const Eigen::Matrix4d H = s.Hpe(robot.getStereoRig());
-  const Eigen::Matrix4d G = toEigen<4, 4>(robot.getProjectiveToMetric());
+  const Eigen::Matrix4d G = robot.getModel().projectiveToMetric();
   double worst = 0.0;
   for (unsigned int i = 0; i < s.n(); ++i) {
     const Eigen::Matrix4d Hhat = toEigen<4, 4>(robot.getGenerator(i));
@@ -121,7 +121,7 @@ TEST_P(ProjectiveRobotSetup, GeneratorsMatchGroundTruth)
       EXPECT_LT(sv(1) / sv(0), 1e-12) << "rank 1, joint " << i;
     }
     // The metric twists are those of a frame G = H_PE up to a similarity: Hhat_i = G^-1 That_i G.
-    EXPECT_LT(relativeError(Eigen::Matrix4d(G * Hhat * G.inverse()), toEigen<4, 4>(robot.getTwist(i))), 1e-9);
+    EXPECT_LT(relativeError(Eigen::Matrix4d(G * Hhat * G.inverse()), robot.getModel().twist(i)), 1e-9);
   }
   testLog() << "[ measured ] " << s.name << ": worst generator error " << worst << std::endl;
   // G H_PE^-1 is a similarity: its 3x3 block is a scaled rotation, its last row (0, 0, 0, s).
@@ -156,10 +156,9 @@ TEST_P(ProjectiveRobotSetup, DisplacementMatchesTrueMotion)
     worst = std::max(worst, err);
     EXPECT_LT(err, 1e-9) << s.name << " q = " << q.t();
     // The markers' predicted images are the simulated ones.
-    const std::vector<vpColVector> M0 = robot.getZeroReferencePoints();
-    for (unsigned int j = 0; j < M0.size(); ++j) {
+    for (unsigned int j = 0; j < robot.getModel().markers().size(); ++j) {
       vpImagePoint l, r;
-      robot.projectMarker(j, q, l, r);
+      robot.getModel().projectMarker(j, q, l, r);
       const Eigen::Vector4d sj = s.imageOf(s.armJoints(q), j);
       EXPECT_LT((Eigen::Vector4d(l.get_u(), l.get_v(), r.get_u(), r.get_v()) - sj).norm(), 1e-7);
     }
@@ -208,18 +207,18 @@ TEST_P(ProjectiveRobotSetup, PointJacobianIsDerivativeOfDisplacement)
 {
   const ArmSetup s = GetParam().make();
   const vpProjectiveRobot robot = calibratedRobot(s);
-  const std::vector<vpColVector> M0 = robot.getZeroReferencePoints();
+  const std::vector<Eigen::Vector4d> &M0 = robot.getModel().markers();
   vpUniRand rng(41);
   double worst = 0.0;
   for (int t = 0; t < 5; ++t) {
     const vpColVector q = randomJoints(s, rng);
     ASSERT_EQ(q.getRows(), s.n());
     for (size_t j = 0; j < M0.size(); ++j) {
-      const Eigen::Vector4d M = toEigen<4, 4>(robot.getDisplacement(q)) * toEigen4(M0[j]);
-      const Eigen::MatrixXd JH = toEigenX(robot.getPointJacobian(q, toVispVector(M)));
+      const Eigen::Vector4d M = toEigen<4, 4>(robot.getDisplacement(q)) * M0[j];
+      const Eigen::MatrixXd JH = pointJacobian(robot.getModel(), q, toVispVector(M));
       const Eigen::MatrixXd Jfd = numericJacobian(
           [&](const Eigen::VectorXd &x) {
-            return Eigen::Vector4d(toEigen<4, 4>(robot.getDisplacement(toVispVector(x))) * toEigen4(M0[j]));
+            return Eigen::Vector4d(toEigen<4, 4>(robot.getDisplacement(toVispVector(x))) * M0[j]);
           },
           toEigenV(q), 1e-3);
       worst = std::max(worst, jacobianRelativeError(JH, Jfd));
@@ -250,7 +249,9 @@ TEST_P(ProjectiveRobotSetup, JointMotionsFollowEquation39)
       const unsigned int k = robot.getRigMounting() == vpProjectiveRobot::EYE_TO_HAND ? pos : n - 1 - pos;
       const Eigen::Matrix4d A = chainProduct(robot, q, pos);
       const Eigen::Matrix4d expected = A * toEigen<4, 4>(robot.getGenerator(k)) * A.inverse();
-      const Eigen::Matrix4d HhatKq = toEigen<4, 4>(robot.getJointMotion(k, q));
+      Eigen::Matrix4d motions[vpProjectiveArmModel::maxJoints];
+      jointMotions(robot.getModel(), q, motions);
+      const Eigen::Matrix4d HhatKq = motions[k];
       const double err39 = relativeError(HhatKq, expected);
       worst39 = std::max(worst39, err39);
       EXPECT_LT(err39, 1e-9) << s.name << " joint " << k;
@@ -267,8 +268,8 @@ TEST_P(ProjectiveRobotSetup, JointMotionsFollowEquation39)
       worstFd = std::max(worstFd, errFd);
       EXPECT_LT(errFd, 1e-7) << s.name << " joint " << k;
       // The point Jacobian's columns are these motions applied to the current point.
-      const Eigen::Vector4d M = H * toEigen4(robot.getZeroReferencePoints()[0]);
-      const Eigen::MatrixXd JH = toEigenX(robot.getPointJacobian(q, toVispVector(M)));
+      const Eigen::Vector4d M = H * robot.getModel().markers()[0];
+      const Eigen::MatrixXd JH = pointJacobian(robot.getModel(), q, toVispVector(M));
       EXPECT_LT((JH.col(k) - HhatKq * M).norm(), 1e-12 * (HhatKq.norm() + 1.0));
     }
   }
@@ -323,7 +324,7 @@ TEST_P(ProjectiveRobotSetup, ModelFileRoundTrip)
   ASSERT_TRUE(loaded.isCalibrated());
   EXPECT_EQ(loaded.getNumberOfJoints(), s.n());
   EXPECT_EQ(loaded.getRigMounting(), s.mounting);
-  EXPECT_NEAR(loaded.getCalibrationResidual(), robot.getCalibrationResidual(), 1e-20);
+  EXPECT_NEAR(loaded.getAcquisition().getCalibrationResidual(), robot.getAcquisition().getCalibrationResidual(), 1e-20);
   EXPECT_LT((toEigen<3, 3>(loaded.getStereoRig().getFundamentalMatrix()) -
              toEigen<3, 3>(robot.getStereoRig().getFundamentalMatrix()))
                 .norm(),
@@ -335,10 +336,10 @@ TEST_P(ProjectiveRobotSetup, ModelFileRoundTrip)
     worst = std::max(worst, err);
     EXPECT_LT(err, 1e-12) << "generator " << i;
   }
-  const std::vector<vpColVector> M0 = robot.getZeroReferencePoints(), L0 = loaded.getZeroReferencePoints();
+  const std::vector<Eigen::Vector4d> &M0 = robot.getModel().markers(), &L0 = loaded.getModel().markers();
   ASSERT_EQ(M0.size(), L0.size());
   for (size_t j = 0; j < M0.size(); ++j) {
-    EXPECT_LT((toEigen4(M0[j]) - toEigen4(L0[j])).norm(), 1e-15);
+    EXPECT_LT((M0[j] - L0[j]).norm(), 1e-15);
   }
   vpUniRand rng(71);
   double worstJ = 0.0;
@@ -348,7 +349,7 @@ TEST_P(ProjectiveRobotSetup, ModelFileRoundTrip)
         relativeError(toEigen<4, 4>(loaded.getDisplacement(q)), toEigen<4, 4>(robot.getDisplacement(q)));
     worst = std::max(worst, errH);
     EXPECT_LT(errH, 1e-12);
-    const vpColVector M = robot.getZeroReferencePoints()[1];
+    const vpColVector M = toVispVector(robot.getModel().markers()[1]);
     const Eigen::MatrixXd J = toEigenX(robot.getImageJacobian(q, M));
     // The file stores G; the loaded model recomputes G^-1, which differs in the last bits from the G^-1 the bundle
     // adjustment produced (cond(G) ~ 2400): the generators change by ~4e-15 relative, and J, whose columns

@@ -82,13 +82,12 @@ TEST(ProjectiveRobot, ModelFileErrors)
     }
     vpProjectiveRobot reloaded;
     reloaded.loadModel(bad);
-    bool identical = toEigen<4, 4>(reloaded.getProjectiveToMetric()) == toEigen<4, 4>(robot.getProjectiveToMetric());
+    bool identical = reloaded.getModel().projectiveToMetric() == robot.getModel().projectiveToMetric();
     for (unsigned int i = 0; i < s.n(); ++i) {
       identical = identical && toEigen<4, 4>(reloaded.getGenerator(i)) == toEigen<4, 4>(robot.getGenerator(i));
     }
-    for (size_t j = 0; j < robot.getZeroReferencePoints().size(); ++j) {
-      identical =
-          identical && toEigen4(reloaded.getZeroReferencePoints()[j]) == toEigen4(robot.getZeroReferencePoints()[j]);
+    for (size_t j = 0; j < robot.getModel().markers().size(); ++j) {
+      identical = identical && reloaded.getModel().markers()[j] == robot.getModel().markers()[j];
     }
     if (identical) {
       ++harmless;

@@ -148,24 +148,28 @@ TEST_P(SelfCalibrationSetup, NoiseFreeGivesTheTruth)
   // A known marker distance gives the true metric baseline with any arm.
   const std::vector<vpColVector> X = s.markersAt(s.qRef);
   const double d01 = (X[0] - X[1]).frobeniusNorm();
-  robot.getMetricStereoRig(Kl, Kr, lMr, 0, 1, d01);
-  const double metricBaseline = toEigen<4, 4>(lMr).topRightCorner<3, 1>().norm();
+  vpProjectiveSelfCalibration calibration(robot.getModel(), robot.getAcquisition().getFrames());
+  calibration.setScale(vpProjectiveSelfCalibration::SCALE_MARKER_DISTANCE, 0, 1, d01);
+  Eigen::Matrix3d Kle, Kre;
+  Eigen::Matrix4d lMre;
+  calibration.getMetricStereoRig(Kle, Kre, lMre);
+  const double metricBaseline = lMre.topRightCorner<3, 1>().norm();
   EXPECT_NEAR(metricBaseline, bTrue.norm(), 1e-6 * bTrue.norm());
   // Joint axes in the left camera frame, against the simulator's twists: unit direction (up to the sign of the
   // encoder), point on the axis (distance of the estimated point to the true axis).
-  std::vector<vpColVector> direction, point;
-  robot.getMetricJointAxes(direction, point);
+  std::vector<Eigen::Vector3d> direction, point; // in the unit of getMetricStereoRig(), not of the marker distance
+  vpProjectiveSelfCalibration(robot.getModel(), robot.getAcquisition().getFrames()).getJointAxes(direction, point);
   ASSERT_EQ(direction.size(), s.n());
   for (unsigned int i = 0; i < s.n(); ++i) {
     SCOPED_TRACE(::testing::Message() << "joint " << i);
     const Eigen::Matrix4d T = s.cameraTwist(i);
     const Eigen::Vector3d w(T(2, 1), T(0, 2), T(1, 0)), v = T.topRightCorner<3, 1>();
-    const Eigen::Vector3d d(direction[i][0], direction[i][1], direction[i][2]);
+    const Eigen::Vector3d &d = direction[i];
     if (s.arm.getJointType(i) == vpSimulatorArm::REVOLUTE) {
       EXPECT_LT(directionError(d, w), 1e-6);
       // The axis is {p : w x p = -v... }: the estimated point lies on it when (p - p0) is parallel to w.
       const Eigen::Vector3d p0 = w.cross(v) / w.squaredNorm();
-      const Eigen::Vector3d p(point[i][0], point[i][1], point[i][2]);
+      const Eigen::Vector3d &p = point[i];
       const double scale = prismatic ? 1.0 : 1.0 / bTrue.norm();
       EXPECT_LT(((p - scale * p0).cross(w.normalized())).norm(), 1e-6 * scale);
     } else {
@@ -291,10 +295,12 @@ TEST(vpProjectiveSelfCalibration, BadInputs)
   vpGaussRand noise(1.0, 0.0, 1);
   ASSERT_TRUE(s.acquire(robot, 0.0, noise));
   robot.calibrate();
-  EXPECT_TRUE(throwsProjective([&] { robot.getMetricStereoRig(K1, K2, M, 0, 0, 0.1); },
-                               vpProjectiveException::dimensionError, "distinct"));
-  EXPECT_TRUE(throwsProjective([&] { robot.getMetricStereoRig(K1, K2, M, 0, 99, 0.1); },
-                               vpProjectiveException::dimensionError, "markers"));
-  EXPECT_TRUE(throwsProjective([&] { robot.getMetricStereoRig(K1, K2, M, 0, 1, -0.1); },
-                               vpProjectiveException::invalidValueError, "distance"));
+  const auto scaled = [&](unsigned int markerA, unsigned int markerB, double distance) {
+    vpProjectiveSelfCalibration calibration(robot.getModel(), robot.getAcquisition().getFrames());
+    calibration.setScale(vpProjectiveSelfCalibration::SCALE_MARKER_DISTANCE, markerA, markerB, distance);
+    calibration.getMetricStereoRig(Kl, Kr, lMr);
+  };
+  EXPECT_TRUE(throwsProjective([&] { scaled(0, 0, 0.1); }, vpProjectiveException::dimensionError, "distinct"));
+  EXPECT_TRUE(throwsProjective([&] { scaled(0, 99, 0.1); }, vpProjectiveException::dimensionError, "markers"));
+  EXPECT_TRUE(throwsProjective([&] { scaled(0, 1, -0.1); }, vpProjectiveException::invalidValueError, "distance"));
 }

@@ -97,16 +97,16 @@ TEST(RigUpdate, NoiseFreeReRegistrationIsExact)
         poses.push_back(visibleJoints({&s, &b}, rng));
       }
       const double before = predictionError(robot, b, poses, noise, 0.0);
-      robot.setRigRegistrationMode(mode);
-      EXPECT_EQ(robot.getRigGeneration(), 0u);
+      robot.getRigUpdate().setRegistrationMode(mode);
+      EXPECT_EQ(robot.getRigUpdate().getGeneration(), 0u);
       for (int k = 0; k < 3; ++k) {
         std::vector<vpImagePoint> left, right;
         b.images(b.armJoints(poses[static_cast<size_t>(k)]), left, right, -1e9);
         robot.addRigObservation(poses[static_cast<size_t>(k)], left, right);
       }
       robot.updateRig();
-      EXPECT_EQ(robot.getRigGeneration(), 1u);
-      EXPECT_EQ(robot.getNumberOfRigObservations(), 0u);
+      EXPECT_EQ(robot.getRigUpdate().getGeneration(), 1u);
+      EXPECT_EQ(robot.getRigUpdate().getNumberOfObservations(), 0u);
       EXPECT_FALSE(robot.getStereoRig().isCanonical());
       double worst = 0.0;
       for (const vpColVector &q : poses) {
@@ -200,13 +200,13 @@ TEST(RigUpdate, BadInputsThrowAndChangeNothing)
   qInf[1] = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(throwsWith([&] { robot.addRigObservation(qInf, left, right); },
                          vpProjectiveException::nonFiniteValueError, "NaN or infinite"));
-  EXPECT_EQ(robot.getNumberOfRigObservations(), 0u);
+  EXPECT_EQ(robot.getRigUpdate().getNumberOfObservations(), 0u);
 
   // Identical configurations; too few observations.
   robot.addRigObservation(q, left, right);
   EXPECT_TRUE(throwsWith([&] { robot.addRigObservation(q, left, right); },
                          vpProjectiveException::degenerateConfigurationError, "move the arm"));
-  EXPECT_EQ(robot.getNumberOfRigObservations(), 1u);
+  EXPECT_EQ(robot.getRigUpdate().getNumberOfObservations(), 1u);
   EXPECT_TRUE(throwsWith([&] { robot.updateRig(); }, vpProjectiveException::notEnoughPointsError, "at least 3"));
 
   // Observations that the model cannot explain (markers in another order: slipped or mislabelled): the update fails,
@@ -220,12 +220,12 @@ TEST(RigUpdate, BadInputsThrowAndChangeNothing)
     robot.addRigObservation(qk, l, r);
   }
   EXPECT_TRUE(throwsWith([&] { robot.updateRig(); }, vpProjectiveException::estimationFailedError, "marker order"));
-  EXPECT_EQ(robot.getNumberOfRigObservations(), 4u);
-  EXPECT_EQ(robot.getRigGeneration(), 0u);
+  EXPECT_EQ(robot.getRigUpdate().getNumberOfObservations(), 4u);
+  EXPECT_EQ(robot.getRigUpdate().getGeneration(), 0u);
   EXPECT_EQ(robot.getStereoRig().leftProjection(), P0);
   EXPECT_EQ(robot.getStereoRig().rightProjection(), Pp0);
-  robot.clearRigObservations();
-  EXPECT_EQ(robot.getNumberOfRigObservations(), 0u);
+  robot.getRigUpdate().clearObservations();
+  EXPECT_EQ(robot.getRigUpdate().getNumberOfObservations(), 0u);
 
   // Degenerate geometry: coplanar points leave a camera undetermined.
   std::vector<Eigen::Vector4d> X;

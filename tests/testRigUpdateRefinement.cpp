@@ -108,7 +108,7 @@ TEST(RigRefinement, NothingWithoutReRegistration)
   EXPECT_FALSE(b.run.task.getRigRefinement().isActive());
   EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfPoints(), 0u);
   EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfRefinements(), 0u);
-  EXPECT_EQ(b.t.robot.getRigGeneration(), 0u);
+  EXPECT_EQ(b.t.robot.getRigUpdate().getGeneration(), 0u);
 }
 
 // On: after updateRig(), 3 refinements every 40 moving calls, then none; each refined rig differs from the last and
@@ -121,7 +121,7 @@ TEST(RigRefinement, RefinesOnlyWhenOnAndAllowed)
     BumpedTask b(modifiable);
     b.run.task.getRigRefinement().setRefinement(on);
     ASSERT_TRUE(b.bumpAndReRegister());
-    EXPECT_EQ(b.t.robot.getRigGeneration(), 1u);
+    EXPECT_EQ(b.t.robot.getRigUpdate().getGeneration(), 1u);
     const Eigen::Matrix<double, 3, 8> registered = cameras(b.t.robot);
     for (int it = 0; it < 39; ++it) {
       b.run.step(b.t.b, b.q, 0.0, b.t.noise);
@@ -133,19 +133,19 @@ TEST(RigRefinement, RefinesOnlyWhenOnAndAllowed)
     EXPECT_NE(printed.str().find(expected), std::string::npos) << printed.str();
     EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfPoints(), on && modifiable ? 39u * kTracked.size() : 0u)
         << variant;
-    EXPECT_EQ(b.t.robot.getRigGeneration(), 1u);
+    EXPECT_EQ(b.t.robot.getRigUpdate().getGeneration(), 1u);
     for (int it = 39; it < 200; ++it) {
       b.run.step(b.t.b, b.q, 0.0, b.t.noise);
       if (on && modifiable && it == 39) {
-        EXPECT_EQ(b.t.robot.getRigGeneration(), 2u); // the 40th call refined
+        EXPECT_EQ(b.t.robot.getRigUpdate().getGeneration(), 2u); // the 40th call refined
         EXPECT_GT((cameras(b.t.robot) - registered).norm(), 0.0);
       }
     }
     EXPECT_FALSE(b.run.task.getRigRefinement().isActive());
     EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfRefinements(), on && modifiable ? 3u : 0u) << variant;
     EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfFailures(), 0u) << variant;
-    EXPECT_EQ(b.t.robot.getRigGeneration(), on && modifiable ? 4u : 1u) << variant;
-    EXPECT_EQ(b.t.robot.getRigUpdateCount(), 1u) << variant;
+    EXPECT_EQ(b.t.robot.getRigUpdate().getGeneration(), on && modifiable ? 4u : 1u) << variant;
+    EXPECT_EQ(b.t.robot.getRigUpdate().getUpdateCount(), 1u) << variant;
     if (!(on && modifiable)) {
       EXPECT_EQ(cameras(b.t.robot), registered) << variant;
     }
@@ -216,7 +216,7 @@ TEST(RigRefinement, FailureLeavesEverythingAsItWas)
   EXPECT_EQ(b.run.task.getRigRefinement().getNumberOfRefinements(), 0u);
   EXPECT_FALSE(b.run.task.getRigRefinement().isActive());
   EXPECT_EQ(cameras(b.t.robot), registered);
-  EXPECT_EQ(b.t.robot.getRigGeneration(), 1u);
+  EXPECT_EQ(b.t.robot.getRigUpdate().getGeneration(), 1u);
   b.run.step(b.t.b, b.q, 0.0, b.t.noise);
   for (unsigned int i = 0; i < kTracked.size(); ++i) {
     EXPECT_EQ(toEigen4(b.run.task.getDesiredFeature(i)), desired[i]);
@@ -229,11 +229,11 @@ TEST(RigRefinement, RobotRefineRigChecksAndFailures)
 {
   NoiseFreeBump t(43, BUMP_RIGHT);
   const std::vector<Eigen::Vector4d> none;
-  EXPECT_FALSE(t.robot.hasRigRegistration());
+  EXPECT_FALSE(t.robot.getRigUpdate().hasRegistration());
   EXPECT_TRUE(throwsWith([&] { t.robot.refineRig(none, none); }, vpProjectiveException::notInitializedError,
                          "updateRig() first"));
   reRegister(t.robot, t.b, 3, t.rng, t.noise);
-  EXPECT_TRUE(t.robot.hasRigRegistration());
+  EXPECT_TRUE(t.robot.getRigUpdate().hasRegistration());
   const Eigen::Matrix<double, 3, 8> registered = cameras(t.robot);
   // Points of the last link seen at other joints (the markers, as a task's features would be).
   std::vector<Eigen::Vector4d> X, s;
@@ -257,7 +257,7 @@ TEST(RigRefinement, RobotRefineRigChecksAndFailures)
   EXPECT_TRUE(throwsWith([&] { t.robot.refineRig(X, wrong); }, vpProjectiveException::estimationFailedError,
                          "does not explain"));
   EXPECT_EQ(cameras(t.robot), registered);
-  EXPECT_EQ(t.robot.getRigGeneration(), 1u);
+  EXPECT_EQ(t.robot.getRigUpdate().getGeneration(), 1u);
   // The observations of the update are kept: a refinement from good points works, and predicts the bumped rig better.
   std::vector<vpColVector> test;
   for (int k = 0; k < 5; ++k) {
@@ -266,8 +266,8 @@ TEST(RigRefinement, RobotRefineRigChecksAndFailures)
   vpGaussRand quiet(1.0, 0.0, 3);
   const double before = predictionError(t.robot, t.b, test, quiet, 0.0);
   t.robot.refineRig(X, s);
-  EXPECT_EQ(t.robot.getRigGeneration(), 2u);
-  EXPECT_EQ(t.robot.getRigUpdateCount(), 1u);
+  EXPECT_EQ(t.robot.getRigUpdate().getGeneration(), 2u);
+  EXPECT_EQ(t.robot.getRigUpdate().getUpdateCount(), 1u);
   EXPECT_LT(predictionError(t.robot, t.b, test, quiet, 0.0), before);
 }
 

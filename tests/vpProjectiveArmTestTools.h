@@ -443,6 +443,23 @@ inline vpProjectiveRobot calibratedRobot(const ArmSetup &s, double sigma = 0.0, 
   return robot;
 }
 
+//! The model's joints' motions \f$ \hat H_{k,q} \f$ (eq. (39)) at the readings \e q (ViSP types), written to HhatKq.
+inline void jointMotions(const vpProjectiveArmModel &model, const vpColVector &q, Eigen::Matrix4d *HhatKq)
+{
+  const vpProjectiveArmModel::JointVector qe = toEigenV(q);
+  model.jointMotions(qe, HhatKq);
+}
+
+//! The model's point Jacobian \f$ J_H(q, M) \f$ (4 x n, eqs. (42)-(44)) at the readings \e q for the point \e M.
+inline Eigen::MatrixXd pointJacobian(const vpProjectiveArmModel &model, const vpColVector &q, const vpColVector &M)
+{
+  Eigen::Matrix4d HhatKq[vpProjectiveArmModel::maxJoints];
+  jointMotions(model, q, HhatKq);
+  vpProjectiveArmModel::PointJacobian JH;
+  model.pointJacobian(HhatKq, toEigen4(M), JH);
+  return JH;
+}
+
 } // namespace vpProjectiveTest
 
 #endif

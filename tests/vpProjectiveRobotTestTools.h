@@ -71,7 +71,7 @@ inline double predictionRms(const ArmSetup &s, const vpProjectiveRobot &robot, c
                             long seed, double &worst)
 {
   const vpProjectiveStereoRig &rig = robot.getStereoRig();
-  const std::vector<vpColVector> M0 = robot.getZeroReferencePoints();
+  const std::vector<Eigen::Vector4d> &M0 = robot.getModel().markers();
   vpUniRand rng(seed);
   double sum = 0.0;
   size_t count = 0;
@@ -82,7 +82,7 @@ inline double predictionRms(const ArmSetup &s, const vpProjectiveRobot &robot, c
     const Eigen::Matrix4d H = toEigen<4, 4>(robot.getDisplacement(q));
     for (size_t j = 0; j < M0.size(); ++j) {
       vpImagePoint l, r;
-      rig.project(toVispVector(Eigen::Vector4d(H * toEigen4(M0[j]))), l, r);
+      rig.project(toVispVector(Eigen::Vector4d(H * M0[j])), l, r);
       const Eigen::Vector4d e =
           Eigen::Vector4d(l.get_u(), l.get_v(), r.get_u(), r.get_v()) - s.imageOf(s.armJoints(q), j);
       sum += e.squaredNorm();

@@ -401,7 +401,7 @@ inline BumpCase runBumpCase(const ArmSetup &s, long seed, BumpKind kind, const B
   }
   if (options.ratios) {
     vpProjectiveRobot robot = acquired;
-    robot.setRigRegistrationMode(vpProjectiveRigRegistration::GENERAL);
+    robot.getRigUpdate().setRegistrationMode(vpProjectiveRigRegistration::GENERAL);
     reRegister(robot, b, 3, rng, noise);
     c.ratio3General = predictionError(robot, b, testPoses, noise) / c.preError;
   }

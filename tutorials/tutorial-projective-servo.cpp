@@ -134,7 +134,7 @@ int main(int argc, char **argv)
     }
     robot.calibrate();
     std::cout << "Acquired: " << allLeft.size() << " marker matches, bundle-adjustment residual "
-              << robot.getCalibrationResidual() << " px RMS\n";
+              << robot.getAcquisition().getCalibrationResidual() << " px RMS\n";
     //! [Acquisition]
 
     //! [Task]

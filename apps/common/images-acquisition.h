@@ -183,7 +183,7 @@ inline double trackedPredictionError(const vpProjectiveRobot &robot, const Sessi
   double sum = 0.0;
   for (unsigned int k = 0; k < session.tracker.getNumberOfMarkers(); ++k) {
     vpImagePoint l, r;
-    robot.projectMarker(session.markers[k], session.q, l, r);
+    robot.getModel().projectMarker(session.markers[k], session.q, l, r);
     sum += vpImagePoint::sqrDistance(l, session.tracker.getLeftPoint(k)) +
            vpImagePoint::sqrDistance(r, session.tracker.getRightPoint(k));
   }

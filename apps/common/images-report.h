@@ -152,7 +152,7 @@ struct ImagesStudy {
   void addModel(const vpProjectiveRobot &robot, double predictionPx, const TrackingAccuracy &accuracy)
   {
     prediction.push_back(predictionPx);
-    calibrationResidual.push_back(robot.getCalibrationResidual());
+    calibrationResidual.push_back(robot.getAcquisition().getCalibrationResidual());
     acquisitionAccuracy.add(accuracy);
   }
   //! The jitter (px RMS).
@@ -258,8 +258,9 @@ inline void printSeedOne(const Session &session, const vpProjectiveRobot &robot,
   if (acquired && robot.isCalibrated() && !st.prediction.empty()) {
     std::cout << "    epipolar geometry from the tracked centres: RMS residual "
               << robot.getAcquisition().getStereoRig().getEstimationResidual() << " px\n"
-              << "    algebraic generators: RMS error on the acquisition images " << robot.getAlgebraicResidual()
-              << " px; after the bundle adjustment " << robot.getCalibrationResidual() << " px\n"
+              << "    algebraic generators: RMS error on the acquisition images "
+              << robot.getAcquisition().getAlgebraicResidual() << " px; after the bundle adjustment "
+              << robot.getAcquisition().getCalibrationResidual() << " px\n"
               << "    tracking accuracy (tracked centre - true projection): " << acquisitionAccuracy.rms()
               << " px RMS, largest " << acquisitionAccuracy.largest << " px, over " << acquisitionAccuracy.coordinates
               << " coordinates\n"

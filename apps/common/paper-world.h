@@ -223,7 +223,13 @@ inline double predictionError(const vpProjectiveRobot &robot, const ImagesAt &tr
                               double rangeDeg = 30.0)
 {
   const unsigned int n = robot.getNumberOfJoints();
-  const std::vector<vpColVector> M0 = robot.getZeroReferencePoints();
+  std::vector<vpColVector> M0; // the markers' points M_j(0)
+  for (const Eigen::Vector4d &Mj : robot.getModel().markers()) {
+    M0.emplace_back(4);
+    for (unsigned int i = 0; i < 4; ++i) {
+      M0.back()[i] = Mj(i);
+    }
+  }
   vpUniRand uniform(seed);
   double sum = 0.0;
   unsigned int count = 0;
@@ -236,7 +242,8 @@ inline double predictionError(const vpProjectiveRobot &robot, const ImagesAt &tr
     if (!trueImages(q, left, right)) {
       continue; // only configurations where the truth is visible
     }
-    const vpMatrix H = robot.getDisplacement(robot.getZeroReferenceJoints() + q); // q from the zero reference
+    const vpMatrix H =
+        robot.getDisplacement(robot.getAcquisition().getZeroReferenceJoints() + q); // q from the zero reference
     for (size_t j = 0; j < M0.size(); ++j) {
       vpImagePoint l, r;
       robot.getStereoRig().project(H * M0[j], l, r);

@@ -96,7 +96,7 @@ struct Study {
   {
     ++seeds;
     prediction.push_back(predictionPx);
-    calibrationResidual.push_back(robot.getCalibrationResidual());
+    calibrationResidual.push_back(robot.getAcquisition().getCalibrationResidual());
     if (meanAbsJointError.size() == 0) {
       meanAbsJointError.resize(robot.getNumberOfJoints(), true);
     }
@@ -217,8 +217,9 @@ inline vpProjectiveRobot loadOrAcquire(const std::string &modelFile, const std::
       std::cout << "    model saved to " << modelFile << "\n";
     }
   }
-  std::cout << "    algebraic generators: RMS error on the acquisition images " << robot.getAlgebraicResidual()
-            << " px; after the bundle adjustment " << robot.getCalibrationResidual() << " px\n";
+  std::cout << "    algebraic generators: RMS error on the acquisition images "
+            << robot.getAcquisition().getAlgebraicResidual() << " px; after the bundle adjustment "
+            << robot.getAcquisition().getCalibrationResidual() << " px\n";
   std::cout << "    marker prediction at random q within +-" << rangeDeg
             << " deg: " << predictionError(robot, trueImages, 1, rangeDeg) << " px RMS\n";
   return robot;

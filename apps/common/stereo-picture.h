@@ -72,7 +72,7 @@ inline void writeStereoPicture(const std::string &file, const vpImage<unsigned c
     vpImagePoint predicted[2];
     const bool withPrediction = robot != nullptr && robot->isCalibrated();
     if (withPrediction) {
-      robot->projectMarker(markers[k], q, predicted[0], predicted[1]);
+      robot->getModel().projectMarker(markers[k], q, predicted[0], predicted[1]);
     }
     const bool lost = tracker.getState(k) == vpStereoDotTracker::MARKER_LOST;
     for (unsigned int c = 0; c < 2; ++c) {

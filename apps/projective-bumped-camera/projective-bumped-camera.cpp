@@ -230,7 +230,7 @@ int main(int argc, char **argv)
         }
         std::cout << "\n3. Re-registration from " << poses.size() << " observation poses\n";
         reRegister(session, robot, poses, all, errorBumped, errorUpdated);
-        std::cout << "    updateRig(): residual " << robot.getRigRegistrationResidual()
+        std::cout << "    updateRig(): residual " << robot.getRigUpdate().getResidual()
                   << " px; prediction error where the task stopped " << errorUpdated << " px\n\n"
                   << "4. The task goes on from where it stopped\n";
         // The arm drives back to where the task stopped, where the re-registered model finds the servo's blobs.
@@ -295,7 +295,7 @@ int main(int argc, char **argv)
               << " mm (ground truth, for the report only); refinements of the rig with the task's own frames: "
               << task.getRigRefinement().getNumberOfRefinements() << "\n";
     // Re-registered once (updateRig()); the task's own refinements of the rig (setRigRefinement()) do not count.
-    const bool ok = detectedAt >= 0 && robot.getRigUpdateCount() == 1 && poseDeg <= 2.0 && poseMm <= 2.0;
+    const bool ok = detectedAt >= 0 && robot.getRigUpdate().getUpdateCount() == 1 && poseDeg <= 2.0 && poseMm <= 2.0;
     std::cout << (ok ? "Bump detected, rig re-registered, task ended at its original target"
                      : "FAILED: the task did not end within 2 deg / 2 mm of its target")
               << std::endl;

@@ -164,7 +164,7 @@ int main(int argc, char **argv)
                              vpProjectiveSessionCalibration::aprilTagMarkers("36h11"), settings);
         try {
           run.acquire();
-          residual[stamps] += run.getModel().getCalibrationResidual();
+          residual[stamps] += run.getModel().getAcquisition().getCalibrationResidual();
           ++acquired[stamps];
         } catch (const vpException &e) {
           std::cerr << group << " seed " << s << (stamps ? " unstamped" : "") << ": " << e.getStringMessage() << "\n";

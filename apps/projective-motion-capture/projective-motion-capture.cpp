@@ -166,7 +166,7 @@ int main(int argc, char **argv)
     };
     const vpProjectiveRobot robot =
         app::acquireByTrials(world.trialDeg, stillImagesAt, std::max(1.0, 4.0 * sigma / std::sqrt(stillFrames)), true);
-    std::cout << "Model acquired: bundle adjustment RMS " << robot.getCalibrationResidual() << " px\n";
+    std::cout << "Model acquired: bundle adjustment RMS " << robot.getAcquisition().getCalibrationResidual() << " px\n";
 
     // 2. The arm moves on its own; each frame's images give its joints.
     vpProjectiveMotionCapture capture(robot.getModel());
@@ -208,7 +208,7 @@ int main(int argc, char **argv)
         vpColVector e;
         for (unsigned int j = 0; j < left.size(); ++j) {
           vpImagePoint l, r;
-          robot.projectMarker(j, f.qCaptured, l, r);
+          robot.getModel().projectMarker(j, f.qCaptured, l, r);
           vpFeatureStereoPoint s, s_star;
           s.buildFrom(left[j], right[j]);
           s_star.buildFrom(l, r);

@@ -82,7 +82,7 @@ double modelPredictionError(const World &world, const vpProjectiveRobot &robot, 
   double sum = 0.0;
   for (unsigned int k = 0; k < world.nbPoints(); ++k) {
     vpImagePoint l, r;
-    robot.projectMarker(world.tracked[k], q, l, r);
+    robot.getModel().projectMarker(world.tracked[k], q, l, r);
     sum += vpImagePoint::sqrDistance(l, left[k]) + vpImagePoint::sqrDistance(r, right[k]);
   }
   return std::sqrt(sum / (4.0 * world.nbPoints()));

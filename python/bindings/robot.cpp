@@ -16,13 +16,16 @@
   file) and of the model it holds (ProjectiveArmModel, opaque: what a session calibration returns).
 
   The methods named by DESIGN.md's contract are bound in bindRobotContract(); every other public method in
-  bindRobotMore(): the one place to adapt when vpProjectiveRobot's public methods change (issue 32).
+  bindRobotMore(): the one place to adapt when vpProjectiveRobot's public methods change (issue 32). The model's
+  kinematics, the acquisition's residuals and the rig-registration state are bound on their own classes.
 */
 
 #include "module.h"
 
 #include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpProjectiveArmAcquisition.h>
 #include <visp3/projective/vpProjectiveRigRegistration.h>
+#include <visp3/projective/vpProjectiveRigUpdate.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -35,6 +38,38 @@ namespace
 {
 typedef py::class_<vpProjectiveRobot> RobotClass;
 typedef std::vector<vpImagePoint> Pixels;
+
+//! An Eigen matrix as a vpMatrix (a numpy array in Python).
+template <typename Derived> vpMatrix toVispMatrix(const Eigen::MatrixBase<Derived> &E)
+{
+  vpMatrix A(static_cast<unsigned int>(E.rows()), static_cast<unsigned int>(E.cols()));
+  for (Eigen::Index r = 0; r < E.rows(); ++r) {
+    for (Eigen::Index c = 0; c < E.cols(); ++c) {
+      A[static_cast<unsigned int>(r)][static_cast<unsigned int>(c)] = E(r, c);
+    }
+  }
+  return A;
+}
+
+//! An Eigen column vector as a vpColVector.
+template <typename Derived> vpColVector toVispColumn(const Eigen::MatrixBase<Derived> &E)
+{
+  vpColVector v(static_cast<unsigned int>(E.rows()));
+  for (Eigen::Index r = 0; r < E.rows(); ++r) {
+    v[static_cast<unsigned int>(r)] = E(r);
+  }
+  return v;
+}
+
+//! \e i if the model has joint \e i (the model's Eigen accessors do not check).
+unsigned int checkedJoint(const vpProjectiveArmModel &model, unsigned int i)
+{
+  if (i >= model.getNumberOfJoints()) {
+    throw py::index_error("joint index out of range: the model has " + std::to_string(model.getNumberOfJoints()) +
+                          " joints");
+  }
+  return i;
+}
 
 //! The names of DESIGN.md section 3 (fixed).
 void bindRobotContract(RobotClass &robot)
@@ -94,56 +129,77 @@ void bindRobotMore(RobotClass &robot)
       .def("getRigMounting", &vpProjectiveRobot::getRigMounting)
       .def("getStereoRig", &vpProjectiveRobot::getStereoRig, py::return_value_policy::copy)
       .def("isCalibrated", &vpProjectiveRobot::isCalibrated)
-      .def("getCalibrationResidual", &vpProjectiveRobot::getCalibrationResidual)
-      .def("getAlgebraicResidual", &vpProjectiveRobot::getAlgebraicResidual)
       .def("setOutlierThreshold", &vpProjectiveRobot::setOutlierThreshold, py::arg("pixels"))
+      .def("getAcquisition", &vpProjectiveRobot::getAcquisition, py::return_value_policy::reference_internal)
       .def("getModel", &vpProjectiveRobot::getModel, py::return_value_policy::copy)
-      .def("getProjectiveToMetric", &vpProjectiveRobot::getProjectiveToMetric)
-      .def("getTwist", &vpProjectiveRobot::getTwist, py::arg("i"))
-      .def("getZeroReferencePoints", &vpProjectiveRobot::getZeroReferencePoints)
-      .def("getZeroReferenceJoints", &vpProjectiveRobot::getZeroReferenceJoints)
+      .def("getRigUpdate", py::overload_cast<>(&vpProjectiveRobot::getRigUpdate),
+           py::return_value_policy::reference_internal);
+}
+
+//! The robot's acquisition (its residuals and zero reference) and rig-registration state.
+void bindRobotParts(py::module_ &m)
+{
+  py::class_<vpProjectiveArmAcquisition>(m, "ProjectiveArmAcquisition",
+                                         "The acquisition of a ProjectiveRobot (vpProjectiveArmAcquisition, read-only "
+                                         "here): the model's residuals and the zero reference's joint values.")
+      .def("getNumberOfJoints", &vpProjectiveArmAcquisition::getNumberOfJoints)
+      .def("getNumberOfTrials", &vpProjectiveArmAcquisition::getNumberOfTrials)
+      .def("getCalibrationResidual", &vpProjectiveArmAcquisition::getCalibrationResidual)
+      .def("getAlgebraicResidual", &vpProjectiveArmAcquisition::getAlgebraicResidual)
+      .def("getZeroReferenceJoints", &vpProjectiveArmAcquisition::getZeroReferenceJoints);
+
+  typedef vpProjectiveRigUpdate U;
+  py::class_<U>(m, "ProjectiveRigUpdate",
+                "The rig-registration state of a ProjectiveRobot (vpProjectiveRigUpdate): observations, mode, "
+                "residual and counters.")
+      .def("setRegistrationMode", &U::setRegistrationMode, py::arg("mode"))
+      .def("getRegistrationMode", &U::getRegistrationMode)
+      .def("getNumberOfObservations", &U::getNumberOfObservations)
+      .def("clearObservations", &U::clearObservations)
+      .def("hasRegistration", &U::hasRegistration)
+      .def("getResidual", &U::getResidual)
+      .def("getGeneration", &U::getGeneration)
+      .def("getUpdateCount", &U::getUpdateCount)
+      .def("getModelGeneration", &U::getModelGeneration);
+}
+
+//! The model: its kinematics in ViSP types (numpy arrays here).
+void bindArmModel(py::module_ &m)
+{
+  typedef vpProjectiveArmModel A;
+  py::class_<A>(m, "ProjectiveArmModel",
+                "An acquired model (vpProjectiveArmModel): what calibrations return and ProjectiveRobot.getModel() "
+                "gives; a ProjectiveRobot reads its file (loadModel()).")
+      .def("getNumberOfJoints", &A::getNumberOfJoints)
+      .def("getRigMounting", &A::getRigMounting)
+      .def("getStereoRig", &A::getStereoRig, py::return_value_policy::copy)
       .def(
-          "getMetricStereoRig",
-          [](const vpProjectiveRobot &r, unsigned int markerA, unsigned int markerB, double distance) {
-            vpMatrix Kl, Kr;
-            vpHomogeneousMatrix lMr;
-            r.getMetricStereoRig(Kl, Kr, lMr, markerA, markerB, distance);
-            return py::make_tuple(Kl, Kr, lMr);
-          },
-          py::arg("markerA"), py::arg("markerB"), py::arg("distance"))
+          "projectiveToMetric", [](const A &a) { return toVispMatrix(a.projectiveToMetric()); },
+          "G (4x4): maps projective points to a metric frame.")
       .def(
-          "getMetricJointAxes",
-          [](const vpProjectiveRobot &r) {
-            std::vector<vpColVector> direction, point;
-            r.getMetricJointAxes(direction, point);
-            return py::make_tuple(direction, point);
+          "twist", [](const A &a, unsigned int i) { return toVispMatrix(a.twist(checkedJoint(a, i))); }, py::arg("i"),
+          "The metric twist (4x4 se(3) matrix) of joint i.")
+      .def(
+          "markers",
+          [](const A &a) {
+            std::vector<vpColVector> M;
+            for (const Eigen::Vector4d &Mj : a.markers()) {
+              M.push_back(toVispColumn(Mj));
+            }
+            return M;
           },
-          "(directions, points): per joint a unit direction and a point of its axis, (n, 3) arrays.")
-      .def("getJointMotion", &vpProjectiveRobot::getJointMotion, py::arg("k"), py::arg("q"))
-      .def("getPointJacobian", &vpProjectiveRobot::getPointJacobian, py::arg("q"), py::arg("M"))
+          "The markers' projective points M_j(0) at the zero reference, (K, 4).")
+      .def(
+          "zeroReferenceJoints", [](const A &a) { return toVispColumn(a.zeroReferenceJoints()); },
+          "The joint values at the zero reference.")
       .def(
           "projectMarker",
-          [](const vpProjectiveRobot &r, unsigned int j, const vpColVector &q) {
+          [](const A &a, unsigned int j, const vpColVector &q) {
             vpImagePoint left, right;
-            r.projectMarker(j, q, left, right);
+            a.projectMarker(j, q, left, right);
             return py::make_tuple(left, right);
           },
-          py::arg("j"), py::arg("q"))
-      .def(
-          "predictMarkers",
-          [](const vpProjectiveRobot &r, const std::vector<vpColVector> &trajectory,
-             const std::vector<unsigned int> &indices) {
-            std::vector<Pixels> left, right;
-            r.predictMarkers(trajectory, left, right, indices);
-            return py::make_tuple(left, right);
-          },
-          py::arg("trajectory"), py::arg("indices") = std::vector<unsigned int>(),
-          "The predicted pixels of the markers along the joint trajectory (K, n): two lists of (N, 2) arrays.")
-      .def("getNumberOfRigObservations", &vpProjectiveRobot::getNumberOfRigObservations)
-      .def("clearRigObservations", &vpProjectiveRobot::clearRigObservations)
-      .def("setRigRegistrationMode", &vpProjectiveRobot::setRigRegistrationMode, py::arg("mode"))
-      .def("getRigRegistrationMode", &vpProjectiveRobot::getRigRegistrationMode)
-      .def("getRigRegistrationResidual", &vpProjectiveRobot::getRigRegistrationResidual);
+          py::arg("j"), py::arg("q"), "The predicted (u, v) of marker j in both images at the joint values q.");
 }
 } // namespace
 
@@ -167,12 +223,7 @@ void bindRobot(py::module_ &m)
       .export_values();
   bindRobotContract(robot);
   bindRobotMore(robot);
-
-  py::class_<vpProjectiveArmModel>(m, "ProjectiveArmModel",
-                                   "An acquired model (vpProjectiveArmModel): what calibrations return; a "
-                                   "ProjectiveRobot reads its file (loadModel()).")
-      .def("getNumberOfJoints", &vpProjectiveArmModel::getNumberOfJoints)
-      .def("getRigMounting", &vpProjectiveArmModel::getRigMounting)
-      .def("getStereoRig", &vpProjectiveArmModel::getStereoRig, py::return_value_policy::copy);
+  bindRobotParts(m);
+  bindArmModel(m);
 }
 } // namespace vpPython

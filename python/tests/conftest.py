@@ -110,13 +110,13 @@ def acquire_by_trials(world, sigma, seed):
 def prediction_error(robot, world, rng, spread):
     """RMS (px per coordinate) of the model's marker predictions against the truth at 20 random joint values within
     +-spread of the zero reference (only where the truth is in view)."""
-    squares = []
+    squares, model = [], robot.getModel()
     for k in range(20):
         q = world.q_ref + rng.uniform(-1.0, 1.0, len(world.q_ref)) * spread
         visible, left, right = world.images(q)
         if visible:
             for j in range(len(left)):
-                predicted = robot.projectMarker(j, q)
+                predicted = model.projectMarker(j, q)
                 squares += [np.sum((predicted[0] - left[j]) ** 2), np.sum((predicted[1] - right[j]) ** 2)]
     assert len(squares) > 40, "too few configurations with the markers in view"
     return np.sqrt(np.sum(squares) / (2 * len(squares)))

@@ -40,7 +40,7 @@ def test_python_robot_acquisition(make_world):
     assert model.isCalibrated(), world.name
     assert procedure.getCalibrationResidual() < 0.2, world.name  # about the noise, 0.1 px
     assert model.getRigMounting() == vpp.ProjectiveRobot.EYE_TO_HAND
-    assert np.abs(model.getZeroReferenceJoints() - world.q_ref).max() < 1e-4  # absolute encoder readings
+    assert np.abs(model.getAcquisition().getZeroReferenceJoints() - world.q_ref).max() < 1e-4  # absolute encoder readings
     assert np.abs(robot.q - world.q_ref).max() < 1e-4  # the arm back at the zero reference
     assert vpp.Robot.STATE_VELOCITY_CONTROL in robot.states
     assert prediction_error(model, world, rng, world.amounts / 2) < 1.0, world.name

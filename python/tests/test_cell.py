@@ -88,8 +88,9 @@ def test_session_recorded_read_back_and_calibrated(tmp_path):
     ids = calibration.getMarkerIds()
     seen = [(ids.index(i), k) for k, i in enumerate(tags.getIds()) if i in ids]
     assert len(seen) >= 5
+    model = loaded.getModel()
     for j, k in seen:
-        left, right = loaded.projectMarker(j, q)
+        left, right = model.projectMarker(j, q)
         assert np.abs(left - tags.getLeftPoints()[k]).max() < 0.5
         assert np.abs(right - tags.getRightPoints()[k]).max() < 0.5
 

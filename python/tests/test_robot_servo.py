@@ -13,7 +13,7 @@ from conftest import prediction_error, puma
 def test_acquired_model_predicts_the_markers(paper_robot):
     world = puma()
     assert paper_robot.isCalibrated() and paper_robot.getNumberOfJoints() == 6
-    assert paper_robot.getCalibrationResidual() < 0.2  # about the noise, 0.1 px
+    assert paper_robot.getAcquisition().getCalibrationResidual() < 0.2  # about the noise, 0.1 px
     assert prediction_error(paper_robot, world, np.random.default_rng(2), np.radians(20.0)) < 1.0
     H = paper_robot.getDisplacement(np.zeros(6))
     assert np.abs(H / H[3, 3] - np.eye(4)).max() < 1e-12  # the zero reference
@@ -25,14 +25,15 @@ def test_acquired_model_predicts_the_markers(paper_robot):
 def test_image_jacobian_is_the_derivative_of_the_predictions(paper_robot):
     rng = np.random.default_rng(4)
     q = rng.uniform(-0.3, 0.3, 6)
-    M = paper_robot.getDisplacement(q) @ paper_robot.getZeroReferencePoints()[0]  # marker 0 at q
+    model = paper_robot.getModel()
+    M = paper_robot.getDisplacement(q) @ model.markers()[0]  # marker 0 at q
     J = paper_robot.getImageJacobian(q, M)
     assert J.shape == (4, 6)
     h, numeric = 1e-6, np.zeros((4, 6))
     for i in range(6):
         dq = np.zeros(6)
         dq[i] = h
-        plus, minus = paper_robot.projectMarker(0, q + dq), paper_robot.projectMarker(0, q - dq)
+        plus, minus = model.projectMarker(0, q + dq), model.projectMarker(0, q - dq)
         numeric[:, i] = np.concatenate([plus[0] - minus[0], plus[1] - minus[1]]) / (2 * h)
     assert np.abs(J - numeric).max() < 1e-5 * np.abs(J).max()
 

@@ -20,6 +20,7 @@
 #include <Eigen/Dense>
 
 #include "arm/vpJointExponentialPair.h"
+#include "core/vpProjectiveConversions.h"
 #include "core/vpProjectiveErrors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -192,6 +193,24 @@ bool vpProjectiveArmModel::imageJacobian(const Eigen::Matrix4d *HhatKq, const Ei
 bool vpProjectiveArmModel::predictMarker(unsigned int j, const Eigen::Matrix4d &H, Eigen::Vector4d &s) const
 {
   return m_rig.project(Eigen::Vector4d(H * m_M0[j]), s);
+}
+
+void vpProjectiveArmModel::projectMarker(unsigned int j, const vpColVector &q, vpImagePoint &ipLeft,
+                                         vpImagePoint &ipRight) const
+{
+  const std::string where = "vpProjectiveArmModel::projectMarker()";
+  if (j >= m_M0.size()) {
+    std::ostringstream os;
+    os << "marker index " << j << " is out of range; the model has " << m_M0.size() << " markers";
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  const JointVector qe = toEigenVector<JointVector>(q, m_types.size(), where, "q");
+  Eigen::Vector4d s;
+  if (!predictMarker(j, displacement(qe), s)) {
+    fail(vpProjectiveException::pointAtInfinityError, where, "the marker lies on a camera's focal plane at this q");
+  }
+  ipLeft.set_uv(s(0), s(1));
+  ipRight.set_uv(s(2), s(3));
 }
 
 int vpProjectiveArmModel::matchMarker(const Eigen::Matrix4d &H, const Eigen::Vector4d &s, double pixels) const

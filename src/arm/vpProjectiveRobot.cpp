@@ -32,10 +32,7 @@ using namespace vpProjectiveInternal;
 
 const vpErrorSite at("vpProjectiveRobot");
 
-vpProjectiveRobot::vpProjectiveRobot()
-    : m_acquisition(), m_model(), m_calibrated(false), m_residual(0.0), m_algebraicResidual(0.0), m_rigJoints(),
-      m_rigImages(), m_registration(), m_rigMode(vpProjectiveRigRegistration::FIXED_INTRINSICS), m_rigResidual(0.0),
-      m_rigGeneration(0), m_rigUpdates(0), m_modelGeneration(0), m_listeners()
+vpProjectiveRobot::vpProjectiveRobot() : m_acquisition(), m_model(), m_calibrated(false), m_rigUpdate(), m_listeners()
 {
 }
 
@@ -179,16 +176,11 @@ void vpProjectiveRobot::adopt(const vpProjectiveArmAcquisition &acquisition, con
                               double residual, double algebraicResidual)
 {
   m_acquisition = acquisition;
+  m_acquisition.m_residual = residual;
+  m_acquisition.m_algebraicResidual = algebraicResidual;
   m_model = model;
-  m_residual = residual;
-  m_algebraicResidual = algebraicResidual;
   m_calibrated = true;
-  m_rigJoints.clear(); // rig observations belong to the previous model
-  m_rigImages.clear();
-  m_registration = vpRegistration(); // so does the last re-registration
-  m_rigGeneration = 0;
-  m_rigUpdates = 0;
-  ++m_modelGeneration;
+  m_rigUpdate.restart();     // rig observations and the last re-registration belong to the previous model
   m_listeners.notify(false); // the tasks on this robot take their desired features anew
 }
 
@@ -219,58 +211,10 @@ vpMatrix vpProjectiveRobot::getGenerator(unsigned int i) const
   return toVisp(model.generator(i));
 }
 
-vpMatrix vpProjectiveRobot::getProjectiveToMetric() const
-{
-  return toVisp(getModel().projectiveToMetric());
-}
-
-vpMatrix vpProjectiveRobot::getTwist(unsigned int i) const
-{
-  const vpProjectiveArmModel &model = getModel();
-  checkJoint(i, "getTwist()");
-  return toVisp(model.twist(i));
-}
-
-std::vector<vpColVector> vpProjectiveRobot::getZeroReferencePoints() const
-{
-  const vpProjectiveArmModel &model = getModel();
-  std::vector<vpColVector> M;
-  for (const Eigen::Vector4d &Mj : model.markers()) {
-    M.push_back(toVispVector(Mj));
-  }
-  return M;
-}
-
-vpColVector vpProjectiveRobot::getZeroReferenceJoints() const
-{
-  return m_calibrated ? toVispVector(m_model.zeroReferenceJoints()) : m_acquisition.getZeroReferenceJoints();
-}
-
 vpMatrix vpProjectiveRobot::getDisplacement(const vpColVector &q) const
 {
   const vpProjectiveArmModel &model = getModel();
   return toVisp(model.displacement(toJointVector(q, "getDisplacement()")));
-}
-
-vpMatrix vpProjectiveRobot::getJointMotion(unsigned int k, const vpColVector &q) const
-{
-  const vpProjectiveArmModel &model = getModel();
-  checkJoint(k, "getJointMotion()");
-  Eigen::Matrix4d HhatKq[maxJoints];
-  model.jointMotions(toJointVector(q, "getJointMotion()"), HhatKq);
-  return toVisp(HhatKq[k]);
-}
-
-vpMatrix vpProjectiveRobot::getPointJacobian(const vpColVector &q, const vpColVector &M) const
-{
-  const vpProjectiveArmModel &model = getModel();
-  const JointVector qe = toJointVector(q, "getPointJacobian()");
-  const Eigen::Vector4d Me = toEigen<4>(M, at("getPointJacobian()"), "the point M");
-  Eigen::Matrix4d HhatKq[maxJoints];
-  model.jointMotions(qe, HhatKq);
-  PointJacobian JH;
-  model.pointJacobian(HhatKq, Me, JH);
-  return toVisp(JH);
 }
 
 vpMatrix vpProjectiveRobot::getImageJacobian(const vpColVector &q, const vpColVector &M) const
@@ -290,24 +234,6 @@ vpMatrix vpProjectiveRobot::getImageJacobian(const vpColVector &q, const vpColVe
          "M lies on the focal plane of a camera: its image and image Jacobian are undefined");
   }
   return toVisp(J);
-}
-
-void vpProjectiveRobot::projectMarker(unsigned int j, const vpColVector &q, vpImagePoint &ipLeft,
-                                      vpImagePoint &ipRight) const
-{
-  const std::string where = at("projectMarker()");
-  const vpProjectiveArmModel &model = getModel();
-  if (j >= model.markers().size()) {
-    std::ostringstream os;
-    os << "marker index " << j << " is out of range; the model has " << model.markers().size() << " markers";
-    fail(vpProjectiveException::dimensionError, where, os.str());
-  }
-  Eigen::Vector4d s;
-  if (!model.predictMarker(j, model.displacement(toJointVector(q, "projectMarker()")), s)) {
-    fail(vpProjectiveException::pointAtInfinityError, where, "the marker lies on a camera's focal plane at this q");
-  }
-  ipLeft.set_uv(s(0), s(1));
-  ipRight.set_uv(s(2), s(3));
 }
 
 vpColVector vpProjectiveRobot::inverseKinematics(const std::vector<vpImagePoint> &left,
@@ -352,51 +278,11 @@ vpColVector vpProjectiveRobot::inverseKinematics(const std::vector<vpImagePoint>
   return toVispVector(vpProjectiveInverseKinematics::solve(model, s, which, start, residual));
 }
 
-void vpProjectiveRobot::predictMarkers(const std::vector<vpColVector> &trajectory,
-                                       std::vector<std::vector<vpImagePoint>> &left,
-                                       std::vector<std::vector<vpImagePoint>> &right,
-                                       const std::vector<unsigned int> &indices) const
-{
-  const std::string where = at("predictMarkers()");
-  const vpProjectiveArmModel &model = getModel();
-  const unsigned int K = static_cast<unsigned int>(model.markers().size());
-  std::vector<unsigned int> which = indices;
-  if (which.empty()) {
-    for (unsigned int j = 0; j < K; ++j) {
-      which.push_back(j);
-    }
-  }
-  for (unsigned int j : which) {
-    if (j >= K) {
-      std::ostringstream os;
-      os << "marker index " << j << " is out of range; the model has " << K << " markers";
-      fail(vpProjectiveException::dimensionError, where, os.str());
-    }
-  }
-  std::vector<JointVector> q;
-  for (const vpColVector &qk : trajectory) {
-    q.push_back(toJointVector(qk, "predictMarkers()"));
-  }
-  left.assign(q.size(), std::vector<vpImagePoint>(which.size()));
-  right.assign(q.size(), std::vector<vpImagePoint>(which.size()));
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (size_t k = 0; k < q.size(); ++k) {
-    const Eigen::Matrix4d H = model.displacement(q[k]);
-    for (size_t j = 0; j < which.size(); ++j) {
-      Eigen::Vector4d s;
-      if (!model.predictMarker(which[j], H, s)) {
-        s.setConstant(nan);
-      }
-      left[k][j].set_uv(s(0), s(1));
-      right[k][j].set_uv(s(2), s(3));
-    }
-  }
-}
-
 std::vector<vpProjectiveArmAcquisition::vpFrame> vpProjectiveRobot::selfCalibrationFrames() const
 {
   std::vector<vpProjectiveArmAcquisition::vpFrame> frames = m_acquisition.getFrames();
-  if (m_rigUpdates > 0) { // the acquisition's images show the rig before it moved: only the frames added since
+  if (m_rigUpdate.getUpdateCount() >
+      0) { // the acquisition's images show the rig before it moved: only the frames added since
     frames.erase(frames.begin(), frames.end() - m_acquisition.getNumberOfCalibrationFrames());
   }
   return frames;
@@ -412,37 +298,13 @@ void vpProjectiveRobot::getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogen
   lMr = toHomogeneous(lMre);
 }
 
-void vpProjectiveRobot::getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogeneousMatrix &lMr, unsigned int markerA,
-                                           unsigned int markerB, double distance) const
-{
-  vpProjectiveSelfCalibration calibration(getModel(), selfCalibrationFrames());
-  calibration.setScale(vpProjectiveSelfCalibration::SCALE_MARKER_DISTANCE, markerA, markerB, distance);
-  Eigen::Matrix3d Kle, Kre;
-  Eigen::Matrix4d lMre;
-  calibration.getMetricStereoRig(Kle, Kre, lMre);
-  Kl = toVisp(Kle);
-  Kr = toVisp(Kre);
-  lMr = toHomogeneous(lMre);
-}
-
-void vpProjectiveRobot::getMetricJointAxes(std::vector<vpColVector> &direction, std::vector<vpColVector> &point) const
-{
-  std::vector<Eigen::Vector3d> d, p;
-  vpProjectiveSelfCalibration(getModel(), selfCalibrationFrames()).getJointAxes(d, p);
-  direction.clear();
-  point.clear();
-  for (size_t i = 0; i < d.size(); ++i) {
-    direction.push_back(toVispVector(d[i]));
-    point.push_back(toVispVector(p[i]));
-  }
-}
-
 void vpProjectiveRobot::saveModel(const std::string &filename) const
 {
   // The check of the model's own calibration (not of a later, refused one).
   const vpProjectiveModelCheck &check = m_acquisition.getModelCheck();
-  vpProjectiveModelFile::save(filename, getModel(), m_residual, m_algebraicResidual, std::vector<int>(),
-                              selfCalibrationFrames(), check.isAccepted() ? &check : nullptr);
+  vpProjectiveModelFile::save(filename, getModel(), m_acquisition.getCalibrationResidual(),
+                              m_acquisition.getAlgebraicResidual(), std::vector<int>(), selfCalibrationFrames(),
+                              check.isAccepted() ? &check : nullptr);
 }
 
 void vpProjectiveRobot::loadModel(const std::string &filename)

@@ -74,46 +74,41 @@ void vpProjectiveRobot::addRigObservation(const vpColVector &q, const std::vecto
   const vpProjectiveArmModel &model = getModel();
   const JointVector qe = toJointVector(q, "addRigObservation()");
   std::vector<Eigen::Vector4d> s = allMarkerImages(model, left, right, where);
-  for (const JointVector &qk : m_rigJoints) {
+  for (const JointVector &qk : m_rigUpdate.m_joints) {
     if ((qk - qe).cwiseAbs().maxCoeff() <= 1e-6) {
       fail(vpProjectiveException::degenerateConfigurationError, where,
            "these joints equal those of an observation already recorded, which adds nothing; move the arm to "
            "another configuration (spread the markers over the images) before the next observation");
     }
   }
-  m_rigJoints.push_back(qe);
-  m_rigImages.push_back(std::move(s));
-}
-
-void vpProjectiveRobot::clearRigObservations()
-{
-  m_rigJoints.clear();
-  m_rigImages.clear();
+  m_rigUpdate.m_joints.push_back(qe);
+  m_rigUpdate.m_images.push_back(std::move(s));
 }
 
 void vpProjectiveRobot::updateRig()
 {
   const std::string where = at("updateRig()");
   const vpProjectiveArmModel &model = getModel();
-  if (m_rigJoints.size() < 3) {
+  vpProjectiveRigUpdate &u = m_rigUpdate;
+  if (u.m_joints.size() < 3) {
     std::ostringstream os;
-    os << "needs at least 3 observations (addRigObservation()) since the last update, got " << m_rigJoints.size()
+    os << "needs at least 3 observations (addRigObservation()) since the last update, got " << u.m_joints.size()
        << "; observe the markers at more joint configurations";
     fail(vpProjectiveException::notEnoughPointsError, where, os.str());
   }
   double rms = 0.0;
-  const vpProjectiveStereoRig rig = vpProjectiveRigRegistration::registerRig(model, m_rigJoints, m_rigImages, m_rigMode,
+  const vpProjectiveStereoRig rig = vpProjectiveRigRegistration::registerRig(model, u.m_joints, u.m_images, u.m_mode,
                                                                              &rms); // throws before anything changes
-  vpRegistration registration; // what refineRig() starts from: this update's observations and the rig before it
+  vpProjectiveRigUpdate::vpRegistration
+      registration; // what refineRig() starts from: this update's observations and the rig before it
   registration.rigBefore = model.getStereoRig();
-  registration.joints = m_rigJoints;
-  registration.images = m_rigImages;
+  registration.joints = u.m_joints;
+  registration.images = u.m_images;
   registration.valid = true;
   adoptRig(rig, rms);
-  m_registration = std::move(registration);
-  ++m_rigUpdates;
-  m_rigJoints.clear();
-  m_rigImages.clear();
+  u.m_registration = std::move(registration);
+  ++u.m_updates;
+  u.clearObservations();
   m_acquisition.clearCalibrationFrames(); // they show the rig before it moved
   m_listeners.notify(true);               // the tasks on this robot re-express their desired features in the new rig
 }
@@ -129,8 +124,8 @@ void vpProjectiveRobot::adoptRig(const vpProjectiveStereoRig &rig, double rms)
   vpProjectiveArmModel updated(model.jointTypes(), model.getRigMounting(), rig, model.projectiveToMetric(), axis, point,
                                model.markers(), model.zeroReferenceJoints());
   m_model = std::move(updated);
-  m_rigResidual = rms;
-  ++m_rigGeneration;
+  m_rigUpdate.m_residual = rms;
+  ++m_rigUpdate.m_generation;
 }
 
 void vpProjectiveRobot::refineRig(const std::vector<Eigen::Vector4d> &points,
@@ -138,7 +133,8 @@ void vpProjectiveRobot::refineRig(const std::vector<Eigen::Vector4d> &points,
 {
   const std::string where = at("refineRig()");
   const vpProjectiveArmModel &model = getModel();
-  if (!m_registration.valid) {
+  const vpProjectiveRigUpdate::vpRegistration &registration = m_rigUpdate.m_registration;
+  if (!registration.valid) {
     fail(vpProjectiveException::notInitializedError, where,
          "there is no re-registration to refine (none since the model was computed or loaded); call updateRig() "
          "first: the refinement starts from its observations");
@@ -150,20 +146,21 @@ void vpProjectiveRobot::refineRig(const std::vector<Eigen::Vector4d> &points,
   }
   const size_t K = model.markers().size();
   std::vector<Eigen::Vector4d> X, s;
-  X.reserve(m_registration.joints.size() * K + points.size());
+  X.reserve(registration.joints.size() * K + points.size());
   s.reserve(X.capacity());
-  for (size_t k = 0; k < m_registration.joints.size(); ++k) {
-    const Eigen::Matrix4d H = model.displacement(m_registration.joints[k]);
+  for (size_t k = 0; k < registration.joints.size(); ++k) {
+    const Eigen::Matrix4d H = model.displacement(registration.joints[k]);
     for (size_t j = 0; j < K; ++j) {
       X.push_back(H * model.markers()[j]);
-      s.push_back(m_registration.images[k][j]);
+      s.push_back(registration.images[k][j]);
     }
   }
   X.insert(X.end(), points.begin(), points.end());
   s.insert(s.end(), images.begin(), images.end());
   double rms = 0.0;
-  const vpProjectiveStereoRig rig = vpProjectiveRigRegistration::registerRig(
-      m_registration.rigBefore, model.projectiveToMetric(), X, s, m_rigMode, &rms); // throws before anything changes
+  const vpProjectiveStereoRig rig =
+      vpProjectiveRigRegistration::registerRig(registration.rigBefore, model.projectiveToMetric(), X, s,
+                                               m_rigUpdate.m_mode, &rms); // throws before anything changes
   adoptRig(rig, rms);
   m_listeners.notify(true); // the tasks re-express their desired features in the refined rig
 }

@@ -351,8 +351,8 @@ void vpProjectiveCell::saveModel(const std::string &file) const
   const vpProjectiveCellFingerprint::vpCameraSide side =
       vpProjectiveCellFingerprint::cameraSide(m_model.getModel(), direction);
   cell.setCameraSide(side, direction);
-  vpProjectiveModelFile::save(file, m_model.getModel(), m_model.getCalibrationResidual(),
-                              m_model.getAlgebraicResidual(), m_markerIds,
+  vpProjectiveModelFile::save(file, m_model.getModel(), m_model.getAcquisition().getCalibrationResidual(),
+                              m_model.getAcquisition().getAlgebraicResidual(), m_markerIds,
                               std::vector<vpProjectiveArmAcquisition::vpFrame>(), nullptr, &cell);
 }
 

@@ -162,7 +162,7 @@ void vpServoProjective::print(std::ostream &os) const
     if (last().m_status == SERVO_MODEL_MISMATCH && m_mismatch.isImagesExchanged()) {
       os << "  The images: " << kImagesExchanged << "\n";
     } else if (last().m_status == SERVO_MODEL_MISMATCH && m_link.robot != nullptr &&
-               m_link.robot->getRigGeneration() == 0) {
+               m_link.robot->getRigUpdate().getGeneration() == 0) {
       // No re-registration since the acquisition: the model may never have fit, whatever moved.
       os << "  Model never re-registered since its acquisition: if it never fit, check the rig mounting ("
          << (m_link.robot->getRigMounting() == vpProjectiveRobot::EYE_IN_HAND ? "EYE_IN_HAND" : "EYE_TO_HAND")

@@ -105,7 +105,7 @@ void vpServoProjective::setRobot(const vpProjectiveRobot &robot)
     t.valid = false; // another robot's frame: take the user's s* anew
   }
   m_refinement.stop(); // only a re-registration from now on starts a refinement
-  m_rigUpdatesSeen = robot.getRigUpdateCount();
+  m_rigUpdatesSeen = robot.getRigUpdate().getUpdateCount();
 }
 
 void vpServoProjective::setRobot(vpProjectiveRobot &robot)
@@ -141,10 +141,10 @@ vpServoProjective::vpRobotLink::~vpRobotLink()
 void vpServoProjective::vpRobotLink::set(const vpProjectiveRobot *r)
 {
   if (robot != r && robot != nullptr) {
-    robot->detach(*this);
+    detachFrom(*robot);
   }
   if (r != nullptr) {
-    r->attach(*this);
+    attachTo(*r);
   }
   robot = r;
 }

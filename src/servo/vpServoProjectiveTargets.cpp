@@ -50,9 +50,9 @@ void vpServoProjective::refreshTargets()
   const bool modelChanged = m_link.modelChanged, rigChanged = m_link.rigChanged && !modelChanged;
   if (modelChanged) {
     m_refinement.stop(); // the frames and points belong to the old model
-    m_rigUpdatesSeen = m_link.robot->getRigUpdateCount();
-  } else if (rigChanged && m_link.robot->getRigUpdateCount() != m_rigUpdatesSeen) {
-    m_rigUpdatesSeen = m_link.robot->getRigUpdateCount();
+    m_rigUpdatesSeen = m_link.robot->getRigUpdate().getUpdateCount();
+  } else if (rigChanged && m_link.robot->getRigUpdate().getUpdateCount() != m_rigUpdatesSeen) {
+    m_rigUpdatesSeen = m_link.robot->getRigUpdate().getUpdateCount();
     if (m_link.modifiable != nullptr && m_link.modifiable == m_link.robot) {
       m_refinement.start(m_mismatch, static_cast<unsigned int>(m_features.size())); // from the memories before it
     } else {

@@ -72,7 +72,7 @@ void vpStereoDotTracker::setRobot(const vpProjectiveRobot &robot, const std::vec
                                 "vpStereoDotTracker::setRobot(): the robot has no model; calibrate() it or "
                                 "loadModel() first.");
   }
-  const unsigned int nbModel = static_cast<unsigned int>(robot.getZeroReferencePoints().size());
+  const unsigned int nbModel = static_cast<unsigned int>(robot.getModel().markers().size());
   std::vector<unsigned int> indices = markers;
   if (indices.empty()) {
     indices.resize(m_markers.empty() ? nbModel : m_markers.size());
@@ -214,7 +214,7 @@ bool vpStereoDotTracker::track(const vpImage<unsigned char> &Ileft, const vpImag
   std::vector<vpImagePoint> model[2], predicted[2];
   for (const Marker &m : m_markers) {
     vpImagePoint ip[2];
-    m_robot->projectMarker(m.index, q, ip[0], ip[1]);
+    m_robot->getModel().projectMarker(m.index, q, ip[0], ip[1]);
     for (unsigned int c = 0; c < 2; ++c) {
       model[c].push_back(ip[c]);
       predicted[c].push_back(m.blob[c].hasOffset ? ip[c] + m.blob[c].offset : ip[c]);

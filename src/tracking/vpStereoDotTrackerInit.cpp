@@ -346,7 +346,7 @@ void vpStereoDotTracker::initTrackingByDetection(const vpImage<unsigned char> &I
     std::vector<vpImagePoint> predicted(n);
     for (size_t k = 0; k < n; ++k) {
       vpImagePoint l, r;
-      m_robot->projectMarker(m_robotMarkers[k], q, l, r);
+      m_robot->getModel().projectMarker(m_robotMarkers[k], q, l, r);
       predicted[k] = c == 0 ? l : r;
     }
     // Greedy assignment: the closest (marker, blob) pair first, each blob used once.

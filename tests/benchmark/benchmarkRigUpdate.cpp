@@ -84,8 +84,8 @@ void BM_UpdateRig(benchmark::State &state)
   const Bump &b = bump();
   const size_t observations = static_cast<size_t>(state.range(0));
   vpProjectiveRobot robot = b.robot;
-  robot.setRigRegistrationMode(state.range(1) == 0 ? vpProjectiveRigRegistration::FIXED_INTRINSICS
-                                                   : vpProjectiveRigRegistration::GENERAL);
+  robot.getRigUpdate().setRegistrationMode(state.range(1) == 0 ? vpProjectiveRigRegistration::FIXED_INTRINSICS
+                                                               : vpProjectiveRigRegistration::GENERAL);
   for (auto _ : state) {
     for (size_t k = 0; k < observations; ++k) {
       robot.addRigObservation(b.observations[k].q, b.observations[k].left, b.observations[k].right);
@@ -93,7 +93,7 @@ void BM_UpdateRig(benchmark::State &state)
     robot.updateRig();
     benchmark::DoNotOptimize(robot.getStereoRig().leftProjection().data());
   }
-  state.SetLabel("registration RMS " + std::to_string(robot.getRigRegistrationResidual()) + " px");
+  state.SetLabel("registration RMS " + std::to_string(robot.getRigUpdate().getResidual()) + " px");
 }
 } // namespace
 

@@ -599,7 +599,8 @@ void BM_Calibrate_6joints_7markers(benchmark::State &state)
   for (auto _ : state) {
     vpProjectiveRobot robot(revoluteJoints(6));
     calibrateRobot(robot, data.rigs[k], data.acquisitions[k]);
-    residual = robot.getCalibrationResidual(); // not DoNotOptimize(residual): GCC can corrupt a double lvalue there
+    residual = robot.getAcquisition()
+                   .getCalibrationResidual(); // not DoNotOptimize(residual): GCC can corrupt a double lvalue there
     benchmark::ClobberMemory();
     k = (k + 1) % data.acquisitions.size();
   }
@@ -619,7 +620,7 @@ void BM_RigEstimateAndCalibrate_6joints_7markers(benchmark::State &state)
     rig.estimate(a.allLeft, a.allRight, std::max(1.0, 4.0 * kNoiseSigma));
     vpProjectiveRobot robot(revoluteJoints(6));
     calibrateRobot(robot, rig, a);
-    benchmark::DoNotOptimize(robot.getCalibrationResidual());
+    benchmark::DoNotOptimize(robot.getAcquisition().getCalibrationResidual());
     k = (k + 1) % data.acquisitions.size();
   }
 }

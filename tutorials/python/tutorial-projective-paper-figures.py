@@ -60,7 +60,7 @@ robot.setZeroReference(left0, right0)
 for i, amount, left, right in trials:
     robot.addTrialMotion(i, amount, left, right)
 robot.calibrate()
-print(f"Acquisition: {len(trials)} trials, model residual {robot.getCalibrationResidual():.3f} px RMS")
+print(f"Acquisition: {len(trials)} trials, model residual {robot.getAcquisition().getCalibrationResidual():.3f} px RMS")
 
 # 2. The servo task (apps/projective-paper/paper-experiment.cpp, configureTask()): law (47), path planning.
 task = vpp.ServoProjective()

@@ -292,9 +292,14 @@ public:
   */
   const vpProjectiveModelCheck &getModelCheck() const { return m_check; }
 
-  //! RMS pixel residual per coordinate of the last calibrate()'s bundle adjustment (the self-check: ~ noise level).
+  /*!
+    RMS pixel residual per coordinate of the last calibrate()'s bundle adjustment (the self-check: ~ noise level);
+    in a vpProjectiveRobot's acquisition (vpProjectiveRobot::getAcquisition()), that of the robot's model, as given to
+    vpProjectiveRobot::setCalibration() or read by vpProjectiveRobot::loadModel().
+  */
   double getCalibrationResidual() const { return m_residual; }
-  //! RMS pixel residual of the algebraic generators alone (before the upgrade and the adjustment), for comparison.
+  //! RMS pixel residual of the algebraic generators alone (before the upgrade and the adjustment), for comparison;
+  //! in a vpProjectiveRobot's acquisition, that of the robot's model.
   double getAlgebraicResidual() const { return m_algebraicResidual; }
   //! Number of trial observations (marker in a trial's pair of images) the last calibrate() left out as outliers
   //! (missing markers are not observations).
@@ -307,6 +312,8 @@ public:
   bool isOutlier(unsigned int trial, unsigned int marker) const;
 
 private:
+  friend class vpProjectiveRobot; // records the residuals of the model it takes (setCalibration(), loadModel())
+
   std::vector<vpJointType> m_types;
   vpProjectiveArmModel::vpRigMounting m_mounting;
   vpProjectiveStereoRig m_rig;

@@ -26,6 +26,9 @@
 
 #include <Eigen/Core>
 
+#include <visp3/core/vpColVector.h>
+#include <visp3/core/vpImagePoint.h>
+
 #include <visp3/projective/vpProjectiveJoint.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
@@ -190,6 +193,14 @@ public:
     the images of \f$ H M_j(0) \f$. False if the marker is then on a camera's focal plane.
   */
   bool predictMarker(unsigned int j, const Eigen::Matrix4d &H, Eigen::Vector4d &s) const;
+  /*!
+    Predicted images of marker \e j at the joint values \e q (n x 1; ViSP types, checked): predictMarker() at
+    displacement(q), \f$ P H(q) M_j(0) \f$ and \f$ P' H(q) M_j(0) \f$.
+    \exception vpProjectiveException (dimensionError) on a bad marker index or a \e q of another size;
+    (nonFiniteValueError) on a non-finite \e q; (pointAtInfinityError) if the marker lies on a camera's focal plane
+    at \e q.
+  */
+  void projectMarker(unsigned int j, const vpColVector &q, vpImagePoint &ipLeft, vpImagePoint &ipRight) const;
   //@}
 
 private:

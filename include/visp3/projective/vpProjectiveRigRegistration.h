@@ -55,7 +55,7 @@ BEGIN_VISP_NAMESPACE
   keep the acquisition's accuracy instead of that of a few noisy observations.
 
   <b>Refining with the servo's frames.</b> The frames of a running task are observations too: a vpServoProjective
-  task refines the rig itself after updateRig() (vpServoProjective::setRigRefinement(), on by default), through
+  task refines the rig itself after updateRig() (vpServoProjective::getRigRefinement(), on by default), through
   vpProjectiveRobot::refineRig() and the overload of registerRig() from given points. With the first observation
   poses and the frames seen where the task ends, the new cameras predict the features best where the re-expressed
   \f$ s^* \f$ matters (measured: \ref servo_meas_mismatch).
@@ -116,7 +116,7 @@ public:
     Both cameras of the rig \e old re-estimated from given points (see the class documentation): the same as the
     other overload, whose markers moved by \f$ H(q_k) \f$ are such points, for points that are not the model's
     markers (e.g. a servo task's features, whose zero-reference points the task remembers: the refinement of
-    vpServoProjective::setRigRefinement()).
+    vpServoProjective::getRigRefinement()).
     \param old : the rig before the move, in the model's frame.
     \param G : the model's projective-to-metric matrix (4x4, invertible), used by FIXED_INTRINSICS.
     \param points : projective points (4x1 each, model frame, any scale) where they were seen, e.g.

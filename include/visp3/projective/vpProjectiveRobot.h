@@ -33,7 +33,7 @@
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpProjectiveArmAcquisition.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
-#include <visp3/projective/vpProjectiveRigRegistration.h>
+#include <visp3/projective/vpProjectiveRigUpdate.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 
 BEGIN_VISP_NAMESPACE
@@ -155,8 +155,8 @@ public:
   /*!
     A frame for the metric self-calibration: the images of the zero reference's markers, in its order, at any
     configuration, \e q the encoder readings (n x 1, as addTrialMotion() takes them); a servo's or an observation's
-    frame. getMetricStereoRig() and getMetricJointAxes() adjust the cameras and the arm over the acquisition and every
-    such frame (vpProjectiveSelfCalibration, which also gives each estimate's uncertainty:
+    frame. getMetricStereoRig() and vpProjectiveSelfCalibration adjust the cameras and the arm over the acquisition and
+    every such frame (vpProjectiveSelfCalibration, which also gives each estimate's uncertainty:
     <tt>vpProjectiveSelfCalibration(robot.getModel(), robot.getAcquisition().getFrames())</tt>; after updateRig(),
     only the last getNumberOfCalibrationFrames() of them show the current rig). Before or after calibrate() or
     loadModel(); the model is not changed. updateRig() (a moved camera) forgets them.
@@ -175,10 +175,6 @@ public:
   void calibrate();
   //! True once calibrate() or loadModel() succeeded.
   bool isCalibrated() const { return m_calibrated; }
-  //! RMS pixel residual of the final bundle adjustment over all acquisition images (the self-check: ~ noise level).
-  double getCalibrationResidual() const { return m_residual; }
-  //! RMS pixel residual of the algebraic generators alone (before refinement), for comparison.
-  double getAlgebraicResidual() const { return m_algebraicResidual; }
   /*!
     Outlier threshold of the acquisition in pixels (see vpProjectiveArmAcquisition::setOutlierThreshold()); 0, the
     default, uses every observation.
@@ -187,9 +183,10 @@ public:
   void setOutlierThreshold(double pixels);
   /*!
     The acquisition: its images, the outlier threshold and the observations the last calibrate() left out
-    (getOutlierThreshold(), getNumberOfOutliers(), isOutlier(trial, marker)), its residuals, and the rig as it was
-    estimated or set (getStereoRig() returns the model's, refined by the bundle adjustment, once calibrated). After
-    loadModel(): no images, the model's rig.
+    (getOutlierThreshold(), getNumberOfOutliers(), isOutlier(trial, marker)), the residuals of the model
+    (getCalibrationResidual(), getAlgebraicResidual(): of calibrate(), or those given to setCalibration() or read by
+    loadModel()), the zero reference's joint values, and the rig as it was estimated or set (getStereoRig() returns the
+    model's, refined by the bundle adjustment, once calibrated). After loadModel(): no images, the model's rig.
   */
   const vpProjectiveArmAcquisition &getAcquisition() const { return m_acquisition; }
   /*!
@@ -206,23 +203,14 @@ public:
   /*! \name Model */
   //@{
   /*!
-    The model itself (Eigen types, const and thread-safe kinematics).
+    The model itself (Eigen types, const and thread-safe kinematics): \f$ G \f$ (projectiveToMetric()), the twists,
+    the markers' points \f$ M_j(0) \f$ (markers()), the zero reference's joint values, the joints' motions and point
+    Jacobians, and the markers' predicted images (projectMarker()).
     \exception vpProjectiveException (notInitializedError) before calibrate() or loadModel().
   */
   const vpProjectiveArmModel &getModel() const;
   //! Generator \f$ \hat H_i \f$ (4x4) of joint \e i at the zero reference.
   vpMatrix getGenerator(unsigned int i) const;
-  /*!
-    \f$ G \f$ (4x4): maps projective points to a metric frame, \f$ \hat H_i = G^{-1} \hat T_i G \f$. It equals
-    \f$ H_{PE} \f$ up to a similarity (the metric upgrade obtained as a by-product of calibrate()).
-  */
-  vpMatrix getProjectiveToMetric() const;
-  //! Metric twist \f$ \hat T_i = G \hat H_i G^{-1} \f$ (4x4 se(3) matrix) of joint \e i.
-  vpMatrix getTwist(unsigned int i) const;
-  //! Refined projective points \f$ M_j(0) \f$ (4x1, unit norm) of the markers at the zero reference.
-  std::vector<vpColVector> getZeroReferencePoints() const;
-  //! Joint values (n x 1) at the zero reference: zeros unless setZeroReference() was given the encoder readings.
-  vpColVector getZeroReferenceJoints() const;
   //@}
 
   /*! \name Metric self-calibration (see vpProjectiveSelfCalibration) */
@@ -232,48 +220,20 @@ public:
     right camera's pose in the left camera's frame (\f$ X_l = {}^l M_r X_r \f$), its translation in the prismatic
     joints' encoder unit, or of unit length when the arm has no prismatic joint. The metric bundle adjustment of
     vpProjectiveSelfCalibration over the acquisition's images and every calibration frame (addCalibrationFrame();
-    after updateRig() only the frames added since), started from the model's metric upgrade.
-    \exception vpProjectiveException (notInitializedError) before calibrate() or loadModel();
-    (degenerateConfigurationError) if the model gives no metric upgrade.
+    after updateRig() only the frames added since), started from the model's metric upgrade. The joints' axes, another
+    scale and each estimate's uncertainty: vpProjectiveSelfCalibration (see addCalibrationFrame()). \exception
+    vpProjectiveException (notInitializedError) before calibrate() or loadModel(); (degenerateConfigurationError) if the
+    model gives no metric upgrade.
   */
   void getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogeneousMatrix &lMr) const;
-  /*!
-    The same with the translation's unit fixed by the distance \e distance (any length unit) between the markers
-    \e markerA and \e markerB of the zero reference.
-    \exception vpProjectiveException as the other overload, and if the markers or the distance are invalid.
-  */
-  void getMetricStereoRig(vpMatrix &Kl, vpMatrix &Kr, vpHomogeneousMatrix &lMr, unsigned int markerA,
-                          unsigned int markerB, double distance) const;
-  /*!
-    The joints' axes in the left camera's frame: per joint a unit direction (3x1) and a point (3x1, on a revolute
-    joint's axis; the origin for a prismatic joint), lengths in the unit of getMetricStereoRig(Kl, Kr, lMr).
-    \exception vpProjectiveException as getMetricStereoRig().
-  */
-  void getMetricJointAxes(std::vector<vpColVector> &direction, std::vector<vpColVector> &point) const;
   //@}
 
   /*! \name Kinematics (ViSP types, checked; q holds encoder readings, n x 1) */
   //@{
   //! \f$ H(q) \f$ (4x4) of the last link, eq. (34).
   vpMatrix getDisplacement(const vpColVector &q) const;
-  //! \f$ \hat H_{k,q} \f$ (4x4), the projective motion of joint \e k at configuration \e q, eq. (39).
-  vpMatrix getJointMotion(unsigned int k, const vpColVector &q) const;
-  //! \f$ J_H(q, M) \f$ (4 x n), eqs. (42)-(44); \e M is the current projective point (4x1) on the last link.
-  vpMatrix getPointJacobian(const vpColVector &q, const vpColVector &M) const;
   //! Stereo image Jacobian (4 x n, pixels per joint unit, rows \f$ (u, v, u', v') \f$) of eqs. (45)-(46) at q for M.
   vpMatrix getImageJacobian(const vpColVector &q, const vpColVector &M) const;
-  //! Predicted images of marker \e j at configuration q: \f$ P H(q) M_j(0) \f$ and \f$ P' H(q) M_j(0) \f$.
-  void projectMarker(unsigned int j, const vpColVector &q, vpImagePoint &ipLeft, vpImagePoint &ipRight) const;
-  /*!
-    Motion synthesis: the predicted images of the markers \e indices (all if empty) at every configuration of the
-    joint trajectory \e trajectory (each n x 1), without moving anything: a camera-free preview of a motion, to check
-    visibility before moving. left[k][j] and right[k][j] are marker indices[j] at trajectory[k]; a marker on a camera's
-    focal plane gets NaN coordinates.
-    \exception vpProjectiveException on a bad joint vector or marker index, or before calibrate().
-  */
-  void predictMarkers(const std::vector<vpColVector> &trajectory, std::vector<std::vector<vpImagePoint>> &left,
-                      std::vector<std::vector<vpImagePoint>> &right,
-                      const std::vector<unsigned int> &indices = std::vector<unsigned int>()) const;
   /*!
     Inverse kinematics (the paper's motion-capture use; see vpProjectiveInverseKinematics): the joint values that
     best explain the observed images of the markers, started at \e q0.
@@ -313,66 +273,48 @@ public:
   */
   void addRigObservation(const vpColVector &q, const std::vector<vpImagePoint> &left,
                          const std::vector<vpImagePoint> &right);
-  //! Number of observations recorded since the last updateRig().
-  unsigned int getNumberOfRigObservations() const { return static_cast<unsigned int>(m_rigJoints.size()); }
-  //! Forgets the observations recorded since the last updateRig().
-  void clearRigObservations();
   /*!
     Re-estimates both cameras in the model's projective frame from the observations recorded since the last
-    update (at least 3; vpProjectiveRigRegistration::registerRig() with getRigRegistrationMode()), then forgets them.
+    update (at least 3; vpProjectiveRigRegistration::registerRig() with getRigUpdate().getRegistrationMode()), then
+    forgets them.
     The arm model (generators, \f$ G \f$, markers) is kept; the rig becomes a general camera pair
-    (vpProjectiveStereoRig::isCanonical() false) that saveModel() writes. getRigGeneration() increases by one: the
-    servo tasks on this robot then re-express their desired features in the new images.
-    \exception vpProjectiveException (notInitializedError) before calibrate() or loadModel(); (notEnoughPointsError)
-    with fewer than 3 observations; and those of registerRig(). On failure the model, the rig and the observations
-    are left as they were.
+    (vpProjectiveStereoRig::isCanonical() false) that saveModel() writes. getRigUpdate().getGeneration() increases by
+    one: the servo tasks on this robot then re-express their desired features in the new images. \exception
+    vpProjectiveException (notInitializedError) before calibrate() or loadModel(); (notEnoughPointsError) with fewer
+    than 3 observations; and those of registerRig(). On failure the model, the rig and the observations are left as they
+    were.
   */
   void updateRig();
   /*!
     Refines the last re-registration with more views (the frames of a servo task, see
-    vpServoProjective::setRigRefinement(), which calls it): both cameras re-estimated as updateRig() did, from the
+    vpServoProjective::getRigRefinement(), which calls it): both cameras re-estimated as updateRig() did, from the
     rig before that update, from its observations together with the projective points \e points (4x1 each, model
     frame, where they were seen: \f$ H(q_k) M_i(0) \f$ for a point \f$ M_i(0) \f$ of the last link at the zero
     reference seen at joints \f$ q_k \f$) and their images \e images \f$ (u, v, u', v') \f$ (pixels), same order.
     The observations of that update are kept for the next refinement: each refinement replaces the previous one.
-    getRigGeneration() increases by one and the tasks on this robot are told, as by updateRig().
+    getRigUpdate().getGeneration() increases by one and the tasks on this robot are told, as by updateRig().
     \exception vpProjectiveException (notInitializedError) before calibrate() or loadModel() or without a successful
     updateRig() since; (dimensionError) if the sizes differ; and those of vpProjectiveRigRegistration::registerRig()
     (a non-finite value, points that do not fit the model). On failure the model, the rig and every observation are
     left as they were.
   */
   void refineRig(const std::vector<Eigen::Vector4d> &points, const std::vector<Eigen::Vector4d> &images);
-  //! True after a successful updateRig() since the model was computed or loaded: refineRig() has something to refine.
-  bool hasRigRegistration() const { return m_registration.valid; }
-  //! Which cameras are estimated by updateRig() (default vpProjectiveRigRegistration::FIXED_INTRINSICS).
-  void setRigRegistrationMode(vpProjectiveRigRegistration::vpRegistrationMode mode) { m_rigMode = mode; }
-  //! The mode of setRigRegistrationMode().
-  vpProjectiveRigRegistration::vpRegistrationMode getRigRegistrationMode() const { return m_rigMode; }
-  //! RMS reprojection error per coordinate (pixels) of the last successful updateRig() over its observations.
-  double getRigRegistrationResidual() const { return m_rigResidual; }
+
   /*!
-    Counts the successful updateRig() and refineRig() calls since the model was computed or loaded (the tasks on the
-    robot are told of each through vpListener, see vpServoProjective).
+    The rig-registration state: the observations since the last updateRig(), the registration mode, the residual
+    of the last update and the generation counters (vpProjectiveRigUpdate).
   */
-  unsigned long getRigGeneration() const { return m_rigGeneration; }
-  /*!
-    Counts the successful updateRig() calls since the model was computed or loaded, without the refineRig() calls
-    (which getRigGeneration() counts too): a task tells a re-registration from a refinement by it.
-  */
-  unsigned long getRigUpdateCount() const { return m_rigUpdates; }
-  /*!
-    Counts the models computed or loaded (calibrate(), loadModel()): the projective frame changes with each, and a
-    task's points of another model are meaningless.
-  */
-  unsigned long getModelGeneration() const { return m_modelGeneration; }
+  const vpProjectiveRigUpdate &getRigUpdate() const { return m_rigUpdate; }
+  //! The same, to set the registration mode or forget the observations.
+  vpProjectiveRigUpdate &getRigUpdate() { return m_rigUpdate; }
 
   /*!
     What is told to the tasks on this robot (vpServoProjective::setRobot() attaches its task): the model was replaced
     (calibrate(), loadModel(), an assignment to the robot: \e rigOnly false) or its rig re-registered (updateRig():
     \e rigOnly true), or the robot is destroyed. The robot calls them from the call that changed it; a listener must
     not call back into the robot from them. A new model or rig thus reaches a task through this explicit call, not by
-    a task polling getModelGeneration() or getRigGeneration(). attach() and detach() (hence setRobot()) change the
-    robot's list of listeners: not from several threads at once.
+    a task polling the counters of getRigUpdate(). A listener attaches itself (attachTo(), detachFrom()), which
+    changes the robot's list of listeners: not from several threads at once.
   */
   class VISP_EXPORT vpListener
   {
@@ -382,11 +324,13 @@ public:
     virtual void robotModelChanged(bool rigOnly) = 0;
     //! The robot is being destroyed: forget it.
     virtual void robotDestroyed() = 0;
+
+  protected:
+    //! Be told of every change of \e robot's model or rig until detachFrom() (attaching twice attaches once).
+    void attachTo(const vpProjectiveRobot &robot) { robot.attach(*this); }
+    //! Stop being told (nothing if this listener was not attached to \e robot).
+    void detachFrom(const vpProjectiveRobot &robot) { robot.detach(*this); }
   };
-  //! Tells \e listener of every change of the model or rig until detach() (attaching twice attaches once).
-  void attach(vpListener &listener) const;
-  //! Stops telling \e listener (nothing if it was not attached).
-  void detach(vpListener &listener) const;
   //@}
 
   /*! \name Model file (see vpProjectiveModelFile) */
@@ -406,9 +350,14 @@ public:
   //@}
 
 private:
+  //! Tells \e listener of every change of the model or rig until detach() (attaching twice attaches once).
+  void attach(vpListener &listener) const;
+  //! Stops telling \e listener (nothing if it was not attached).
+  void detach(vpListener &listener) const;
   //! The frames of the metric self-calibration: those that show the current rig (see getMetricStereoRig()).
   std::vector<vpProjectiveArmAcquisition::vpFrame> selfCalibrationFrames() const;
-  //! Takes \e model, calibrated from \e acquisition with these residuals, as the robot's model.
+  //! Takes \e model, calibrated from \e acquisition with these residuals (given to the acquisition), as the robot's
+  //! model.
   void adopt(const vpProjectiveArmAcquisition &acquisition, const vpProjectiveArmModel &model, double residual,
              double algebraicResidual);
   //! The model with the rig \e rig (re-registered, RMS error \e rms): a new rig generation; tells no one.
@@ -419,23 +368,7 @@ private:
   vpProjectiveArmAcquisition m_acquisition;
   vpProjectiveArmModel m_model;
   bool m_calibrated;
-  double m_residual;
-  double m_algebraicResidual;
-  std::vector<JointVector> m_rigJoints;                  // observations since the last updateRig()
-  std::vector<std::vector<Eigen::Vector4d>> m_rigImages; // their marker images (u, v, u', v')
-  //! The last successful updateRig(): the rig before it and its observations, which refineRig() starts from.
-  struct vpRegistration {
-    vpProjectiveStereoRig rigBefore;
-    std::vector<JointVector> joints;
-    std::vector<std::vector<Eigen::Vector4d>> images;
-    bool valid = false;
-  };
-  vpRegistration m_registration;
-  vpProjectiveRigRegistration::vpRegistrationMode m_rigMode;
-  double m_rigResidual;
-  unsigned long m_rigGeneration;
-  unsigned long m_rigUpdates;
-  unsigned long m_modelGeneration;
+  vpProjectiveRigUpdate m_rigUpdate;
 
   //! The listeners of attach(): a copy of the robot starts with none; an assignment to the robot tells them (it is
   //! the last member, assigned after the model); the destructor tells them the robot is gone.
