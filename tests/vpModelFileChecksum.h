@@ -3,7 +3,7 @@
  */
 
 /*
-  The model file's checksum, re-implemented independently of src/arm/vpProjectiveModelFile.cpp so that tests and the
+  The model file's checksum, re-implemented independently of src/robot/vpProjectiveModelFile.cpp so that tests and the
   fuzzer can forge files that pass it: FNV-1a 64 of the "model" member written compactly, as "fnv1a64:" and 16
   hexadecimal digits in the "checksum" member.
 */

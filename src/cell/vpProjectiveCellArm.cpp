@@ -23,7 +23,7 @@
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpSimulatorRobotArm.h>
 
-#include "acquisition/vpRobotJointLimits.h"
+#include "procedure/vpRobotJointLimits.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;

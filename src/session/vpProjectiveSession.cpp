@@ -25,7 +25,7 @@
 #include <visp3/core/vpMath.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
 
-#include "arm/vpCameraIdentityJson.h"
+#include "robot/vpCameraIdentityJson.h"
 #include "core/vpProjectiveErrors.h"
 #include "session/vpProjectiveSessionInternal.h"
 

@@ -33,7 +33,7 @@
 #include <visp3/io/vpImageIo.h>
 #endif
 
-#include "arm/vpCameraIdentityJson.h"
+#include "robot/vpCameraIdentityJson.h"
 #include "core/vpProjectiveErrors.h"
 #include "session/vpProjectiveSessionInternal.h"
 

@@ -52,11 +52,7 @@ public:
   //! Number of observations recorded since the last vpProjectiveRobot::updateRig().
   unsigned int getNumberOfObservations() const { return static_cast<unsigned int>(m_joints.size()); }
   //! Forgets the observations recorded since the last vpProjectiveRobot::updateRig().
-  void clearObservations()
-  {
-    m_joints.clear();
-    m_images.clear();
-  }
+  void clearObservations();
   //@}
 
   /*! \name What the updates did */
@@ -92,14 +88,7 @@ private:
 
   //! A new model: no observation, no registration, the rig's counters at 0, one more model; the mode and the last
   //! residual stay.
-  void restart()
-  {
-    clearObservations();
-    m_registration = vpRegistration();
-    m_generation = 0;
-    m_updates = 0;
-    ++m_modelGeneration;
-  }
+  void restart();
 
   std::vector<JointVector> m_joints;                  // observations since the last updateRig()
   std::vector<std::vector<Eigen::Vector4d>> m_images; // their marker images (u, v, u', v')

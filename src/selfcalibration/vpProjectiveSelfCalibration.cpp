@@ -20,7 +20,7 @@
 
 #include <visp3/projective/vpMetricTwist.h>
 
-#include "arm/vpMetricAdjustment.h"
+#include "selfcalibration/vpMetricAdjustment.h"
 #include "core/vpProjectiveErrors.h"
 
 #ifdef ENABLE_VISP_NAMESPACE

@@ -25,7 +25,7 @@
 
 #include <visp3/core/vpUniRand.h>
 
-#include "arm/vpMetricAdjustment.h"
+#include "selfcalibration/vpMetricAdjustment.h"
 #include "core/vpProjectiveConversions.h"
 
 #ifdef ENABLE_VISP_NAMESPACE

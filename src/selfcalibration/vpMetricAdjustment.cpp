@@ -11,7 +11,7 @@
  * more details.
  */
 
-#include "arm/vpMetricAdjustment.h"
+#include "selfcalibration/vpMetricAdjustment.h"
 
 #include <algorithm>
 #include <array>

@@ -35,7 +35,7 @@
 
 #include "core/vpImageWindow.h"
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
-#include "acquisition/vpRobotJointLimits.h"
+#include "procedure/vpRobotJointLimits.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;

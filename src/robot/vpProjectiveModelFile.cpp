@@ -23,7 +23,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "arm/vpCameraIdentityJson.h"
+#include "robot/vpCameraIdentityJson.h"
 #include "core/vpProjectiveConversions.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
