@@ -73,8 +73,8 @@ class vpProjectiveArmAcquisition;
 
   <b>Left and right exchanged.</b> Before any fit, the epipolar noise is measured again with every observation's left
   and right images exchanged: below half of it as given, the images were given right first against the rig's
-  $ F $, and the model is refused with CAUSE_IMAGES_EXCHANGED alone (a model of the exchanged cameras would fit
-  them). In the rig's order the gaps are the noise alone and exchanging can only add to them; a rig whose $ F $ is
+  \f$ F \f$, and the model is refused with CAUSE_IMAGES_EXCHANGED alone (a model of the exchanged cameras would fit
+  them). In the rig's order the gaps are the noise alone and exchanging can only add to them; a rig whose \f$ F \f$ is
   nearly skew-symmetric (nearly parallel cameras) cannot tell the order (vpServoModelMismatch tells it in the servo).
 */
 class VISP_EXPORT vpProjectiveModelCheck

@@ -399,7 +399,8 @@ private:
   bool m_qFresh;
   // The generation of the task's targets (refreshTargets()) that the settling gain settles on.
   unsigned long m_targetGeneration;
-  // getRigRefinement(): the refinement, and the robot's re-registrations (vpProjectiveRigUpdate::getUpdateCount()) taken into account.
+  // getRigRefinement(): the refinement, and the robot's re-registrations (vpProjectiveRigUpdate::getUpdateCount())
+  // taken into account.
   vpServoRigRefinement m_refinement;
   unsigned long m_rigUpdatesSeen;
 };
