@@ -201,8 +201,7 @@ int main([[maybe_unused]] int argc, [[maybe_unused]] char **argv)
       lost = task.getStatus() == vpServoProjective::SERVO_STOPPED ? lost + 1 : 0; // this frame: qdot = 0
       if (lost > 25 || task.getStatus() == vpServoProjective::SERVO_MODEL_MISMATCH ||
           task.getStatus() == vpServoProjective::SERVO_NO_PLAN) {
-        std::cout << "Stopped at iteration " << it << ": " << vpServoProjectiveReport::toString(task.getStatus())
-                  << "\n";
+        std::cout << "Stopped at call " << it << ": " << vpServoProjectiveReport::toString(task.getStatus()) << "\n";
         break;
       }
       robot.setVelocity(vpRobot::ARTICULAR_FRAME, qdot);

@@ -77,7 +77,7 @@ for it in range(300):
         tags.setPredictedRegions(ids, left, right)  # next frame: search near these corners
     qdot = task.computeControlLaw(robot.getPosition(vpp.Robot.ARTICULAR_FRAME))
     if task.getStatus() in (vpp.ServoProjective.SERVO_MODEL_MISMATCH, vpp.ServoProjective.SERVO_NO_PLAN):
-        print(f"Stopped at iteration {it}: {vpp.ServoProjective.toString(task.getStatus())}")
+        print(f"Stopped at call {it}: {vpp.ServoProjective.toString(task.getStatus())}")
         break
     robot.setVelocity(vpp.Robot.ARTICULAR_FRAME, qdot)
     error = np.sqrt(np.mean(np.concatenate(e) ** 2))
