@@ -43,17 +43,6 @@ namespace
 typedef vpProjectiveModelCheck::vpDiagnosis vpDiagnosis;
 const double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-vpDiagnosis cause(vpProjectiveModelCheck::vpCause kind)
-{
-  vpDiagnosis d;
-  d.cause = kind;
-  d.likely = false;
-  d.residualIfFixed = kNaN;
-  d.evidence = kNaN;
-  d.joint = d.trial = d.marker = d.other = -1;
-  return d;
-}
-
 std::string number(double x, int precision = 3)
 {
   std::ostringstream os;
@@ -80,7 +69,7 @@ double residualWith(const ArmFit &without, double trialSquaredError, size_t tria
 
 vpDiagnosis jointTypeCause(const ArmCheckInput &in, const ArmCheck &check)
 {
-  vpDiagnosis d = cause(vpProjectiveModelCheck::CAUSE_JOINT_TYPE);
+  vpDiagnosis d = diagnosis(vpProjectiveModelCheck::CAUSE_JOINT_TYPE);
   std::ostringstream finding, fix;
   if (check.contradicted.empty()) {
     finding << (in.identify ? "the types were identified from the images (each joint the type that fits its trials "
@@ -117,7 +106,7 @@ vpDiagnosis jointTypeCause(const ArmCheckInput &in, const ArmCheck &check)
 
 vpDiagnosis unitsCause(const ArmCheckInput &in, const ArmCheck &check)
 {
-  vpDiagnosis d = cause(vpProjectiveModelCheck::CAUSE_READING_UNITS);
+  vpDiagnosis d = diagnosis(vpProjectiveModelCheck::CAUSE_READING_UNITS);
   ArmCalibrationData data = in.data;
   data.types = check.fit.data.types;
   std::ostringstream finding;
@@ -245,7 +234,7 @@ template <typename F> double minimise(F f, double range, double &best)
 
 vpDiagnosis secondJointCause(const ArmCheck &check, int k, const ArmFit &without)
 {
-  vpDiagnosis d = cause(vpProjectiveModelCheck::CAUSE_SECOND_JOINT);
+  vpDiagnosis d = diagnosis(vpProjectiveModelCheck::CAUSE_SECOND_JOINT);
   if (k < 0 || !without.ok) {
     d.finding = k < 0 ? "no trial stands out: each fits within the limit or as badly as the others"
                       : "the model of the other trials cannot be fitted";
@@ -317,7 +306,7 @@ vpDiagnosis secondJointCause(const ArmCheck &check, int k, const ArmFit &without
 
 vpDiagnosis swapCause(const ArmCheckInput &in, const ArmCheck &check, int k, const ArmFit &without)
 {
-  vpDiagnosis d = cause(vpProjectiveModelCheck::CAUSE_MARKERS_SWAPPED);
+  vpDiagnosis d = diagnosis(vpProjectiveModelCheck::CAUSE_MARKERS_SWAPPED);
   // Left and right images of one marker that no 3D point explains: not the same marker.
   double gap = 0.0;
   for (size_t j = 0; j < in.data.zeroImages.size(); ++j) {
@@ -394,7 +383,7 @@ vpDiagnosis swapCause(const ArmCheckInput &in, const ArmCheck &check, int k, con
 
 vpDiagnosis imageErrorsCause(const ArmCheckInput &in, const ArmCheck &check)
 {
-  vpDiagnosis d = cause(vpProjectiveModelCheck::CAUSE_IMAGE_ERRORS);
+  vpDiagnosis d = diagnosis(vpProjectiveModelCheck::CAUSE_IMAGE_ERRORS);
   std::ostringstream finding;
   finding << "the images meet the rig's epipolar geometry within " << pixelsText(check.epipolarNoise) << " RMS";
   if (in.givenNoise > 0.0) {
@@ -428,7 +417,7 @@ void diagnoseRefusal(const ArmCheckInput &in, ArmCheck &check)
   const int k = standingOutTrial(check, without);
   causes.push_back(secondJointCause(check, k, without));
   causes.push_back(swapCause(in, check, k, without));
-  vpDiagnosis mounting = cause(vpProjectiveModelCheck::CAUSE_MOUNTING);
+  vpDiagnosis mounting = diagnosis(vpProjectiveModelCheck::CAUSE_MOUNTING);
   mounting.finding = "trials of one joint look the same with the rig on the arm or in the workspace: the mounting "
                      "does not change this residual";
   mounting.fix = "set the mounting (EYE_IN_HAND when the cameras ride on the arm); vpProjectiveAcquisitionProcedure "

@@ -215,18 +215,26 @@ std::string pixelsText(double px)
   return os.str();
 }
 
+vpProjectiveModelCheck::vpDiagnosis diagnosis(vpProjectiveModelCheck::vpCause cause)
+{
+  vpProjectiveModelCheck::vpDiagnosis d;
+  d.cause = cause;
+  d.likely = false;
+  d.residualIfFixed = kNaN;
+  d.evidence = kNaN;
+  d.joint = d.trial = d.marker = d.other = -1;
+  return d;
+}
+
 bool refuseExchangedImages(const ArmCheckInput &in, ArmCheck &check)
 {
   const double exchanged = epipolarNoise(in.data, true);
   if (!(exchanged < 0.5 * check.epipolarNoise)) {
     return false;
   }
-  vpProjectiveModelCheck::vpDiagnosis d;
-  d.cause = vpProjectiveModelCheck::CAUSE_IMAGES_EXCHANGED;
+  vpProjectiveModelCheck::vpDiagnosis d = diagnosis(vpProjectiveModelCheck::CAUSE_IMAGES_EXCHANGED);
   d.likely = true;
-  d.residualIfFixed = kNaN;
   d.evidence = check.epipolarNoise / exchanged;
-  d.joint = d.trial = d.marker = d.other = -1;
   std::ostringstream finding;
   finding << "the images meet the rig's epipolar geometry within " << pixelsText(exchanged)
           << " RMS with left and right exchanged, " << pixelsText(check.epipolarNoise) << " as given";

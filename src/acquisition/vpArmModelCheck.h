@@ -117,6 +117,8 @@ inline vpProjectiveJoint::vpJointType otherType(vpProjectiveJoint::vpJointType t
 */
 void settleJointTypes(const ArmCheckInput &in, ArmCheck &check);
 
+//! A cause of a refused model, not yet tested: unlikely, nothing fixed, no joint, trial or marker named.
+vpProjectiveModelCheck::vpDiagnosis diagnosis(vpProjectiveModelCheck::vpCause cause);
 /*!
   Left and right images exchanged against the rig (a rig given with its F, the images right first): true, and
   check refused with that one cause and its message, when the acquisition's epipolar noise with every observation's
