@@ -82,7 +82,8 @@ public:
   //@}
 
 private:
-  friend class vpProjectiveRobot; // records the observations and the updates
+  friend class vpProjectiveRobot;    // records the observations and the updates
+  friend class vpServoRigRefinement; // adjusts the rig with the last registration's observations
 
   typedef vpProjectiveArmModel::JointVector JointVector;
 
