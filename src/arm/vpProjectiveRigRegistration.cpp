@@ -24,7 +24,6 @@
 #include "core/vpProjectiveCeres.h"
 #include "core/vpProjectiveErrors.h"
 #include "core/vpProjectiveNumerics.h"
-#include "vpProjectiveRigidCamera.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
 using namespace VISP_NAMESPACE_NAME;
@@ -38,6 +37,33 @@ const char *const kResect = "vpProjectiveRigRegistration::resect()";
 const char *const kRegister = "vpProjectiveRigRegistration::registerRig()";
 
 typedef vpProjectiveStereoRig::Projection Projection;
+
+/*
+  Pixel error of a camera A T(omega, t) (A = P0 G^-1, 3x4) at the metric point N = G X (4x1, homogeneous, never
+  divided): T acts on N as (R N_xyz + t N_w, N_w).
+*/
+struct RigidCameraError {
+  RigidCameraError(const Projection &A, const Eigen::Vector4d &N, const Eigen::Vector2d &uv) : m_A(A), m_N(N), m_uv(uv)
+  {
+  }
+
+  template <typename T> bool operator()(const T *const pose, T *residual) const
+  {
+    const T p[3] = {T(m_N(0)), T(m_N(1)), T(m_N(2))};
+    T Rp[3];
+    ceres::AngleAxisRotatePoint(pose, p, Rp);
+    Eigen::Matrix<T, 4, 1> TN;
+    TN << Rp[0] + pose[3] * T(m_N(3)), Rp[1] + pose[4] * T(m_N(3)), Rp[2] + pose[5] * T(m_N(3)), T(m_N(3));
+    const Eigen::Matrix<T, 3, 1> m = m_A.cast<T>() * TN;
+    residual[0] = m(0) / m(2) - T(m_uv(0));
+    residual[1] = m(1) / m(2) - T(m_uv(1));
+    return true;
+  }
+
+  Projection m_A;
+  Eigen::Vector4d m_N;
+  Eigen::Vector2d m_uv;
+};
 
 //! Pixel error of a general camera P (12 entries, row-major) at the projective point X.
 struct GeneralCameraError {
@@ -108,6 +134,36 @@ Projection linearResection(const std::vector<Eigen::Vector4d> &X, const std::vec
     Pn.row(r) = svd.matrixV().col(11).segment<4>(4 * r).transpose();
   }
   Projection P = Tn.inverse() * Pn * W;
+  return P / P.norm();
+}
+
+//! The rigid motion T (angle-axis, t) with A T closest to s B (A, B: 3x4; A's left block invertible).
+void closestRigidMotion(const Projection &A, const Projection &B, double pose[6])
+{
+  const Eigen::Matrix3d Ainv = A.leftCols<3>().inverse();
+  Eigen::Matrix3d M = Ainv * B.leftCols<3>();
+  if (M.determinant() < 0.0) {
+    M = -M;
+  }
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(M, Eigen::ComputeFullU | Eigen::ComputeFullV);
+  const Eigen::Matrix3d R = svd.matrixU() * svd.matrixV().transpose();
+  const double s = svd.singularValues().mean();
+  const double sign = (Ainv * B.leftCols<3>()).determinant() < 0.0 ? -1.0 : 1.0;
+  const Eigen::Vector3d t = Ainv * (sign * B.col(3) / s) - Ainv * A.col(3);
+  ceres::RotationMatrixToAngleAxis(ceres::ColumnMajorAdapter3x3(R.data()), pose);
+  for (int i = 0; i < 3; ++i) {
+    pose[3 + i] = t(i);
+  }
+}
+
+Projection rigidCamera(const Projection &A, const double pose[6], const Eigen::Matrix4d &G)
+{
+  double Rd[9];
+  ceres::AngleAxisToRotationMatrix(pose, ceres::ColumnMajorAdapter3x3(Rd));
+  Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+  T.topLeftCorner<3, 3>() = Eigen::Map<const Eigen::Matrix3d>(Rd);
+  T.block<3, 1>(0, 3) << pose[3], pose[4], pose[5];
+  const Projection P = A * T * G;
   return P / P.norm();
 }
 

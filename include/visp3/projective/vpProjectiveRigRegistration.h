@@ -133,48 +133,6 @@ public:
                                            const std::vector<Eigen::Vector4d> &points,
                                            const std::vector<Eigen::Vector4d> &images,
                                            vpRegistrationMode mode = FIXED_INTRINSICS, double *rms = nullptr);
-
-  //! One image, after the move, of a point that adjustRig() adjusts.
-  struct vpTrackedImage {
-    unsigned int point; //!< Index of the point in adjustRig()'s \e points.
-    unsigned int frame; //!< Index of the frame in adjustRig()'s \e frames.
-    Eigen::Vector4d s;  //!< Its image \f$ (u, v, u', v') \f$, pixels.
-  };
-
-  /*!
-    Bundle adjustment of a re-registered rig (FIXED_INTRINSICS) together with points whose place is known only from
-    images: a servo task's features, at the zero reference \f$ M_i \f$ (4x1, model frame, never divided by the last
-    coordinate: unit norm, Ceres' sphere manifold). Minimised over the moved cameras' rigid motions (those of \e rig
-    against \e before: a camera that did not move stays, a whole rig moved keeps one motion) and the points:
-    \f[ \sum_k \| \pi'(X_k) - s_k \|^2 + \sum_{(i, k)} \| \pi'(H_k M_i) - s_{ik} \|^2
-        + \sum_i w_i \| \pi(H_0 M_i) - \pi(H_0 \bar M_i) \|^2, \f]
-    \f$ \pi' \f$ the moved rig's stereo image, \f$ \pi \f$ the rig's before the move (pixels, both cameras). The first
-    sum: the points known without error of their own (the markers moved by \f$ H(q_k) \f$ at the observation poses);
-    the second: the tracked images after the move, at frames of displacement \f$ H_k \f$; the third: the images
-    before the move, summed up by the mean \f$ \bar M_i \f$ of the points triangulated from \f$ w_i \f$ stereo
-    pairs through the rig before the move near the displacement \f$ H_0 \f$ (the reprojection errors of those pairs
-    to first order). Those pairs' noise is what a rig fitted to \f$ \bar M_i \f$ held fixed takes in as an error
-    common to the points; the frames after the move, at other displacements, tell it apart from a camera motion.
-    \param before : the rig before the move.
-    \param rig : the re-registered rig (registerRig(), FIXED_INTRINSICS): which cameras moved, and the start.
-    \param G : the model's projective-to-metric matrix (4x4, invertible).
-    \param fixedPoints, fixedImages : known points (4x1, model frame) and their images after the move, same order.
-    \param H0 : where the points' priors were seen (4x4, the displacement of the last frames before the move).
-    \param weights : per point, the number of stereo pairs its prior was triangulated from (> 0).
-    \param frames : the displacements \f$ H_k \f$ of the frames after the move (4x4 each).
-    \param images : the points' images in those frames.
-    \param points : in: the priors \f$ \bar M_i \f$ (the start); out: the adjusted points (unit norm).
-    \return the adjusted rig; its RMS error per coordinate (pixels) over the images after the move in \e rms.
-    \exception vpProjectiveException (dimensionError) on sizes that disagree or an index out of range;
-    (nonFiniteValueError) on a non-finite input, a zero point or a weight that is not positive;
-    (estimationFailedError) if the adjustment gives no finite rig. \e points is then unchanged.
-  */
-  static vpProjectiveStereoRig adjustRig(const vpProjectiveStereoRig &before, const vpProjectiveStereoRig &rig,
-                                         const Eigen::Matrix4d &G, const std::vector<Eigen::Vector4d> &fixedPoints,
-                                         const std::vector<Eigen::Vector4d> &fixedImages, const Eigen::Matrix4d &H0,
-                                         const std::vector<double> &weights, const std::vector<Eigen::Matrix4d> &frames,
-                                         const std::vector<vpTrackedImage> &images,
-                                         std::vector<Eigen::Vector4d> &points, double *rms = nullptr);
 };
 
 END_VISP_NAMESPACE

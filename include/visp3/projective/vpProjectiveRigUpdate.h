@@ -82,8 +82,7 @@ public:
   //@}
 
 private:
-  friend class vpProjectiveRobot;    // records the observations and the updates
-  friend class vpServoRigRefinement; // adjusts the rig with the last registration's observations
+  friend class vpProjectiveRobot; // records the observations and the updates
 
   typedef vpProjectiveArmModel::JointVector JointVector;
 

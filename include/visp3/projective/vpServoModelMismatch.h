@@ -153,19 +153,15 @@ public:
     M_{ik} \f$ over the iterations where it agreed (4x1, no check of \e i), kept for a recognised marker too: the
     point in the frame of the rig that saw it (where a task's \f$ s^* \f$, triangulated through that rig, lies),
     which the acquired marker's point is not by the arm model's own error. What vpServoRigRefinement pairs with the
-    images after a re-registration. False (and \e M untouched) without a memory. If \e pairs is not null, it receives
-    the norm of the sum of unit terms: the number of triangulations, to within their spread (the mean's weight).
+    images after a re-registration. False (and \e M untouched) without a memory.
   */
-  bool getTriangulatedMemory(unsigned int i, Eigen::Vector4d &M, double *pairs = nullptr) const
+  bool getTriangulatedMemory(unsigned int i, Eigen::Vector4d &M) const
   {
     const vpRecord &r = m_records[i];
     if (!r.hasMemory || !(r.triangulated.norm() > 0.0)) {
       return false;
     }
     M = r.triangulated.normalized();
-    if (pairs != nullptr) {
-      *pairs = r.triangulated.norm();
-    }
     return true;
   }
   //! True if feature \e i is remembered as an acquired marker's point (no check of \e i).

@@ -25,7 +25,6 @@
 
 #include <Eigen/Core>
 
-#include <visp3/projective/vpProjectiveRigRegistration.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpServoFeatureHealth.h>
 #include <visp3/projective/vpServoModelMismatch.h>
@@ -42,9 +41,7 @@ BEGIN_VISP_NAMESPACE
   the zero reference (4x1, the model's projective frame) as the model-mismatch check triangulated them through the rig
   before the re-registration (the frame of the task's \f$ s^* \f$ point; for a feature recognised as an acquired
   marker, the mean of that and the marker's point), moved by \f$ H(q) \f$ (34). Every \e period
-  such calls it adjusts those points with the rig (vpProjectiveRigRegistration::adjustRig(): the update's
-  observations, the frames recorded so far and the points' means, weighted by their number of stereo pairs) and
-  re-registers the rig from the update's observations and the frames paired with the adjusted points
+  such calls it re-registers the rig from the update's observations and all the frames recorded so far
   (vpProjectiveRobot::refineRig()), \e count times, then stops recording (\ref servo_meas_mismatch).
 
   Outliers and features set aside are never recorded. Nothing is recorded and nothing allocated until start(); the
@@ -100,7 +97,7 @@ public:
   //! Refinements that failed since the last re-registration (the rig was left as it was).
   unsigned int getNumberOfFailures() const { return m_failed; }
   //! Frames' points (a feature seen at a call) recorded since the last re-registration.
-  unsigned int getNumberOfPoints() const { return static_cast<unsigned int>(m_images.size()); }
+  unsigned int getNumberOfPoints() const { return static_cast<unsigned int>(m_X.size()); }
 
 private:
   bool m_enabled;
@@ -109,10 +106,9 @@ private:
   bool m_active;                         // recording since a re-registration
   unsigned int m_calls;                  // calls recorded since then
   unsigned int m_done, m_failed;         // refinements since then
-  std::vector<Eigen::Vector4d> m_zero;   // per feature: its point at the zero reference (mean before the move)
-  std::vector<double> m_pairs;           // per feature: the stereo pairs behind m_zero (0: no point)
-  std::vector<Eigen::Matrix4d> m_frames; // the recorded calls' H(q), reserved by start()
-  std::vector<vpProjectiveRigRegistration::vpTrackedImage> m_images; // their features' images, reserved by start()
+  std::vector<Eigen::Vector4d> m_zero;   // per feature: its point at the zero reference
+  std::vector<char> m_hasZero;           // per feature: m_zero is set
+  std::vector<Eigen::Vector4d> m_X, m_s; // the frames' points H(q) M(0) and their images, reserved by start()
 };
 
 END_VISP_NAMESPACE
