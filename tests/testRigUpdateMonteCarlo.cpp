@@ -165,11 +165,12 @@ class RigUpdateOnEveryArm : public ::testing::TestWithParam<BumpArm>
   R-R-P-R-R-R arm), 120 seeded cases per arm (left camera, right camera, whole rig in turn), each task run unbumped and
   bumped, re-registered from 3 observation poses, the task refining the rig. Asserted: no false alarm, detection within
   2 calls of the bump in all cases but at most 4, and the bumped task at its original target in at least 90 % of the
-  cases where the unbumped one is. Issue 30 asks every bump detected and 95 %: over seeds 30000, 40000, 90000 and
-  70000 (+0-119; the last two kept aside; docs/servo.dox, servo_meas_mismatch) the worst set of an arm detected 117 of
-  120 (bumps that moved the features by less than the 5 px threshold at the call after them) and reached 94.1 %
-  (Viper850, 90000-90119; the noise of the triangulations before the bump, which the refined rig inherits): the
-  bounds are below the worst set, not at this one.
+  cases where the unbumped one is. Issue 30 asks every bump detected and 95 %: over seeds 30000, 40000, 90000,
+  70000, 50000 and 110000 (+0-119; the last four kept aside; docs/servo.dox, servo_meas_mismatch) the worst set of an
+  arm detected 117 of 120 (bumps that moved the features by less than the 5 px threshold at the call after them) and
+  reached 94.1 % (Viper850, 90000-90119; the noise of the triangulations before the bump, which the refined rig
+  inherits): the bounds are below the worst set, not at this one. The median tool error printed is over the cases the
+  unbumped task reaches, bumped and unbumped.
   VISP_PROJECTIVE_BUMP_CASES and VISP_PROJECTIVE_BUMP_SEED (first seed, default 30000) run other cases.
 */
 TEST_P(RigUpdateOnEveryArm, BumpStudy)
@@ -181,7 +182,8 @@ TEST_P(RigUpdateOnEveryArm, BumpStudy)
   options.ratios = false;
   options.from10 = false;
   int detected = 0, falseAlarms = 0, reached = 0, unbumpedReached = 0, reachedOfThose = 0;
-  std::vector<int> latency(6, 0); // cases detected after 1-4 calls; [0]: not in 4, [5]: unused
+  std::vector<int> latency(6, 0);           // cases detected after 1-4 calls; [0]: not in 4, [5]: unused
+  std::vector<double> bumpedMm, unbumpedMm; // tool position error where the tasks rest (the cases the unbumped reaches)
   for (int k = 0; k < cases; ++k) {
     const BumpKind kind = static_cast<BumpKind>(k % 3);
     const BumpCase c = runBumpCase(s, seed0 + k, kind, options);
@@ -193,6 +195,10 @@ TEST_P(RigUpdateOnEveryArm, BumpStudy)
     reached += c.from3.reached() ? 1 : 0;
     unbumpedReached += unbumped ? 1 : 0;
     reachedOfThose += unbumped && c.from3.reached() ? 1 : 0;
+    if (unbumped) {
+      bumpedMm.push_back(1000.0 * c.from3.metres);
+      unbumpedMm.push_back(1000.0 * c.unbumpedMetres);
+    }
     if (!inTime || c.falseAlarms > 0 || (unbumped && !c.from3.reached())) {
       testLog() << "[ measured ] " << GetParam().label << " seed " << seed0 + k << " (" << bumpName(kind)
                 << "): detected after " << c.detectedAfter << ", false alarms " << c.falseAlarms << ", bumped "
@@ -206,7 +212,10 @@ TEST_P(RigUpdateOnEveryArm, BumpStudy)
             << ", 2: " << latency[2] << ", 3: " << latency[3] << ", 4: " << latency[4] << ", not in 4: " << latency[0]
             << "), false alarms " << falseAlarms << "; at the original target from 3 poses " << reached
             << ", the unbumped task " << unbumpedReached << ", the bumped one among those " << reachedOfThose << " ("
-            << 100.0 * reachedOfThose / std::max(1, unbumpedReached) << " %)" << std::endl;
+            << 100.0 * reachedOfThose / std::max(1, unbumpedReached) << " %); among those, the bumped task ends "
+            << median(bumpedMm) << " mm from the target (median; 90 %: " << quantile(bumpedMm, 0.9)
+            << "), the unbumped " << median(unbumpedMm) << " mm (90 %: " << quantile(unbumpedMm, 0.9) << ")"
+            << std::endl;
   EXPECT_GE(detected, cases - 4);
   EXPECT_EQ(falseAlarms, 0);
   EXPECT_GE(reachedOfThose, static_cast<int>(std::ceil(0.90 * unbumpedReached)));
