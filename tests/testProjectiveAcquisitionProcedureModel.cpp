@@ -73,7 +73,7 @@ TEST(ProjectiveAcquisitionProcedure, EstimatesTheRigFromItsOwnImages)
   vpProjectiveAcquisitionProcedure procedure(s.source(), s.sim.getWidth(), s.sim.getHeight());
   procedure.setOutput(&vpProjectiveTest::testLog()); // progress only when the tests are verbose
   procedure.setSteps(vpColVector(6, vpMath::rad(2.0)));
-  std::vector<vpProjectiveArmAcquisition::vpJointType> types(6, vpProjectiveJoint::REVOLUTE);
+  std::vector<vpProjectiveJoint::vpJointType> types(6, vpProjectiveJoint::REVOLUTE);
   vpProjectiveArmAcquisition acq(types);
   ASSERT_FALSE(acq.getStereoRig().isInitialized());
   const vpProjectiveArmModel model = procedure.run(s.robot, acq);

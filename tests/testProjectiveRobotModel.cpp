@@ -50,7 +50,7 @@ TEST_P(ProjectiveRobotSetup, GroundTruthIsConsistent)
       EXPECT_LT(relativeError(expm(q[i] * s.cameraTwist(i)), T), 1e-12) << s.name << " joint " << i;
       // The twist is a unit rotation about a line (revolute) or a unit translation (prismatic).
       const Eigen::Matrix4d That = s.cameraTwist(i);
-      if (s.arm.getJointType(i) == vpSimulatorArm::REVOLUTE) {
+      if (s.arm.getJointType(i) == vpProjectiveJoint::REVOLUTE) {
         EXPECT_NEAR((That * That * That + That).norm(), 0.0, 1e-12);
       } else {
         EXPECT_NEAR((That.topRightCorner<3, 1>().norm()), 1.0, 1e-12);
@@ -107,7 +107,7 @@ TEST_P(ProjectiveRobotSetup, GeneratorsMatchGroundTruth)
     worst = std::max(worst, err);
     EXPECT_LT(err, 1e-9) << s.name << " joint " << i;
     const double n = Hhat.norm();
-    if (s.arm.getJointType(i) == vpSimulatorArm::REVOLUTE) {
+    if (s.arm.getJointType(i) == vpProjectiveJoint::REVOLUTE) {
       EXPECT_EQ(robot.getJointType(i), vpProjectiveRobot::REVOLUTE);
       EXPECT_LT((Hhat * Hhat * Hhat + Hhat).norm() / (n * n * n), 1e-12) << "Hhat^3 = -Hhat, joint " << i;
       const Eigen::Vector4d sv = singularValues(Hhat);
@@ -190,7 +190,7 @@ TEST_P(ProjectiveRobotSetup, ImageJacobianMatchesSimulatedImages)
       worst = std::max(worst, jacobianRelativeError(J, Jfd));
       EXPECT_TRUE(jacobianMatches(J, Jfd, 1e-8)) << s.name << " marker " << j << " q = " << q.t();
       for (unsigned int k = 0; k < s.n(); ++k) {
-        if (s.arm.getJointType(k) == vpSimulatorArm::PRISMATIC) {
+        if (s.arm.getJointType(k) == vpProjectiveJoint::PRISMATIC) {
           worstPrismatic = std::max(worstPrismatic, jacobianRelativeError(J.col(k), Jfd.col(k)));
           EXPECT_TRUE(jacobianMatches(J.col(k), Jfd.col(k), 1e-8)) << s.name << " prismatic column " << k;
         }
@@ -289,7 +289,8 @@ TEST_P(ProjectiveRobotSetup, InverseKinematicsRecoversJoints)
     vpColVector q0 = q;
     for (unsigned int i = 0; i < s.n(); ++i) {
       // 5 deg, or 1 cm for a prismatic joint.
-      q0[i] += rng.uniform(-1.0, 1.0) * (s.arm.getJointType(i) == vpSimulatorArm::REVOLUTE ? vpMath::rad(5.0) : 0.01);
+      q0[i] +=
+          rng.uniform(-1.0, 1.0) * (s.arm.getJointType(i) == vpProjectiveJoint::REVOLUTE ? vpMath::rad(5.0) : 0.01);
     }
     std::vector<vpImagePoint> left, right;
     ASSERT_TRUE(s.images(s.armJoints(q), left, right));

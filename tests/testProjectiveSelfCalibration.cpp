@@ -99,7 +99,7 @@ bool acquireFromImages(const ArmSetup &s, vpProjectiveRobot &robot, double sigma
 ArmSetup pumaWithSlide()
 {
   std::vector<vpSimulatorArm::vpDHRow> dh = vpSimulatorArm::pumaTable();
-  dh.push_back({vpSimulatorArm::PRISMATIC, 0.0, 0.0, 0.0, 0.0});
+  dh.push_back({vpProjectiveJoint::PRISMATIC, 0.0, 0.0, 0.0, 0.0});
   const vpSimulatorArm arm(dh, vpSimulatorArm::gripperMount(), vpSimulatorArm::gripperMarkers(),
                            vpSimulatorArm::paperBasePose());
   ArmSetup s("PUMA with a slide", arm, vpColVector(7, 0.0), paperRigAtOrigin());
@@ -141,7 +141,7 @@ TEST_P(SelfCalibrationSetup, NoiseFreeGivesTheTruth)
   EXPECT_LT(directionError(b, bTrue), 1e-6);
   bool prismatic = false;
   for (unsigned int i = 0; i < s.n(); ++i) {
-    prismatic = prismatic || s.arm.getJointType(i) == vpSimulatorArm::PRISMATIC;
+    prismatic = prismatic || s.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC;
   }
   const double expectedLength = prismatic ? bTrue.norm() : 1.0;
   EXPECT_NEAR(b.norm(), expectedLength, 1e-6 * expectedLength);
@@ -165,7 +165,7 @@ TEST_P(SelfCalibrationSetup, NoiseFreeGivesTheTruth)
     const Eigen::Matrix4d T = s.cameraTwist(i);
     const Eigen::Vector3d w(T(2, 1), T(0, 2), T(1, 0)), v = T.topRightCorner<3, 1>();
     const Eigen::Vector3d &d = direction[i];
-    if (s.arm.getJointType(i) == vpSimulatorArm::REVOLUTE) {
+    if (s.arm.getJointType(i) == vpProjectiveJoint::REVOLUTE) {
       EXPECT_LT(directionError(d, w), 1e-6);
       // The axis is {p : w x p = -v... }: the estimated point lies on it when (p - p0) is parallel to w.
       const Eigen::Vector3d p0 = w.cross(v) / w.squaredNorm();

@@ -74,7 +74,7 @@ void drawTask(const ArmSetup &s, vpUniRand &rng, vpColVector &qStart, vpColVecto
 {
   std::vector<double> range(s.n());
   for (unsigned int i = 0; i < s.n(); ++i) {
-    range[i] = s.arm.getJointType(i) == vpSimulatorArm::REVOLUTE ? vpMath::rad(12.0) : 0.03;
+    range[i] = s.arm.getJointType(i) == vpProjectiveJoint::REVOLUTE ? vpMath::rad(12.0) : 0.03;
   }
   const vpColVector &qmin = s.arm.getJointMin(), &qmax = s.arm.getJointMax();
   for (int attempt = 0; attempt < 10000; ++attempt) {

@@ -110,10 +110,10 @@ void expectModelData(const vpServoProjective &task, const vpProjectiveArmModel &
   // its products grows with it).
   EXPECT_LT((d.getDisplacement() - H).norm(), 1e-10 * H.norm());
   EXPECT_LT((d.getDisplacementInverse() * H - Eigen::Matrix4d::Identity()).norm(), 1e-6);
-  Eigen::Matrix4d HhatKq[vpProjectiveArmModel::maxJoints];
-  model.jointMotions(d.getJoints(), HhatKq);
+  vpProjectiveArmData arm;
+  vpProjectiveKinematics::forwardKinematics(model, arm, d.getJoints());
   for (unsigned int k = 0; k < model.getNumberOfJoints(); ++k) {
-    EXPECT_EQ(d.getJointMotions()[k], HhatKq[k]) << "joint " << k;
+    EXPECT_EQ(d.getArmData().getJointMotions()[k], arm.getJointMotions()[k]) << "joint " << k;
   }
   ASSERT_EQ(d.getNumberOfFeatures(), s.size());
   for (unsigned int i = 0; i < s.size(); ++i) {

@@ -48,13 +48,13 @@ TEST(SimulatorArm, ProductOfExponentialsWithPrismaticJoint)
 {
   // A SCARA-like R R P R chain.
   std::vector<vpSimulatorArm::vpDHRow> dh(4);
-  dh[0] = {vpSimulatorArm::REVOLUTE, 0.2, 0.4, 0.35, 0.0};
-  dh[1] = {vpSimulatorArm::REVOLUTE, -0.3, 0.0, 0.25, M_PI};
-  dh[2] = {vpSimulatorArm::PRISMATIC, 0.0, 0.1, 0.0, 0.0};
-  dh[3] = {vpSimulatorArm::REVOLUTE, 0.5, 0.05, 0.0, 0.0};
+  dh[0] = {vpProjectiveJoint::REVOLUTE, 0.2, 0.4, 0.35, 0.0};
+  dh[1] = {vpProjectiveJoint::REVOLUTE, -0.3, 0.0, 0.25, M_PI};
+  dh[2] = {vpProjectiveJoint::PRISMATIC, 0.0, 0.1, 0.0, 0.0};
+  dh[3] = {vpProjectiveJoint::REVOLUTE, 0.5, 0.05, 0.0, 0.0};
   const vpSimulatorArm arm(dh, vpSimulatorArm::gripperMount(), vpSimulatorArm::gripperMarkers(),
                            vpHomogeneousMatrix(0.0, 0.0, 1.0, 0.3, 0.0, 0.0));
-  EXPECT_EQ(arm.getJointType(2), vpSimulatorArm::PRISMATIC);
+  EXPECT_EQ(arm.getJointType(2), vpProjectiveJoint::PRISMATIC);
   EXPECT_NEAR(arm.getJointMax()[2], 0.5, 1e-15);
   EXPECT_NEAR(arm.getJointMax()[0], vpMath::rad(170.0), 1e-15);
   vpUniRand rng(44);
@@ -73,7 +73,7 @@ TEST(SimulatorArm, StanfordTableSlidesAlongItsThirdAxis)
                            vpSimulatorArm::gripperMarkers(), vpHomogeneousMatrix(0.1, 0.0, 0.5, 0.0, 0.3, 0.0));
   ASSERT_EQ(arm.getNumberOfJoints(), 6u);
   for (unsigned int i = 0; i < 6; ++i) {
-    EXPECT_EQ(arm.getJointType(i), i == 2 ? vpSimulatorArm::PRISMATIC : vpSimulatorArm::REVOLUTE);
+    EXPECT_EQ(arm.getJointType(i), i == 2 ? vpProjectiveJoint::PRISMATIC : vpProjectiveJoint::REVOLUTE);
   }
   vpUniRand rng(45);
   expectProductOfExponentials(arm, rng, 50);

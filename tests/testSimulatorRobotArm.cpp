@@ -238,7 +238,7 @@ TEST(SimulatorRobotArm, JacobiansMatchFiniteDifferences)
     const unsigned int n = arm.getNumberOfJoints();
     vpColVector q(n);
     for (unsigned int i = 0; i < n; ++i) {
-      q[i] = rng.uniform(-0.3, 0.3) * (arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? 0.1 : 1.0);
+      q[i] = rng.uniform(-0.3, 0.3) * (arm.getJointType(i) == vpProjectiveJoint::PRISMATIC ? 0.1 : 1.0);
     }
     vpSimulatorRobotArm robot(arm, q);
     vpMatrix fJe, eJe;

@@ -49,12 +49,12 @@ namespace vpProjectiveTest
 inline std::vector<vpSimulatorArm::vpDHRow> gantryTable()
 {
   std::vector<vpSimulatorArm::vpDHRow> dh(6);
-  dh[0] = {vpSimulatorArm::PRISMATIC, 0.0, 0.0, 0.0, -M_PI / 2};
-  dh[1] = {vpSimulatorArm::PRISMATIC, -M_PI / 2, 0.0, 0.0, -M_PI / 2};
-  dh[2] = {vpSimulatorArm::PRISMATIC, M_PI / 2, 0.0, 0.0, -M_PI / 2};
-  dh[3] = {vpSimulatorArm::REVOLUTE, 0.0, 0.0, 0.0, -M_PI / 2};
-  dh[4] = {vpSimulatorArm::REVOLUTE, 0.0, 0.0, 0.0, M_PI / 2};
-  dh[5] = {vpSimulatorArm::REVOLUTE, 0.0, 0.10, 0.0, 0.0};
+  dh[0] = {vpProjectiveJoint::PRISMATIC, 0.0, 0.0, 0.0, -M_PI / 2};
+  dh[1] = {vpProjectiveJoint::PRISMATIC, -M_PI / 2, 0.0, 0.0, -M_PI / 2};
+  dh[2] = {vpProjectiveJoint::PRISMATIC, M_PI / 2, 0.0, 0.0, -M_PI / 2};
+  dh[3] = {vpProjectiveJoint::REVOLUTE, 0.0, 0.0, 0.0, -M_PI / 2};
+  dh[4] = {vpProjectiveJoint::REVOLUTE, 0.0, 0.0, 0.0, M_PI / 2};
+  dh[5] = {vpProjectiveJoint::REVOLUTE, 0.0, 0.10, 0.0, 0.0};
   return dh;
 }
 

@@ -115,7 +115,7 @@ struct AcquisitionSetup {
 
   vpProjectiveArmAcquisition acquisition() const
   {
-    std::vector<vpProjectiveArmAcquisition::vpJointType> types(6, vpProjectiveJoint::REVOLUTE);
+    std::vector<vpProjectiveJoint::vpJointType> types(6, vpProjectiveJoint::REVOLUTE);
     vpProjectiveArmAcquisition acq(types);
     vpProjectiveStereoRig rig;
     rig.setFundamentalMatrix(sim.getFundamentalMatrix());

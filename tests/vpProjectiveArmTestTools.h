@@ -49,6 +49,7 @@
 #include <visp3/core/vpUniRand.h>
 
 #include <visp3/projective/vpMetricTwist.h>
+#include <visp3/projective/vpProjectiveArmData.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpProjectiveStereoRig.h>
 #include <visp3/projective/vpSimulatorArm.h>
@@ -69,8 +70,8 @@ const double kPaperTrialDeg[6] = {30.0, 20.0, 30.0, 40.0, 60.0, 60.0};
 //! simulator's code.
 inline Eigen::Matrix4d dhTransform(const vpSimulatorArm::vpDHRow &row, double q)
 {
-  const double theta = row.theta + (row.type == vpSimulatorArm::REVOLUTE ? q : 0.0);
-  const double d = row.d + (row.type == vpSimulatorArm::PRISMATIC ? q : 0.0);
+  const double theta = row.theta + (row.type == vpProjectiveJoint::REVOLUTE ? q : 0.0);
+  const double d = row.d + (row.type == vpProjectiveJoint::PRISMATIC ? q : 0.0);
   const double ct = std::cos(theta), st = std::sin(theta);
   const double ca = std::cos(row.alpha), sa = std::sin(row.alpha);
   Eigen::Matrix4d T;
@@ -109,8 +110,8 @@ struct ArmSetup {
   {
     std::vector<vpProjectiveRobot::vpJointType> types(n());
     for (unsigned int i = 0; i < n(); ++i) {
-      types[i] =
-          arm.getJointType(i) == vpSimulatorArm::REVOLUTE ? vpProjectiveRobot::REVOLUTE : vpProjectiveRobot::PRISMATIC;
+      types[i] = arm.getJointType(i) == vpProjectiveJoint::REVOLUTE ? vpProjectiveRobot::REVOLUTE
+                                                                    : vpProjectiveRobot::PRISMATIC;
     }
     return types;
   }
@@ -197,7 +198,7 @@ struct ArmSetup {
     const Eigen::Vector3d p = wMi.block<3, 1>(0, 3);
     // The plugin's hats (vpMetricTwist): GroundTruthIsConsistent checks them against the simulated motions with the
     // independent expm().
-    return dh[i].type == vpSimulatorArm::REVOLUTE ? vpMetricTwist::revolute(z, p) : vpMetricTwist::prismatic(z);
+    return dh[i].type == vpProjectiveJoint::REVOLUTE ? vpMetricTwist::revolute(z, p) : vpMetricTwist::prismatic(z);
   }
 
   //! The metric twist That_i of joint i at the zero reference, in the left camera frame (see the file comment).
@@ -334,9 +335,9 @@ inline ArmSetup pumaEyeToHand()
 inline std::vector<vpSimulatorArm::vpDHRow> mixedTable()
 {
   std::vector<vpSimulatorArm::vpDHRow> dh(3);
-  dh[0] = {vpSimulatorArm::REVOLUTE, 0.0, 0.30, 0.25, M_PI / 2};
-  dh[1] = {vpSimulatorArm::PRISMATIC, M_PI / 2, 0.20, 0.0, M_PI / 2};
-  dh[2] = {vpSimulatorArm::REVOLUTE, 0.3, 0.10, 0.0, 0.0};
+  dh[0] = {vpProjectiveJoint::REVOLUTE, 0.0, 0.30, 0.25, M_PI / 2};
+  dh[1] = {vpProjectiveJoint::PRISMATIC, M_PI / 2, 0.20, 0.0, M_PI / 2};
+  dh[2] = {vpProjectiveJoint::REVOLUTE, 0.3, 0.10, 0.0, 0.0};
   return dh;
 }
 
@@ -446,17 +447,18 @@ inline vpProjectiveRobot calibratedRobot(const ArmSetup &s, double sigma = 0.0, 
 //! The model's joints' motions \f$ \hat H_{k,q} \f$ (eq. (39)) at the readings \e q (ViSP types), written to HhatKq.
 inline void jointMotions(const vpProjectiveArmModel &model, const vpColVector &q, Eigen::Matrix4d *HhatKq)
 {
-  const vpProjectiveArmModel::JointVector qe = toEigenV(q);
-  model.jointMotions(qe, HhatKq);
+  vpProjectiveArmData data;
+  vpProjectiveKinematics::forwardKinematics(model, data, toEigenV(q));
+  std::copy(data.getJointMotions(), data.getJointMotions() + model.getNumberOfJoints(), HhatKq);
 }
 
 //! The model's point Jacobian \f$ J_H(q, M) \f$ (4 x n, eqs. (42)-(44)) at the readings \e q for the point \e M.
 inline Eigen::MatrixXd pointJacobian(const vpProjectiveArmModel &model, const vpColVector &q, const vpColVector &M)
 {
-  Eigen::Matrix4d HhatKq[vpProjectiveArmModel::maxJoints];
-  jointMotions(model, q, HhatKq);
+  vpProjectiveArmData data;
+  vpProjectiveKinematics::forwardKinematics(model, data, toEigenV(q));
   vpProjectiveArmModel::PointJacobian JH;
-  model.pointJacobian(HhatKq, toEigen4(M), JH);
+  vpProjectiveKinematics::pointJacobian(model, data, toEigen4(M), JH);
   return JH;
 }
 

@@ -41,8 +41,8 @@ std::vector<vpProjectiveJoint::vpJointType> jointTypes(const PaperWorld &world)
 {
   std::vector<vpProjectiveJoint::vpJointType> types;
   for (unsigned int i = 0; i < world.arm.getNumberOfJoints(); ++i) {
-    types.push_back(world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? vpProjectiveJoint::PRISMATIC
-                                                                           : vpProjectiveJoint::REVOLUTE);
+    types.push_back(world.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC ? vpProjectiveJoint::PRISMATIC
+                                                                              : vpProjectiveJoint::REVOLUTE);
   }
   return types;
 }

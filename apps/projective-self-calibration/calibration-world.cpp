@@ -125,7 +125,7 @@ StudyArm makeArm(const std::string &name)
     throw vpException(vpException::badValue, "unknown arm '" + name + "'; use puma, viper850 or prismatic");
   }
   for (unsigned int i = 0; i < 6; ++i) {
-    s.trials.push_back(s.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? 0.04 : vpMath::rad(deg[i]));
+    s.trials.push_back(s.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC ? 0.04 : vpMath::rad(deg[i]));
   }
   return s;
 }
@@ -227,7 +227,7 @@ vpProjectiveRobot acquire(const StudyArm &arm, const SkewedRig &rig, double sigm
     }
     vpColVector qk = arm.qRef;
     for (unsigned int i = 0; i < n; ++i) {
-      const bool prismatic = arm.arm.getJointType(i) == vpSimulatorArm::PRISMATIC;
+      const bool prismatic = arm.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC;
       qk[i] += prismatic ? 0.002 * rng.uniform(-rangeDeg, rangeDeg) : vpMath::rad(rng.uniform(-rangeDeg, rangeDeg));
     }
     k += view(qk) ? 1 : 0;
@@ -242,8 +242,8 @@ vpProjectiveRobot acquire(const StudyArm &arm, const SkewedRig &rig, double sigm
   stereo.estimate(allLeft, allRight, std::max(1.0, 4.0 * sigma));
   std::vector<vpProjectiveRobot::vpJointType> types;
   for (unsigned int i = 0; i < n; ++i) {
-    types.push_back(arm.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? vpProjectiveRobot::PRISMATIC
-                                                                         : vpProjectiveRobot::REVOLUTE);
+    types.push_back(arm.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC ? vpProjectiveRobot::PRISMATIC
+                                                                            : vpProjectiveRobot::REVOLUTE);
   }
   vpProjectiveRobot robot(types);
   robot.setStereoRig(stereo);

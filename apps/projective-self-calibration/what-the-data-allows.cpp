@@ -73,7 +73,7 @@ void boundsOf(const StudyArm &arm, double spread, vpColVector &qmin, vpColVector
   qmin = arm.qRef;
   qmax = arm.qRef;
   for (unsigned int i = 0; i < qmin.size(); ++i) {
-    const double d = arm.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? 0.002 * spread : vpMath::rad(spread);
+    const double d = arm.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC ? 0.002 * spread : vpMath::rad(spread);
     qmin[i] -= d;
     qmax[i] += d;
   }

@@ -61,8 +61,8 @@ vpProjectiveRobot acquire(const World &world, double sigma, vpGaussRand &noise)
   rig.estimate(allLeft, allRight, std::max(1.0, 4.0 * sigma));
   std::vector<vpProjectiveRobot::vpJointType> types(n);
   for (unsigned int i = 0; i < n; ++i) {
-    types[i] = world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? vpProjectiveRobot::PRISMATIC
-                                                                      : vpProjectiveRobot::REVOLUTE;
+    types[i] = world.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC ? vpProjectiveRobot::PRISMATIC
+                                                                         : vpProjectiveRobot::REVOLUTE;
   }
   vpProjectiveRobot robot(types);
   robot.setRigMounting(vpProjectiveRobot::EYE_TO_HAND);

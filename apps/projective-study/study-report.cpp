@@ -101,7 +101,7 @@ std::string taskDistribution(const World &world, const std::vector<Task> &tasks)
   for (const Task &task : tasks) {
     for (unsigned int i = 0; i < n; ++i) {
       const double dqi = std::abs(task.qTarget[i] - task.qStart[i]);
-      dq[i].push_back(world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? 100.0 * dqi : vpMath::deg(dqi));
+      dq[i].push_back(world.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC ? 100.0 * dqi : vpMath::deg(dqi));
     }
     const vpHomogeneousMatrix d = world.arm.get_wMt(task.qStart).inverse() * world.arm.get_wMt(task.qTarget);
     translation.push_back(100.0 * d.getTranslationVector().frobeniusNorm());
@@ -128,7 +128,7 @@ std::string taskDistribution(const World &world, const std::vector<Task> &tasks)
   };
   for (unsigned int i = 0; i < n; ++i) {
     row("abs(q*_" + std::to_string(i) + " - q0_" + std::to_string(i) + ") (" +
-            (world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? "cm" : "deg") + ")",
+            (world.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC ? "cm" : "deg") + ")",
         dq[i], 1);
   }
   row("tool translation (cm)", translation, 1);
@@ -197,7 +197,7 @@ std::string worldDescription(const World &world)
                                    : "the paper's rig (20 deg vergence at 1 m, 640 x 480)")
      << "; trials";
   for (unsigned int i = 0; i < world.trials.size(); ++i) {
-    const bool prismatic = world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC;
+    const bool prismatic = world.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC;
     os << (i ? ", " : " ") << fixed(prismatic ? 100.0 * world.trials[i] : vpMath::deg(world.trials[i]), 0)
        << (prismatic ? " cm" : " deg");
   }
@@ -275,7 +275,7 @@ std::string jointLimits(const World &world)
   std::ostringstream os;
   os << "relative to the zero reference:";
   for (unsigned int i = 0; i < world.arm.getNumberOfJoints(); ++i) {
-    const bool prismatic = world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC;
+    const bool prismatic = world.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC;
     const double k = prismatic ? 100.0 : 180.0 / M_PI;
     os << (i ? ", " : " ") << "[" << fixed(k * world.arm.getJointMin()[i], 0) << ", "
        << fixed(k * world.arm.getJointMax()[i], 0) << "]" << (prismatic ? " cm" : " deg");
@@ -314,7 +314,7 @@ std::string markdownReport(const World &world, const Results &results, unsigned 
 
   md << "## Tasks\n\nStart and target drawn uniformly in |q_i| <= " << world.boxDeg << " deg";
   for (unsigned int i = 0; i < world.arm.getNumberOfJoints(); ++i) {
-    if (world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC) {
+    if (world.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC) {
       md << " (prismatic joint " << i << ": +-" << 100.0 * world.prismaticPerDeg * world.boxDeg << " cm)";
     }
   }

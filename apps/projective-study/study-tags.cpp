@@ -130,8 +130,8 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
   acquisition.setOutput(nullptr); // the study prints its tables, not each case's progress
   std::vector<vpProjectiveRobot::vpJointType> types;
   for (unsigned int i = 0; i < n; ++i) {
-    types.push_back(world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? vpProjectiveRobot::PRISMATIC
-                                                                           : vpProjectiveRobot::REVOLUTE);
+    types.push_back(world.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC ? vpProjectiveRobot::PRISMATIC
+                                                                              : vpProjectiveRobot::REVOLUTE);
   }
   vpProjectiveRobot model(types);
   acquisition.run(robot, model);
@@ -151,7 +151,7 @@ double runTagStudy(const World &world, const TagStudySettings &settings, std::os
     for (unsigned int i = 0; i < n; ++i) {
       double lower, upper;
       world.box(i, lower, upper);
-      const double unit = world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? 1.0 : M_PI / 180.0;
+      const double unit = world.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC ? 1.0 : M_PI / 180.0;
       qStart[i] = rng.uniform(lower, upper) * unit;
       qTarget[i] = rng.uniform(lower, upper) * unit;
     }

@@ -54,8 +54,8 @@ Task makeTask(const World &world, unsigned int seed, bool singularStart)
     for (unsigned int i = 0; i < n; ++i) {
       double lower, upper;
       world.box(i, lower, upper);
-      q[i] = world.arm.getJointType(i) == vpSimulatorArm::PRISMATIC ? rng.uniform(lower, upper)
-                                                                    : vpMath::rad(rng.uniform(lower, upper));
+      q[i] = world.arm.getJointType(i) == vpProjectiveJoint::PRISMATIC ? rng.uniform(lower, upper)
+                                                                       : vpMath::rad(rng.uniform(lower, upper));
     }
     if (nearSingular) {
       // Within nearSingularDeg of the singularity, on the side of the zero reference (the box's centre): the wrist

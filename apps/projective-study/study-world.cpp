@@ -69,7 +69,7 @@ double wristSingularity(const vpSimulatorArm &arm)
 
 void World::box(unsigned int i, double &lower, double &upper) const
 {
-  if (arm.getJointType(i) == vpSimulatorArm::PRISMATIC) {
+  if (arm.getJointType(i) == vpProjectiveJoint::PRISMATIC) {
     lower = std::max(-prismaticPerDeg * boxDeg, arm.getJointMin()[i]);
     upper = std::min(prismaticPerDeg * boxDeg, arm.getJointMax()[i]);
   } else {
@@ -82,7 +82,7 @@ vpSimulatorArm shiftedArm(const vpSimulatorArm &arm, const vpColVector &qRef)
 {
   std::vector<vpSimulatorArm::vpDHRow> dh = arm.getDHTable();
   for (unsigned int i = 0; i < dh.size(); ++i) {
-    (dh[i].type == vpSimulatorArm::REVOLUTE ? dh[i].theta : dh[i].d) += qRef[i];
+    (dh[i].type == vpProjectiveJoint::REVOLUTE ? dh[i].theta : dh[i].d) += qRef[i];
   }
   vpSimulatorArm shifted(dh, arm.get_eMt(), arm.getToolMarkers(), arm.get_wMb());
   shifted.setJointLimits(arm.getJointMin() - qRef, arm.getJointMax() - qRef);
@@ -187,7 +187,7 @@ bool otherBranch(const World &world, const vpColVector &qPlanned, const vpColVec
   }
   for (unsigned int i = 0; i < q.size(); ++i) {
     double d = q[i] - qTarget[i];
-    if (world.arm.getJointType(i) == vpSimulatorArm::REVOLUTE) {
+    if (world.arm.getJointType(i) == vpProjectiveJoint::REVOLUTE) {
       d = std::remainder(d, 2.0 * M_PI);
     }
     if (std::abs(d) > 1e-6) {

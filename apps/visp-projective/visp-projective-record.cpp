@@ -52,8 +52,8 @@ unsigned int recordRenderedCell(const std::string &folder, double noise, double 
   const unsigned int n = robot.getNumberOfJoints();
   std::vector<vpProjectiveRobot::vpJointType> types;
   for (unsigned int i = 0; i < n; ++i) {
-    types.push_back(robot.getArm().getJointType(i) == vpSimulatorArm::PRISMATIC ? vpProjectiveRobot::PRISMATIC
-                                                                                : vpProjectiveRobot::REVOLUTE);
+    types.push_back(robot.getArm().getJointType(i) == vpProjectiveJoint::PRISMATIC ? vpProjectiveRobot::PRISMATIC
+                                                                                   : vpProjectiveRobot::REVOLUTE);
   }
   vpProjectiveSessionWriter writer(folder, types);
   vpProjectiveAcquisitionProcedure procedure(

@@ -36,7 +36,7 @@ vpProjectiveArmAcquisition::vpProjectiveArmAcquisition()
 {
 }
 
-vpProjectiveArmAcquisition::vpProjectiveArmAcquisition(const std::vector<vpJointType> &types)
+vpProjectiveArmAcquisition::vpProjectiveArmAcquisition(const std::vector<vpProjectiveJoint::vpJointType> &types)
     : vpProjectiveArmAcquisition()
 {
   const std::string where = at("vpProjectiveArmAcquisition()");
@@ -45,7 +45,7 @@ vpProjectiveArmAcquisition::vpProjectiveArmAcquisition(const std::vector<vpJoint
     os << "a chain needs between 1 and " << vpProjectiveArmModel::maxJoints << " joints, got " << types.size();
     fail(vpProjectiveException::dimensionError, where, os.str());
   }
-  for (vpJointType t : types) {
+  for (vpProjectiveJoint::vpJointType t : types) {
     if (t != vpProjectiveJoint::REVOLUTE && t != vpProjectiveJoint::PRISMATIC) {
       fail(vpProjectiveException::invalidValueError, where, "a joint type is neither REVOLUTE nor PRISMATIC");
     }

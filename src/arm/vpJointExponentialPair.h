@@ -12,8 +12,8 @@
  */
 
 /*
-  Private: the closed-form pair exp(+dq Hhat), exp(-dq Hhat) of one p-joint, which the model's joint motions and the
-  servo's per-iteration data both chain. Not installed.
+  Private: the closed-form pair exp(+dq Hhat), exp(-dq Hhat) of one p-joint, which
+  vpProjectiveKinematics::forwardKinematics() chains. Not installed.
 */
 
 #ifndef _vpJointExponentialPair_h_

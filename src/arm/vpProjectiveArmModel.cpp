@@ -19,7 +19,6 @@
 
 #include <Eigen/Dense>
 
-#include "arm/vpJointExponentialPair.h"
 #include "core/vpProjectiveConversions.h"
 #include "core/vpProjectiveErrors.h"
 
@@ -47,9 +46,9 @@ vpProjectiveArmModel::vpProjectiveArmModel()
 {
 }
 
-vpProjectiveArmModel::vpProjectiveArmModel(const std::vector<vpJointType> &types, vpRigMounting mounting,
-                                           const vpProjectiveStereoRig &rig, const Eigen::Matrix4d &G,
-                                           const std::vector<Eigen::Vector3d> &axis,
+vpProjectiveArmModel::vpProjectiveArmModel(const std::vector<vpProjectiveJoint::vpJointType> &types,
+                                           vpRigMounting mounting, const vpProjectiveStereoRig &rig,
+                                           const Eigen::Matrix4d &G, const std::vector<Eigen::Vector3d> &axis,
                                            const std::vector<Eigen::Vector3d> &point,
                                            const std::vector<Eigen::Vector4d> &markers, const JointVector &qRef)
     : vpProjectiveArmModel()
@@ -134,60 +133,6 @@ Eigen::Matrix4d vpProjectiveArmModel::displacement(const JointVector &q) const
     H = H * jointExp(i, q(i) - m_qRef(i));
   }
   return H;
-}
-
-void vpProjectiveArmModel::jointMotions(const JointVector &q, Eigen::Matrix4d *HhatKq) const
-{
-  // A_{k-1} Hhat_k A_{k-1}^-1 with A_{k-1}^-1 = exp(-dq_{k-1} Hhat_{k-1}) ... exp(-dq_0 Hhat_0): no matrix inverse.
-  // exp(+-dq Hhat) share their terms: I +- sin(dq) Hhat + (1 - cos(dq)) Hhat^2 (26), I +- dq Hhat (31), i.e.
-  // jointExp(i, dq) and jointExp(i, -dq) up to rounding. A_{-1} = I needs no product, and the last joint's
-  // exponential no value.
-  const unsigned int n = static_cast<unsigned int>(m_types.size());
-  Eigen::Matrix4d A, Ainv, AH, E, Einv;
-  for (unsigned int k = 0; k < n; ++k) {
-    const unsigned int i = chainJoint(k);
-    const Eigen::Matrix4d &Hhat = m_Hhat[i];
-    if (k == 0) {
-      HhatKq[i] = Hhat;
-    } else {
-      AH.noalias() = A * Hhat;
-      HhatKq[i].noalias() = AH * Ainv;
-    }
-    if (k + 1 == n) {
-      break;
-    }
-    const double dq = q(i) - m_qRef(i);
-    Eigen::Matrix4d Hhat2 = Eigen::Matrix4d::Zero();
-    if (m_types[i] == vpProjectiveJoint::REVOLUTE) {
-      Hhat2.noalias() = Hhat * Hhat;
-    }
-    vpProjectiveInternal::jointExponentialPair(m_types[i], dq, Hhat, Hhat2, E, Einv);
-    vpProjectiveInternal::chainExponentialPair(k == 0, E, Einv, A, Ainv);
-  }
-}
-
-void vpProjectiveArmModel::pointJacobian(const Eigen::Matrix4d *HhatKq, const Eigen::Vector4d &M,
-                                         PointJacobian &JH) const
-{
-  JH.resize(4, static_cast<Eigen::Index>(m_types.size()));
-  for (unsigned int k = 0; k < m_types.size(); ++k) {
-    JH.col(k) = HhatKq[k] * M;
-  }
-}
-
-bool vpProjectiveArmModel::imageJacobian(const Eigen::Matrix4d *HhatKq, const Eigen::Vector4d &M,
-                                         PointJacobian &J) const
-{
-  Eigen::Vector4d s;
-  Eigen::Matrix4d L; // rows J_C(m) P and J_C(m') P', eq. (45)
-  if (!m_rig.project(M, s, &L)) {
-    return false;
-  }
-  J.resize(4, static_cast<Eigen::Index>(m_types.size()));
-  for (unsigned int k = 0; k < m_types.size(); ++k) {
-    J.col(k) = L * (HhatKq[k] * M); // eq. (46)
-  }
-  return true;
 }
 
 bool vpProjectiveArmModel::predictMarker(unsigned int j, const Eigen::Matrix4d &H, Eigen::Vector4d &s) const

@@ -13,6 +13,8 @@
 
 #include <visp3/projective/vpProjectiveInverseKinematics.h>
 
+#include <visp3/projective/vpProjectiveArmData.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -50,17 +52,15 @@ bool normalEquations(const vpProjectiveArmModel &model, const std::vector<Eigen:
                      double &pixelCost)
 {
   const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
-  const Eigen::Matrix4d H = model.displacement(q);
-  Eigen::Matrix4d HhatKq[vpProjectiveArmModel::maxJoints];
-  model.jointMotions(q, HhatKq);
+  vpProjectiveArmData data;
+  vpProjectiveKinematics::forwardKinematics(model, data, q);
   JtJ.setZero(n, n);
   Jtr.setZero(n);
   cost = 0.0;
   vpProjectiveArmModel::PointJacobian J;
   for (size_t k = 0; k < s.size(); ++k) {
-    const Eigen::Vector4d M = H * points[k];
     Eigen::Vector4d sM;
-    if (!model.getStereoRig().project(M, sM) || !model.imageJacobian(HhatKq, M, J)) {
+    if (!vpProjectiveKinematics::pointImages(model, data, points[k], sM, &J)) {
       return false;
     }
     const Eigen::Vector4d r = sM - s[k];
@@ -200,11 +200,11 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solveWithPoints
   }
   const Eigen::Matrix4d H0 = model.displacement(q0);
   const auto &P = model.getStereoRig().leftProjection(), &Pp = model.getStereoRig().rightProjection();
+  vpProjectiveArmData data;
   auto evaluate = [&](const State &x, Matrix *A, Vector *g, double &cost) {
-    const Eigen::Matrix4d H = model.displacement(x.q);
-    Eigen::Matrix4d HhatKq[vpProjectiveArmModel::maxJoints];
+    vpProjectiveKinematics::forwardKinematics(model, data, x.q);
+    const Eigen::Matrix4d &H = data.getDisplacement();
     if (A != nullptr) {
-      model.jointMotions(x.q, HhatKq);
       A->setZero(D, D);
       g->setZero(D);
     }
@@ -230,7 +230,8 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solveWithPoints
       }
       // The view at the target: the joints and the point.
       const Eigen::Vector4d M = H * x.M[k];
-      if (!projectStereo(P, Pp, M, sM, &L) || (A != nullptr && !model.imageJacobian(HhatKq, M, Jq))) {
+      if (!projectStereo(P, Pp, M, sM, &L) ||
+          (A != nullptr && !vpProjectiveKinematics::imageJacobian(model, data, M, Jq))) {
         return false;
       }
       const Eigen::Vector4d r = sM - s[k];

@@ -33,7 +33,7 @@ using namespace VISP_NAMESPACE_NAME;
 namespace vpProjectiveInternal
 {
 //! The fields of an identity, in the JSON's names.
-inline std::string *identityField(vpProjectiveCellFingerprint::vpCameraIdentity &camera, int field, const char *&key)
+inline std::string *identityField(vpStereoImageSource::vpCameraIdentity &camera, int field, const char *&key)
 {
   static const char *const keys[] = {"device", "name", "bus", "serial"};
   std::string *fields[] = {&camera.device, &camera.name, &camera.bus, &camera.serial};
@@ -42,8 +42,8 @@ inline std::string *identityField(vpProjectiveCellFingerprint::vpCameraIdentity 
 }
 
 //! The JSON of the identities of the left and right cameras.
-inline nlohmann::json camerasToJson(vpProjectiveCellFingerprint::vpCameraIdentity left,
-                                    vpProjectiveCellFingerprint::vpCameraIdentity right)
+inline nlohmann::json camerasToJson(vpStereoImageSource::vpCameraIdentity left,
+                                    vpStereoImageSource::vpCameraIdentity right)
 {
   nlohmann::json cameras;
   for (int side = 0; side < 2; ++side) {
@@ -61,10 +61,10 @@ inline nlohmann::json camerasToJson(vpProjectiveCellFingerprint::vpCameraIdentit
 }
 
 //! The identities of \e cameras (camerasToJson()'s); false if it is not such an object (the identities untouched).
-inline bool camerasFromJson(const nlohmann::json &cameras, vpProjectiveCellFingerprint::vpCameraIdentity &left,
-                            vpProjectiveCellFingerprint::vpCameraIdentity &right)
+inline bool camerasFromJson(const nlohmann::json &cameras, vpStereoImageSource::vpCameraIdentity &left,
+                            vpStereoImageSource::vpCameraIdentity &right)
 {
-  vpProjectiveCellFingerprint::vpCameraIdentity read[2];
+  vpStereoImageSource::vpCameraIdentity read[2];
   for (int side = 0; side < 2; ++side) {
     const char *name = side == 0 ? "left" : "right";
     if (!cameras.is_object() || !cameras.contains(name) || !cameras[name].is_object()) {

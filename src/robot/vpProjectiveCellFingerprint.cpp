@@ -65,7 +65,8 @@ void vpProjectiveCellFingerprint::setImageSize(unsigned int width, unsigned int 
   m_height = height;
 }
 
-void vpProjectiveCellFingerprint::setCameras(const vpCameraIdentity &left, const vpCameraIdentity &right)
+void vpProjectiveCellFingerprint::setCameras(const vpStereoImageSource::vpCameraIdentity &left,
+                                             const vpStereoImageSource::vpCameraIdentity &right)
 {
   m_left = left;
   m_right = right;
@@ -81,12 +82,13 @@ void vpProjectiveCellFingerprint::setCameraSide(vpCameraSide side, const Eigen::
   m_baseline = direction;
 }
 
-bool vpProjectiveCellFingerprint::isKnown(const vpCameraIdentity &camera)
+bool vpProjectiveCellFingerprint::isKnown(const vpStereoImageSource::vpCameraIdentity &camera)
 {
   return !camera.device.empty() || !camera.name.empty() || !camera.bus.empty() || !camera.serial.empty();
 }
 
-int vpProjectiveCellFingerprint::sameCamera(const vpCameraIdentity &a, const vpCameraIdentity &b)
+int vpProjectiveCellFingerprint::sameCamera(const vpStereoImageSource::vpCameraIdentity &a,
+                                            const vpStereoImageSource::vpCameraIdentity &b)
 {
   if (!a.serial.empty() && !b.serial.empty()) {
     return a.serial == b.serial ? 1 : 0;
@@ -104,8 +106,8 @@ int vpProjectiveCellFingerprint::sameCamera(const vpCameraIdentity &a, const vpC
   return -1;
 }
 
-std::string vpProjectiveCellFingerprint::cameraMismatch(const vpCameraIdentity &left,
-                                                        const vpCameraIdentity &right) const
+std::string vpProjectiveCellFingerprint::cameraMismatch(const vpStereoImageSource::vpCameraIdentity &left,
+                                                        const vpStereoImageSource::vpCameraIdentity &right) const
 {
   if (sameCamera(left, m_right) == 1 && sameCamera(right, m_left) == 1) {
     return "the left and right cameras are exchanged: the left one, " + toString(left) +
@@ -145,7 +147,7 @@ std::string vpProjectiveCellFingerprint::jointTypesMismatch(const std::vector<vp
   return std::string();
 }
 
-std::string vpProjectiveCellFingerprint::toString(const vpCameraIdentity &camera)
+std::string vpProjectiveCellFingerprint::toString(const vpStereoImageSource::vpCameraIdentity &camera)
 {
   if (!isKnown(camera)) {
     return "an unknown camera";

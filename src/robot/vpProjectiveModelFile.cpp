@@ -224,7 +224,7 @@ vpProjectiveCellFingerprint cellFromJson(const Reader &reader, const json &c)
     reader.bad(e.getStringMessage());
   }
   if (c.contains("cameras")) {
-    vpProjectiveCellFingerprint::vpCameraIdentity left, right;
+    vpStereoImageSource::vpCameraIdentity left, right;
     if (!camerasFromJson(c["cameras"], left, right)) {
       reader.bad("the cell's cameras must be {\"left\": {...}, \"right\": {...}}, each field a string");
     }

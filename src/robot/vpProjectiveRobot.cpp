@@ -18,6 +18,7 @@
 #include <limits>
 #include <sstream>
 
+#include <visp3/projective/vpProjectiveArmData.h>
 #include <visp3/projective/vpProjectiveInverseKinematics.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
 #include <visp3/projective/vpProjectiveSelfCalibration.h>
@@ -226,10 +227,10 @@ vpMatrix vpProjectiveRobot::getImageJacobian(const vpColVector &q, const vpColVe
   if (Me.norm() == 0.0) {
     fail(vpProjectiveException::invalidValueError, where, "M is the zero vector, which is no projective point");
   }
-  Eigen::Matrix4d HhatKq[maxJoints];
-  model.jointMotions(qe, HhatKq);
+  vpProjectiveArmData data;
+  vpProjectiveKinematics::forwardKinematics(model, data, qe);
   PointJacobian J;
-  if (!model.imageJacobian(HhatKq, Me, J)) {
+  if (!vpProjectiveKinematics::imageJacobian(model, data, Me, J)) {
     fail(vpProjectiveException::pointAtInfinityError, where,
          "M lies on the focal plane of a camera: its image and image Jacobian are undefined");
   }

@@ -27,6 +27,7 @@
 
 #include <visp3/core/vpMath.h>
 #include <visp3/core/vpUniRand.h>
+#include <visp3/projective/vpProjectiveArmData.h>
 #include <visp3/projective/vpProjectiveDisplacement.h>
 #include <visp3/projective/vpProjectiveInverseKinematics.h>
 
@@ -262,7 +263,7 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
   Eigen::VectorXd e(rows);
   vpProjectiveArmModel::JointMatrix JtJ;
   JointVector Jte, qdot, qdot2;
-  Eigen::Matrix4d HhatKq[vpProjectiveArmModel::maxJoints];
+  vpProjectiveArmData data;
   vpProjectiveArmModel::PointJacobian Ji;
   JointVector qk = q;
   path.assign(1, q);
@@ -284,10 +285,10 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
       return false; // a joint limit, or a feature out of the window or behind a camera: law (47) would lose it
     }
     features.push_back(s);
-    const Eigen::Matrix4d H = model.displacement(qk);
-    model.jointMotions(qk, HhatKq);
+    vpProjectiveKinematics::forwardKinematics(model, data, qk);
     for (size_t k = 0; k < points.size(); ++k) {
-      if (!model.imageJacobian(HhatKq, Eigen::Vector4d(H * points[k]), Ji)) {
+      if (!vpProjectiveKinematics::imageJacobian(model, data, Eigen::Vector4d(data.getDisplacement() * points[k]),
+                                                 Ji)) {
         return false;
       }
       const Eigen::Index r = 4 * static_cast<Eigen::Index>(k);

@@ -154,7 +154,7 @@ inline void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, 
       d.m_e.segment<4>(r).setZero();
       continue;
     }
-    if (!model.imageJacobian(d.getJointMotions(), d.getPoint(i), Ji)) {
+    if (!vpProjectiveKinematics::imageJacobian(model, d.getArmData(), d.getPoint(i), Ji)) {
       std::ostringstream os;
       os << "feature " << i << " triangulates onto a camera's focal plane; check that it is matched correctly";
       fail(vpProjectiveException::pointAtInfinityError, at(method), os.str());
@@ -207,7 +207,7 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
       continue;
     }
     d.computeFeature(model, i, sHat); // the feature the model predicts here, in place of the one not seen
-    if (!d.hasPoint(i) || !model.imageJacobian(d.getJointMotions(), d.getPoint(i), Ji)) {
+    if (!d.hasPoint(i) || !vpProjectiveKinematics::imageJacobian(model, d.getArmData(), d.getPoint(i), Ji)) {
       d.computeFeature(model, i, m_features[i]->getFeature()); // as it was: a prediction the model cannot use
       continue;
     }

@@ -84,7 +84,8 @@ void writeAtomically(const std::string &path, const std::string &text, const std
 }
 } // namespace vpProjectiveSessionInternal
 
-vpProjectiveSessionWriter::vpProjectiveSessionWriter(const std::string &folder, const std::vector<vpJointType> &types)
+vpProjectiveSessionWriter::vpProjectiveSessionWriter(const std::string &folder,
+                                                     const std::vector<vpProjectiveJoint::vpJointType> &types)
     : m_session(), m_frames(), m_saved(0), m_interval(25), m_seconds(1.0), m_lastSave(0.0), m_closed(false)
 {
   const std::string where = at("vpProjectiveSessionWriter()");
@@ -93,7 +94,7 @@ vpProjectiveSessionWriter::vpProjectiveSessionWriter(const std::string &folder, 
          "a session needs 1 to " + std::to_string(vpProjectiveArmModel::maxJoints) + " joints, got " +
              std::to_string(types.size()));
   }
-  for (vpJointType type : types) {
+  for (vpProjectiveJoint::vpJointType type : types) {
     if (type != vpProjectiveJoint::REVOLUTE && type != vpProjectiveJoint::PRISMATIC) {
       fail(vpProjectiveException::invalidValueError, where, "a joint type is neither REVOLUTE nor PRISMATIC");
     }

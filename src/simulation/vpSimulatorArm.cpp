@@ -82,7 +82,7 @@ public:
 
 Eigen::Matrix4d vpProjectiveInternal::linkTransform(const vpSimulatorArm::vpDHRow &row, double q)
 {
-  if (row.type == vpSimulatorArm::REVOLUTE) {
+  if (row.type == vpProjectiveJoint::REVOLUTE) {
     return dhTransform(row.theta + q, row.d, row.a, row.alpha);
   }
   return dhTransform(row.theta, row.d + q, row.a, row.alpha);
@@ -103,7 +103,7 @@ vpSimulatorArm::vpSimulatorArm(const std::vector<vpDHRow> &dh, const vpHomogeneo
       os << "vpSimulatorArm: Denavit-Hartenberg row " << i << " contains NaN or infinity";
       throw vpProjectiveException(vpProjectiveException::nonFiniteValueError, os.str());
     }
-    if (r.type != REVOLUTE && r.type != PRISMATIC) {
+    if (r.type != vpProjectiveJoint::REVOLUTE && r.type != vpProjectiveJoint::PRISMATIC) {
       std::ostringstream os;
       os << "vpSimulatorArm: Denavit-Hartenberg row " << i << " has an unknown joint kind; use REVOLUTE or PRISMATIC";
       throw vpProjectiveException(vpProjectiveException::invalidValueError, os.str());
@@ -141,7 +141,7 @@ vpSimulatorArm::vpSimulatorArm(const std::vector<vpDHRow> &dh, const vpHomogeneo
   m_qmin.resize(n);
   m_qmax.resize(n);
   for (unsigned int i = 0; i < n; ++i) {
-    const double limit = (dh[i].type == REVOLUTE) ? vpMath::rad(170.0) : 0.5;
+    const double limit = (dh[i].type == vpProjectiveJoint::REVOLUTE) ? vpMath::rad(170.0) : 0.5;
     m_qmin[i] = -limit;
     m_qmax[i] = limit;
   }
@@ -172,24 +172,24 @@ std::vector<vpSimulatorArm::vpDHRow> vpSimulatorArm::pumaTable()
   // theta holds the zero-reference offsets: q = 0 is the bent-elbow "ready" pose documented in the header.
   const double deg = M_PI / 180.0;
   std::vector<vpDHRow> dh(6);
-  dh[0] = {REVOLUTE, s_pumaOffsetsDeg[0] * deg, 0.36, 0.0, M_PI / 2};
-  dh[1] = {REVOLUTE, s_pumaOffsetsDeg[1] * deg, 0.0, 0.48, 0.0};
-  dh[2] = {REVOLUTE, s_pumaOffsetsDeg[2] * deg, 0.0, 0.0, -M_PI / 2};
-  dh[3] = {REVOLUTE, s_pumaOffsetsDeg[3] * deg, 0.40, 0.0, M_PI / 2};
-  dh[4] = {REVOLUTE, s_pumaOffsetsDeg[4] * deg, 0.0, 0.0, -M_PI / 2};
-  dh[5] = {REVOLUTE, s_pumaOffsetsDeg[5] * deg, 0.05, 0.0, 0.0};
+  dh[0] = {vpProjectiveJoint::REVOLUTE, s_pumaOffsetsDeg[0] * deg, 0.36, 0.0, M_PI / 2};
+  dh[1] = {vpProjectiveJoint::REVOLUTE, s_pumaOffsetsDeg[1] * deg, 0.0, 0.48, 0.0};
+  dh[2] = {vpProjectiveJoint::REVOLUTE, s_pumaOffsetsDeg[2] * deg, 0.0, 0.0, -M_PI / 2};
+  dh[3] = {vpProjectiveJoint::REVOLUTE, s_pumaOffsetsDeg[3] * deg, 0.40, 0.0, M_PI / 2};
+  dh[4] = {vpProjectiveJoint::REVOLUTE, s_pumaOffsetsDeg[4] * deg, 0.0, 0.0, -M_PI / 2};
+  dh[5] = {vpProjectiveJoint::REVOLUTE, s_pumaOffsetsDeg[5] * deg, 0.05, 0.0, 0.0};
   return dh;
 }
 
 std::vector<vpSimulatorArm::vpDHRow> vpSimulatorArm::stanfordTable()
 {
   std::vector<vpDHRow> dh(6);
-  dh[0] = {REVOLUTE, 0.0, 0.41, 0.0, -M_PI / 2};
-  dh[1] = {REVOLUTE, 0.0, 0.15, 0.0, M_PI / 2};
-  dh[2] = {PRISMATIC, 0.0, 0.0, 0.0, 0.0};
-  dh[3] = {REVOLUTE, 0.0, 0.0, 0.0, -M_PI / 2};
-  dh[4] = {REVOLUTE, 0.0, 0.0, 0.0, M_PI / 2};
-  dh[5] = {REVOLUTE, 0.0, 0.10, 0.0, 0.0};
+  dh[0] = {vpProjectiveJoint::REVOLUTE, 0.0, 0.41, 0.0, -M_PI / 2};
+  dh[1] = {vpProjectiveJoint::REVOLUTE, 0.0, 0.15, 0.0, M_PI / 2};
+  dh[2] = {vpProjectiveJoint::PRISMATIC, 0.0, 0.0, 0.0, 0.0};
+  dh[3] = {vpProjectiveJoint::REVOLUTE, 0.0, 0.0, 0.0, -M_PI / 2};
+  dh[4] = {vpProjectiveJoint::REVOLUTE, 0.0, 0.0, 0.0, M_PI / 2};
+  dh[5] = {vpProjectiveJoint::REVOLUTE, 0.0, 0.10, 0.0, 0.0};
   return dh;
 }
 
@@ -232,19 +232,19 @@ vpSimulatorArm vpSimulatorArm::viper850(const vpHomogeneousMatrix &wMb)
   // get_fMe() ignores the joint 5-6 coupling c56 (it only relates motor to joint positions), and so does this model.
   const vpViper850Parameters viper;
   std::vector<vpDHRow> dh(6);
-  dh[0] = {REVOLUTE, 0.0, viper.getD1(), viper.getA1(), -M_PI / 2};
-  dh[1] = {REVOLUTE, 0.0, 0.0, viper.getA2(), 0.0};
-  dh[2] = {REVOLUTE, -M_PI, 0.0, viper.getA3(), -M_PI / 2};
-  dh[3] = {REVOLUTE, 0.0, viper.getD4(), 0.0, M_PI / 2};
-  dh[4] = {REVOLUTE, 0.0, 0.0, 0.0, -M_PI / 2};
-  dh[5] = {REVOLUTE, -M_PI, viper.getD6(), 0.0, 0.0};
+  dh[0] = {vpProjectiveJoint::REVOLUTE, 0.0, viper.getD1(), viper.getA1(), -M_PI / 2};
+  dh[1] = {vpProjectiveJoint::REVOLUTE, 0.0, 0.0, viper.getA2(), 0.0};
+  dh[2] = {vpProjectiveJoint::REVOLUTE, -M_PI, 0.0, viper.getA3(), -M_PI / 2};
+  dh[3] = {vpProjectiveJoint::REVOLUTE, 0.0, viper.getD4(), 0.0, M_PI / 2};
+  dh[4] = {vpProjectiveJoint::REVOLUTE, 0.0, 0.0, 0.0, -M_PI / 2};
+  dh[5] = {vpProjectiveJoint::REVOLUTE, -M_PI, viper.getD6(), 0.0, 0.0};
   vpSimulatorArm arm(dh, gripperMount(), gripperMarkers(), wMb);
   arm.m_qmin = viper.getJointMin();
   arm.m_qmax = viper.getJointMax();
   return arm;
 }
 
-vpSimulatorArm::vpJointType vpSimulatorArm::getJointType(unsigned int i) const
+vpProjectiveJoint::vpJointType vpSimulatorArm::getJointType(unsigned int i) const
 {
   if (i >= m_dh.size()) {
     std::ostringstream os;

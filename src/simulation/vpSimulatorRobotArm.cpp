@@ -55,7 +55,7 @@ vpSimulatorRobotArm::vpSimulatorRobotArm(const vpSimulatorArm &arm, const vpColV
     const vpColVector q = jointVector(q0, "vpSimulatorRobotArm()", "q0");
     for (unsigned int i = 0; i < q.size(); ++i) {
       if (q[i] < m_arm.getJointMin()[i] || q[i] > m_arm.getJointMax()[i]) {
-        const bool revolute = m_arm.getJointType(i) == vpSimulatorArm::REVOLUTE;
+        const bool revolute = m_arm.getJointType(i) == vpProjectiveJoint::REVOLUTE;
         std::ostringstream os;
         os << at("vpSimulatorRobotArm()") << ": joint " << i << " starts at " << jointValue(q[i], revolute)
            << ", outside its limits [" << jointValue(m_arm.getJointMin()[i], revolute) << ", "
@@ -113,7 +113,7 @@ vpColVector vpSimulatorRobotArm::maxVelocities() const
   vpColVector vmax(n);
   for (unsigned int i = 0; i < n; ++i) {
     vmax[i] =
-        m_arm.getJointType(i) == vpSimulatorArm::REVOLUTE ? getMaxRotationVelocity() : getMaxTranslationVelocity();
+        m_arm.getJointType(i) == vpProjectiveJoint::REVOLUTE ? getMaxRotationVelocity() : getMaxTranslationVelocity();
   }
   return vmax;
 }
@@ -190,7 +190,7 @@ void vpSimulatorRobotArm::setPosition(const vpRobot::vpControlFrameType frame, c
   const unsigned int n = m_arm.getNumberOfJoints();
   for (unsigned int i = 0; i < n; ++i) {
     if (target[i] < m_arm.getJointMin()[i] || target[i] > m_arm.getJointMax()[i]) {
-      const bool revolute = m_arm.getJointType(i) == vpSimulatorArm::REVOLUTE;
+      const bool revolute = m_arm.getJointType(i) == vpProjectiveJoint::REVOLUTE;
       std::ostringstream os;
       os << at("setPosition()") << ": joint " << i << " target " << jointValue(q[i], revolute)
          << " (encoder reading) is outside its limits [" << jointValue(m_arm.getJointMin()[i] + m_offset[i], revolute)
@@ -257,7 +257,7 @@ void vpSimulatorRobotArm::get_fJe(vpMatrix &fJe)
   for (unsigned int i = 0; i < n; ++i) {
     const Eigen::Vector3d z = bMi[i].block<3, 1>(0, 2);
     const Eigen::Vector3d o = bMi[i].topRightCorner<3, 1>();
-    const bool revolute = m_arm.getJointType(i) == vpSimulatorArm::REVOLUTE;
+    const bool revolute = m_arm.getJointType(i) == vpProjectiveJoint::REVOLUTE;
     const Eigen::Vector3d v = revolute ? Eigen::Vector3d(z.cross(pe - o)) : z;
     const Eigen::Vector3d w = revolute ? z : Eigen::Vector3d::Zero();
     for (unsigned int r = 0; r < 3; ++r) {

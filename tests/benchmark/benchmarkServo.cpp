@@ -653,7 +653,7 @@ vpSimulatorArm syntheticChain(unsigned int n)
   for (unsigned int i = 0; i < n; ++i) {
     const double theta = vpMath::rad(i % 2 == 0 ? -25.0 : 35.0);
     const double alpha = vpMath::rad(i % 2 == 0 ? 90.0 : -90.0);
-    dh.push_back({vpSimulatorArm::REVOLUTE, theta, 0.6 * link, 0.8 * link, alpha});
+    dh.push_back({vpProjectiveJoint::REVOLUTE, theta, 0.6 * link, 0.8 * link, alpha});
   }
   const vpSimulatorArm atOrigin(dh, vpSimulatorArm::gripperMount(), vpSimulatorArm::gripperMarkers(),
                                 vpHomogeneousMatrix());

@@ -20,6 +20,7 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpException.h>
 #include <visp3/core/vpMatrix.h>
+#include <visp3/projective/vpProjectiveArmData.h>
 #include <visp3/projective/vpProjectiveModelFile.h>
 
 #include "../vpModelFileChecksum.h"
@@ -50,9 +51,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   const unsigned int n = model.getNumberOfJoints();
   Eigen::Matrix4d H = model.displacement(vpProjectiveArmModel::JointVector::Zero(n));
   H = model.displacement(vpProjectiveArmModel::JointVector::Constant(n, 0.1));
-  Eigen::Matrix4d HhatKq[vpProjectiveArmModel::maxJoints];
-  model.jointMotions(vpProjectiveArmModel::JointVector::Constant(n, 0.2), HhatKq);
+  vpProjectiveArmData data;
+  vpProjectiveKinematics::forwardKinematics(model, data, vpProjectiveArmModel::JointVector::Constant(n, 0.2));
   vpProjectiveArmModel::PointJacobian J;
-  model.imageJacobian(HhatKq, H * model.markers()[0], J);
+  vpProjectiveKinematics::imageJacobian(model, data, H * model.markers()[0], J);
   return 0;
 }

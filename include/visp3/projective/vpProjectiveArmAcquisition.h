@@ -72,9 +72,6 @@ BEGIN_VISP_NAMESPACE
 class VISP_EXPORT vpProjectiveArmAcquisition
 {
 public:
-  //! Joint kinds.
-  typedef vpProjectiveJoint::vpJointType vpJointType;
-
   //! An acquisition without joints (construct with joint types to use it).
   vpProjectiveArmAcquisition();
   /*!
@@ -82,7 +79,7 @@ public:
     \exception vpProjectiveException (dimensionError, invalidValueError) if there are no joints, more than
     vpProjectiveArmModel::maxJoints, or a kind is neither REVOLUTE nor PRISMATIC.
   */
-  explicit vpProjectiveArmAcquisition(const std::vector<vpJointType> &types);
+  explicit vpProjectiveArmAcquisition(const std::vector<vpProjectiveJoint::vpJointType> &types);
   /*!
     The acquisition of a chain of \e n joints whose types calibrate() identifies from the trials (each joint the type
     that fits its trials better: vpProjectiveModelCheck). Trial amounts are then the joints' readings as they are
@@ -103,7 +100,7 @@ public:
     The kinds of the joints, base to tip: as declared, or as the last successful calibrate() identified them
     (REVOLUTE for every joint before, see hasDeclaredJointTypes()).
   */
-  const std::vector<vpJointType> &getJointTypes() const { return m_types; }
+  const std::vector<vpProjectiveJoint::vpJointType> &getJointTypes() const { return m_types; }
   //! True if the joint types were given to the constructor; false if calibrate() identifies them.
   bool hasDeclaredJointTypes() const { return m_declared; }
   /*!
@@ -314,7 +311,7 @@ public:
 private:
   friend class vpProjectiveRobot; // records the residuals of the model it takes (setCalibration(), loadModel())
 
-  std::vector<vpJointType> m_types;
+  std::vector<vpProjectiveJoint::vpJointType> m_types;
   vpProjectiveArmModel::vpRigMounting m_mounting;
   vpProjectiveStereoRig m_rig;
   std::vector<Eigen::Vector4d> m_zeroImages; // (u, v, u', v') of each marker at the zero reference

@@ -71,15 +71,14 @@ BEGIN_VISP_NAMESPACE
   and the stereo image Jacobian (45)-(46), 4 x n with rows \f$ (u, v, u', v') \f$ in pixels,
   \f[ J(q, M) = \begin{bmatrix} J_C(P M)\, P \\ J_C(P' M)\, P' \end{bmatrix} J_H(q, M), \qquad
       J_C(m) = \begin{bmatrix} 1/m_3 & 0 & -m_1/m_3^2 \\ 0 & 1/m_3 & -m_2/m_3^2 \end{bmatrix}, \f]
-  invariant to the scale and sign of \f$ M \f$. The methods take Eigen types and allocate nothing: they serve the
-  control loop. vpProjectiveRobot offers the same with ViSP types and checked arguments.
+  invariant to the scale and sign of \f$ M \f$. The joint motions and both Jacobians at a configuration are computed by
+  the free functions of vpProjectiveKinematics into a vpProjectiveArmData (model / data / algorithms, as in
+  Pinocchio). The methods take Eigen types and allocate nothing: they serve the control loop. vpProjectiveRobot
+  offers the same with ViSP types and checked arguments.
 */
 class VISP_EXPORT vpProjectiveArmModel
 {
 public:
-  //! Joint kinds (vpProjectiveJoint::REVOLUTE, vpProjectiveJoint::PRISMATIC).
-  typedef vpProjectiveJoint::vpJointType vpJointType;
-
   /*!
     Where the rig is. The joints keep the robot's own numbering (0 at the robot base) in both cases; only the order
     of the product of exponentials (34) changes, since the base of the chain is the end that holds the rig.
@@ -118,19 +117,19 @@ public:
     degenerateConfigurationError, notInitializedError) if the sizes disagree, a value is not finite, a revolute axis
     is not of unit norm, G is singular, a marker is the zero vector or the rig has no fundamental matrix.
   */
-  vpProjectiveArmModel(const std::vector<vpJointType> &types, vpRigMounting mounting, const vpProjectiveStereoRig &rig,
-                       const Eigen::Matrix4d &G, const std::vector<Eigen::Vector3d> &axis,
-                       const std::vector<Eigen::Vector3d> &point, const std::vector<Eigen::Vector4d> &markers,
-                       const JointVector &qRef = JointVector());
+  vpProjectiveArmModel(const std::vector<vpProjectiveJoint::vpJointType> &types, vpRigMounting mounting,
+                       const vpProjectiveStereoRig &rig, const Eigen::Matrix4d &G,
+                       const std::vector<Eigen::Vector3d> &axis, const std::vector<Eigen::Vector3d> &point,
+                       const std::vector<Eigen::Vector4d> &markers, const JointVector &qRef = JointVector());
 
   /*! \name The model */
   //@{
   //! Number of joints \e n.
   unsigned int getNumberOfJoints() const { return static_cast<unsigned int>(m_types.size()); }
   //! Kind of joint \e i (no index check).
-  vpJointType jointType(unsigned int i) const { return m_types[i]; }
+  vpProjectiveJoint::vpJointType jointType(unsigned int i) const { return m_types[i]; }
   //! The kinds of all joints, base to tip.
-  const std::vector<vpJointType> &jointTypes() const { return m_types; }
+  const std::vector<vpProjectiveJoint::vpJointType> &jointTypes() const { return m_types; }
   //! Where the rig is mounted.
   vpRigMounting getRigMounting() const { return m_mounting; }
   //! The rig whose projective frame the model lives in.
@@ -177,17 +176,12 @@ public:
   //@{
   //! \f$ \exp(\delta \hat H_i) \f$ (4x4), joint \e i moved by \e delta from any position: eq. (26) or (31).
   Eigen::Matrix4d jointExp(unsigned int i, double delta) const;
-  //! \f$ H(q) \f$ (4x4), the displacement of the moving end from the zero reference, eq. (34).
-  Eigen::Matrix4d displacement(const JointVector &q) const;
-  //! \f$ \hat H_{k,q} \f$ (4x4) of every joint k at \e q, written to HhatKq[k] (joint numbering), eq. (39).
-  void jointMotions(const JointVector &q, Eigen::Matrix4d *HhatKq) const;
-  //! \f$ J_H(q, M) \f$ (4 x n) from the jointMotions() at q and the current point \e M (4x1), eqs. (42)-(44).
-  void pointJacobian(const Eigen::Matrix4d *HhatKq, const Eigen::Vector4d &M, PointJacobian &JH) const;
   /*!
-    Stereo image Jacobian \f$ J(q, M) \f$ (4 x n, pixels per joint unit, rows \f$ (u, v, u', v') \f$) from the
-    jointMotions() at q and the current point \e M, eqs. (45)-(46); false if \e M is on a camera's focal plane.
+    \f$ H(q) \f$ (4x4), the displacement of the moving end from the zero reference, eq. (34). For the joint motions
+    (39) and the Jacobians (42)-(46) at q as well, vpProjectiveKinematics::forwardKinematics() fills a
+    vpProjectiveArmData with all of them in one pass.
   */
-  bool imageJacobian(const Eigen::Matrix4d *HhatKq, const Eigen::Vector4d &M, PointJacobian &J) const;
+  Eigen::Matrix4d displacement(const JointVector &q) const;
   /*!
     Predicted pixels \f$ s = (u, v, u', v') \f$ of marker \e j after the displacement \e H (4x4, from displacement()):
     the images of \f$ H M_j(0) \f$. False if the marker is then on a camera's focal plane.
@@ -210,7 +204,7 @@ private:
     return m_mounting == EYE_TO_HAND ? k : static_cast<unsigned int>(m_types.size()) - 1 - k;
   }
 
-  std::vector<vpJointType> m_types;
+  std::vector<vpProjectiveJoint::vpJointType> m_types;
   vpRigMounting m_mounting;
   vpProjectiveStereoRig m_rig;
   Eigen::Matrix4d m_G;

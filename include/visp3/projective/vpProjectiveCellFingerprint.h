@@ -59,9 +59,6 @@ BEGIN_VISP_NAMESPACE
 class VISP_EXPORT vpProjectiveCellFingerprint
 {
 public:
-  //! What identifies a camera (see vpStereoImageSource::vpCameraIdentity).
-  typedef vpStereoImageSource::vpCameraIdentity vpCameraIdentity;
-
   //! How the cameras are laid out: what the test of which camera is left assumes.
   enum vpCameraLayout {
     LAYOUT_LEFT_RIGHT, //!< Upright cameras, the left one on the left seen from behind them (default; side test on).
@@ -93,11 +90,12 @@ public:
   //! Height of the left camera's images (pixels; 0: not known).
   unsigned int getHeight() const { return m_height; }
   //! The identities of the cameras that took the left and right images (empty fields: not known).
-  void setCameras(const vpCameraIdentity &left, const vpCameraIdentity &right);
+  void setCameras(const vpStereoImageSource::vpCameraIdentity &left,
+                  const vpStereoImageSource::vpCameraIdentity &right);
   //! The left camera's identity.
-  const vpCameraIdentity &getLeftCamera() const { return m_left; }
+  const vpStereoImageSource::vpCameraIdentity &getLeftCamera() const { return m_left; }
   //! The right camera's identity.
-  const vpCameraIdentity &getRightCamera() const { return m_right; }
+  const vpStereoImageSource::vpCameraIdentity &getRightCamera() const { return m_right; }
   //! The cameras' layout (default LAYOUT_LEFT_RIGHT).
   void setCameraLayout(vpCameraLayout layout) { m_layout = layout; }
   //! The cameras' layout.
@@ -117,15 +115,16 @@ public:
     in either). Serial numbers decide when both have one; else the bus and the name together; else the device and the
     name.
   */
-  static int sameCamera(const vpCameraIdentity &a, const vpCameraIdentity &b);
+  static int sameCamera(const vpStereoImageSource::vpCameraIdentity &a, const vpStereoImageSource::vpCameraIdentity &b);
   //! True if the identity has a field (the camera is known).
-  static bool isKnown(const vpCameraIdentity &camera);
+  static bool isKnown(const vpStereoImageSource::vpCameraIdentity &camera);
   /*!
     What tells that the cameras \e left and \e right (as a source gives them: vpStereoImageSource::
     getCameraIdentities()) are not this fingerprint's, the likeliest first: the model's cameras exchanged, or other
     cameras; with what to do. Empty if they are the fingerprint's, or if the identities do not tell (sameCamera()).
   */
-  std::string cameraMismatch(const vpCameraIdentity &left, const vpCameraIdentity &right) const;
+  std::string cameraMismatch(const vpStereoImageSource::vpCameraIdentity &left,
+                             const vpStereoImageSource::vpCameraIdentity &right) const;
   /*!
     What tells that images of \e width x \e height pixels are not the model's ("the left images are 320 x 240 pixels,
     the model's 640 x 480": the rig's matrices are in the model's pixels); empty if they are, or if a size is not
@@ -140,7 +139,7 @@ public:
   static std::string jointTypesMismatch(const std::vector<vpProjectiveJoint::vpJointType> &model,
                                         const std::vector<vpProjectiveJoint::vpJointType> &arm);
   //! A camera's identity in a few words ("'/dev/video0' (HD Webcam C920, serial 8A3F1C2E)"); "an unknown camera".
-  static std::string toString(const vpCameraIdentity &camera);
+  static std::string toString(const vpStereoImageSource::vpCameraIdentity &camera);
   //! A side in a few words ("to the right of the left camera", ...).
   static std::string toString(vpCameraSide side);
   //! The layout's name in a session and a model file: "left-right" or "any".
@@ -148,7 +147,7 @@ public:
 
 private:
   unsigned int m_width, m_height;
-  vpCameraIdentity m_left, m_right;
+  vpStereoImageSource::vpCameraIdentity m_left, m_right;
   vpCameraLayout m_layout;
   vpCameraSide m_side;
   Eigen::Vector3d m_baseline;

@@ -94,8 +94,6 @@ public:
 
   //! The joint values (n x 1) of the last frame (the starting values before the first).
   vpColVector getJoints() const;
-  //! The same, Eigen type.
-  const vpProjectiveArmModel::JointVector &joints() const { return m_q; }
   /*!
     The joint velocities (n x 1, per time unit) at the last frame: the least-squares slope of the joint values over
     the last \f$ w + 1 \f$ frames (one-sided: no future frame is waited for).

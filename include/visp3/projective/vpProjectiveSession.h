@@ -91,9 +91,6 @@ class vpProjectiveSessionWriter;
 class VISP_EXPORT vpProjectiveSession
 {
 public:
-  //! Joint kinds.
-  typedef vpProjectiveJoint::vpJointType vpJointType;
-
   //! What a frame is for.
   enum vpFrameRole {
     ZERO,        //!< The zero reference ("zero"): exactly one per session.
@@ -145,7 +142,7 @@ public:
   //! Number of joints \e n.
   unsigned int getNumberOfJoints() const { return static_cast<unsigned int>(m_types.size()); }
   //! The kinds of the joints, base to tip.
-  const std::vector<vpJointType> &getJointTypes() const { return m_types; }
+  const std::vector<vpProjectiveJoint::vpJointType> &getJointTypes() const { return m_types; }
   //! Number of frames.
   unsigned int getNumberOfFrames() const { return static_cast<unsigned int>(m_frames.size()); }
   /*!
@@ -202,7 +199,7 @@ private:
   int checkFrame(const vpFrame &frame, const std::string &where, const std::string &what) const;
 
   std::string m_folder;
-  std::vector<vpJointType> m_types;
+  std::vector<vpProjectiveJoint::vpJointType> m_types;
   std::vector<vpFrame> m_frames;
   std::vector<int> m_trialJoint; // per frame: the joint a trial moved, -1 otherwise
   int m_zero;                    // index of the zero frame, -1 if none yet

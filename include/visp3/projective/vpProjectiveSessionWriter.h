@@ -68,16 +68,13 @@ BEGIN_VISP_NAMESPACE
 class VISP_EXPORT vpProjectiveSessionWriter
 {
 public:
-  //! Joint kinds.
-  typedef vpProjectiveJoint::vpJointType vpJointType;
-
   /*!
     A writer of a new session in \e folder, for joints of the kinds \e types (base to tip).
     \exception vpProjectiveException (dimensionError) for no joints or more than vpProjectiveArmModel::maxJoints;
     (fileError) if the folder cannot be created or written, or already holds a session.json (a recording is never
     overwritten: record into a new folder).
   */
-  vpProjectiveSessionWriter(const std::string &folder, const std::vector<vpJointType> &types);
+  vpProjectiveSessionWriter(const std::string &folder, const std::vector<vpProjectiveJoint::vpJointType> &types);
 
   /*!
     Records a frame: its \e role, the encoder readings \e q (n x 1, as read: radians, metres), the time \e t (seconds;

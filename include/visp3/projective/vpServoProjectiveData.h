@@ -26,6 +26,7 @@
 
 #include <Eigen/Core>
 
+#include <visp3/projective/vpProjectiveArmData.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
 
 BEGIN_VISP_NAMESPACE
@@ -40,9 +41,9 @@ BEGIN_VISP_NAMESPACE
   vpServoJointLimitAvoidance, vpServoSettling, the path following). No part computes \f$ H(q) \f$ or triangulates a
   feature on its own.
 
-  - computeKinematics(): the joint motions \f$ \hat H_k(q) = A_{k-1} \hat H_k A_{k-1}^{-1} \f$ (4x4 each, eq. (39))
-    that the image Jacobian (46) needs and, from the same joint exponentials, \f$ H(q) \f$ (eq. (34), 4x4) and
-    \f$ H(q)^{-1} \f$, in one pass;
+  - computeKinematics(): the arm's data at \f$ q \f$ (vpProjectiveArmData, filled by
+    vpProjectiveKinematics::forwardKinematics() in one pass: the joint motions that the image Jacobian (46) needs,
+    \f$ H(q) \f$ and \f$ H(q)^{-1} \f$);
   - computeFeature(): the feature's value \f$ s_i = (u, v, u', v') \f$ (pixels), and when it is finite its point
     \f$ M_i \f$ (4x1, projective frame of the rig, linear triangulation) and that point at the zero reference
     \f$ M_{0,i} = H(q)^{-1} M_i \f$ (4x1, unit norm);
@@ -78,16 +79,16 @@ public:
 
   /*! \name Kinematics */
   //@{
+  //! The arm's data at the q of the last computeKinematics(): \f$ H(q) \f$, \f$ H(q)^{-1} \f$, the joint motions.
+  const vpProjectiveArmData &getArmData() const { return m_arm; }
   //! The joint values (n x 1) of the last computeKinematics().
-  const JointVector &getJoints() const { return m_q; }
+  const JointVector &getJoints() const { return m_arm.getJoints(); }
   //! \f$ H(q) \f$ (4x4, eq. (34)).
-  const Eigen::Matrix4d &getDisplacement() const { return m_H; }
+  const Eigen::Matrix4d &getDisplacement() const { return m_arm.getDisplacement(); }
   //! \f$ H(q)^{-1} \f$ (4x4), the product of the joint exponentials of \f$ -q \f$.
-  const Eigen::Matrix4d &getDisplacementInverse() const { return m_Hinv; }
-  //! The joint motions \f$ \hat H_k(q) \f$, n of them (see vpProjectiveArmModel::jointMotions()).
-  const Eigen::Matrix4d *getJointMotions() const { return m_HhatKq; }
+  const Eigen::Matrix4d &getDisplacementInverse() const { return m_arm.getDisplacementInverse(); }
   //! Number of \f$ H(q) \f$ computed since the last computeKinematics() began (1 after it).
-  unsigned int getDisplacementCount() const { return m_displacementCount; }
+  unsigned int getDisplacementCount() const { return static_cast<unsigned int>(m_arm.getPassCount() - m_passesBefore); }
   /*!
     The images \f$ \hat s = (u, v, u', v') \f$ (4x1, pixels) of \f$ H(q) X \f$, \e X (4x1, any scale and sign) a point
     at the zero reference: vpProjectiveStereoRig::project(getDisplacement() * X, s) by the rig of the model given to
@@ -129,15 +130,9 @@ public:
 private:
   friend class vpServoProjective; // fills the task part
 
-  JointVector m_q;
-  Eigen::Matrix4d m_H;
-  Eigen::Matrix4d m_Hinv;
+  vpProjectiveArmData m_arm;
   const vpProjectiveStereoRig *m_rig; // the model's rig of the last computeKinematics(), for predict()
-  Eigen::Matrix4d m_HhatKq[vpProjectiveArmModel::maxJoints];
-  Eigen::Matrix4d m_Hhat[vpProjectiveArmModel::maxJoints];  // the generators that m_Hhat2 was computed from
-  Eigen::Matrix4d m_Hhat2[vpProjectiveArmModel::maxJoints]; // their squares
-  unsigned int m_nbGenerators;
-  unsigned int m_displacementCount;
+  unsigned long m_passesBefore;       // m_arm's pass count when the last computeKinematics() began
   unsigned int m_nbFeatures;
   std::vector<Eigen::Vector4d> m_s, m_M, m_M0;
   std::vector<char> m_hasPoint;

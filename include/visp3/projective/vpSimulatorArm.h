@@ -48,18 +48,11 @@ BEGIN_VISP_NAMESPACE
 class VISP_EXPORT vpSimulatorArm
 {
 public:
-  //! Joint kinds: the one enumeration of vpProjectiveJoint.
-  typedef vpProjectiveJoint::vpJointType vpJointType;
-  //! A revolute joint.
-  static constexpr vpJointType REVOLUTE = vpProjectiveJoint::REVOLUTE;
-  //! A prismatic joint.
-  static constexpr vpJointType PRISMATIC = vpProjectiveJoint::PRISMATIC;
-
   //! One Denavit-Hartenberg row: \f$ T = R_z(\theta) T_z(d) T_x(a) R_x(\alpha) \f$, the joint adds to \f$ \theta \f$
   //! (revolute) or \f$ d \f$ (prismatic), which thus hold the joint's offset at q = 0.
   struct vpDHRow {
     //! Revolute or prismatic.
-    vpJointType type;
+    vpProjectiveJoint::vpJointType type;
     double theta; //!< rad
     double d;     //!< m
     double a;     //!< m
@@ -137,7 +130,7 @@ public:
   //! Number of joints \e n.
   unsigned int getNumberOfJoints() const { return static_cast<unsigned int>(m_dh.size()); }
   //! Kind of joint \e i.
-  vpJointType getJointType(unsigned int i) const;
+  vpProjectiveJoint::vpJointType getJointType(unsigned int i) const;
   //! Tip pose \f$ {}^wM_t(q) \f$.
   vpHomogeneousMatrix get_wMt(const vpColVector &q) const;
   //! Last-link pose \f$ {}^wM_e(q) = {}^wM_b\, T_0(q_0) \cdots T_{n-1}(q_{n-1}) \f$ (no tool).
