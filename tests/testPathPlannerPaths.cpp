@@ -33,10 +33,6 @@
 
 #include "vpPathPlannerTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 TEST_F(PathPlanner, KeepsTheTargetOutOfTheJointLimitMargins)

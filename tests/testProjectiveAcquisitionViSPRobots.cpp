@@ -42,10 +42,6 @@
 
 #include "vpProjectiveTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace
 {
 //! Swallows std::cout while alive: ViSP's simulators print their state changes.

@@ -43,10 +43,6 @@
 #include "vpModelFileChecksum.h"
 #include "vpProjectiveTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using vpProjectiveTest::testLog;
 
 namespace

@@ -24,10 +24,6 @@
 
 #include "vpProjectiveDisplacementTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 TEST(vpProjectiveDisplacement, EstimateNoiseFreeEqualsTruth)

@@ -20,10 +20,6 @@
 
 #include "vpProjectiveJointGroupTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 TYPED_TEST(JointGroup, BadInputsThrow)

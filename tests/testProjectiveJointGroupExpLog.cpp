@@ -29,10 +29,6 @@
 
 #include "vpProjectiveJointGroupTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 // The ground truth itself: the exponential of the metric twist, by an independent series and by the plugin's closed

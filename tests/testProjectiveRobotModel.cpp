@@ -28,10 +28,6 @@
 
 #include "vpProjectiveRobotTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 INSTANTIATE_TEST_SUITE_P(Arms, ProjectiveRobotSetup, ::testing::ValuesIn(kSetups),

@@ -20,10 +20,6 @@
 
 #include "vpProjectiveJointGroupTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 // Without an encoder reading (amount 0), the generator turns by the positive image angle (21): the joint's own for a

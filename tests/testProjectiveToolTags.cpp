@@ -40,10 +40,6 @@
 #include "vpProjectiveSessionTestTools.h"
 #include "vpProjectiveToolTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 namespace

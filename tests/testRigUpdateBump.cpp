@@ -21,10 +21,6 @@
 
 #include "vpRigUpdateTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 // One case of each kind, asserted one by one: detection within 2 iterations, no false alarm, re-registration close to

@@ -21,10 +21,6 @@
 
 #include "vpRigUpdateTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 // A general camera pair: F, epipoles, triangulation and projection agree with the cameras.

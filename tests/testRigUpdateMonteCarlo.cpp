@@ -28,10 +28,6 @@
 #include "vpProjectiveSessionTestTools.h" // rrprrrEyeToHand()
 #include "vpRigUpdateTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 namespace

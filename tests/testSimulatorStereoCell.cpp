@@ -28,10 +28,6 @@
 
 #include "vpProjectiveArmTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace
 {
 //! RMS distance (px) between the detected corners and the truth, over both images; -1 if the ids differ.

@@ -37,10 +37,6 @@
 
 #include "vpProjectiveTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace
 {
 using vpProjectiveTest::point3;

@@ -49,10 +49,6 @@
 #include "vpServoArmFollowingTestTools.h"
 #include "vpUserMistakesTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 // Wrong joint types: one joint declared of the other type (a revolute one prismatic, the slide revolute).

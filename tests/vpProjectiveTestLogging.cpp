@@ -30,10 +30,6 @@
 
 #include "vpProjectiveTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace
 {
 //! Set once, before main(): glog's flags are defined (and read from GLOG_* variables) by the shared library first.

@@ -28,10 +28,6 @@
 #include "core/vpProjectiveCeres.h"
 #include "core/vpProjectiveConversions.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace vpProjectiveInternal
 {
 vpProjectiveArmModel bundleAdjust(const ArmCalibrationData &data, const std::vector<Eigen::Vector4d> &M0,

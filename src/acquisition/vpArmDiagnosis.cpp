@@ -30,10 +30,6 @@
 
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using vpProjectiveAcquisitionInternal::jointValue;
 
 namespace vpProjectiveInternal

@@ -23,10 +23,6 @@
 #include <cmath>
 #include <limits>
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace vpProjectiveInternal
 {
 namespace

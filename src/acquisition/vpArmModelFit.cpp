@@ -29,10 +29,6 @@
 #include <visp3/projective/vpMetricTwist.h>
 #include <visp3/projective/vpProjectiveException.h>
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace vpProjectiveInternal
 {
 namespace

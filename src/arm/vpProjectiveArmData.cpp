@@ -15,10 +15,6 @@
 
 #include "arm/vpJointExponentialPair.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace
 {
 //! \f$ J(q, M) \f$ column by column, eq. (46): \e L (rows \f$ J_C(m) P \f$ and \f$ J_C(m') P' \f$, eq. (45)) times

@@ -25,10 +25,6 @@
 #include "core/vpProjectiveErrors.h"
 #include "core/vpProjectiveNumerics.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 namespace

@@ -33,10 +33,6 @@
 
 #include "cell/vpProjectiveCellInternal.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 using vpProjectiveCellInternal::at;
 

@@ -25,10 +25,6 @@
 
 #include "procedure/vpRobotJointLimits.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 vpProjectiveCellViSPArm::vpProjectiveCellViSPArm(vpRobot &robot,
                                                  const std::vector<vpProjectiveJoint::vpJointType> &types)
     : m_robot(robot), m_types(types), m_maxVelocities(static_cast<unsigned int>(types.size()))

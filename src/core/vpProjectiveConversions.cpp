@@ -15,10 +15,6 @@
 
 #include <sstream>
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace vpProjectiveInternal
 {
 std::vector<Eigen::Vector4d> stackStereoImages(const std::vector<vpImagePoint> &left,

@@ -21,10 +21,6 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace vpProjectiveInternal
 {
 Eigen::Matrix4d whitening(const std::vector<Eigen::Vector4d> &points)

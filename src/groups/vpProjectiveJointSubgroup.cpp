@@ -21,10 +21,6 @@
 
 #include "core/vpProjectiveConversions.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 // The definitions and the explicit instantiations stand in the namespace of the template, which an explicit
 // instantiation by its unqualified name requires. The instantiations are exported by the VISP_EXPORT of the template
 // (an attribute on an explicit instantiation of an already defined class is ignored by GCC).

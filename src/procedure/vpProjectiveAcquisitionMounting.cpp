@@ -33,10 +33,6 @@
 #include "core/vpImageWindow.h"
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveAcquisitionInternal;
 
 namespace

@@ -37,10 +37,6 @@
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
 #include "procedure/vpRobotJointLimits.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveAcquisitionInternal;
 
 bool vpProjectiveAcquisitionProcedure::acquire(std::vector<int> &ids, std::vector<vpImagePoint> &left,

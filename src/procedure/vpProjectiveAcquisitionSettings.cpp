@@ -29,10 +29,6 @@
 #include "acquisition/vpProjectiveAcquisitionInternal.h"
 #include "core/vpJointUnits.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveAcquisitionInternal;
 
 namespace

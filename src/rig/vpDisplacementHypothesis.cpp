@@ -15,10 +15,6 @@
 
 #include <Eigen/Dense>
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace vpProjectiveInternal
 {
 MinimalResult minimalHomography(const Eigen::Vector4d *const X[5], const Eigen::Vector4d *const Y[5],

@@ -37,10 +37,6 @@
 #include "rig/vpStereoReprojectionError.h"
 #include "rig/vpStereoRigGeometry.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 double vpProjectiveInternal::epipolarDistance(const Eigen::Matrix3d &F, const Eigen::Vector2d &m,

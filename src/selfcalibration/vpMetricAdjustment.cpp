@@ -25,10 +25,6 @@
 #include "core/vpProjection.h"
 #include "core/vpProjectiveCeres.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace vpProjectiveInternal
 {
 namespace

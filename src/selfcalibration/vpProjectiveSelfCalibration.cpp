@@ -23,10 +23,6 @@
 #include "selfcalibration/vpMetricAdjustment.h"
 #include "core/vpProjectiveErrors.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 namespace

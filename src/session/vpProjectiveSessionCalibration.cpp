@@ -38,10 +38,6 @@
 #include "core/vpProjectiveErrors.h"
 #include "session/vpProjectiveSessionInternal.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 using namespace vpProjectiveSessionInternal;
 

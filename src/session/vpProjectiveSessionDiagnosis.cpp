@@ -33,10 +33,6 @@
 #include "rig/vpStereoRigGeometry.h"
 #include "session/vpProjectiveSessionInternal.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 using namespace vpProjectiveSessionInternal;
 

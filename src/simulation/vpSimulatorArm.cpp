@@ -32,10 +32,6 @@
 #include "core/vpProjectiveConversions.h"
 #include "simulation/vpSimulatorArmInternal.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 namespace

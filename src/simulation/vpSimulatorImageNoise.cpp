@@ -20,10 +20,6 @@
 
 #include "core/vpProjectiveErrors.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace
 {
 const unsigned int kTableSize = 65536; // the 16-bit indices of nextIndex()

@@ -30,10 +30,6 @@
 
 #include "simulation/vpGaussianKernel.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 namespace
 {
 void checkRange(double value, double low, double high, const char *what, const char *advice)

@@ -27,10 +27,6 @@
 #include "core/vpProjectiveErrors.h"
 #include "simulation/vpSimulatorArmInternal.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 namespace

@@ -31,10 +31,6 @@
 
 #include "core/vpProjectiveErrors.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 vpSimulatorStereoCell::vpSimulatorStereoCell(const vpSimulatorArm &arm, const vpSimulatorStereoRig &rig,
                                              const vpColVector &q0, long seed)
     : m_robot(arm, q0), m_rig0(rig), m_renderer(rig, seed), m_rig(rig), m_toolTags(), m_sceneTags(), m_eyeInHand(false),

@@ -32,10 +32,6 @@
 #include "core/vpImageWindow.h"
 #include "core/vpProjectiveConversions.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 vpMatrix vpSimulatorStereoRig::getProjectiveToEuclidean(const vpProjectiveStereoRig &rig) const

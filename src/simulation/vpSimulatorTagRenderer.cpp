@@ -28,10 +28,6 @@
 #include "simulation/vpGaussianKernel.h"
 #include "core/vpProjectiveErrors.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using vpProjectiveInternal::fail;
 
 namespace

@@ -31,10 +31,6 @@
 
 #include <visp3/projective/vpProjectiveException.h>
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 #include "core/vpImageWindow.h"
 #include "tracking/vpStereoDotTrackerInternal.h"
 
