@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sstream>
 
 #include <Eigen/Eigenvalues>
 
@@ -23,6 +24,7 @@
 #include <ceres/rotation.h>
 
 #include "core/vpProjection.h"
+#include "core/vpProjectiveErrors.h"
 #include "core/vpProjectiveCeres.h"
 
 namespace vpProjectiveInternal
@@ -151,6 +153,19 @@ bool MetricChain::hasPrismatic() const
     }
   }
   return false;
+}
+
+void checkMarkerDistance(unsigned int markerA, unsigned int markerB, double distance, size_t markers,
+                         const std::string &where)
+{
+  if (markerA >= markers || markerB >= markers || markerA == markerB) {
+    std::ostringstream os;
+    os << "markers " << markerA << " and " << markerB << " are not two distinct markers of the model's " << markers;
+    fail(vpProjectiveException::dimensionError, where, os.str());
+  }
+  if (!std::isfinite(distance) || !(distance > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, where, "the marker distance must be positive and finite");
+  }
 }
 
 double largestDeviation(const Eigen::Matrix3d &S)

@@ -23,6 +23,7 @@
 
 #include <limits>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -83,6 +84,14 @@ MetricArm metricStart(const vpProjectiveArmModel &model);
 //! Predicted pixels of every marker of \e arm at readings \e q; false if one is not in front of both cameras.
 bool predictFrame(const MetricChain &chain, const MetricArm &arm, const vpProjectiveArmModel::JointVector &q,
                   std::vector<Eigen::Vector4d> &s);
+
+/*!
+  Checks the scale of SCALE_MARKER_DISTANCE (vpProjectiveSelfCalibration's constructor and setScale()): \e markerA
+  and \e markerB two distinct markers of the \e markers the model has, \e distance positive and finite.
+  \exception vpProjectiveException (dimensionError, invalidValueError) otherwise, at \e where.
+*/
+void checkMarkerDistance(unsigned int markerA, unsigned int markerB, double distance, size_t markers,
+                         const std::string &where);
 
 //! Square root of the largest eigenvalue of the symmetric \e S: the deviation along its least determined axis.
 double largestDeviation(const Eigen::Matrix3d &S);

@@ -130,15 +130,7 @@ MetricRig metricRig(const vpProjectiveArmModel &model, vpProjectiveSelfCalibrati
   } else if (scale == vpProjectiveSelfCalibration::SCALE_UNIT_BASELINE) {
     unitLength = baseline.norm();
   } else {
-    const size_t K = model.markers().size();
-    if (markerA >= K || markerB >= K || markerA == markerB) {
-      std::ostringstream os;
-      os << "markers " << markerA << " and " << markerB << " are not two distinct markers of the model's " << K;
-      fail(vpProjectiveException::dimensionError, where, os.str());
-    }
-    if (!std::isfinite(distance) || !(distance > 0.0)) {
-      fail(vpProjectiveException::invalidValueError, where, "the marker distance must be positive and finite");
-    }
+    checkMarkerDistance(markerA, markerB, distance, model.markers().size(), where);
     const Eigen::Vector4d A = G * model.markers()[markerA], B = G * model.markers()[markerB];
     unitLength = (A.head<3>() / A(3) - B.head<3>() / B(3)).norm() / distance;
   }

@@ -128,15 +128,7 @@ void vpProjectiveSelfCalibration::setScale(vpScale scale, unsigned int markerA, 
     fail(vpProjectiveException::notInitializedError, where, "no calibration; construct it from a model first");
   }
   if (scale == SCALE_MARKER_DISTANCE) {
-    const size_t K = m_markers.size();
-    if (markerA >= K || markerB >= K || markerA == markerB) {
-      std::ostringstream os;
-      os << "markers " << markerA << " and " << markerB << " are not two distinct markers of the model's " << K;
-      fail(vpProjectiveException::dimensionError, where, os.str());
-    }
-    if (!std::isfinite(distance) || !(distance > 0.0)) {
-      fail(vpProjectiveException::invalidValueError, where, "the marker distance must be positive and finite");
-    }
+    checkMarkerDistance(markerA, markerB, distance, m_markers.size(), where);
   }
   m_scale = scale;
   m_markerA = markerA;
