@@ -78,7 +78,7 @@ vpServoFeatureHealth::vpServoFeatureHealth()
 
 void vpServoFeatureHealth::addFeature()
 {
-  const vpRecord fresh = {FEATURE_ACTIVE, -1.0, -1.0, Eigen::Vector4d::Zero(), false, 0};
+  const vpRecord fresh = {FEATURE_ACTIVE, -1.0, -1.0, Eigen::Vector4d::Zero(), false, false, 0};
   m_tracked.push_back(1);
   m_records.push_back(fresh);
   m_work.push_back(fresh);
@@ -219,13 +219,15 @@ vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::classify(unsigned int
   record.hasM0 = last.hasM0;
   record.epipolarDistance = -1.0;
   record.predictionDistance = -1.0;
-  // The checks of the class documentation, in their order.
+  // The checks of the class documentation, in their order; the window whatever s* (isInView()).
+  const bool finite = s.allFinite();
+  record.inView = m_tracked[i] && finite && vpImageWindow(m_width, m_height, m_border).containsStereo(s);
   record.state = FEATURE_ACTIVE;
   if (!m_tracked[i]) {
     record.state = FEATURE_NOT_TRACKED;
-  } else if (!s.allFinite() || !sStar.allFinite()) {
+  } else if (!finite || !sStar.allFinite()) {
     record.state = FEATURE_NOT_FINITE;
-  } else if (!vpImageWindow(m_width, m_height, m_border).containsStereo(s)) {
+  } else if (!record.inView) {
     record.state = FEATURE_OUT_OF_IMAGE;
   }
   if (record.state == FEATURE_ACTIVE && m_outlierThreshold > 0.0) {
@@ -255,6 +257,13 @@ void vpServoFeatureHealth::endIteration()
   m_inIteration = false;
   m_model = nullptr;
   m_data = nullptr;
+}
+
+bool vpServoFeatureHealth::isInView(unsigned int i) const
+{
+  checkIndex(i, "isInView()");
+  const bool classifiedNow = m_inIteration && m_work[i].iteration == m_iteration;
+  return (classifiedNow ? m_work[i] : m_records[i]).inView;
 }
 
 const vpServoFeatureHealth::vpRecord &vpServoFeatureHealth::outcome(unsigned int i, const char *method) const

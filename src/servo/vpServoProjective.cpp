@@ -314,9 +314,10 @@ inline void vpServoProjective::commit()
   report.m_openLoopCalls = m_path.getOpenLoopCalls();
   report.m_errorScale = m_control.getErrorScale();
   report.m_rankTolerance = m_health.getRankTolerance();
-  report.m_law = m_control.getDampedLeastSquares();
-  report.m_limits = m_control.getJointLimitAvoidance();
-  report.m_arm = m_follow;
+  report.m_pseudoInverseThreshold = m_control.getDampedLeastSquares().getPseudoInverseThreshold();
+  m_control.getJointLimitAvoidance().getLargeProjectionThresholds(report.m_largeProjectionThresholds[0],
+                                                                  report.m_largeProjectionThresholds[1]);
+  report.m_arm.share(m_follow);
 }
 
 void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdot)

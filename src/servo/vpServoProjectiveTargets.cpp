@@ -24,7 +24,6 @@
 
 #include <Eigen/Dense>
 
-#include "core/vpImageWindow.h"
 #include "core/vpProjectiveConversions.h"
 
 #ifdef ENABLE_VISP_NAMESPACE
@@ -91,13 +90,9 @@ bool vpServoProjective::detectMismatch(const vpServoProjectiveData &data)
   if (m_mismatch.getThreshold() == 0.0) {
     return false; // detection off: no memory to keep
   }
-  const vpImageWindow window(m_health.getImageWidth(), m_health.getImageHeight(), m_health.getImageBorder());
   m_mismatch.startIteration(m_link.robot->getModel(), data);
   for (unsigned int i = 0; i < m_features.size(); ++i) {
-    const Eigen::Vector4d &s = data.getFeature(i);
-    bool usable = m_health.isFeatureTracked(i) && data.hasPoint(i);
-    usable = usable && window.containsStereo(s);
-    m_mismatch.observe(i, usable);
+    m_mismatch.observe(i, m_health.isInView(i)); // tracked, finite, in the window: the health's verdict of this call
   }
   return m_mismatch.endIteration();
 }

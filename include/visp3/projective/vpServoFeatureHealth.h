@@ -191,6 +191,13 @@ public:
   }
   //! Number of features found active.
   unsigned int getNumberOfActiveFeatures() const { return m_nbActive; }
+  /*!
+    True if feature \e i, at its classify() in the iteration in progress (else in the last completed iteration), was
+    tracked, finite and inside the image window of setImageSize(), whatever its desired value and the outlier tests:
+    a feature the model can be checked against (vpServoModelMismatch::observe()). The window is tested here only,
+    once per feature and iteration. \exception vpProjectiveException (dimensionError) on a bad index.
+  */
+  bool isInView(unsigned int i) const;
   //@}
 
 private:
@@ -201,6 +208,7 @@ private:
     double predictionDistance; // -1: not evaluated
     Eigen::Vector4d M0;        // H(q_l)^-1 M_l at the last acceptance, unit norm
     bool hasM0;                // M0 is set
+    bool inView;               // tracked, finite and inside the image window (isInView())
     unsigned long iteration;   // the iteration that classified it (0: none)
   };
 
