@@ -40,7 +40,7 @@ const double kStallRatio = 3.0;
 vpProjectivePathFollowing::vpProjectivePathFollowing()
     : m_planning(false), m_planner(), m_plannedFor(), m_pathSample(0), m_following(false), m_replans(0),
       m_lawLeftRehearsal(false), m_sincePlan(0), m_replanFailed(false), m_stallSum(),
-      m_stallSumSq(), m_stallHalves{0.0, 0.0}, m_stallCount(0), m_openLoopCalls(0), m_points(), m_hasPoint()
+      m_stallSumSq(), m_stallHalves{0.0, 0.0}, m_stallCount(0), m_openLoopCalls(0), m_seen()
 {
 }
 
@@ -58,22 +58,20 @@ void vpProjectivePathFollowing::setPlanning(bool planning)
 
 void vpProjectivePathFollowing::addFeature()
 {
-  m_points.push_back(Eigen::Vector4d::Zero());
-  m_hasPoint.push_back(0);
+  m_seen.push_back(0);
   restart(); // another task
 }
 
 void vpProjectivePathFollowing::clearFeatures()
 {
-  m_points.clear();
-  m_hasPoint.clear();
+  m_seen.clear();
   m_openLoopCalls = 0;
   restart();
 }
 
 void vpProjectivePathFollowing::forgetPoints()
 {
-  std::fill(m_hasPoint.begin(), m_hasPoint.end(), 0);
+  std::fill(m_seen.begin(), m_seen.end(), 0);
 }
 
 bool vpProjectivePathFollowing::plan(const vpProjectiveArmModel &model, const JointVector &q,
@@ -232,15 +230,21 @@ bool vpProjectivePathFollowing::mayOpenLoop(double period) const
   return underWay && maxOpenLoopTime > 0.0 && (m_openLoopCalls + 1) * period <= maxOpenLoopTime * (1.0 + 1e-9);
 }
 
+bool vpProjectivePathFollowing::predict(unsigned int i, const vpServoFeatureHealth &health,
+                                        const vpServoProjectiveData &data, Eigen::Vector4d &sHat) const
+{
+  Eigen::Vector4d M0;
+  return m_seen[i] && health.getMemory(i, M0) && data.predict(M0, sHat);
+}
+
 void vpProjectivePathFollowing::commit(vpServoProjectiveReport::vpServoStatus status,
                                        const vpServoFeatureHealth &health, const vpServoProjectiveData &data)
 {
-  // The open loop's memory: each active feature's point at the zero reference (no allocation), and the count of
-  // consecutive open-loop calls, which only the features seen again (a running task) restart.
-  for (unsigned int i = 0; i < m_points.size(); ++i) {
+  // The features the open loop may predict (the health remembers their points), and the count of consecutive
+  // open-loop calls, which only the features seen again (a running task) restart.
+  for (unsigned int i = 0; i < m_seen.size(); ++i) {
     if (health.getFeatureState(i) == vpServoFeatureHealth::FEATURE_ACTIVE && data.hasPoint(i)) {
-      m_points[i] = data.getZeroPoint(i);
-      m_hasPoint[i] = 1;
+      m_seen[i] = 1;
     }
   }
   if (status == vpServoProjectiveReport::SERVO_OPEN_LOOP) {

@@ -78,7 +78,7 @@ vpServoFeatureHealth::vpServoFeatureHealth()
 
 void vpServoFeatureHealth::addFeature()
 {
-  const vpRecord fresh = {FEATURE_ACTIVE, -1.0, -1.0, Eigen::Vector4d::Zero(), false, false, 0};
+  const vpRecord fresh = {FEATURE_ACTIVE, -1.0, -1.0, Eigen::Vector4d::Zero(), false, false, false, 0};
   m_tracked.push_back(1);
   m_records.push_back(fresh);
   m_work.push_back(fresh);
@@ -187,7 +187,7 @@ inline vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::outlierTest(co
   if (!(dF <= m_outlierThreshold)) {
     return FEATURE_OUTLIER;
   }
-  if (m_predict && record.hasM0) {
+  if (m_predict && record.predicts) {
     Eigen::Vector4d sHat;
     if (m_data->predict(record.M0, sHat)) {
       // The larger of both images' distances, one square root: sqrt is monotone, max(sqrt a, sqrt b) = sqrt(max(a, b)).
@@ -217,6 +217,7 @@ vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::classify(unsigned int
   const vpRecord &last = m_records[i];
   record.M0 = last.M0; // the memory of the last completed iteration
   record.hasM0 = last.hasM0;
+  record.predicts = last.predicts;
   record.epipolarDistance = -1.0;
   record.predictionDistance = -1.0;
   // The checks of the class documentation, in their order; the window whatever s* (isInView()).
@@ -235,10 +236,9 @@ vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::classify(unsigned int
   }
   if (record.state == FEATURE_ACTIVE) {
     ++m_workActive;
-    if (m_predict) {
-      record.M0 = m_data->getZeroPoint(i); // H(q_l)^-1 M_l, for the next predictions
-      record.hasM0 = true;
-    }
+    record.M0 = m_data->getZeroPoint(i); // H(q_l)^-1 M_l, for the next predictions (and the task's open loop)
+    record.hasM0 = true;
+    record.predicts = record.predicts || m_predict;
   }
   return record.state;
 }

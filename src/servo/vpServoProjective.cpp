@@ -189,7 +189,7 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
   for (unsigned int i = 0; i < m_features.size(); ++i) {
     const Eigen::Index r = 4 * static_cast<Eigen::Index>(i);
     Eigen::Vector4d sHat;
-    if (m_activeNow[i] || !m_path.predict(i, d, sHat)) {
+    if (m_activeNow[i] || !m_path.predict(i, m_health, d, sHat)) {
       continue;
     }
     d.computeFeature(model, i, sHat); // the feature the model predicts here, in place of the one not seen

@@ -48,10 +48,10 @@ BEGIN_VISP_NAMESPACE
   \f$ s^* \f$, shapeStep() on law (47)'s step, then commit() with the call's status. Sizes are the task's: \f$ N \f$
   features (addFeature() order), \f$ n \f$ joints (the model's joint values: radians or the encoder's length unit).
 
-  <b>Open loop.</b> The class remembers, per feature, its point at the zero reference \f$ H(q)^{-1} M \f$ at the last
-  call where it was active (vpServoProjectiveData::getZeroPoint()); while a plan is under way, for at most
-  vpProjectivePathPlanner::setMaxOpenLoopTime(), predict() gives the image of that point moved by this call's
-  \f$ H(q) \f$ in place of a feature set aside.
+  <b>Open loop.</b> While a plan is under way, for at most vpProjectivePathPlanner::setMaxOpenLoopTime(), predict()
+  gives, in place of a feature set aside, the image of its point at the zero reference where it was last active
+  (vpServoFeatureHealth::getMemory(), the task's one memory of it) moved by this call's \f$ H(q) \f$; only if it was
+  active since the model or its rig last changed (forgetPoints()).
 */
 class VISP_EXPORT vpProjectivePathFollowing
 {
@@ -124,16 +124,15 @@ public:
   */
   bool mayOpenLoop(double period) const;
   /*!
-    The prediction \e sHat (4x1, pixels) of feature \e i from its remembered point moved by the \f$ H(q) \f$ of
-    \e data. False (\e sHat unspecified) without a memory or on a camera's focal plane.
+    The prediction \e sHat (4x1, pixels) of feature \e i from \e health's memory of it moved by the \f$ H(q) \f$ of
+    \e data. False (\e sHat unspecified) without a memory of this model and rig, or on a camera's focal plane.
   */
-  bool predict(unsigned int i, const vpServoProjectiveData &data, Eigen::Vector4d &sHat) const
-  {
-    return m_hasPoint[i] && data.predict(m_points[i], sHat);
-  }
+  bool predict(unsigned int i, const vpServoFeatureHealth &health, const vpServoProjectiveData &data,
+               Eigen::Vector4d &sHat) const;
   /*!
-    Ends a successful call of status \e status whose features' states are \e health's: remembers the points of the
-    active features (\e data), counts the open-loop calls and moves to the next sample of a plan under way.
+    Ends a successful call of status \e status whose features' states are \e health's: notes the features active
+    (with a point in \e data) since the last forgetPoints(), counts the open-loop calls and moves to the next sample of
+    a plan under way.
   */
   void commit(vpServoProjectiveReport::vpServoStatus status, const vpServoFeatureHealth &health,
               const vpServoProjectiveData &data);
@@ -163,11 +162,10 @@ private:
   Eigen::VectorXd m_stallSum, m_stallSumSq;
   double m_stallHalves[2];
   unsigned int m_stallCount;
-  // The open loop: the consecutive open-loop calls, each feature's point (zero reference) at the last call where it
-  // was active and whether it has one.
+  // The open loop: the consecutive open-loop calls; per feature, active since the last forgetPoints() (its point at
+  // the zero reference is the feature health's memory).
   unsigned int m_openLoopCalls;
-  std::vector<Eigen::Vector4d> m_points;
-  std::vector<char> m_hasPoint;
+  std::vector<char> m_seen;
 };
 
 END_VISP_NAMESPACE
