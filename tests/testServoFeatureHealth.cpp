@@ -20,7 +20,9 @@
     distance that of the projection of H(q) H(q_l)^-1 M_l, computed here with the public ViSP-typed API; an accepted
     feature is predicted to rounding (below 1e-5 px with the acquired model), one moved 20 px along its epipolar line
     keeps d_F ~ 0 and is 20 px from its prediction;
-  - the memory exists only with outlier rejection on, and only from the second acceptance on;
+  - isInView() is the window's verdict on s whatever s* (what the model-mismatch check reads);
+  - every acceptance is remembered (getMemory(), the point H(q)^-1 M whose images are the feature's), the prediction
+    is tested only with outlier rejection on, and only from the second acceptance with it on;
   - an iteration interrupted before endIteration() changes neither the outcome nor the memories: a later iteration
     gives the same bits as in a twin that never saw it;
   - the iteration's data (vpServoProjectiveData) gives the linearly triangulated point of every feature;
@@ -165,6 +167,10 @@ TEST(ServoFeatureHealth, ClassificationOrderAndImageWindow)
     EXPECT_EQ(health.getPredictionDistance(k), -1.0) << "first iteration: no memory yet";
   }
   EXPECT_EQ(health.getNumberOfActiveFeatures(), 1u);
+  // In view (what the model-mismatch check may use): tracked, finite, inside the window; an outlier is.
+  for (unsigned int k = 0; k < 5; ++k) {
+    EXPECT_EQ(health.isInView(k), k >= 3) << "feature " << k;
+  }
   for (unsigned int k : {0u, 1u, 2u}) {
     EXPECT_EQ(health.getEpipolarDistance(k), -1.0) << "set aside before the epipolar test, feature " << k;
   }
@@ -192,9 +198,20 @@ TEST(ServoFeatureHealth, ClassificationOrderAndImageWindow)
   for (unsigned int k = 0; k < 8; ++k) {
     EXPECT_EQ(window.getFeatureState(k), k % 2 == 0 ? H::FEATURE_ACTIVE : H::FEATURE_OUT_OF_IMAGE) << "feature " << k;
   }
+  for (unsigned int k = 0; k < 8; ++k) {
+    EXPECT_EQ(window.isInView(k), k % 2 == 0) << "feature " << k;
+  }
+  // A non-finite s* sets the feature aside first, yet the window is tested on s: in view while inside it.
+  std::vector<Eigen::Vector4d> noTarget(8, Eigen::Vector4d::Constant(nan));
+  iterate(window, robot, q, bounds, noTarget);
+  for (unsigned int k = 0; k < 8; ++k) {
+    EXPECT_EQ(window.getFeatureState(k), H::FEATURE_NOT_FINITE) << "feature " << k;
+    EXPECT_EQ(window.isInView(k), k % 2 == 0) << "feature " << k;
+  }
   window.setImageSize(0, 0);
   iterate(window, robot, q, bounds, bounds);
   EXPECT_EQ(window.getNumberOfActiveFeatures(), 8u);
+  EXPECT_TRUE(window.isInView(1));
 }
 
 TEST(ServoFeatureHealth, DistancesAreTheDocumentedOnes)
@@ -243,7 +260,7 @@ TEST(ServoFeatureHealth, DistancesAreTheDocumentedOnes)
   }
 }
 
-TEST(ServoFeatureHealth, MemoryOnlyWithOutlierRejection)
+TEST(ServoFeatureHealth, PredictionOnlyWithOutlierRejection)
 {
   const ArmSetup setup = pumaEyeToHand();
   const vpProjectiveRobot robot = calibratedRobot(setup);
@@ -259,8 +276,17 @@ TEST(ServoFeatureHealth, MemoryOnlyWithOutlierRejection)
     EXPECT_EQ(health.getEpipolarDistance(k), -1.0);
     EXPECT_EQ(health.getPredictionDistance(k), -1.0);
   }
+  // The point where each feature was last accepted is remembered without the outlier rejection too (the task's open
+  // loop predicts from it): moved by H(q), its images are the feature's.
+  for (unsigned int k = 0; k < 3; ++k) {
+    Eigen::Vector4d M0, sHat;
+    ASSERT_TRUE(health.getMemory(k, M0)) << "feature " << k;
+    EXPECT_NEAR(M0.norm(), 1.0, 1e-12);
+    ASSERT_TRUE(dataAt(robot, q, s).predict(M0, sHat));
+    EXPECT_LT((sHat - s[k]).cwiseAbs().maxCoeff(), 1e-6) << "feature " << k;
+  }
   health.setOutlierThreshold(5.0);
-  iterate(health, robot, q, s, s); // first acceptance with a memory
+  iterate(health, robot, q, s, s); // first acceptance with the prediction test
   EXPECT_GE(health.getEpipolarDistance(0), 0.0);
   EXPECT_EQ(health.getPredictionDistance(0), -1.0);
   iterate(health, robot, q, s, s);
@@ -268,6 +294,10 @@ TEST(ServoFeatureHealth, MemoryOnlyWithOutlierRejection)
     EXPECT_GE(health.getPredictionDistance(k), 0.0);
     EXPECT_LT(health.getPredictionDistance(k), 1e-5);
   }
+  health.addFeature();
+  Eigen::Vector4d M0 = Eigen::Vector4d::Constant(7.0);
+  EXPECT_FALSE(health.getMemory(3, M0)); // never accepted
+  EXPECT_EQ(M0, Eigen::Vector4d::Constant(7.0));
   health.clearFeatures();
   EXPECT_EQ(health.getNumberOfFeatures(), 0u);
   EXPECT_EQ(health.getNumberOfActiveFeatures(), 0u);
@@ -352,6 +382,9 @@ TEST(ServoFeatureHealth, MisuseThrowsAndChangesNothing)
   health.setFeatureTracked(1, true);
   EXPECT_TRUE(throwsProjective([&] { health.setFeatureTracked(2, false); }, dim, "feature index 2"));
   EXPECT_TRUE(throwsProjective([&] { health.isFeatureTracked(2); }, dim, "feature index 2"));
+  EXPECT_TRUE(throwsProjective([&] { health.isInView(2); }, dim, "feature index 2"));
+  Eigen::Vector4d M0;
+  EXPECT_TRUE(throwsProjective([&] { health.getMemory(2, M0); }, dim, "feature index 2"));
   EXPECT_TRUE(throwsProjective([&] { health.getFeatureState(2); }, dim, "feature index 2"));
   EXPECT_TRUE(throwsProjective([&] { health.getEpipolarDistance(2); }, dim, "feature index 2"));
   EXPECT_TRUE(throwsProjective([&] { health.getPredictionDistance(2); }, dim, "feature index 2"));

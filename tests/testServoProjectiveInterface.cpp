@@ -376,4 +376,20 @@ TEST_F(ServoProjectivePuma, ReportIsTheLastSuccessfulCallWithItsSettings)
   t.task.computeControlLaw(q);
   EXPECT_GT((toEigenX(t.task.getReport().getLargeProjectionOperator()) - P).norm(), 1e-3);
   EXPECT_EQ(toEigenX(snapshot.getLargeProjectionOperator()), P);
+  // The arm-following check is not copied at each call: the task's report reads the task's, a copy keeps its own,
+  // after the task is gone too.
+  const unsigned int calls = t.task.getArmFollowing().getConsecutiveCalls();
+  vpServoProjectiveReport kept;
+  {
+    vpServoProjective other(t.task);
+    other.computeControlLaw(q);
+    kept = other.getReport();
+    other.getArmFollowing().setConsecutiveCalls(calls + 5);
+    EXPECT_EQ(other.getReport().getArmFollowing().getConsecutiveCalls(), calls + 5);
+  }
+  t.task.getArmFollowing().setConsecutiveCalls(calls + 1);
+  EXPECT_EQ(t.task.getReport().getArmFollowing().getConsecutiveCalls(), calls + 1);
+  EXPECT_EQ(snapshot.getArmFollowing().getConsecutiveCalls(), calls);
+  EXPECT_EQ(kept.getArmFollowing().getConsecutiveCalls(), calls);
+  EXPECT_EQ(kept.getStatus(), t.task.getStatus());
 }

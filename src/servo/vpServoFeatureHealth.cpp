@@ -78,7 +78,7 @@ vpServoFeatureHealth::vpServoFeatureHealth()
 
 void vpServoFeatureHealth::addFeature()
 {
-  const vpRecord fresh = {FEATURE_ACTIVE, -1.0, -1.0, Eigen::Vector4d::Zero(), false, 0};
+  const vpRecord fresh = {FEATURE_ACTIVE, -1.0, -1.0, Eigen::Vector4d::Zero(), false, false, false, 0};
   m_tracked.push_back(1);
   m_records.push_back(fresh);
   m_work.push_back(fresh);
@@ -187,7 +187,7 @@ inline vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::outlierTest(co
   if (!(dF <= m_outlierThreshold)) {
     return FEATURE_OUTLIER;
   }
-  if (m_predict && record.hasM0) {
+  if (m_predict && record.predicts) {
     Eigen::Vector4d sHat;
     if (m_data->predict(record.M0, sHat)) {
       // The larger of both images' distances, one square root: sqrt is monotone, max(sqrt a, sqrt b) = sqrt(max(a, b)).
@@ -217,15 +217,18 @@ vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::classify(unsigned int
   const vpRecord &last = m_records[i];
   record.M0 = last.M0; // the memory of the last completed iteration
   record.hasM0 = last.hasM0;
+  record.predicts = last.predicts;
   record.epipolarDistance = -1.0;
   record.predictionDistance = -1.0;
-  // The checks of the class documentation, in their order.
+  // The checks of the class documentation, in their order; the window whatever s* (isInView()).
+  const bool finite = s.allFinite();
+  record.inView = m_tracked[i] && finite && vpImageWindow(m_width, m_height, m_border).containsStereo(s);
   record.state = FEATURE_ACTIVE;
   if (!m_tracked[i]) {
     record.state = FEATURE_NOT_TRACKED;
-  } else if (!s.allFinite() || !sStar.allFinite()) {
+  } else if (!finite || !sStar.allFinite()) {
     record.state = FEATURE_NOT_FINITE;
-  } else if (!vpImageWindow(m_width, m_height, m_border).containsStereo(s)) {
+  } else if (!record.inView) {
     record.state = FEATURE_OUT_OF_IMAGE;
   }
   if (record.state == FEATURE_ACTIVE && m_outlierThreshold > 0.0) {
@@ -233,10 +236,9 @@ vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::classify(unsigned int
   }
   if (record.state == FEATURE_ACTIVE) {
     ++m_workActive;
-    if (m_predict) {
-      record.M0 = m_data->getZeroPoint(i); // H(q_l)^-1 M_l, for the next predictions
-      record.hasM0 = true;
-    }
+    record.M0 = m_data->getZeroPoint(i); // H(q_l)^-1 M_l, for the next predictions (and the task's open loop)
+    record.hasM0 = true;
+    record.predicts = record.predicts || m_predict;
   }
   return record.state;
 }
@@ -255,6 +257,13 @@ void vpServoFeatureHealth::endIteration()
   m_inIteration = false;
   m_model = nullptr;
   m_data = nullptr;
+}
+
+bool vpServoFeatureHealth::isInView(unsigned int i) const
+{
+  checkIndex(i, "isInView()");
+  const bool classifiedNow = m_inIteration && m_work[i].iteration == m_iteration;
+  return (classifiedNow ? m_work[i] : m_records[i]).inView;
 }
 
 const vpServoFeatureHealth::vpRecord &vpServoFeatureHealth::outcome(unsigned int i, const char *method) const

@@ -33,11 +33,8 @@ const vpErrorSite at("vpServoProjective");
 
 vpServoProjective::vpServoProjective()
     : m_link(), m_features(), m_desired(), m_control(), m_health(), m_mismatch(), m_follow(), m_targets(),
-      m_iterations(), m_lastIteration(0), m_planning(false), m_planner(), m_plannedFor(), m_pathSample(0),
-      m_following(false), m_replans(0), m_lawLeftRehearsal(false), m_sincePlan(0), m_replanFailed(false), m_stallSum(),
-      m_stallSumSq(), m_stallHalves{0.0, 0.0}, m_stallCount(0), m_openLoopCalls(0), m_seenPoints(), m_hasSeenPoint(),
-      m_activeNow(), m_errorUnit(ERROR_PIXELS), m_focalLength(0.0), m_q(), m_qFresh(false), m_targetGeneration(0),
-      m_refinement(), m_rigUpdatesSeen(0)
+      m_effective(), m_iterations(), m_lastIteration(0), m_path(), m_activeNow(), m_errorUnit(ERROR_PIXELS),
+      m_focalLength(0.0), m_q(), m_qFresh(false), m_targetGeneration(0), m_refinement(), m_rigUpdatesSeen(0)
 {
 }
 
@@ -48,11 +45,9 @@ void vpServoProjective::addFeature(vpFeatureStereoPoint &s, vpFeatureStereoPoint
   m_health.addFeature();
   m_mismatch.resize(static_cast<unsigned int>(m_features.size()));
   m_targets.push_back(vpTarget());
-  m_seenPoints.push_back(Eigen::Vector4d::Zero());
-  m_hasSeenPoint.push_back(0);
+  m_effective.push_back(Eigen::Vector4d::Zero());
   m_activeNow.push_back(0);
-  m_plannedFor.clear(); // another task: plan anew
-  m_following = false;
+  m_path.addFeature(); // another task: plan anew
   m_refinement.stop(); // another set of features: its frames and points would not match
   m_iterations[m_lastIteration].m_states.push_back(FEATURE_ACTIVE); // the report's state before the first call
   m_iterations[m_lastIteration].m_following = false;
@@ -65,12 +60,9 @@ void vpServoProjective::clearFeatures()
   m_health.clearFeatures();
   m_mismatch.resize(0);
   m_targets.clear();
-  m_seenPoints.clear();
-  m_hasSeenPoint.clear();
+  m_effective.clear();
   m_activeNow.clear();
-  m_openLoopCalls = 0;
-  m_plannedFor.clear();
-  m_following = false;
+  m_path.clearFeatures();
   m_refinement.stop();
   vpServoProjectiveReport &report = m_iterations[m_lastIteration];
   report.m_status = SERVO_RUNNING;
@@ -185,14 +177,9 @@ inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vp
 
 inline bool vpServoProjective::openLoop(vpIteration &it)
 {
-  // Only while a plan is under way (a path followed, or law (47) within its rehearsed iterations: checked inside the
-  // limits with the features in view), within the time allowed, with each set-aside feature that was active before
-  // predicted: its remembered point moved by this iteration's H(q). At rest, a lost feature stops the task as before.
-  const bool planned = m_planning && m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND &&
-                       m_pathSample < m_planner.getPath().size();
-  const double maxOpenLoopTime = m_planner.getMaxOpenLoopTime();
-  if (!planned || !(maxOpenLoopTime > 0.0) ||
-      (m_openLoopCalls + 1) * m_control.getControlPeriod() > maxOpenLoopTime * (1.0 + 1e-9)) {
+  // While the path following allows it, each set-aside feature that was active before is predicted: its remembered
+  // point moved by this iteration's H(q).
+  if (!m_path.mayOpenLoop(m_control.getControlPeriod())) {
     return false;
   }
   vpServoProjectiveData &d = it.m_data;
@@ -202,8 +189,7 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
   for (unsigned int i = 0; i < m_features.size(); ++i) {
     const Eigen::Index r = 4 * static_cast<Eigen::Index>(i);
     Eigen::Vector4d sHat;
-    if (m_activeNow[i] || !m_hasSeenPoint[i] ||
-        !model.getStereoRig().project(d.getDisplacement() * m_seenPoints[i], sHat)) {
+    if (m_activeNow[i] || !m_path.predict(i, m_health, d, sHat)) {
       continue;
     }
     d.computeFeature(model, i, sHat); // the feature the model predicts here, in place of the one not seen
@@ -260,9 +246,10 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
   // qdot1 = -lambda (J^T J + mu^2 I)^-1 J^T e, saturated: the motion the arm really makes. Along a planned path it is
   // the path's step to the next sample (feedforward) plus the law on the error to the current sample (feedback, with
   // the follower's gain), saturated as a whole.
-  it.m_lambda = m_following ? m_planner.getPathFollowingGain()
-                            : m_control.gain(it.m_data.m_JtJ, it.m_data.m_Jte, it.m_data.m_e.cwiseAbs().maxCoeff());
-  if (m_following || it.m_status == SERVO_OPEN_LOOP) {
+  const bool following = m_path.isFollowing();
+  it.m_lambda = following ? m_path.getPlanner().getPathFollowingGain()
+                          : m_control.gain(it.m_data.m_JtJ, it.m_data.m_Jte, it.m_data.m_e.cwiseAbs().maxCoeff());
+  if (following || it.m_status == SERVO_OPEN_LOOP) {
     m_control.getSettling()
         .reset(); // a path (or a prediction) is not a rest: settle on law (47), on the images, after it
   } else if (m_control.getSettling().isEnabled()) {
@@ -276,18 +263,7 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
   }
   m_control.computePrimaryStep(it.m_data.m_JtJ, it.m_data.m_Jte, it.m_lambda, qdot);
   const vpServoDampedLeastSquares &law = m_control.getDampedLeastSquares();
-  if (m_following) {
-    // The feedback corrects the model's error, a few pixels: bounded by half a path step, so that near a singular
-    // configuration (where its least-squares step is large) it cannot throw the arm off its path.
-    const double largest = qdot.cwiseAbs().maxCoeff(), bound = 0.5 * m_planner.getMaxJointStep();
-    if (largest > bound) {
-      qdot *= bound / largest;
-    }
-    qdot += m_planner.getPath()[m_pathSample] - m_planner.getPath()[m_pathSample - 1];
-    law.saturate(qdot);
-  } else if (m_planning) {
-    m_planner.guardStep(m_link.robot->getModel(), q, qdot); // law (47) toward a planned task: no overshoot
-  }
+  m_path.shapeStep(m_link.robot->getModel(), q, law, qdot); // the path's step, or no overshoot of a planned task
   it.m_damping = law.getDamping();
   it.m_saturated = law.isSaturated();
 }
@@ -301,11 +277,9 @@ inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIt
   // target (law (47) alone, even planned, is left as is); and the step never crosses a limit (the planned servo's
   // promise, which the avoidance alone cannot keep with a step of the path's size).
   const vpServoJointLimitAvoidance &limits = m_control.getJointLimitAvoidance();
-  const bool planned = m_planning && m_planner.getStatus() == vpProjectivePathPlanner::PLAN_FOUND &&
-                       m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
+  const JointVector *target = m_path.getPathTarget();
   const vpServoProjectiveData &d = it.m_data;
-  if (!m_following) {
-    const JointVector *target = planned ? &m_planner.getTarget() : nullptr;
+  if (!m_path.isFollowing()) {
     if (m_control.addJointLimitAvoidance(q, d.m_JtJ, d.m_Jte, d.m_errorNorm, qdot, it.m_qdot2, target)) {
       it.m_saturated = true;
     }
@@ -315,7 +289,7 @@ inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIt
       it.m_saturated = true;
     }
   }
-  if (planned && limits.hasJointLimits()) {
+  if (target != nullptr && limits.hasJointLimits()) {
     m_control.keepInside(q, d.m_JtJ, d.m_Jte, it.m_lambda, qdot); // a planned task never crosses a limit
   }
   if (!qdot.allFinite()) {
@@ -329,38 +303,21 @@ inline void vpServoProjective::commit()
   m_lastIteration = 1 - m_lastIteration;
   m_health.endIteration();
   m_control.getSettling().commit();
-  const vpIteration &it = m_iterations[m_lastIteration];
-  const vpServoStatus status = it.m_status;
-  // The open loop's memory: each active feature's point at the zero reference (no allocation), and the count of
-  // consecutive open-loop calls, which only the features seen again (a running task) restart.
-  for (unsigned int i = 0; i < m_features.size(); ++i) {
-    if (m_health.getFeatureState(i) == FEATURE_ACTIVE && it.m_data.hasPoint(i)) {
-      m_seenPoints[i] = it.m_data.getZeroPoint(i);
-      m_hasSeenPoint[i] = 1;
-    }
-  }
-  if (status == SERVO_OPEN_LOOP) {
-    ++m_openLoopCalls;
-  } else if (status == SERVO_RUNNING || status == SERVO_REDUCED) {
-    m_openLoopCalls = 0;
-  }
-  if (m_planning && m_pathSample < m_planner.getPath().size() &&
-      (status == SERVO_RUNNING || status == SERVO_REDUCED || status == SERVO_OPEN_LOOP)) {
-    ++m_pathSample; // the next call aims at the next sample (of the path, or of law (47)'s rehearsal)
-  }
   // The report of the call (no allocation once the sizes are known): what the task's parts keep of it.
   vpServoProjectiveReport &report = m_iterations[m_lastIteration];
+  m_path.commit(report.m_status, m_health, report.m_data); // the open loop's memory, the plan's next sample
   report.m_states.resize(m_features.size());
   for (unsigned int i = 0; i < m_features.size(); ++i) {
     report.m_states[i] = m_health.getFeatureState(i);
   }
-  report.m_following = m_following;
-  report.m_openLoopCalls = m_openLoopCalls;
+  report.m_following = m_path.isFollowing();
+  report.m_openLoopCalls = m_path.getOpenLoopCalls();
   report.m_errorScale = m_control.getErrorScale();
   report.m_rankTolerance = m_health.getRankTolerance();
-  report.m_law = m_control.getDampedLeastSquares();
-  report.m_limits = m_control.getJointLimitAvoidance();
-  report.m_arm = m_follow;
+  report.m_pseudoInverseThreshold = m_control.getDampedLeastSquares().getPseudoInverseThreshold();
+  m_control.getJointLimitAvoidance().getLargeProjectionThresholds(report.m_largeProjectionThresholds[0],
+                                                                  report.m_largeProjectionThresholds[1]);
+  report.m_arm.share(m_follow);
 }
 
 void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdot)
@@ -372,9 +329,9 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
   vpIteration &it = m_iterations[1 - m_lastIteration];
   refreshTargets();
   computeData(q, it.m_data);
-  const bool planned = !m_planning || planIfNeeded(q, it.m_data);
-  m_following = m_planning && planned && m_pathSample < m_planner.getPath().size() &&
-                m_planner.getPathKind() != vpProjectivePathPlanner::PATH_LAW;
+  const vpIteration &before = last();
+  const bool planned = m_path.plan(m_link.robot->getModel(), q, it.m_data, m_effective, m_control, m_health,
+                                   before.m_data.m_e, before.m_data.m_errorNorm);
   buildTask(q, it, method);
   const bool mismatch = detectMismatch(it.m_data); // after the last step that may throw
   const bool notFollowing = m_follow.evaluate(q, it.m_data.m_JtJ, 4 * it.m_data.m_nbActive);
@@ -403,7 +360,7 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
       m_refinement.refine(*m_link.modifiable);
     }
   }
-  noticeServoStatus(last(), m_planner, m_mismatch); // a program that never reads the status hears of it once
+  noticeServoStatus(last(), m_path.getPlanner(), m_mismatch); // a program that never reads the status hears of it once
 }
 
 vpColVector vpServoProjective::computeControlLaw(const vpColVector &q)

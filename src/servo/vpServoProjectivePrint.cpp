@@ -170,7 +170,7 @@ void vpServoProjective::print(std::ostream &os) const
             "markers' order; if the rig moved, re-register it\n";
     }
     if (last().m_status == SERVO_ARM_NOT_FOLLOWING) {
-      os << "  The arm: " << last().m_arm.getDiagnosis() << "\n";
+      os << "  The arm: " << last().getArmFollowing().getDiagnosis() << "\n";
     }
     os << "  Last step: gain " << last().m_lambda << ", damping " << last().m_damping << ", "
        << (last().m_saturated ? "saturated" : "not saturated") << "\n";

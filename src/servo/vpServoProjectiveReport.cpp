@@ -54,9 +54,12 @@ double conditionNumber(const vpProjectiveArmModel::JointMatrix &JtJ)
 
 vpServoProjectiveReport::vpServoProjectiveReport()
     : m_data(), m_status(SERVO_RUNNING), m_lambda(0.0), m_damping(0.0), m_saturated(false), m_qdot2(),
-      m_following(false), m_openLoopCalls(0), m_errorScale(1.0), m_rankTolerance(1e-6), m_states(), m_law(), m_limits(),
+      m_following(false), m_openLoopCalls(0), m_errorScale(1.0), m_rankTolerance(1e-6), m_states(),
+      m_pseudoInverseThreshold(vpServoDampedLeastSquares().getPseudoInverseThreshold()), m_largeProjectionThresholds(),
       m_arm()
 {
+  vpServoJointLimitAvoidance().getLargeProjectionThresholds(m_largeProjectionThresholds[0],
+                                                            m_largeProjectionThresholds[1]);
 }
 
 /*
@@ -135,9 +138,14 @@ vpMatrix vpServoProjectiveReport::getLargeProjectionOperator() const
     fail(vpProjectiveException::notInitializedError, at("getLargeProjectionOperator()"),
          "no task Jacobian yet; call computeControlLaw() first");
   }
+  // The parts with the call's settings, on demand: the task does not copy its parts into the report at each call.
+  vpServoDampedLeastSquares law;
+  law.setPseudoInverseThreshold(m_pseudoInverseThreshold);
+  vpServoJointLimitAvoidance limits;
+  limits.setLargeProjectionThresholds(m_largeProjectionThresholds[0], m_largeProjectionThresholds[1]);
   JointMatrix P;
-  m_limits.computeLargeProjectionOperator(m_data.getJtJ(), m_data.getJte(), m_data.getError().norm() / m_errorScale,
-                                          m_law, P);
+  limits.computeLargeProjectionOperator(m_data.getJtJ(), m_data.getJte(), m_data.getError().norm() / m_errorScale, law,
+                                        P);
   return toVisp(P);
 }
 

@@ -55,8 +55,9 @@ BEGIN_VISP_NAMESPACE
   (4x4) since then.
 
   <b>Memory.</b> The class keeps, per feature, \f$ M_0 = H(q_l)^{-1} M_l \f$ (unit norm, never divided by its last
-  coordinate), so that each iteration needs one \f$ H(q) \f$. The prediction is tested once the feature has been
-  accepted at least once.
+  coordinate; getMemory()), so that each iteration needs one \f$ H(q) \f$. The prediction is tested once the feature
+  has been accepted at least once with the outlier rejection on. It is the task's only memory of where a feature was
+  last accepted: vpServoProjective's open loop predicts from it too (vpProjectivePathFollowing::predict()).
 
   <b>One iteration.</b> startIteration() on the iteration's data (vpServoProjectiveData: \f$ H(q) \f$ and the
   triangulated points, computed once by the servo), classify() for every feature, then endIteration(): only then do the
@@ -191,6 +192,26 @@ public:
   }
   //! Number of features found active.
   unsigned int getNumberOfActiveFeatures() const { return m_nbActive; }
+  /*!
+    True if feature \e i, at its classify() in the iteration in progress (else in the last completed iteration), was
+    tracked, finite and inside the image window of setImageSize(), whatever its desired value and the outlier tests:
+    a feature the model can be checked against (vpServoModelMismatch::observe()). The window is tested here only,
+    once per feature and iteration. \exception vpProjectiveException (dimensionError) on a bad index.
+  */
+  bool isInView(unsigned int i) const;
+  /*!
+    The point \e M0 (4x1, unit norm, projective frame of the rig at the zero reference) of feature \e i at the last
+    completed iteration where it was accepted (FEATURE_ACTIVE): \f$ H(q_l)^{-1} M_l \f$. False (\e M0 untouched) if it
+    never was. \exception vpProjectiveException (dimensionError) on a bad index.
+  */
+  bool getMemory(unsigned int i, Eigen::Vector4d &M0) const
+  {
+    const vpRecord &r = outcome(i, "getMemory()");
+    if (r.hasM0) {
+      M0 = r.M0;
+    }
+    return r.hasM0;
+  }
   //@}
 
 private:
@@ -201,6 +222,8 @@ private:
     double predictionDistance; // -1: not evaluated
     Eigen::Vector4d M0;        // H(q_l)^-1 M_l at the last acceptance, unit norm
     bool hasM0;                // M0 is set
+    bool predicts;             // accepted with the outlier rejection on: the prediction is tested
+    bool inView;               // tracked, finite and inside the image window (isInView())
     unsigned long iteration;   // the iteration that classified it (0: none)
   };
 

@@ -29,6 +29,7 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpFeatureStereoPoint.h>
+#include <visp3/projective/vpProjectivePathFollowing.h>
 #include <visp3/projective/vpProjectivePathPlanner.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpServoControlLaw.h>
@@ -293,7 +294,7 @@ public:
     (setPathFollowingGain(), setMaxOpenLoopTime(): \ref servo_task_open_loop) and its last plan (target, branches,
     path, description).
   */
-  vpProjectivePathPlanner &getPathPlanner() { return m_planner; }
+  vpProjectivePathPlanner &getPathPlanner() { return m_path.getPlanner(); }
   //@}
 
   /*! \name The parts of the task */
@@ -339,21 +340,18 @@ private:
   void stop(vpIteration &it, JointVector &qdot);
   void commit();
   const vpServoProjectiveReport &last() const { return m_iterations[m_lastIteration]; }
-  bool planIfNeeded(const JointVector &q, const vpServoProjectiveData &data);
-  bool lawStalled(const Eigen::VectorXd &e);
-  Eigen::Vector4d desired(unsigned int i) const;
+  const Eigen::Vector4d &desired(unsigned int i) const { return m_path.getReference(i, m_effective[i]); }
   void refreshTargets();
   void computeData(const JointVector &q, vpServoProjectiveData &data) const;
   bool detectMismatch(const vpServoProjectiveData &data);
   bool openLoop(vpIteration &it);
 
-  //! The task's copy of a desired feature.
+  //! The task's copy of a desired feature (the s* it uses: m_effective).
   struct vpTarget {
-    Eigen::Vector4d user = Eigen::Vector4d::Zero();      // the user's s* when last read
-    Eigen::Vector4d effective = Eigen::Vector4d::Zero(); // the s* the task uses
-    Eigen::Vector4d point = Eigen::Vector4d::Zero();     // the point (model frame) that user showed through its rig
-    bool hasPoint = false;                               // point is set
-    bool valid = false;                                  // user and effective are set
+    Eigen::Vector4d user = Eigen::Vector4d::Zero();  // the user's s* when last read
+    Eigen::Vector4d point = Eigen::Vector4d::Zero(); // the point (model frame) that user showed through its rig
+    bool hasPoint = false;                           // point is set
+    bool valid = false;                              // user and m_effective are set
   };
 
   vpRobotLink m_link;
@@ -366,30 +364,13 @@ private:
   vpServoModelMismatch m_mismatch;
   vpServoArmFollowing m_follow;
   std::vector<vpTarget> m_targets;
+  std::vector<Eigen::Vector4d> m_effective; // per feature: the s* the task uses (the path following plans for it)
   // m_iterations[m_lastIteration]: the last successful call, read by the getters; commit() flips to the other.
   vpIteration m_iterations[2];
   unsigned int m_lastIteration;
 
-  // Path planning: the plan of the desired features m_plannedFor, followed sample by sample.
-  bool m_planning;
-  vpProjectivePathPlanner m_planner;
-  std::vector<Eigen::Vector4d> m_plannedFor;
-  size_t m_pathSample;     // the sample the next call aims at
-  bool m_following;        // the last call followed the path
-  unsigned int m_replans;  // plans again from an off-path configuration since the target was set
-  bool m_lawLeftRehearsal; // law (47) left its rehearsal since the target was set: plan paths only
-  size_t m_sincePlan;      // calls since the last plan
-  bool m_replanFailed;     // the last plan was a re-plan that found nothing: law (47) runs
-  // Law (47) as planned, after its rehearsed iterations: the error's sum and sum of squares over a window of calls,
-  // and its squared norms over the window's halves (sized at each plan: no allocation per call).
-  Eigen::VectorXd m_stallSum, m_stallSumSq;
-  double m_stallHalves[2];
-  unsigned int m_stallCount;
-  // The planner's setMaxOpenLoopTime(): the consecutive open-loop calls, each feature's point (zero reference) at the
-  // last call where it was active and whether it has one.
-  unsigned int m_openLoopCalls;
-  std::vector<Eigen::Vector4d> m_seenPoints;
-  std::vector<char> m_hasSeenPoint;
+  // setPathPlanning(): the planner, when to plan, the plan's reference, the open loop.
+  vpProjectivePathFollowing m_path;
   std::vector<char> m_activeNow; // per feature: active in the iteration in progress (buildTask())
 
   // setErrorUnit(): the unit, the focal length given (0: estimated; the scale is the law's); setJointPositions().

@@ -100,8 +100,10 @@ public:
   //! Consecutive calls that ended in SERVO_OPEN_LOOP, up to this one (0 when it did not).
   unsigned int getOpenLoopCalls() const { return m_openLoopCalls; }
   //! The arm-following check after the call: its settings, its verdict and, after SERVO_ARM_NOT_FOLLOWING, its cause
-  //! and each joint's motion (vpServoArmFollowing::getDiagnosis()).
-  const vpServoArmFollowing &getArmFollowing() const { return m_arm; }
+  //! and each joint's motion (vpServoArmFollowing::getDiagnosis()). The task's report reads the task's own check (a
+  //! reset() or a setting of vpServoProjective::getArmFollowing() shows at once); a copy of the report holds a copy of
+  //! it, kept after the task is gone.
+  const vpServoArmFollowing &getArmFollowing() const { return m_arm.get(); }
   //@}
 
   /*! \name The law */
@@ -163,9 +165,32 @@ private:
   double m_errorScale;                  // pixels per unit of error
   double m_rankTolerance;               // the rank test's tolerance
   std::vector<vpFeatureState> m_states; // per feature
-  vpServoDampedLeastSquares m_law;      // the law's settings at the call (for P)
-  vpServoJointLimitAvoidance m_limits;  // the limits' settings at the call (for P)
-  vpServoArmFollowing m_arm;            // the arm-following check after the call
+  // The settings of the call that P depends on: the law's pseudo-inverse threshold, the limits' thresholds on ||e||.
+  double m_pseudoInverseThreshold;
+  double m_largeProjectionThresholds[2];
+  //! The arm-following check: the task's part read in place (no copy per call) while the report is the task's, a copy
+  //! of it in a copy of the report.
+  class vpArmFollowingView
+  {
+  public:
+    vpArmFollowingView() : m_shared(nullptr), m_owned() {}
+    vpArmFollowingView(const vpArmFollowingView &other) : m_shared(nullptr), m_owned(other.get()) {}
+    vpArmFollowingView &operator=(const vpArmFollowingView &other)
+    {
+      if (this != &other) {
+        m_owned = other.get();
+        m_shared = nullptr;
+      }
+      return *this;
+    }
+    void share(const vpServoArmFollowing &arm) { m_shared = &arm; }
+    const vpServoArmFollowing &get() const { return m_shared != nullptr ? *m_shared : m_owned; }
+
+  private:
+    const vpServoArmFollowing *m_shared; // the task's part, or nullptr
+    vpServoArmFollowing m_owned;
+  };
+  vpArmFollowingView m_arm; // the arm-following check after the call
 };
 
 END_VISP_NAMESPACE
