@@ -45,10 +45,6 @@
 #include "vpProjectiveSessionTestTools.h"
 #include "vpServoArmFollowingTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 namespace

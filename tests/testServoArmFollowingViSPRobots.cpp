@@ -55,10 +55,6 @@
 #include "vpProjectiveTestTools.h"
 #include "vpServoArmFollowingTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 namespace

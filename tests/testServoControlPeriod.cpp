@@ -38,10 +38,6 @@
 
 #include "vpProjectiveArmTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 namespace

@@ -22,10 +22,6 @@
 
 #include "vpServoProjectiveTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 TEST(ServoProjective, ConvergesNoiseFreePuma)

@@ -40,10 +40,6 @@
 #include "vpProjectiveArmTestTools.h"
 #include "vpProjectiveTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 namespace

@@ -20,10 +20,6 @@
 
 #include "vpServoProjectiveTestTools.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveTest;
 
 TEST(ServoProjective, JointLimitAvoidanceKeepsTheJointInside)

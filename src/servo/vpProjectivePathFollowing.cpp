@@ -20,10 +20,6 @@
 
 #include "core/vpProjectiveConversions.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 const vpErrorSite at("vpServoProjective"); // the task's computeControlLaw() raises the path following's errors

@@ -34,10 +34,6 @@
 #include "core/vpImageWindow.h"
 #include "core/vpProjectiveErrors.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 namespace

@@ -32,10 +32,6 @@
 #include "core/vpProjectiveErrors.h"
 #include "servo/vpProjectivePathPlannerInternal.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 vpProjectivePathPlanner::vpProjectivePathPlanner()

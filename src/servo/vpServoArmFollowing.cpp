@@ -19,10 +19,6 @@
 
 #include "core/vpProjectiveErrors.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 namespace

@@ -21,10 +21,6 @@
 
 #include "core/vpProjectiveConversions.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 const vpErrorSite at("vpServoDampedLeastSquares");

@@ -23,10 +23,6 @@
 #include "core/vpProjectiveConversions.h"
 #include "servo/vpServoProjectiveNotices.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 const vpErrorSite at("vpServoProjective");

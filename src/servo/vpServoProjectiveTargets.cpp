@@ -26,10 +26,6 @@
 
 #include "core/vpProjectiveConversions.h"
 
-#ifdef ENABLE_VISP_NAMESPACE
-using namespace VISP_NAMESPACE_NAME;
-#endif
-
 using namespace vpProjectiveInternal;
 
 const vpErrorSite at("vpServoProjective"); // const: internal linkage, as in vpServoProjective.cpp
