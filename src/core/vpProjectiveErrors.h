@@ -59,6 +59,16 @@ inline void requireFinite(double x, const std::string &where, const std::string 
   }
 }
 
+//! A setter's count (calls, starts, frames), checked: \e count if at least 1, else the error \e why (what one means
+//! and what to pass).
+inline unsigned int atLeastOne(unsigned int count, const std::string &where, const std::string &why)
+{
+  if (count == 0) {
+    fail(vpProjectiveException::invalidValueError, where, why);
+  }
+  return count;
+}
+
 //! A setter's non-negative setting, checked: \e x if finite and >= 0, else the error saying that \e what (e.g. "the
 //! gain") must be, with \e use (what 0 or a value means, e.g. "pixels; 0 disables the outlier rejection").
 inline double nonNegative(double x, const std::string &where, const std::string &what, const std::string &use)

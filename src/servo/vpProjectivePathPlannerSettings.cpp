@@ -158,11 +158,8 @@ void vpProjectivePathPlanner::setJointLimitMargin(double fraction)
 
 void vpProjectivePathPlanner::setNumberOfStarts(unsigned int starts)
 {
-  if (starts == 0) {
-    fail(vpProjectiveException::invalidValueError, plannerAt("setNumberOfStarts()"),
-         "the inverse kinematics needs at least one random start to look for other branches");
-  }
-  m_starts = starts;
+  m_starts = atLeastOne(starts, plannerAt("setNumberOfStarts()"),
+                        "the inverse kinematics needs at least one random start to look for other branches");
 }
 
 void vpProjectivePathPlanner::setPathFollowingGain(double gain)

@@ -152,11 +152,8 @@ void vpServoArmFollowing::setEnabled(bool enabled)
 
 void vpServoArmFollowing::setConsecutiveCalls(unsigned int calls)
 {
-  if (calls == 0) {
-    fail(vpProjectiveException::invalidValueError, at("setConsecutiveCalls()"),
-         "the arm must disagree on at least one call to stop the task; pass 1 or more (default 3)");
-  }
-  m_calls = calls;
+  m_calls = atLeastOne(calls, at("setConsecutiveCalls()"),
+                       "the arm must disagree on at least one call to stop the task; pass 1 or more (default 3)");
 }
 
 void vpServoArmFollowing::setControlPeriod(double seconds)

@@ -60,11 +60,8 @@ void vpServoModelMismatch::setThreshold(double pixels)
 
 void vpServoModelMismatch::setConsecutiveIterations(unsigned int iterations)
 {
-  if (iterations == 0) {
-    fail(vpProjectiveException::invalidValueError, "vpServoModelMismatch::setConsecutiveIterations()",
-         "a mismatch needs at least one disagreeing iteration; pass 1 or more (default 2)");
-  }
-  m_iterations = iterations;
+  m_iterations = atLeastOne(iterations, "vpServoModelMismatch::setConsecutiveIterations()",
+                            "a mismatch needs at least one disagreeing iteration; pass 1 or more (default 2)");
 }
 
 void vpServoModelMismatch::resize(unsigned int features)

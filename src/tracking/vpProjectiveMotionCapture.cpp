@@ -63,11 +63,7 @@ void vpProjectiveMotionCapture::setInitialJoints(const vpColVector &q0)
 
 void vpProjectiveMotionCapture::setVelocityWindow(unsigned int frames)
 {
-  if (frames == 0) {
-    fail(vpProjectiveException::invalidValueError, at("setVelocityWindow()"),
-         "the velocity is fitted over at least 1 past frame");
-  }
-  m_window = frames;
+  m_window = atLeastOne(frames, at("setVelocityWindow()"), "the velocity is fitted over at least 1 past frame");
 }
 
 const vpProjectiveArmModel::JointVector &vpProjectiveMotionCapture::capture(double t,

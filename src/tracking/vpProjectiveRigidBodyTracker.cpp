@@ -149,11 +149,7 @@ void vpProjectiveRigidBodyTracker::setProjectiveToMetric(const vpMatrix &G)
 
 void vpProjectiveRigidBodyTracker::setVelocityWindow(unsigned int frames)
 {
-  if (frames == 0) {
-    fail(vpProjectiveException::invalidValueError, at("setVelocityWindow()"),
-         "the velocity is fitted over at least 1 past frame");
-  }
-  m_window = frames;
+  m_window = atLeastOne(frames, at("setVelocityWindow()"), "the velocity is fitted over at least 1 past frame");
 }
 
 bool vpProjectiveRigidBodyTracker::refine(const std::vector<Eigen::Vector4d> &s, Eigen::Matrix4d &H, double &cost,
