@@ -46,9 +46,9 @@ typedef vpProjectiveSessionCalibration Calibration;
 typedef vpProjectiveCellFingerprint Fingerprint;
 
 //! A camera's identity as V4L2 gives it.
-Fingerprint::vpCameraIdentity camera(const std::string &device, const std::string &serial)
+vpStereoImageSource::vpCameraIdentity camera(const std::string &device, const std::string &serial)
 {
-  Fingerprint::vpCameraIdentity c;
+  vpStereoImageSource::vpCameraIdentity c;
   c.device = device;
   c.name = "HD Webcam C920";
   c.bus = "usb-0000:00:14.0-" + device.substr(device.size() - 1);
@@ -57,8 +57,8 @@ Fingerprint::vpCameraIdentity camera(const std::string &device, const std::strin
 }
 
 //! A writer preparation that records the cameras \e left and \e right.
-std::function<void(vpProjectiveSessionWriter &)> withCameras(const Fingerprint::vpCameraIdentity &left,
-                                                             const Fingerprint::vpCameraIdentity &right)
+std::function<void(vpProjectiveSessionWriter &)> withCameras(const vpStereoImageSource::vpCameraIdentity &left,
+                                                             const vpStereoImageSource::vpCameraIdentity &right)
 {
   return [left, right](vpProjectiveSessionWriter &writer) { writer.setCameras(left, right); };
 }
@@ -204,7 +204,7 @@ struct Mistake {
   std::string name;
   ArmSetup cell;
   std::function<vpColVector(const vpColVector &)> readingsOf;
-  Fingerprint::vpCameraIdentity left, right;
+  vpStereoImageSource::vpCameraIdentity left, right;
   Calibration::vpRigState expected;
   std::string opening; // how the diagnosis message starts
 };
@@ -216,8 +216,10 @@ struct Mistake {
 */
 TEST(ProjectiveSessionCameras, CheckNamesTheLikeliestCauseFirst)
 {
-  const Fingerprint::vpCameraIdentity A = camera("/dev/video0", "8A3F1C2E"), B = camera("/dev/video2", "5D09B7A1"),
-                                      C = camera("/dev/video0", "11112222"), D = camera("/dev/video2", "33334444");
+  const vpStereoImageSource::vpCameraIdentity A = camera("/dev/video0", "8A3F1C2E"),
+                                              B = camera("/dev/video2", "5D09B7A1"),
+                                              C = camera("/dev/video0", "11112222"),
+                                              D = camera("/dev/video2", "33334444");
   const vpHomogeneousMatrix bump(0.01, 0.0, 0.0, 0.0, vpMath::rad(2.0), 0.0); // 1 cm and 2 deg
   for (const ArmSetup &s : {viperEyeToHand(), rrprrrEyeToHand()}) {
     TemporaryFolder tmp;
@@ -310,7 +312,7 @@ TEST(ProjectiveSessionCameras, CheckNamesTheLikeliestCauseFirst)
 
 TEST(ProjectiveSessionCameras, CamerasLayoutAndFingerprintAreWrittenAndReadBack)
 {
-  const Fingerprint::vpCameraIdentity A = camera("/dev/video0", "8A3F1C2E"), B = camera("/dev/video2", "");
+  const vpStereoImageSource::vpCameraIdentity A = camera("/dev/video0", "8A3F1C2E"), B = camera("/dev/video2", "");
   const ArmSetup s = viperEyeToHand();
   TemporaryFolder tmp;
   auto rec = std::make_shared<Recording>();
@@ -331,7 +333,7 @@ TEST(ProjectiveSessionCameras, CamerasLayoutAndFingerprintAreWrittenAndReadBack)
   EXPECT_EQ(Fingerprint::sameCamera(session.getRightCamera(), B), 1);
   EXPECT_EQ(Fingerprint::sameCamera(session.getRightCamera(), A), 0);
   EXPECT_EQ(session.getCameraLayout(), Fingerprint::LAYOUT_ANY);
-  Fingerprint::vpCameraIdentity l, r;
+  vpStereoImageSource::vpCameraIdentity l, r;
   EXPECT_TRUE(vpProjectiveSessionSource(session).getCameraIdentities(l, r));
   EXPECT_EQ(r.device, B.device);
   EXPECT_FALSE(vpProjectiveSessionSource(old).getCameraIdentities(l, r));
