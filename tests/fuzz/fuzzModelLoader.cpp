@@ -51,9 +51,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   const unsigned int n = model.getNumberOfJoints();
   Eigen::Matrix4d H = model.displacement(vpProjectiveArmModel::JointVector::Zero(n));
   H = model.displacement(vpProjectiveArmModel::JointVector::Constant(n, 0.1));
-  vpProjectiveArmData data;
-  vpProjectiveKinematics::forwardKinematics(model, data, vpProjectiveArmModel::JointVector::Constant(n, 0.2));
+  vpProjectiveArmData arm;
+  vpProjectiveKinematics::forwardKinematics(model, arm, vpProjectiveArmModel::JointVector::Constant(n, 0.2));
   vpProjectiveArmModel::PointJacobian J;
-  vpProjectiveKinematics::imageJacobian(model, data, H * model.markers()[0], J);
+  vpProjectiveKinematics::imageJacobian(model, arm, H * model.markers()[0], J);
   return 0;
 }
