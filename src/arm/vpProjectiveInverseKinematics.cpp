@@ -39,16 +39,15 @@ const double kMaxRevoluteStep = 0.35;
   The normal equations of the pixel error at \e q: \f$ J^T J \f$ (n x n), \f$ J^T r \f$ and the cost \f$ r^T r \f$,
   accumulated marker by marker (4 rows of \f$ J \f$, eq. (46), at a time: nothing is allocated), plus the prior's
   \f$ w^2 \| q - q_p \|^2 \f$ if \e prior is not null (\e pixelCost: the pixel part alone). False if a marker is on a
-  camera's focal plane at \e q.
+  camera's focal plane at \e q. \e data, the caller's for all its evaluations, keeps the generators' squares.
 */
-bool normalEquations(const vpProjectiveArmModel &model, const std::vector<Eigen::Vector4d> &s,
-                     const std::vector<Eigen::Vector4d> &points, const vpProjectiveArmModel::JointVector &q,
-                     const vpProjectiveArmModel::JointVector *prior, double weight,
-                     vpProjectiveArmModel::JointMatrix &JtJ, vpProjectiveArmModel::JointVector &Jtr, double &cost,
-                     double &pixelCost)
+bool normalEquations(const vpProjectiveArmModel &model, vpProjectiveArmData &data,
+                     const std::vector<Eigen::Vector4d> &s, const std::vector<Eigen::Vector4d> &points,
+                     const vpProjectiveArmModel::JointVector &q, const vpProjectiveArmModel::JointVector *prior,
+                     double weight, vpProjectiveArmModel::JointMatrix &JtJ, vpProjectiveArmModel::JointVector &Jtr,
+                     double &cost, double &pixelCost)
 {
   const Eigen::Index n = static_cast<Eigen::Index>(model.getNumberOfJoints());
-  vpProjectiveArmData data;
   vpProjectiveKinematics::forwardKinematics(model, data, q);
   JtJ.setZero(n, n);
   Jtr.setZero(n);
@@ -101,7 +100,8 @@ vpProjectiveInverseKinematics::solve(const vpProjectiveArmModel &model, const st
   JointMatrix JtJ, A;
   JointVector Jtr, q = q0, qNew, step;
   double cost = 0.0, pixelCost = 0.0;
-  if (!normalEquations(model, s, points, q, prior, priorWeight, JtJ, Jtr, cost, pixelCost)) {
+  vpProjectiveArmData data;
+  if (!normalEquations(model, data, s, points, q, prior, priorWeight, JtJ, Jtr, cost, pixelCost)) {
     fail(vpProjectiveException::estimationFailedError, "vpProjectiveInverseKinematics::solve()",
          "a marker lies on a camera's focal plane at the starting joint values; start closer to the solution (q0)");
   }
@@ -131,7 +131,7 @@ vpProjectiveInverseKinematics::solve(const vpProjectiveArmModel &model, const st
     JointMatrix JtJNew;
     JointVector JtrNew;
     double costNew = 0.0, pixelCostNew = 0.0;
-    if (normalEquations(model, s, points, qNew, prior, priorWeight, JtJNew, JtrNew, costNew, pixelCostNew) &&
+    if (normalEquations(model, data, s, points, qNew, prior, priorWeight, JtJNew, JtrNew, costNew, pixelCostNew) &&
         costNew < cost) {
       q = qNew;
       JtJ = JtJNew;
