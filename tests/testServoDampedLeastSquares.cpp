@@ -17,17 +17,23 @@
   - away from singularities (sigma_min > sigma_0) qdot = -lambda V diag(1/sigma) U^T e = -lambda J^+ e, for sizes
     from 5x3 to 40x16, and the vpServo law of a 6-point IBVS (12x6 metric interaction matrix) with sigma_0 = 0;
   - below sigma_0 the documented damping mu^2 = mu_max^2 (1 - (sigma_min / sigma_0)^2) and
-    qdot = -lambda V diag(sigma / (sigma^2 + mu^2)) U^T e, on both sides of the Cholesky proof's threshold;
+    qdot = -lambda V diag(sigma / (sigma^2 + mu^2)) U^T e, on both sides of sigma_0 (0.1 % away);
   - a rank-deficient J gets mu = mu_max, a step in the row space of J bounded by lambda |e| / (2 mu); an exactly zero
     column with no damping gets a zero velocity (the LDLT's zero pivot) and the pseudo-inverse solution elsewhere;
   - the saturation scales the whole velocity (same direction), and a cap above the step changes no bit;
   - the Eigen and ViSP entry points give the same bits; addNullSpaceProjector() adds w N N^T, N the null space of J
     at the pseudo-inverse threshold;
+  - the normal equations (vpServoNormalEquations) are exactly symmetric, and their factorisations agree with the SVD:
+    the Gauss-Newton step J^+ e, tr((J^T J)^-1) = sum 1 / sigma^2, the eigenvalues sigma^2, the damped solve; a zero
+    column is not positive definite and gets the LDLT's step; each factorisation is computed once however many parts
+    read it (the law, the adaptive gain on J^+ e, settling, the null-space projector);
   - misuse throws a vpProjectiveException naming what was wrong, and changes neither the settings nor the report.
   Bounds: closed forms agree to rounding amplified by the condition number (<= 1e3 here): 1e-10 relative. Every
   random number is seeded.
 */
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -40,7 +46,9 @@
 #include <visp3/vs/vpServo.h>
 
 #include <visp3/projective/vpProjectiveException.h>
+#include <visp3/projective/vpServoControlLaw.h>
 #include <visp3/projective/vpServoDampedLeastSquares.h>
+#include <visp3/projective/vpServoNormalEquations.h>
 
 #include "vpProjectiveArmTestTools.h"
 
@@ -171,7 +179,7 @@ TEST(ServoDampedLeastSquares, DampingIsTheDocumentedOne)
       EXPECT_NEAR(law.getDamping(), std::sqrt(mu2), 1e-9 * muMax) << "sigma_0 = " << factor << " sigma_min";
       EXPECT_LT(relative(qdot, svd.velocity(e, lambda, mu2)), 1e-10) << "sigma_0 = " << factor << " sigma_min";
       if (factor < 1.0) {
-        EXPECT_EQ(law.getDamping(), 0.0); // proven by the Cholesky factorisation, not estimated
+        EXPECT_EQ(law.getDamping(), 0.0); // decided exactly (the eigenvalues, where the trace bound cannot prove it)
       }
     }
   }
@@ -250,12 +258,10 @@ TEST(ServoDampedLeastSquares, EigenAndViSPEntryPointsGiveTheSameBits)
     const Eigen::VectorXd viaViSP = toEigenV(law.computeVelocity(toVisp(svd.J), toVispV(e), 0.7));
     const double damping = law.getDamping();
     const bool saturated = law.isSaturated();
-    vpServoDampedLeastSquares::JointMatrix JtJ;
-    vpServoDampedLeastSquares::JointVector Jte, qdot;
-    vpServoDampedLeastSquares::computeNormalEquations(svd.J, e, JtJ, Jte);
-    EXPECT_EQ(Eigen::MatrixXd(JtJ), Eigen::MatrixXd(JtJ.transpose())); // exactly symmetric
-    EXPECT_LT((Eigen::MatrixXd(JtJ) - svd.J.transpose() * svd.J).norm(), 1e-12 * JtJ.norm());
-    law.computeVelocity(JtJ, Jte, 0.7, qdot);
+    vpServoNormalEquations ne;
+    ne.compute(svd.J, e);
+    vpServoDampedLeastSquares::JointVector qdot;
+    law.computeVelocity(ne, 0.7, qdot);
     EXPECT_EQ(Eigen::VectorXd(qdot), viaViSP) << "sigma_0 " << sigma0;
     EXPECT_EQ(law.getDamping(), damping);
     EXPECT_EQ(law.isSaturated(), saturated);
@@ -268,9 +274,8 @@ TEST(ServoDampedLeastSquares, NullSpaceProjectorFollowsThePseudoInverseThreshold
   Eigen::VectorXd sigma(6);
   sigma << 100.0, 50.0, 10.0, 1e-2, 0.0, 0.0; // sigma_3 / sigma_max = 1e-4
   const KnownSvd svd(rng, 12, sigma);
-  vpServoDampedLeastSquares::JointMatrix JtJ;
-  vpServoDampedLeastSquares::JointVector Jte;
-  vpServoDampedLeastSquares::computeNormalEquations(svd.J, Eigen::VectorXd::Zero(12), JtJ, Jte);
+  vpServoNormalEquations ne;
+  ne.compute(svd.J, Eigen::VectorXd::Zero(12));
   vpServoDampedLeastSquares law;
   EXPECT_EQ(law.getPseudoInverseThreshold(), 1e-6);
   for (double threshold : {1e-6, 1e-3}) {
@@ -278,16 +283,103 @@ TEST(ServoDampedLeastSquares, NullSpaceProjectorFollowsThePseudoInverseThreshold
     const int nullity = threshold < 1e-4 ? 2 : 3;
     const Eigen::MatrixXd N = svd.V.rightCols(nullity);
     vpServoDampedLeastSquares::JointMatrix P = vpServoDampedLeastSquares::JointMatrix::Identity(6, 6);
-    law.addNullSpaceProjector(JtJ, 0.25, P);
+    law.addNullSpaceProjector(ne, 0.25, P);
     const Eigen::MatrixXd expected = Eigen::MatrixXd::Identity(6, 6) + 0.25 * N * N.transpose();
     EXPECT_LT((Eigen::MatrixXd(P) - expected).norm(), 1e-9) << "threshold " << threshold;
   }
   // A full-rank J adds nothing.
   const KnownSvd full(rng, 12, spread(6, 100.0, 1.0));
-  vpServoDampedLeastSquares::computeNormalEquations(full.J, Eigen::VectorXd::Zero(12), JtJ, Jte);
+  ne.compute(full.J, Eigen::VectorXd::Zero(12));
   vpServoDampedLeastSquares::JointMatrix P = vpServoDampedLeastSquares::JointMatrix::Zero(6, 6);
-  law.addNullSpaceProjector(JtJ, 1.0, P);
+  law.addNullSpaceProjector(ne, 1.0, P);
   EXPECT_EQ(P.norm(), 0.0);
+}
+
+TEST(ServoNormalEquations, FactorisationsAgreeWithTheSvd)
+{
+  vpUniRand rng(8);
+  for (const auto &size : std::vector<std::array<Eigen::Index, 2>>{{5, 3}, {12, 6}, {40, 16}}) {
+    const KnownSvd svd(rng, size[0], spread(size[1], 400.0, 5.0));
+    const Eigen::VectorXd e = randomVector(rng, size[0], 20.0);
+    vpServoNormalEquations ne;
+    ne.compute(svd.J, e);
+    const Eigen::MatrixXd JtJ = ne.getJtJ();
+    EXPECT_EQ(JtJ, Eigen::MatrixXd(JtJ.transpose())); // exactly symmetric
+    EXPECT_LT((JtJ - svd.J.transpose() * svd.J).norm(), 1e-12 * JtJ.norm());
+    EXPECT_LT(relative(ne.getJte(), svd.J.transpose() * e), 1e-12);
+    EXPECT_EQ(ne.getFactorisationCount(), 0u); // nothing factorised before it is read
+    ASSERT_TRUE(ne.isPositiveDefinite());
+    EXPECT_LT(relative(ne.getGaussNewtonStep(), svd.velocity(e, -1.0, 0.0)), 1e-10) << size[0] << "x" << size[1];
+    EXPECT_NEAR(ne.getInverseTrace(), svd.sigma.array().square().inverse().sum(),
+                1e-10 * svd.sigma.array().square().inverse().sum());
+    EXPECT_EQ(ne.getFactorisationCount(), 1u); // the Cholesky factorisation, once
+    Eigen::VectorXd sigma2 = svd.sigma.array().square();
+    std::sort(sigma2.data(), sigma2.data() + sigma2.size());
+    EXPECT_LT((Eigen::VectorXd(ne.getEigenvalues()) - sigma2).norm(), 1e-12 * sigma2.maxCoeff());
+    const Eigen::MatrixXd V = ne.getEigenvectors();
+    EXPECT_LT((V * Eigen::VectorXd(ne.getEigenvalues()).asDiagonal() * V.transpose() - JtJ).norm(), 1e-12 * JtJ.norm());
+    for (double mu2 : {1e-3, 30.0, 1e4}) {
+      vpServoNormalEquations::JointVector x;
+      ne.solveDamped(mu2, x);
+      EXPECT_LT(relative(x, svd.velocity(e, -1.0, mu2)), 1e-10) << "mu^2 " << mu2;
+    }
+    EXPECT_EQ(ne.getFactorisationCount(), 2u); // and the eigen decomposition, once
+    ne.compute(svd.J, e);
+    EXPECT_EQ(ne.getFactorisationCount(), 0u); // new equations, nothing factorised yet
+  }
+}
+
+TEST(ServoNormalEquations, ARankDeficientTaskGetsThePivotingStep)
+{
+  vpUniRand rng(9);
+  Eigen::MatrixXd J = randomMatrix(rng, 12, 6);
+  J.col(4).setZero();
+  const Eigen::VectorXd e = randomVector(rng, 12, 10.0);
+  vpServoNormalEquations ne;
+  ne.compute(J, e);
+  EXPECT_FALSE(ne.isPositiveDefinite());
+  EXPECT_EQ(ne.getInverseTrace(), std::numeric_limits<double>::infinity());
+  const Eigen::VectorXd g = ne.getGaussNewtonStep();
+  ASSERT_TRUE(g.allFinite());
+  EXPECT_EQ(g(4), 0.0);
+  Eigen::MatrixXd others(12, 5);
+  others << J.leftCols(4), J.col(5);
+  const Eigen::VectorXd expected = others.completeOrthogonalDecomposition().solve(e);
+  Eigen::VectorXd gOthers(5);
+  gOthers << g.head(4), g(5);
+  EXPECT_LT(relative(gOthers, expected), 1e-10);
+  EXPECT_EQ(ne.getFactorisationCount(), 2u); // the Cholesky attempt, then the LDLT
+}
+
+TEST(ServoNormalEquations, EachFactorisationOnceForEveryPartOfTheLaw)
+{
+  vpUniRand rng(10);
+  const KnownSvd svd(rng, 16, spread(6, 400.0, 5.0));
+  const Eigen::VectorXd e = randomVector(rng, 16, 10.0);
+  vpServoNormalEquations ne;
+  ne.compute(svd.J, e);
+  // Away from singularities: the law, the adaptive gain on J^+ e and settling read the one Cholesky factorisation.
+  vpServoControlLaw law;
+  law.setLambda(2.0, 0.5, 30.0);
+  law.setAdaptiveGainInput(vpServoControlLaw::GAIN_INPUT_JOINT_VELOCITY);
+  vpServoSettling settling;
+  settling.setEnabled(true);
+  vpServoNormalEquations::JointVector qdot;
+  const double lambda = settling.gain(law.gain(ne, e.cwiseAbs().maxCoeff()), ne, e.squaredNorm(), 16, 1);
+  law.computePrimaryStep(ne, lambda, qdot);
+  EXPECT_EQ(law.getDampedLeastSquares().getDamping(), 0.0);
+  EXPECT_LT(relative(qdot, svd.velocity(e, lambda, 0.0)), 1e-10);
+  EXPECT_EQ(ne.getFactorisationCount(), 1u);
+  // Near a singularity the eigen decomposition decides the damping, solves the damped system and gives the null-space
+  // projector: one more factorisation in all.
+  law.setDamping(10.0, 20.0);
+  law.computePrimaryStep(ne, lambda, qdot);
+  const double mu2 = 400.0 * (1.0 - 0.25);
+  EXPECT_NEAR(law.getDampedLeastSquares().getDamping(), std::sqrt(mu2), 1e-9);
+  EXPECT_LT(relative(qdot, svd.velocity(e, lambda, mu2)), 1e-10);
+  vpServoNormalEquations::JointMatrix P = vpServoNormalEquations::JointMatrix::Zero(6, 6);
+  law.getDampedLeastSquares().addNullSpaceProjector(ne, 1.0, P);
+  EXPECT_EQ(ne.getFactorisationCount(), 2u);
 }
 
 TEST(ServoDampedLeastSquares, BadInputsThrowAndChangeNothing)

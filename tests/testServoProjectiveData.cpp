@@ -13,7 +13,9 @@
 
 /*
   Tests of the servo's data layer (vpServoProjectiveData) and of how a new model or rig reaches a task:
-  - one computeControlLaw() computes H(q) exactly once (vpServoProjectiveData::getDisplacementCount()), whatever
+  - one computeControlLaw() computes H(q) exactly once (vpServoProjectiveData::getDisplacementCount()) and factorises
+    J^T J once (vpServoNormalEquations::getFactorisationCount(): the Cholesky factorisation, plus the eigen
+    decomposition when the joint-limit avoidance needs its projector), whatever
     part of the servo runs: law (47) with the default model-mismatch check, feature health with the image window
     and outlier rejection (epipolar and prediction tests), a feature set aside, joint limits, settling, path planning
     and its following; the data's H(q), joint motions and points are the model's, to the bit, and its prediction
@@ -35,6 +37,7 @@
 #include <visp3/projective/vpProjectiveException.h>
 #include <visp3/projective/vpProjectiveRobot.h>
 #include <visp3/projective/vpServoProjective.h>
+#include <visp3/projective/vpServoNormalEquations.h>
 #include <visp3/projective/vpServoProjectiveData.h>
 
 #include "vpProjectiveArmTestTools.h"
@@ -101,6 +104,14 @@ void expectModelData(const vpServoProjective &task, const vpProjectiveArmModel &
 {
   const vpServoProjectiveData &d = task.getReport().getData();
   ASSERT_EQ(d.getDisplacementCount(), 1u) << "H(q) computed more than once in one iteration";
+  // J^T J factorised once by Cholesky (every part reads it), and at most once more by its eigen decomposition (the
+  // joint-limit avoidance's null-space projector, the damping near a singularity).
+  const vpServoNormalEquations &ne = d.getNormalEquations();
+  EXPECT_GE(ne.getFactorisationCount(), 1u);
+  EXPECT_LE(ne.getFactorisationCount(), 2u) << "J^T J factorised more than once in one iteration";
+  vpServoNormalEquations rebuilt;
+  rebuilt.compute(d.getTaskJacobian(), d.getError());
+  EXPECT_EQ(Eigen::MatrixXd(ne.getJtJ()), Eigen::MatrixXd(rebuilt.getJtJ()));
   const Eigen::Matrix4d H = model.displacement(d.getJoints());
   // The same exponentials, to rounding (H is far from orthogonal: entries from 1e-3 to 3e2 here, and the rounding of
   // its products grows with it).
@@ -148,6 +159,17 @@ TEST(ServoProjectiveData, OneDisplacementPerIterationWithEveryCheckOn)
   for (int k = 0; k < 5; ++k) {
     plain.step();
     expectModelData(plain.task, model, plain.s, plain.seen);
+    EXPECT_EQ(plain.task.getReport().getData().getNormalEquations().getFactorisationCount(), 1u) << "call " << k;
+  }
+  // The adaptive gain on J^+ e and settling read the law's Gauss-Newton step: still one factorisation.
+  Task adaptive(setup, robot);
+  adaptive.task.getControlLaw().setLambda(1.0, 0.3, 20.0);
+  adaptive.task.getControlLaw().setAdaptiveGainInput(vpServoControlLaw::GAIN_INPUT_JOINT_VELOCITY);
+  adaptive.task.setSettling(true);
+  for (int k = 0; k < 5; ++k) {
+    adaptive.step();
+    expectModelData(adaptive.task, model, adaptive.s, adaptive.seen);
+    EXPECT_EQ(adaptive.task.getReport().getData().getNormalEquations().getFactorisationCount(), 1u) << "call " << k;
   }
   EXPECT_EQ(plain.task.getModelMismatch().getThreshold(), 5.0); // the default check ran
 

@@ -257,8 +257,8 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
   const Eigen::Index rows = 4 * static_cast<Eigen::Index>(points.size());
   Eigen::MatrixXd J(rows, n);
   Eigen::VectorXd e(rows);
-  vpProjectiveArmModel::JointMatrix JtJ;
-  JointVector Jte, qdot, qdot2;
+  vpServoNormalEquations normal;
+  JointVector qdot, qdot2;
   vpProjectiveArmData data;
   vpProjectiveArmModel::PointJacobian Ji;
   JointVector qk = q;
@@ -300,8 +300,8 @@ bool vpProjectivePathPlanner::rehearseLaw(const vpProjectiveArmModel &model, con
       m_rehearsalSlow = it == m_rehearsalBudget && it > 0 && (path[it] - path[it - 1]).cwiseAbs().maxCoeff() >= 1e-7;
       return false; // the budget, or a fixed point of the law that is not the solution
     }
-    vpServoDampedLeastSquares::computeNormalEquations(J, e, JtJ, Jte);
-    m_law.computeStep(qk, JtJ, Jte, e.cwiseAbs().maxCoeff(), e.norm() / m_law.getErrorScale(), qdot, qdot2);
+    normal.compute(J, e);
+    m_law.computeStep(qk, normal, e.cwiseAbs().maxCoeff(), e.norm() / m_law.getErrorScale(), qdot, qdot2);
     if (!qdot.allFinite()) {
       return false;
     }

@@ -86,57 +86,55 @@ void vpServoControlLaw::setErrorScale(double pixelsPerUnit)
                              "pixels per unit of the error (1 for pixels; 0 while unknown)");
 }
 
-double vpServoControlLaw::gain(const JointMatrix &JtJ, const JointVector &Jte, double errorInf) const
+double vpServoControlLaw::gain(const vpServoNormalEquations &ne, double errorInf) const
 {
   if (m_gainInput == GAIN_INPUT_ERROR) {
     return m_period * m_lambda.value_const(errorInf / m_errorScale);
   }
-  // vpServo's e1 = J^+ e (full column rank here: J^T J is invertible unless the task is singular, then the gain at
-  // infinity); fixed-size storage, no allocation.
-  const Eigen::LDLT<JointMatrix> ldlt(JtJ);
-  const JointVector e1 = ldlt.solve(Jte);
-  const double x = e1.allFinite() && ldlt.info() == Eigen::Success ? e1.cwiseAbs().maxCoeff()
-                                                                   : std::numeric_limits<double>::infinity();
+  // vpServo's e1 = J^+ e: the Gauss-Newton step (full column rank here: J^T J is invertible unless the task is
+  // singular, then the gain at infinity).
+  const JointVector &e1 = ne.getGaussNewtonStep();
+  const double x = e1.allFinite() ? e1.cwiseAbs().maxCoeff() : std::numeric_limits<double>::infinity();
   return m_period * m_lambda.value_const(x);
 }
 
-bool vpServoControlLaw::addJointLimitAvoidance(const JointVector &q, const JointMatrix &JtJ, const JointVector &Jte,
-                                               double errorNorm, JointVector &qdot, JointVector &qdot2,
-                                               const JointVector *target) const
+bool vpServoControlLaw::addJointLimitAvoidance(const JointVector &q, const vpServoNormalEquations &ne, double errorNorm,
+                                               JointVector &qdot, JointVector &qdot2, const JointVector *target) const
 {
   qdot2.setZero(q.size());
   if (!m_limits.hasJointLimits()) {
     return false;
   }
-  m_limits.computeVelocity(q, qdot, JtJ, Jte, errorNorm, m_dls, qdot2, target);
+  m_limits.computeVelocity(q, qdot, ne, errorNorm, m_dls, qdot2, target);
   qdot += qdot2;
   return m_dls.saturate(qdot);
 }
 
-double vpServoControlLaw::computeStep(const JointVector &q, const JointMatrix &JtJ, const JointVector &Jte,
-                                      double errorInf, double errorNorm, JointVector &qdot, JointVector &qdot2)
+double vpServoControlLaw::computeStep(const JointVector &q, const vpServoNormalEquations &ne, double errorInf,
+                                      double errorNorm, JointVector &qdot, JointVector &qdot2)
 {
-  const double lambda = gain(JtJ, Jte, errorInf);
-  computePrimaryStep(JtJ, Jte, lambda, qdot);
-  addJointLimitAvoidance(q, JtJ, Jte, errorNorm, qdot, qdot2);
+  const double lambda = gain(ne, errorInf);
+  computePrimaryStep(ne, lambda, qdot);
+  addJointLimitAvoidance(q, ne, errorNorm, qdot, qdot2);
   return lambda;
 }
 
-void vpServoControlLaw::keepInside(const JointVector &q, const JointMatrix &JtJ0, const JointVector &Jte0,
-                                   double lambda, JointVector &qdot) const
+void vpServoControlLaw::keepInside(const JointVector &q, const vpServoNormalEquations &ne, double lambda,
+                                   JointVector &qdot) const
 {
   // Scaling the whole step down to land a joint on its limit stops every joint once one is there and the law still
   // pushes it outward (a target near a limit, the law's course bending to it): the task stalls, pixels from its goal,
   // with every other joint free. Instead, each joint that would cross is held (its column out of the task: the law
   // solved again with the others), until no joint crosses; the scaling is left for the rest (a joint already beyond
   // its limit).
-  JointMatrix JtJ = JtJ0;
-  JointVector Jte = Jte0, alone;
+  JointMatrix JtJ = ne.getJtJ();
+  JointVector Jte = ne.getJte(), alone;
+  vpServoNormalEquations held;
   vpServoDampedLeastSquares law = m_dls; // computeVelocity() writes its report: the step's stays the first law's
   const Eigen::Index n = q.size();
   for (Eigen::Index pass = 0; pass < n && m_limits.stepInside(q, qdot) < 1.0; ++pass) {
     const double scale = JtJ.diagonal().cwiseAbs().maxCoeff();
-    bool held = false;
+    bool holding = false;
     for (Eigen::Index i = 0; i < n; ++i) {
       alone.setZero(n);
       alone(i) = qdot(i);
@@ -145,13 +143,14 @@ void vpServoControlLaw::keepInside(const JointVector &q, const JointMatrix &JtJ0
         JtJ.col(i).setZero();
         JtJ(i, i) = scale > 0.0 ? scale : 1.0;
         Jte(i) = 0.0;
-        held = true;
+        holding = true;
       }
     }
-    if (!held) {
+    if (!holding) {
       break;
     }
-    law.computeVelocity(JtJ, Jte, lambda, qdot);
+    held.set(JtJ, Jte);
+    law.computeVelocity(held, lambda, qdot);
     law.saturate(qdot);
   }
   qdot *= m_limits.stepInside(q, qdot);

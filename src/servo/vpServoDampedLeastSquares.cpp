@@ -27,57 +27,6 @@ const vpErrorSite at("vpServoDampedLeastSquares");
 
 namespace
 {
-/*!
-  Cholesky factorisation \f$ L L^T = S + a I \f$ of a symmetric matrix \e S shifted by \e a on its diagonal (lower
-  triangle of S read, lower triangle of L written, L resized; S is not copied); false if \f$ S + a I \f$ is not
-  numerically positive definite (a pivot is not positive, or is NaN). Plain loops: for the few joints of an arm they are
-  several times faster than Eigen's dynamic-size LLT and LDLT, which dispatch every column to matrix-vector kernels.
-*/
-template <typename Matrix> bool choleskyShifted(const Matrix &S, double a, Matrix &L)
-{
-  const Eigen::Index n = S.rows();
-  L.resize(n, n);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    double d = S(j, j) + a;
-    for (Eigen::Index k = 0; k < j; ++k) {
-      d -= L(j, k) * L(j, k);
-    }
-    if (!(d > 0.0)) {
-      return false;
-    }
-    const double ljj = std::sqrt(d);
-    L(j, j) = ljj;
-    for (Eigen::Index i = j + 1; i < n; ++i) {
-      double x = S(i, j);
-      for (Eigen::Index k = 0; k < j; ++k) {
-        x -= L(i, k) * L(j, k);
-      }
-      L(i, j) = x / ljj;
-    }
-  }
-  return true;
-}
-
-//! Solves \f$ L L^T x = b \f$ in place (x holds b on entry), L from choleskyShifted().
-template <typename Matrix, typename Vector> void choleskySolveInPlace(const Matrix &L, Vector &x)
-{
-  const Eigen::Index n = L.rows();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    double y = x(i);
-    for (Eigen::Index k = 0; k < i; ++k) {
-      y -= L(i, k) * x(k);
-    }
-    x(i) = y / L(i, i);
-  }
-  for (Eigen::Index i = n - 1; i >= 0; --i) {
-    double y = x(i);
-    for (Eigen::Index k = i + 1; k < n; ++k) {
-      y -= L(k, i) * x(k);
-    }
-    x(i) = y / L(i, i);
-  }
-}
-
 //! The velocity saturation of setMaxJointVelocity() (0 disables it); true if it scaled \e qdot.
 bool saturateInPlace(double qdotMax, vpServoDampedLeastSquares::JointVector &qdot)
 {
@@ -93,30 +42,22 @@ bool saturateInPlace(double qdotMax, vpServoDampedLeastSquares::JointVector &qdo
 }
 
 /*!
-  \f$ \mu^2 \f$ of the law for \f$ J^T J \f$; \e positiveDefinite is set when \f$ J^T J + \mu^2 I \f$ is known to be
-  positive definite (\f$ \sigma_{min} > \sigma_0 > 0 \f$ proven, or \f$ \mu > 0 \f$).
+  \f$ \mu^2 \f$ of the law for the normal equations \e ne: 0 unless \f$ \sigma_{min} < \sigma_0 \f$.
 */
-double squaredDamping(const vpServoDampedLeastSquares::JointMatrix &JtJ, double sigmaThreshold, double maxDamping,
-                      bool &positiveDefinite)
+double squaredDamping(const vpServoNormalEquations &ne, double sigmaThreshold, double maxDamping)
 {
-  // mu > 0 only if sigma_min < sigma_0. Away from singularities a Cholesky factorisation of J^T J - sigma_0^2 I
-  // proves sigma_min > sigma_0 at a fraction of the cost of the eigenvalues; otherwise the eigenvalues decide.
-  double mu2 = 0.0;
-  positiveDefinite = false;
-  if (sigmaThreshold > 0.0) {
-    vpServoDampedLeastSquares::JointMatrix L;
-    positiveDefinite = choleskyShifted(JtJ, -(sigmaThreshold * sigmaThreshold), L);
-    if (!positiveDefinite) {
-      Eigen::SelfAdjointEigenSolver<vpServoDampedLeastSquares::JointMatrix> eig(JtJ, Eigen::EigenvaluesOnly);
-      const double sigmaMin = std::sqrt(std::max(0.0, eig.eigenvalues()(0)));
-      if (sigmaMin < sigmaThreshold) {
-        const double ratio = sigmaMin / sigmaThreshold;
-        mu2 = maxDamping * maxDamping * (1.0 - ratio * ratio);
-      }
-    }
+  // Away from singularities the Cholesky factor the undamped law solves with proves sigma_min > sigma_0 at once:
+  // tr((J^T J)^-1) >= 1 / sigma_min^2. Otherwise the eigenvalues decide (and then also give the damped solve).
+  if (!(sigmaThreshold > 0.0) ||
+      (ne.isPositiveDefinite() && ne.getInverseTrace() * sigmaThreshold * sigmaThreshold < 1.0)) {
+    return 0.0;
   }
-  positiveDefinite = positiveDefinite || mu2 > 0.0;
-  return mu2;
+  const double sigmaMin = std::sqrt(std::max(0.0, ne.getEigenvalues()(0)));
+  if (!(sigmaMin < sigmaThreshold)) {
+    return 0.0;
+  }
+  const double ratio = sigmaMin / sigmaThreshold;
+  return maxDamping * maxDamping * (1.0 - ratio * ratio);
 }
 } // namespace
 
@@ -151,39 +92,16 @@ void vpServoDampedLeastSquares::setPseudoInverseThreshold(double threshold)
   m_pseudoInverseThreshold = threshold;
 }
 
-void vpServoDampedLeastSquares::computeNormalEquations(const Eigen::MatrixXd &J, const Eigen::VectorXd &e,
-                                                       JointMatrix &JtJ, JointVector &Jte)
+void vpServoDampedLeastSquares::computeVelocity(const vpServoNormalEquations &ne, double lambda, JointVector &qdot)
 {
-  // Column dot products, the lower triangle mirrored: cheaper than a matrix product kernel at these sizes.
-  const Eigen::Index n = J.cols();
-  JtJ.resize(n, n);
-  Jte.resize(n);
-  for (Eigen::Index c = 0; c < n; ++c) {
-    for (Eigen::Index r = c; r < n; ++r) {
-      JtJ(r, c) = J.col(r).dot(J.col(c));
-    }
-    for (Eigen::Index r = 0; r < c; ++r) {
-      JtJ(r, c) = JtJ(c, r);
-    }
-    Jte(c) = J.col(c).dot(e);
-  }
-}
-
-void vpServoDampedLeastSquares::computeVelocity(const JointMatrix &JtJ, const JointVector &Jte, double lambda,
-                                                JointVector &qdot)
-{
-  bool positiveDefinite = false;
-  const double mu2 = squaredDamping(JtJ, m_sigmaThreshold, m_maxDamping, positiveDefinite);
-  // Cholesky where J^T J + mu^2 I is known to be positive definite; elsewhere (no damping configured, J possibly rank
-  // deficient) the pivoting LDLT, which gives what it can of a singular system.
-  JointMatrix L;
-  qdot = Jte;
-  if (positiveDefinite && choleskyShifted(JtJ, mu2, L)) {
-    choleskySolveInPlace(L, qdot);
+  // mu = 0: the Gauss-Newton step of the normal equations' one Cholesky factorisation (their pivoting LDLT where J is
+  // rank deficient and no damping is configured: zero pivots contribute nothing); mu > 0: their eigen decomposition,
+  // which the damping's decision computed.
+  const double mu2 = squaredDamping(ne, m_sigmaThreshold, m_maxDamping);
+  if (mu2 > 0.0) {
+    ne.solveDamped(mu2, qdot);
   } else {
-    JointMatrix A = JtJ;
-    A.diagonal().array() += mu2;
-    qdot = A.ldlt().solve(Jte);
+    qdot = ne.getGaussNewtonStep();
   }
   qdot *= -lambda;
   const bool saturated = saturateInPlace(m_qdotMax, qdot);
@@ -219,10 +137,10 @@ vpColVector vpServoDampedLeastSquares::computeVelocity(const vpMatrix &J, const 
   Eigen::MatrixXd JE(J.getRows(), J.getCols());
   conversion::visp2eigen(J, JE);
   const Eigen::VectorXd eE = eigenMap(e);
-  JointMatrix JtJ;
-  JointVector Jte, qdot;
-  computeNormalEquations(JE, eE, JtJ, Jte);
-  computeVelocity(JtJ, Jte, lambda, qdot);
+  vpServoNormalEquations ne;
+  ne.compute(JE, eE);
+  JointVector qdot;
+  computeVelocity(ne, lambda, qdot);
   return toVispVector(qdot);
 }
 
@@ -231,19 +149,20 @@ bool vpServoDampedLeastSquares::saturate(JointVector &qdot) const
   return saturateInPlace(m_qdotMax, qdot);
 }
 
-void vpServoDampedLeastSquares::addNullSpaceProjector(const JointMatrix &JtJ, double weight, JointMatrix &P) const
+void vpServoDampedLeastSquares::addNullSpaceProjector(const vpServoNormalEquations &ne, double weight,
+                                                      JointMatrix &P) const
 {
   // The eigenvectors of J^T J whose singular value is below the pseudo-inverse threshold (vpServo's rule).
-  const Eigen::Index n = JtJ.rows();
+  const Eigen::Index n = ne.size();
   if (n == 0) {
     return;
   }
-  Eigen::SelfAdjointEigenSolver<JointMatrix> eig(JtJ, Eigen::ComputeEigenvectors);
-  const double lambdaMax = eig.eigenvalues()(n - 1);
-  const double zero = m_pseudoInverseThreshold * m_pseudoInverseThreshold * std::max(0.0, lambdaMax);
+  const JointVector &eigenvalues = ne.getEigenvalues();
+  const JointMatrix &eigenvectors = ne.getEigenvectors();
+  const double zero = m_pseudoInverseThreshold * m_pseudoInverseThreshold * std::max(0.0, eigenvalues(n - 1));
   for (Eigen::Index k = 0; k < n; ++k) {
-    if (eig.eigenvalues()(k) <= zero) {
-      P.noalias() += weight * eig.eigenvectors().col(k) * eig.eigenvectors().col(k).transpose();
+    if (eigenvalues(k) <= zero) {
+      P.noalias() += weight * eigenvectors.col(k) * eigenvectors.col(k).transpose();
     }
   }
 }

@@ -26,8 +26,7 @@ const vpErrorSite at("vpServoJointLimitAvoidance");
 namespace
 {
 //! The primary task of the ViSP-typed entry points, checked, as normal equations.
-void primaryTask(const vpMatrix &J, const vpColVector &e, const std::string &where,
-                 vpServoJointLimitAvoidance::JointMatrix &JtJ, vpServoJointLimitAvoidance::JointVector &Jte,
+void primaryTask(const vpMatrix &J, const vpColVector &e, const std::string &where, vpServoNormalEquations &ne,
                  double &errorNorm)
 {
   if (J.getRows() == 0 || J.getCols() == 0 || J.getCols() > vpProjectiveArmModel::maxJoints) {
@@ -47,7 +46,7 @@ void primaryTask(const vpMatrix &J, const vpColVector &e, const std::string &whe
   Eigen::MatrixXd JE(J.getRows(), J.getCols());
   conversion::visp2eigen(J, JE);
   const Eigen::VectorXd eE = eigenMap(e);
-  vpServoDampedLeastSquares::computeNormalEquations(JE, eE, JtJ, Jte);
+  ne.compute(JE, eE);
   errorNorm = eE.norm();
 }
 } // namespace
@@ -136,12 +135,13 @@ vpColVector vpServoJointLimitAvoidance::getUpperLimits() const
   return toVispVector(m_qmax);
 }
 
-void vpServoJointLimitAvoidance::computeLargeProjectionOperator(const JointMatrix &JtJ, const JointVector &Jte,
-                                                                double errorNorm, const vpServoDampedLeastSquares &law,
+void vpServoJointLimitAvoidance::computeLargeProjectionOperator(const vpServoNormalEquations &ne, double errorNorm,
+                                                                const vpServoDampedLeastSquares &law,
                                                                 JointMatrix &P) const
 {
   // P = sig P_e + (1 - sig) (I - J^+ J), vpServo::computeProjectionOperators() with its thresholds on ||e||.
-  const Eigen::Index n = JtJ.rows();
+  const Eigen::Index n = ne.size();
+  const JointVector &Jte = ne.getJte();
   double sig = 0.0;
   if (errorNorm > m_e1) {
     sig = 1.0;
@@ -160,12 +160,12 @@ void vpServoJointLimitAvoidance::computeLargeProjectionOperator(const JointMatri
     P.setZero(n, n);
   }
   if (sig < 1.0) {
-    law.addNullSpaceProjector(JtJ, 1.0 - sig, P);
+    law.addNullSpaceProjector(ne, 1.0 - sig, P);
   }
 }
 
-void vpServoJointLimitAvoidance::computeVelocity(const JointVector &q, const JointVector &qdot1, const JointMatrix &JtJ,
-                                                 const JointVector &Jte, double errorNorm,
+void vpServoJointLimitAvoidance::computeVelocity(const JointVector &q, const JointVector &qdot1,
+                                                 const vpServoNormalEquations &ne, double errorNorm,
                                                  const vpServoDampedLeastSquares &law, JointVector &qdot2,
                                                  const JointVector *target) const
 {
@@ -191,7 +191,7 @@ void vpServoJointLimitAvoidance::computeVelocity(const JointVector &q, const Joi
       continue; // inside the free interval (on its boundary vpServo's b is infinite: no action either)
     }
     if (!haveP) {
-      computeLargeProjectionOperator(JtJ, Jte, errorNorm, law, P);
+      computeLargeProjectionOperator(ne, errorNorm, law, P);
       haveP = true;
     }
     // (P g_i)_i = g P_ii, P_ii >= 0.
@@ -231,11 +231,11 @@ double vpServoJointLimitAvoidance::stepInside(const JointVector &q, const JointV
 vpMatrix vpServoJointLimitAvoidance::computeLargeProjectionOperator(const vpMatrix &J, const vpColVector &e,
                                                                     const vpServoDampedLeastSquares &law) const
 {
-  JointMatrix JtJ, P;
-  JointVector Jte;
+  vpServoNormalEquations ne;
+  JointMatrix P;
   double errorNorm = 0.0;
-  primaryTask(J, e, at("computeLargeProjectionOperator()"), JtJ, Jte, errorNorm);
-  computeLargeProjectionOperator(JtJ, Jte, errorNorm, law, P);
+  primaryTask(J, e, at("computeLargeProjectionOperator()"), ne, errorNorm);
+  computeLargeProjectionOperator(ne, errorNorm, law, P);
   return toVisp(P);
 }
 
@@ -244,10 +244,9 @@ vpColVector vpServoJointLimitAvoidance::computeVelocity(const vpColVector &q, co
                                                         const vpServoDampedLeastSquares &law) const
 {
   const std::string where = at("computeVelocity()");
-  JointMatrix JtJ;
-  JointVector Jte;
+  vpServoNormalEquations ne;
   double errorNorm = 0.0;
-  primaryTask(J, e, where, JtJ, Jte, errorNorm);
+  primaryTask(J, e, where, ne, errorNorm);
   const size_t n = J.getCols();
   if (m_enabled && n != static_cast<size_t>(m_qmin.size())) {
     std::ostringstream os;
@@ -257,6 +256,6 @@ vpColVector vpServoJointLimitAvoidance::computeVelocity(const vpColVector &q, co
   const JointVector qE = toEigenVector<JointVector>(q, n, where, "q");
   const JointVector qdot1E = toEigenVector<JointVector>(qdot1, n, where, "qdot1");
   JointVector qdot2;
-  computeVelocity(qE, qdot1E, JtJ, Jte, errorNorm, law, qdot2);
+  computeVelocity(qE, qdot1E, ne, errorNorm, law, qdot2);
   return toVispVector(qdot2);
 }

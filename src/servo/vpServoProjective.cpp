@@ -152,7 +152,7 @@ inline void vpServoProjective::buildTask(const JointVector &q, vpIteration &it, 
     ++active;
   }
   d.m_nbActive = active;
-  vpServoDampedLeastSquares::computeNormalEquations(d.m_J, d.m_e, d.m_JtJ, d.m_Jte);
+  d.m_normal.compute(d.m_J, d.m_e);
   d.m_errorNorm =
       d.m_e.norm() / m_control.getErrorScale(); // in the unit of setErrorUnit(), for the large projection thresholds
 }
@@ -165,8 +165,9 @@ inline vpServoProjective::vpServoStatus vpServoProjective::decideStatus(const vp
   if (it.m_data.m_nbActive == m_features.size()) {
     return SERVO_RUNNING;
   }
-  const bool stopped = 3 * static_cast<Eigen::Index>(it.m_data.m_nbActive) < it.m_data.m_JtJ.rows() ||
-                       !(vpServoProjectiveReport::singularValueRatio(it.m_data.m_JtJ, m_health.getRankTolerance()) >=
+  const vpServoNormalEquations &ne = it.m_data.m_normal;
+  const bool stopped = 3 * static_cast<Eigen::Index>(it.m_data.m_nbActive) < ne.size() ||
+                       !(vpServoProjectiveReport::singularValueRatio(ne.getJtJ(), m_health.getRankTolerance()) >=
                          m_health.getRankTolerance());
   return stopped ? SERVO_STOPPED : SERVO_REDUCED;
 }
@@ -201,10 +202,9 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
     return false;
   }
   // The images' normal equations, kept (fixed-size: no allocation) for a stop below instead of being built again.
-  const JointMatrix JtJ = d.m_JtJ;
-  const JointVector Jte = d.m_Jte;
+  const vpServoNormalEquations images = d.m_normal;
   const double errorNorm = d.m_errorNorm;
-  vpServoDampedLeastSquares::computeNormalEquations(d.m_J, d.m_e, d.m_JtJ, d.m_Jte);
+  d.m_normal.compute(d.m_J, d.m_e);
   const unsigned int active = d.m_nbActive;
   d.m_nbActive = used; // the rank test of decideStatus() on the measured and predicted features together
   const bool constrained = decideStatus(it) != SERVO_STOPPED || used == m_features.size();
@@ -218,8 +218,7 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
         d.m_e.segment<4>(4 * static_cast<Eigen::Index>(i)).setZero();
       }
     }
-    d.m_JtJ = JtJ;
-    d.m_Jte = Jte;
+    d.m_normal = images;
     d.m_errorNorm = errorNorm;
     return false;
   }
@@ -230,8 +229,8 @@ inline bool vpServoProjective::openLoop(vpIteration &it)
 inline void vpServoProjective::stop(vpIteration &it, JointVector &qdot)
 {
   m_control.getSettling().reset(); // stopped: converge anew before settling
-  qdot.setZero(it.m_data.m_JtJ.rows());
-  it.m_qdot2.setZero(it.m_data.m_JtJ.rows());
+  qdot.setZero(it.m_data.m_normal.size());
+  it.m_qdot2.setZero(it.m_data.m_normal.size());
   it.m_lambda = 0.0;
   it.m_damping = 0.0;
   it.m_saturated = false;
@@ -244,7 +243,7 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
   // the follower's gain), saturated as a whole.
   const bool following = m_path.isFollowing();
   it.m_lambda = following ? m_path.getPlanner().getPathFollowingGain()
-                          : m_control.gain(it.m_data.m_JtJ, it.m_data.m_Jte, it.m_data.m_e.cwiseAbs().maxCoeff());
+                          : m_control.gain(it.m_data.m_normal, it.m_data.m_e.cwiseAbs().maxCoeff());
   if (following || it.m_status == SERVO_OPEN_LOOP) {
     m_control.getSettling()
         .reset(); // a path (or a prediction) is not a rest: settle on law (47), on the images, after it
@@ -254,10 +253,10 @@ inline void vpServoProjective::computePrimaryVelocity(const JointVector &q, vpIt
     for (unsigned int i = 0; i < m_features.size(); ++i) {
       context = 31 * context + (m_health.getFeatureState(i) == FEATURE_ACTIVE ? i + 1 : 0);
     }
-    it.m_lambda = m_control.getSettling().gain(it.m_lambda, it.m_data.m_JtJ, it.m_data.m_Jte,
-                                               it.m_data.m_e.squaredNorm(), 4 * it.m_data.m_nbActive, context);
+    it.m_lambda = m_control.getSettling().gain(it.m_lambda, it.m_data.m_normal, it.m_data.m_e.squaredNorm(),
+                                               4 * it.m_data.m_nbActive, context);
   }
-  m_control.computePrimaryStep(it.m_data.m_JtJ, it.m_data.m_Jte, it.m_lambda, qdot);
+  m_control.computePrimaryStep(it.m_data.m_normal, it.m_lambda, qdot);
   const vpServoDampedLeastSquares &law = m_control.getDampedLeastSquares();
   m_path.shapeStep(m_link.robot->getModel(), q, law, qdot); // the path's step, or no overshoot of a planned task
   it.m_damping = law.getDamping();
@@ -276,7 +275,7 @@ inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIt
   const JointVector *target = m_path.getPathTarget();
   const vpServoProjectiveData &d = it.m_data;
   if (!m_path.isFollowing()) {
-    if (m_control.addJointLimitAvoidance(q, d.m_JtJ, d.m_Jte, d.m_errorNorm, qdot, it.m_qdot2, target)) {
+    if (m_control.addJointLimitAvoidance(q, d.m_normal, d.m_errorNorm, qdot, it.m_qdot2, target)) {
       it.m_saturated = true;
     }
   } else {
@@ -286,7 +285,7 @@ inline void vpServoProjective::addJointLimitAvoidance(const JointVector &q, vpIt
     }
   }
   if (target != nullptr && limits.hasJointLimits()) {
-    m_control.keepInside(q, d.m_JtJ, d.m_Jte, it.m_lambda, qdot); // a planned task never crosses a limit
+    m_control.keepInside(q, d.m_normal, it.m_lambda, qdot); // a planned task never crosses a limit
   }
   if (!qdot.allFinite()) {
     fail(vpProjectiveException::estimationFailedError, at("computeControlLaw()"),
@@ -330,7 +329,7 @@ void vpServoProjective::computeControlLaw(const JointVector &q, JointVector &qdo
                                    before.m_data.m_e, before.m_data.m_errorNorm);
   buildTask(q, it, method);
   const bool mismatch = detectMismatch(it.m_data); // after the last step that may throw
-  const bool notFollowing = m_follow.evaluate(q, it.m_data.m_JtJ, 4 * it.m_data.m_nbActive);
+  const bool notFollowing = m_follow.evaluate(q, it.m_data.m_normal.getJtJ(), 4 * it.m_data.m_nbActive);
   it.m_status = notFollowing ? SERVO_ARM_NOT_FOLLOWING
                              : (mismatch ? SERVO_MODEL_MISMATCH : (planned ? decideStatus(it) : SERVO_NO_PLAN));
   if (it.m_status == SERVO_STOPPED && openLoop(it)) {

@@ -21,7 +21,7 @@ using namespace VISP_NAMESPACE_NAME;
 
 vpServoProjectiveData::vpServoProjectiveData()
     : m_arm(), m_rig(nullptr), m_passesBefore(0), m_nbFeatures(0), m_s(), m_M(), m_M0(), m_hasPoint(), m_J(), m_e(),
-      m_JtJ(), m_Jte(), m_errorNorm(0.0), m_nbActive(0)
+      m_normal(), m_errorNorm(0.0), m_nbActive(0)
 {
 }
 

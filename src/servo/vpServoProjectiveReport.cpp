@@ -35,15 +35,14 @@ namespace
 const vpErrorSite at("vpServoProjectiveReport");
 
 //! \f$ \sigma_{max} / \sigma_{min} \f$ from the eigenvalues of \f$ J^T J \f$; infinite if singular, 0 without column.
-double conditionNumber(const vpProjectiveArmModel::JointMatrix &JtJ)
+double conditionNumber(const vpServoNormalEquations &ne)
 {
-  const Eigen::Index n = JtJ.rows();
+  const Eigen::Index n = ne.size();
   if (n == 0) {
     return 0.0;
   }
-  Eigen::SelfAdjointEigenSolver<vpProjectiveArmModel::JointMatrix> eig(JtJ, Eigen::EigenvaluesOnly);
-  const double sigmaMin = std::sqrt(std::max(0.0, eig.eigenvalues()(0)));
-  const double sigmaMax = std::sqrt(std::max(0.0, eig.eigenvalues()(n - 1)));
+  const double sigmaMin = std::sqrt(std::max(0.0, ne.getEigenvalues()(0)));
+  const double sigmaMax = std::sqrt(std::max(0.0, ne.getEigenvalues()(n - 1)));
   return sigmaMin > 0.0 ? sigmaMax / sigmaMin : std::numeric_limits<double>::infinity();
 }
 } // namespace
@@ -120,17 +119,17 @@ vpColVector vpServoProjectiveReport::getTaskSingularValues() const
 
 double vpServoProjectiveReport::getConditionNumber() const
 {
-  return conditionNumber(m_data.getJtJ());
+  return conditionNumber(m_data.getNormalEquations());
 }
 
 double vpServoProjectiveReport::getSingularValueRatio() const
 {
-  return singularValueRatio(m_data.getJtJ(), m_rankTolerance);
+  return singularValueRatio(m_data.getNormalEquations().getJtJ(), m_rankTolerance);
 }
 
 vpMatrix vpServoProjectiveReport::getLargeProjectionOperator() const
 {
-  if (m_data.getJtJ().rows() == 0) {
+  if (m_data.getNormalEquations().size() == 0) {
     fail(vpProjectiveException::notInitializedError, at("getLargeProjectionOperator()"),
          "no task Jacobian yet; call computeControlLaw() first");
   }
@@ -140,8 +139,7 @@ vpMatrix vpServoProjectiveReport::getLargeProjectionOperator() const
   vpServoJointLimitAvoidance limits;
   limits.setLargeProjectionThresholds(m_largeProjectionThresholds[0], m_largeProjectionThresholds[1]);
   JointMatrix P;
-  limits.computeLargeProjectionOperator(m_data.getJtJ(), m_data.getJte(), m_data.getError().norm() / m_errorScale, law,
-                                        P);
+  limits.computeLargeProjectionOperator(m_data.getNormalEquations(), m_data.getError().norm() / m_errorScale, law, P);
   return toVisp(P);
 }
 

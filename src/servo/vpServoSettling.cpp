@@ -17,8 +17,6 @@
 #include <cmath>
 #include <limits>
 
-#include <Eigen/Cholesky>
-
 #include "core/vpProjectiveErrors.h"
 
 using namespace vpProjectiveInternal;
@@ -77,11 +75,11 @@ double vpServoSettling::getNoiseEstimate() const
   return std::sqrt(m_state.noise2);
 }
 
-double vpServoSettling::gain(double lambda, const JointMatrix &JtJ, const JointVector &Jte, double errorSquaredNorm,
+double vpServoSettling::gain(double lambda, const vpServoNormalEquations &ne, double errorSquaredNorm,
                              unsigned int rows, unsigned long context)
 {
   m_next = m_state;
-  const Eigen::Index n = JtJ.rows();
+  const Eigen::Index n = ne.size();
   if (!m_enabled || static_cast<Eigen::Index>(rows) <= n || n == 0) {
     m_next = vpState();
     return lambda;
@@ -90,13 +88,12 @@ double vpServoSettling::gain(double lambda, const JointMatrix &JtJ, const JointV
     m_next = vpState(); // another task: converge anew
     m_next.context = context;
   }
-  // The Gauss-Newton step g = (J^T J)^-1 J^T e, fixed-size storage: no allocation.
-  const Eigen::LDLT<JointMatrix> ldlt(JtJ);
-  const JointVector g = ldlt.solve(Jte);
-  const double chi = Jte.dot(g);
+  // The Gauss-Newton step g = (J^T J)^-1 J^T e of the normal equations' factorisation, the law's.
+  const JointVector &g = ne.getGaussNewtonStep();
+  const double chi = ne.getJte().dot(g);
   const double dofResidual = static_cast<double>(rows - n), dof = static_cast<double>(n);
   const double residual = std::max(0.0, errorSquaredNorm - chi) / dofResidual; // per row
-  if (ldlt.info() != Eigen::Success || !std::isfinite(chi) || !(chi >= 0.0) || !std::isfinite(residual)) {
+  if (!g.allFinite() || !std::isfinite(chi) || !(chi >= 0.0) || !std::isfinite(residual)) {
     m_next = vpState();
     m_next.context = context;
     return lambda;

@@ -130,33 +130,36 @@ public:
 
   /*! \name One step of the law */
   //@{
-  //! The gain of this step: \f$ T \lambda(x) \f$ (per call), \e errorInf = \f$ \|e\|_\infty \f$ in pixels.
-  double gain(const JointMatrix &JtJ, const JointVector &Jte, double errorInf) const;
+  //! The gain of this step: \f$ T \lambda(x) \f$ (per call), \e errorInf = \f$ \|e\|_\infty \f$ in pixels; with
+  //! GAIN_INPUT_JOINT_VELOCITY, x is read from \e ne's Gauss-Newton step.
+  double gain(const vpServoNormalEquations &ne, double errorInf) const;
   //! \f$ \dot q_1 = -\lambda (J^T J + \mu^2 I_n)^{-1} J^T e \f$, saturated (vpServoDampedLeastSquares).
-  void computePrimaryStep(const JointMatrix &JtJ, const JointVector &Jte, double lambda, JointVector &qdot)
+  void computePrimaryStep(const vpServoNormalEquations &ne, double lambda, JointVector &qdot)
   {
-    m_dls.computeVelocity(JtJ, Jte, lambda, qdot);
+    m_dls.computeVelocity(ne, lambda, qdot);
   }
   /*!
     With joint limits: \f$ \dot q_2 \f$ of the avoidance (toward \e target if given), added to \e qdot and saturated
     again; returns true if the saturation scaled it. Without: \e qdot2 = 0, \e qdot unchanged, false.
     \e errorNorm is \f$ \|e\|_2 \f$ in the unit of the error (setErrorScale()).
   */
-  bool addJointLimitAvoidance(const JointVector &q, const JointMatrix &JtJ, const JointVector &Jte, double errorNorm,
+  bool addJointLimitAvoidance(const JointVector &q, const vpServoNormalEquations &ne, double errorNorm,
                               JointVector &qdot, JointVector &qdot2, const JointVector *target = nullptr) const;
   /*!
     The whole law for one step: the gain, the primary step, the joint-limit avoidance (no target); returns the gain.
-    \e errorInf is \f$ \|e\|_\infty \f$ (pixels), \e errorNorm \f$ \|e\|_2 \f$ in the unit of the error.
+    \e ne holds the step's normal equations (\f$ J^T J \f$ n x n, \f$ J^T e \f$ n x 1) and their factorisations,
+    shared by the three; \e errorInf is \f$ \|e\|_\infty \f$ (pixels), \e errorNorm \f$ \|e\|_2 \f$ in the unit of the
+    error.
   */
-  double computeStep(const JointVector &q, const JointMatrix &JtJ, const JointVector &Jte, double errorInf,
-                     double errorNorm, JointVector &qdot, JointVector &qdot2);
+  double computeStep(const JointVector &q, const vpServoNormalEquations &ne, double errorInf, double errorNorm,
+                     JointVector &qdot, JointVector &qdot2);
   /*!
     A step that crosses no joint limit: each joint whose share of \e qdot would cross one is held (its column out of
-    the normal equations, the primary step solved again with the gain \e lambda), until none crosses; then the step
-    is scaled to stay inside (a joint already beyond its limit). Without limits \e qdot is unchanged.
+    the normal equations \e ne, the primary step solved again with the gain \e lambda: a new system, factorised
+    anew), until none crosses; then the step is scaled to stay inside (a joint already beyond its limit). Without
+    limits \e qdot is unchanged.
   */
-  void keepInside(const JointVector &q, const JointMatrix &JtJ, const JointVector &Jte, double lambda,
-                  JointVector &qdot) const;
+  void keepInside(const JointVector &q, const vpServoNormalEquations &ne, double lambda, JointVector &qdot) const;
   //@}
 
 private:

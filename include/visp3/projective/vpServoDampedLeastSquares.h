@@ -26,6 +26,7 @@
 #include <visp3/core/vpColVector.h>
 #include <visp3/core/vpMatrix.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpServoNormalEquations.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -54,13 +55,14 @@ BEGIN_VISP_NAMESPACE
   \f$ J \f$; \f$ \lambda \f$ and \f$ \dot q_{max} \f$ are per control step (\f$ \dot q \f$ is then the step) or per
   second (\f$ \dot q \f$ a velocity), consistently.
 
-  Numerics, for the few joints of an arm and without any allocation on the Eigen path: \f$ J^T J \f$ and
-  \f$ J^T e \f$ by column dot products (computeNormalEquations()); with \f$ \sigma_0 > 0 \f$ a Cholesky
-  factorisation of \f$ J^T J - \sigma_0^2 I_n \f$ that succeeds proves \f$ \sigma_{min} > \sigma_0 \f$ (\f$ \mu = 0
-  \f$) at a fraction of the cost of the eigenvalues, which decide otherwise (\f$ \sigma_{min}^2 \f$ the smallest
-  eigenvalue of \f$ J^T J \f$, clamped at 0); the system is solved by Cholesky where \f$ J^T J + \mu^2 I_n \f$ is
-  known to be positive definite, by Eigen's pivoting LDLT otherwise (no damping configured, \f$ J \f$ possibly rank
-  deficient: zero pivots contribute nothing).
+  Numerics, for the few joints of an arm and without any allocation on the Eigen path: the law reads the normal
+  equations and their factorisations from a vpServoNormalEquations, which the other parts of the law share (each
+  factorisation computed once per iteration). Away from singularities its Cholesky factor both proves
+  \f$ \sigma_{min} > \sigma_0 \f$ (\f$ \mathrm{tr}((J^T J)^{-1}) < 1 / \sigma_0^2 \f$, \f$ \mu = 0 \f$) and gives
+  \f$ \dot q = -\lambda (J^T J)^{-1} J^T e \f$; otherwise the eigenvalues of \f$ J^T J \f$ decide
+  (\f$ \sigma_{min}^2 \f$ the smallest, clamped at 0) and, for \f$ \mu > 0 \f$, solve the damped system. Without
+  damping (\f$ \sigma_0 = 0 \f$) a rank-deficient \f$ J \f$ is solved by Eigen's pivoting LDLT (zero pivots
+  contribute nothing).
 
   The same law serves vpServoProjective (which feeds it the Jacobian of its active features) and any controller that
   has a Jacobian and an error, for instance an IBVS with a metric interaction matrix:
@@ -155,20 +157,14 @@ public:
   vpColVector computeVelocity(const vpMatrix &J, const vpColVector &e, double lambda);
   /*!
     The same from the normal equations, on Eigen types and without allocation: the control loop's path.
-    \param JtJ : \f$ J^T J \f$ (n x n, symmetric, \f$ 1 \le n \le \f$ maxJoints; computeNormalEquations()).
-    \param Jte : \f$ J^T e \f$ (n x 1).
+    \param ne : \f$ J^T J \f$ (n x n, \f$ 1 \le n \le \f$ maxJoints) and \f$ J^T e \f$ (n x 1) with their
+    factorisations (the task's, shared with the other parts of the law).
     \param lambda : gain \f$ \lambda \ge 0 \f$.
     \param qdot : \f$ \dot q \f$ (n x 1, resized).
-    The sizes are not checked. \exception vpProjectiveException (estimationFailedError) if the result is not finite
-    (an overflow); the report of getDamping() and isSaturated() is then unchanged.
+    \exception vpProjectiveException (estimationFailedError) if the result is not finite (an overflow); the report of
+    getDamping() and isSaturated() is then unchanged.
   */
-  void computeVelocity(const JointMatrix &JtJ, const JointVector &Jte, double lambda, JointVector &qdot);
-  /*!
-    \f$ J^T J \f$ (n x n) and \f$ J^T e \f$ (n x 1) of \e J (m x n, \f$ n \le \f$ maxJoints) and \e e (m x 1), by
-    column dot products with the lower triangle mirrored (exactly symmetric), without allocation. Sizes not checked.
-  */
-  static void computeNormalEquations(const Eigen::MatrixXd &J, const Eigen::VectorXd &e, JointMatrix &JtJ,
-                                     JointVector &Jte);
+  void computeVelocity(const vpServoNormalEquations &ne, double lambda, JointVector &qdot);
   /*!
     The velocity saturation alone: scales \e qdot by \f$ \dot q_{max} / \max_i |\dot q_i| \f$ when that is below 1
     (see setMaxJointVelocity()). Returns true if it did. Does not change the report of isSaturated().
@@ -176,11 +172,11 @@ public:
   bool saturate(JointVector &qdot) const;
   /*!
     \f$ P \leftarrow P + w\, (I_n - J^+ J) \f$: adds \e weight times the orthogonal projector on the null space of
-    \f$ J \f$, the eigenvectors of \e JtJ (\f$ J^T J \f$, n x n) whose singular value is at most \f$ \tau_+
-    \sigma_{max} \f$ (setPseudoInverseThreshold()), as vpServo's projection operator. \e P must be n x n. No
-    allocation; sizes not checked.
+    \f$ J \f$, the eigenvectors of \f$ J^T J \f$ (\e ne's eigen decomposition) whose singular value is at most
+    \f$ \tau_+ \sigma_{max} \f$ (setPseudoInverseThreshold()), as vpServo's projection operator. \e P must be n x n.
+    No allocation; sizes not checked.
   */
-  void addNullSpaceProjector(const JointMatrix &JtJ, double weight, JointMatrix &P) const;
+  void addNullSpaceProjector(const vpServoNormalEquations &ne, double weight, JointMatrix &P) const;
   //@}
 
   /*! \name What the last computeVelocity() did */

@@ -160,18 +160,17 @@ public:
   /*! \name The secondary task, on Eigen types without allocation (the control loop's path; sizes not checked) */
   //@{
   /*!
-    \f$ P \f$ (n x n, resized) from the normal equations of the primary task: \e JtJ \f$ = J^T J \f$ (n x n),
-    \e Jte \f$ = J^T e \f$ (n x 1), \e errorNorm \f$ = \|e\| \f$ (see
-    vpServoDampedLeastSquares::computeNormalEquations()).
+    \f$ P \f$ (n x n, resized) from the normal equations of the primary task, \e ne (\f$ J^T J \f$ n x n,
+    \f$ J^T e \f$ n x 1, their eigen decomposition for \f$ I_n - J^+ J \f$), and \e errorNorm \f$ = \|e\| \f$.
   */
-  void computeLargeProjectionOperator(const JointMatrix &JtJ, const JointVector &Jte, double errorNorm,
+  void computeLargeProjectionOperator(const vpServoNormalEquations &ne, double errorNorm,
                                       const vpServoDampedLeastSquares &law, JointMatrix &P) const;
   /*!
     \f$ \dot q_2 \f$ (n x 1, resized) at joint values \e q for the primary velocity \e qdot1 and the primary task's
     normal equations; 0 without joint limits. \f$ P \f$ is computed only when a joint is outside its free interval.
     \param q : joint values (n x 1).
     \param qdot1 : the primary velocity (n x 1), after its saturation.
-    \param JtJ, Jte : \f$ J^T J \f$ (n x n) and \f$ J^T e \f$ (n x 1) of the primary task.
+    \param ne : the normal equations of the primary task (\f$ J^T J \f$ n x n, \f$ J^T e \f$ n x 1).
     \param errorNorm : \f$ \|e\| \f$, in the unit of setLargeProjectionThresholds().
     \param law : the primary law (its pseudo-inverse threshold for \f$ I_n - J^+ J \f$).
     \param qdot2 : \f$ \dot q_2 \f$ (n x 1, resized).
@@ -182,7 +181,7 @@ public:
     at the compromise where the avoidance balances the primary task; with it a joint is pushed back only beyond the
     target, toward its limit.
   */
-  void computeVelocity(const JointVector &q, const JointVector &qdot1, const JointMatrix &JtJ, const JointVector &Jte,
+  void computeVelocity(const JointVector &q, const JointVector &qdot1, const vpServoNormalEquations &ne,
                        double errorNorm, const vpServoDampedLeastSquares &law, JointVector &qdot2,
                        const JointVector *target = nullptr) const;
   /*!

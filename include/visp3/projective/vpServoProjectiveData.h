@@ -28,6 +28,7 @@
 
 #include <visp3/projective/vpProjectiveArmData.h>
 #include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpServoNormalEquations.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -48,7 +49,9 @@ BEGIN_VISP_NAMESPACE
     \f$ M_i \f$ (4x1, projective frame of the rig, linear triangulation) and that point at the zero reference
     \f$ M_{0,i} = H(q)^{-1} M_i \f$ (4x1, unit norm);
   - the task: \f$ J \f$ (4N x n, pixels per joint unit; zero rows for features set aside), \f$ e = s - s^* \f$
-    (4N, pixels), \f$ J^T J \f$, \f$ J^T e \f$, filled by vpServoProjective::computeControlLaw().
+    (4N, pixels), the normal equations \f$ J^T J \f$, \f$ J^T e \f$ and their factorisations
+    (vpServoNormalEquations: each computed once, read by the law's parts), filled by
+    vpServoProjective::computeControlLaw().
 
   vpServoProjectiveReport::getData() (vpServoProjective::getReport()) gives the data of the last successful iteration.
   No allocation once the sizes are known. getDisplacementCount() counts the \f$ H(q) \f$ computed since the last
@@ -119,10 +122,8 @@ public:
   const Eigen::MatrixXd &getTaskJacobian() const { return m_J; }
   //! \f$ e = s - s^* \f$ (4N, pixels), zero rows for the features set aside.
   const Eigen::VectorXd &getError() const { return m_e; }
-  //! \f$ J^T J \f$ (n x n).
-  const JointMatrix &getJtJ() const { return m_JtJ; }
-  //! \f$ J^T e \f$ (n x 1).
-  const JointVector &getJte() const { return m_Jte; }
+  //! \f$ J^T J \f$ (n x n), \f$ J^T e \f$ (n x 1) and their factorisations, shared by the parts of the law.
+  const vpServoNormalEquations &getNormalEquations() const { return m_normal; }
   //! Number of features used by the task.
   unsigned int getNumberOfActiveFeatures() const { return m_nbActive; }
   //@}
@@ -138,8 +139,7 @@ private:
   std::vector<char> m_hasPoint;
   Eigen::MatrixXd m_J;
   Eigen::VectorXd m_e;
-  JointMatrix m_JtJ;
-  JointVector m_Jte;
+  vpServoNormalEquations m_normal;
   double m_errorNorm; // ||e|| in the unit of vpServoProjective::setErrorUnit()
   unsigned int m_nbActive;
 };

@@ -22,6 +22,7 @@
 #include <visp3/projective/vpProjectiveConfig.h>
 
 #include <visp3/projective/vpProjectiveArmModel.h>
+#include <visp3/projective/vpServoNormalEquations.h>
 
 BEGIN_VISP_NAMESPACE
 
@@ -88,13 +89,14 @@ public:
     The gain for this call, from the task gain \e lambda and this call's normal equations (see the class
     documentation); the new state is kept aside until commit().
     \param lambda : the task's gain \f$ \lambda > 0 \f$.
-    \param JtJ, Jte : \f$ J^T J \f$ (n x n) and \f$ J^T e \f$ (n x 1) of the active features, pixels.
+    \param ne : the normal equations of the active features (\f$ J^T J \f$ n x n, \f$ J^T e \f$ n x 1, pixels) and
+    their Gauss-Newton step, the law's.
     \param errorSquaredNorm : \f$ \|e\|^2 \f$ (pixels squared).
     \param rows : \f$ m \f$, the rows of the active features (4 per feature).
     \param context : a number that changes when the task changes (the active features, the targets): settling
     restarts when it differs from the last call's.
   */
-  double gain(double lambda, const JointMatrix &JtJ, const JointVector &Jte, double errorSquaredNorm, unsigned int rows,
+  double gain(double lambda, const vpServoNormalEquations &ne, double errorSquaredNorm, unsigned int rows,
               unsigned long context);
   //! The call is not a law (47) on a settled task (stopped, following a path, ...): full gain from the next one.
   void reset();
