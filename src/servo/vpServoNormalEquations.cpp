@@ -25,7 +25,7 @@ using namespace VISP_NAMESPACE_NAME;
 
 vpServoNormalEquations::vpServoNormalEquations()
     : m_JtJ(), m_Jte(), m_L(), m_g(), m_inverseTrace(0.0), m_eigenvalues(), m_eigenvectors(), m_hasCholesky(false),
-      m_positiveDefinite(false), m_hasInverseTrace(false), m_hasEigen(false), m_factorisations(0)
+      m_positiveDefinite(false), m_hasStep(false), m_hasInverseTrace(false), m_hasEigen(false), m_factorisations(0)
 {
 }
 
@@ -44,7 +44,7 @@ void vpServoNormalEquations::compute(const Eigen::MatrixXd &J, const Eigen::Vect
     }
     m_Jte(c) = J.col(c).dot(e);
   }
-  m_hasCholesky = m_positiveDefinite = m_hasInverseTrace = m_hasEigen = false;
+  m_hasCholesky = m_positiveDefinite = m_hasStep = m_hasInverseTrace = m_hasEigen = false;
   m_factorisations = 0;
 }
 
@@ -52,7 +52,7 @@ void vpServoNormalEquations::set(const JointMatrix &JtJ, const JointVector &Jte)
 {
   m_JtJ = JtJ;
   m_Jte = Jte;
-  m_hasCholesky = m_positiveDefinite = m_hasInverseTrace = m_hasEigen = false;
+  m_hasCholesky = m_positiveDefinite = m_hasStep = m_hasInverseTrace = m_hasEigen = false;
   m_factorisations = 0;
 }
 
@@ -65,14 +65,14 @@ void vpServoNormalEquations::factoriseCholesky() const
   const Eigen::Index n = m_JtJ.rows();
   m_L.resize(n, n);
   m_positiveDefinite = true;
-  for (Eigen::Index j = 0; j < n && m_positiveDefinite; ++j) {
+  for (Eigen::Index j = 0; j < n; ++j) {
     double d = m_JtJ(j, j);
     for (Eigen::Index k = 0; k < j; ++k) {
       d -= m_L(j, k) * m_L(j, k);
     }
     if (!(d > 0.0) || !std::isfinite(d)) {
       m_positiveDefinite = false;
-      break;
+      return;
     }
     const double ljj = std::sqrt(d);
     m_L(j, j) = ljj;
@@ -84,13 +84,19 @@ void vpServoNormalEquations::factoriseCholesky() const
       m_L(i, j) = x / ljj;
     }
   }
-  if (!m_positiveDefinite) {
+}
+
+void vpServoNormalEquations::solveGaussNewton() const
+{
+  m_hasStep = true;
+  if (!isPositiveDefinite()) {
     // What the pivoting LDLT gives of a singular system (zero pivots contribute nothing).
     ++m_factorisations;
     m_g = m_JtJ.ldlt().solve(m_Jte);
     return;
   }
   // L L^T g = J^T e: forward then backward substitution.
+  const Eigen::Index n = m_JtJ.rows();
   m_g = m_Jte;
   for (Eigen::Index i = 0; i < n; ++i) {
     double y = m_g(i);
@@ -118,8 +124,8 @@ bool vpServoNormalEquations::isPositiveDefinite() const
 
 const vpServoNormalEquations::JointVector &vpServoNormalEquations::getGaussNewtonStep() const
 {
-  if (!m_hasCholesky) {
-    factoriseCholesky();
+  if (!m_hasStep) {
+    solveGaussNewton();
   }
   return m_g;
 }

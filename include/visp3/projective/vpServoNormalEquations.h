@@ -111,6 +111,7 @@ public:
 
 private:
   void factoriseCholesky() const;
+  void solveGaussNewton() const;
   void decompose() const;
 
   JointMatrix m_JtJ;
@@ -121,7 +122,7 @@ private:
   mutable double m_inverseTrace;
   mutable JointVector m_eigenvalues;
   mutable JointMatrix m_eigenvectors;
-  mutable bool m_hasCholesky, m_positiveDefinite, m_hasInverseTrace, m_hasEigen;
+  mutable bool m_hasCholesky, m_positiveDefinite, m_hasStep, m_hasInverseTrace, m_hasEigen;
   mutable unsigned int m_factorisations;
 };
 
