@@ -140,19 +140,23 @@ double vpServoNormalEquations::getInverseTrace() const
     m_inverseTrace = std::numeric_limits<double>::infinity();
     return m_inverseTrace;
   }
-  // ||L^-1||_F^2, column by column of L^-1 (lower triangular: x_j = 1 / L_jj, then forward substitution).
+  // ||L^-1||_F^2, column by column of L^-1 (lower triangular: x_j = 1 / L_jj, then forward substitution), with the
+  // reciprocals of the diagonal computed once: divisions are the cost at these sizes.
   const Eigen::Index n = m_JtJ.rows();
-  JointVector x(n);
+  JointVector x(n), reciprocal(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    reciprocal(j) = 1.0 / m_L(j, j);
+  }
   double sum = 0.0;
   for (Eigen::Index j = 0; j < n; ++j) {
-    x(j) = 1.0 / m_L(j, j);
+    x(j) = reciprocal(j);
     sum += x(j) * x(j);
     for (Eigen::Index i = j + 1; i < n; ++i) {
       double y = 0.0;
       for (Eigen::Index k = j; k < i; ++k) {
         y -= m_L(i, k) * x(k);
       }
-      x(i) = y / m_L(i, i);
+      x(i) = y * reciprocal(i);
       sum += x(i) * x(i);
     }
   }
