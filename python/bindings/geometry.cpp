@@ -79,12 +79,11 @@ void bindDisplacement(py::module_ &m)
       m, "ProjectiveDisplacement",
       "A p-displacement H = H_PE^-1 T H_PE (4x4, normalised by eq. (12)): how the points of a rigid body move "
       "(vpProjectiveDisplacement).");
-  py::enum_<vpProjectiveDisplacement::vpMotionType>(displacement, "MotionType")
-      .value("IDENTITY", vpProjectiveDisplacement::IDENTITY)
-      .value("TRANSLATION", vpProjectiveDisplacement::TRANSLATION)
-      .value("ROTATION", vpProjectiveDisplacement::ROTATION)
-      .value("GENERAL", vpProjectiveDisplacement::GENERAL)
-      .export_values();
+  bindEnum<vpProjectiveDisplacement::vpMotionType>(displacement, "MotionType",
+                                                   {{"IDENTITY", vpProjectiveDisplacement::IDENTITY},
+                                                    {"TRANSLATION", vpProjectiveDisplacement::TRANSLATION},
+                                                    {"ROTATION", vpProjectiveDisplacement::ROTATION},
+                                                    {"GENERAL", vpProjectiveDisplacement::GENERAL}});
   displacement.def(py::init<>())
       .def(py::init<const vpMatrix &>(), py::arg("H"))
       .def_static("estimate",
