@@ -399,9 +399,8 @@ TEST(ServoArmFollowing, resetAfterTheFixResumes)
   const NoticesSetting quiet(false); // the faults are provoked
   const ArmSetup s = pumaEyeToHand();
   const vpProjectiveRobot model = calibratedRobot(s);
-  vpUniRand rng(14);
   vpColVector qStart, qTarget;
-  randomPair(s, rng, vpMath::rad(15.0), vpMath::rad(15.0), qStart, qTarget);
+  randomPair(s, 14, vpMath::rad(15.0), vpMath::rad(15.0), qStart, qTarget);
   Task t(s, model, {0, 1, 2}, qStart, qTarget);
   t.task.setLambda(2.0);
   t.task.setControlPeriod(0.05);
@@ -435,9 +434,8 @@ TEST(ServoArmFollowing, oneNoticePerKindAndSilenced)
 {
   const ArmSetup s = pumaEyeToHand();
   const vpProjectiveRobot model = calibratedRobot(s);
-  vpUniRand rng(15);
   vpColVector qStart, qTarget;
-  randomPair(s, rng, vpMath::rad(15.0), vpMath::rad(15.0), qStart, qTarget);
+  randomPair(s, 15, vpMath::rad(15.0), vpMath::rad(15.0), qStart, qTarget);
   const std::string prefix = "Warning: vpServoProjective: SERVO_ARM_NOT_FOLLOWING";
   const NoticesSetting restored(true);
   vpProjectiveNotices::reset();

@@ -27,9 +27,8 @@ using namespace vpProjectiveTest;
 
 TEST_F(ServoProjectivePuma, EigenOverloadAndFeatureReferences)
 {
-  vpUniRand rng(8);
   vpColVector q, qStar;
-  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
+  randomPair(s, 8, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
   Task task(s, robot, {0, 1, 2}, q, qStar);
   EXPECT_EQ(task.task.getFeatureHealth().getNumberOfFeatures(), 3u);
   const vpColVector qdot = task.task.computeControlLaw(q);
@@ -182,9 +181,8 @@ TEST_F(ServoProjectivePuma, BadRobustnessInputsThrow)
 
 TEST_F(ServoProjectivePuma, PrintDimensionSingularValuesAndPseudoInverseThreshold)
 {
-  vpUniRand rng(82);
   vpColVector q, qStar;
-  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
+  randomPair(s, 82, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
   Task t(s, robot, {0, 1, 2}, q, qStar);
   configure(t.task);
   EXPECT_EQ(t.task.getFeatureHealth().getNumberOfFeatures(), 3u);
@@ -247,9 +245,8 @@ TEST_F(ServoProjectivePuma, AFailedCallLeavesTheTaskAsItWas)
   // camera's focal plane, so computeControlLaw() throws. Every getter then reports the first call, and the next
   // call computes what a twin task that never saw the failure computes, to the bit (memories included).
   const Eigen::Matrix3d F = toEigen<3, 3>(robot.getStereoRig().getFundamentalMatrix());
-  vpUniRand rng(83);
   vpColVector q, qStar;
-  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
+  randomPair(s, 83, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
   const std::vector<unsigned int> tracked = {0, 1, 2, 3};
   Task failing(s, robot, tracked, q, qStar), twin(s, robot, tracked, q, qStar);
   for (Task *t : {&failing, &twin}) {
@@ -310,9 +307,8 @@ TEST_F(ServoProjectivePuma, ConstGettersWriteNothingAndCanBeSharedByThreads)
 {
   // The getters that used to fill caches compute on demand: called from two threads at once they agree with the
   // values read before, to the bit (run under ThreadSanitizer, this is also a race check).
-  vpUniRand rng(84);
   vpColVector q, qStar;
-  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
+  randomPair(s, 84, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
   Task t(s, robot, {0, 1, 2, 3}, q, qStar);
   configure(t.task);
   t.task.setFeatureTracked(3, false);
@@ -339,9 +335,8 @@ TEST_F(ServoProjectivePuma, ConstGettersWriteNothingAndCanBeSharedByThreads)
 
 TEST_F(ServoProjectivePuma, ReportIsTheLastSuccessfulCallWithItsSettings)
 {
-  vpUniRand rng(22);
   vpColVector q, qStar;
-  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
+  randomPair(s, 22, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
   Task t(s, robot, {0, 1, 2, 3}, q, qStar);
   // Before the first call: running, every feature active, nothing computed.
   const vpServoProjectiveReport &report = t.task.getReport();

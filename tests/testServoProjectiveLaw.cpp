@@ -30,10 +30,9 @@ TEST_F(ServoProjectivePuma, ControlLawIsPseudoInverseAwayFromSingularities)
 {
   const vpProjectiveStereoRig &rig = robot.getStereoRig();
   const std::vector<unsigned int> tracked = {0, 1, 2, 3, 4, 5, 6};
-  vpUniRand rng(4);
   for (int t = 0; t < 5; ++t) {
     vpColVector q, qStar;
-    randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(5.0), q, qStar);
+    randomPair(s, 4, vpMath::rad(20.0), vpMath::rad(5.0), q, qStar);
     Task task(s, robot, tracked, q, qStar);
     task.task.setLambda(0.4);
     // e and J as documented.
@@ -78,9 +77,8 @@ TEST_F(ServoProjectivePuma, ControlLawIsPseudoInverseAwayFromSingularities)
 TEST_F(ServoProjectivePuma, AdaptiveGain)
 {
   const std::vector<unsigned int> tracked = {0, 1, 2, 3, 4, 5, 6};
-  vpUniRand rng(5);
   vpColVector qStar, qFar;
-  randomPair(s, rng, vpMath::rad(15.0), vpMath::rad(10.0), qFar, qStar);
+  randomPair(s, 5, vpMath::rad(15.0), vpMath::rad(10.0), qFar, qStar);
   const vpAdaptiveGain gain(2.0, 0.2, 0.05); // lambda(0) = 2, lambda(inf) = 0.2, slope 0.05 per pixel at 0
   double lambdaFar = 0.0, lambdaNear = 0.0;
   for (int pass = 0; pass < 2; ++pass) {
@@ -108,9 +106,8 @@ TEST_F(ServoProjectivePuma, AdaptiveGain)
 
 TEST_F(ServoProjectivePuma, VelocitySaturationKeepsDirection)
 {
-  vpUniRand rng(6);
   vpColVector q, qStar;
-  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(15.0), q, qStar);
+  randomPair(s, 6, vpMath::rad(20.0), vpMath::rad(15.0), q, qStar);
   Task task(s, robot, {0, 1, 2}, q, qStar);
   const Eigen::VectorXd free = toEigenV(task.task.computeControlLaw(q));
   EXPECT_FALSE(task.task.getReport().isSaturated());
@@ -160,9 +157,8 @@ TEST(ServoProjective, DampingKeepsSingularTasksFinite)
   // One marker used three times: 12 rows of rank 3.
   const ArmSetup puma = pumaEyeToHand();
   const vpProjectiveRobot pumaRobot = calibratedRobot(puma);
-  vpUniRand rng(7);
   vpColVector q, qStar;
-  randomPair(puma, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
+  randomPair(puma, 7, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
   Task repeated(puma, pumaRobot, {0, 0, 0}, q, qStar);
   check(repeated, q, 3, "marker 0 three times");
 
@@ -195,10 +191,9 @@ TEST_F(ServoProjectivePuma, ItsVelocityIsTheDampedLeastSquaresLawOfItsTask)
 {
   // The task's velocity is vpServoDampedLeastSquares::computeVelocity() on getTaskJacobian(), getError() and
   // getLambda() with the task's settings (getDampedLeastSquares()), to the bit: undamped, damped and saturated.
-  vpUniRand rng(81);
   for (int p = 0; p < 3; ++p) {
     vpColVector q, qStar;
-    randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(15.0), q, qStar);
+    randomPair(s, 81, vpMath::rad(20.0), vpMath::rad(15.0), q, qStar);
     Task t(s, robot, {0, 1, 2, 3}, q, qStar);
     t.task.setLambda(2.0, 0.2, 0.05);
     for (int c = 0; c < 3; ++c) {

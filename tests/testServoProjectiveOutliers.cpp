@@ -28,9 +28,8 @@ TEST_F(ServoProjectivePuma, OutlierDistancesAreTheDocumentedOnes)
   // to the projections of H(q) H(q_l)^-1 M_l. Noise free with an exact model, an accepted feature is predicted to
   // rounding; a feature moved along its epipolar line keeps d_F but not its prediction distance.
   const Eigen::Matrix3d F = toEigen<3, 3>(robot.getStereoRig().getFundamentalMatrix());
-  vpUniRand rng(66);
   vpColVector q, qStar;
-  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
+  randomPair(s, 66, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
   Task t(s, robot, {0, 1, 2, 3}, q, qStar);
   configure(t.task);
   t.task.computeControlLaw(q);
@@ -92,10 +91,9 @@ TEST_F(ServoProjectivePuma, GrossOutliersAreRejected)
   const std::vector<unsigned int> tracked = {0, 1, 2, 3, 4, 5, 6};
   const double sigma = 0.3, offset = 30.0, rate = 0.05, threshold = 5.0;
   const int iterations = 150, tail = 50;
-  vpUniRand pairs(67);
   for (int p = 0; p < 3; ++p) {
     vpColVector qStart, qTarget;
-    randomPair(s, pairs, vpMath::rad(20.0), vpMath::rad(15.0), qStart, qTarget);
+    randomPair(s, 67, vpMath::rad(20.0), vpMath::rad(15.0), qStart, qTarget);
     double accuracy[3] = {0.0, 0.0, 0.0};
     int injected = 0, missed = 0, falseAlarms = 0, clean = 0;
     double worstRms[3] = {0.0, 0.0, 0.0};
@@ -167,9 +165,8 @@ TEST_F(ServoProjectivePuma, NewChecksChangeNothingWhenThereIsNothingToCatch)
 {
   // Defaults, then every check switched on with nothing to catch (markers 10 px inside the images, no outlier,
   // joints far from wide limits): the same velocities, bit for bit, along a whole run.
-  vpUniRand rng(69);
   vpColVector q, qTarget;
-  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(15.0), q, qTarget);
+  randomPair(s, 69, vpMath::rad(20.0), vpMath::rad(15.0), q, qTarget);
   const std::vector<unsigned int> tracked = {0, 1, 2};
   Task plain(s, robot, tracked, q, qTarget), checked(s, robot, tracked, q, qTarget);
   configure(plain.task);

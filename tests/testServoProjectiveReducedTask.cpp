@@ -31,10 +31,9 @@ TEST(ServoProjective, LostFeatureIsSetAsideThenUsedAgain)
   const std::vector<unsigned int> tracked = {0, 1, 2, 3};
   for (const ArmSetup &s : {pumaEyeToHand(), viperEyeToHand()}) {
     const vpProjectiveRobot robot = calibratedRobot(s);
-    vpUniRand rng(61);
     for (int p = 0; p < 3; ++p) {
       vpColVector qStart, qTarget;
-      randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(15.0), qStart, qTarget);
+      randomPair(s, 61, vpMath::rad(20.0), vpMath::rad(15.0), qStart, qTarget);
       int reference = -1;
       vpColVector afterLoss[2]; // joints at iteration 10, when the marker is back
       for (int withLoss = 0; withLoss < 2; ++withLoss) {
@@ -159,10 +158,9 @@ TEST(ServoProjective, StopsWhenTheActiveFeaturesNoLongerConstrainEveryJoint)
   for (const ArmSetup &s : {pumaEyeToHand(), viperEyeToHand(), pumaEyeInHand()}) {
     const vpProjectiveRobot robot = calibratedRobot(s);
     const bool eyeInHand = s.mounting == vpProjectiveRobot::EYE_IN_HAND;
-    vpUniRand rng(63);
     for (int p = 0; p < 3; ++p) {
       vpColVector q, qStar;
-      randomPair(s, rng, vpMath::rad(eyeInHand ? 3.0 : 20.0), vpMath::rad(eyeInHand ? 2.0 : 10.0), q, qStar);
+      randomPair(s, 63, vpMath::rad(eyeInHand ? 3.0 : 20.0), vpMath::rad(eyeInHand ? 2.0 : 10.0), q, qStar);
       Task t(s, robot, {0, 1, 2, 3}, q, qStar);
       configure(t.task);
       t.task.getControlLaw().setDamping(0.1, 10.0);
@@ -334,9 +332,8 @@ TEST_F(ServoProjectivePuma, NonFiniteFeatureIsSetAsideWithoutNaN)
 {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
-  vpUniRand rng(65);
   vpColVector q, qStar;
-  randomPair(s, rng, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
+  randomPair(s, 65, vpMath::rad(20.0), vpMath::rad(10.0), q, qStar);
   Task t(s, robot, {0, 1, 2, 3}, q, qStar);
   configure(t.task);
   auto check = [&](const std::vector<vpServoProjective::vpFeatureState> &expected,

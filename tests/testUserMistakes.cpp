@@ -187,15 +187,13 @@ TEST(UserMistakes, VelocitiesInTheCameraFrame)
 {
   const vpVelocityTwistMatrix eVc(vpHomogeneousMatrix(0.0, 0.0, 0.1, 0.0, 0.0, M_PI / 2));
   for (const ArmCase &arm : kMistakeArms) {
-    const ArmSetup s = arm.make();
-    const vpProjectiveRobot model = calibratedRobot(s, 0.3, 2);
-    LoopSettings user = userLoop();
-    user.send = [&eVc](vpSimulatorRobotArm &robot, vpColVector &command) {
+    UserProgram user(arm);
+    user.loop.send = [&eVc](vpSimulatorRobotArm &robot, vpColVector &command) {
       vpMatrix eJe;
       robot.get_eJe(eJe);
       command = eJe.pseudoInverse() * (eVc * command);
     };
-    const ServoOutcome o = servoWithMistake(s, model, user, 21);
+    const ServoOutcome o = user.servo(21);
     expectStopped("velocities in the camera frame", arm.label, o, 0, {"SERVO_ARM_NOT_FOLLOWING"},
                   "setVelocity(vpRobot::ARTICULAR_FRAME, qdot)");
   }
@@ -206,9 +204,7 @@ TEST(UserMistakes, VelocitiesInTheCameraFrame)
 TEST(UserMistakes, RobotNotInVelocityMode)
 {
   for (const ArmCase &arm : kMistakeArms) {
-    const ArmSetup s = arm.make();
-    const vpProjectiveRobot model = calibratedRobot(s, 0.3, 2);
-    const ServoOutcome o = servoWithMistake(s, model, userLoop(), 22, NOT_IN_VELOCITY, 0);
+    const ServoOutcome o = UserProgram(arm).servo(22, NOT_IN_VELOCITY, 0);
     expectStopped("robot not in velocity mode", arm.label, o, 0, {"SERVO_ARM_NOT_FOLLOWING"},
                   "setRobotState(vpRobot::STATE_VELOCITY_CONTROL)");
     EXPECT_EQ(o.r.cause, vpServoArmFollowing::ARM_NOT_MOVING) << arm.label << ": " << o.r.diagnosis;
@@ -220,11 +216,9 @@ TEST(UserMistakes, RobotNotInVelocityMode)
 TEST(UserMistakes, JointsListedInAnotherOrder)
 {
   for (const ArmCase &arm : kMistakeArms) {
-    const ArmSetup s = arm.make();
-    const vpProjectiveRobot model = calibratedRobot(s, 0.3, 2);
-    LoopSettings user = userLoop();
-    user.read = [](vpColVector &q) { std::swap(q[1], q[2]); };
-    const ServoOutcome o = servoWithMistake(s, model, user, 23);
+    UserProgram user(arm);
+    user.loop.read = [](vpColVector &q) { std::swap(q[1], q[2]); };
+    const ServoOutcome o = user.servo(23);
     expectStopped("joints listed in another order", arm.label, o, 0,
                   {"SERVO_ARM_NOT_FOLLOWING", "SERVO_MODEL_MISMATCH"}, "order");
   }
@@ -257,10 +251,9 @@ TEST(UserMistakes, CameraBumpedBetweenAcquisitionAndServo)
 {
   vpUniRand rng(25);
   for (const ArmCase &arm : kMistakeArms) {
-    const ArmSetup s = arm.make();
-    const vpProjectiveRobot model = calibratedRobot(s, 0.3, 2);
-    const ArmSetup moved = bumped(s, BUMP_LEFT, rng);
-    const ServoOutcome o = servoWithMistake(s, model, userLoop(), 25, CAMERA_BUMPED, 15, &moved);
+    const UserProgram user(arm);
+    const ArmSetup moved = bumped(user.s, BUMP_LEFT, rng);
+    const ServoOutcome o = user.servo(25, CAMERA_BUMPED, 15, &moved);
     expectStopped("a camera bumped", arm.label, o, 15, {"SERVO_MODEL_MISMATCH"}, "re-register a moved rig");
     EXPECT_EQ(o.r.notFollowingAt, -1) << arm.label << ": " << o.r.diagnosis;
   }
@@ -299,12 +292,11 @@ namespace
 {
 // \e tasks tasks of the setup (seeds from \e firstSeed) run by the program \e user with \e model: each stops on
 // SERVO_MODEL_MISMATCH naming the left and right images exchanged; the row gives the latest stop.
-void expectExchangeNamed(const char *mistake, const ArmCase &arm, const ArmSetup &s, const vpProjectiveRobot &model,
-                         const LoopSettings &user, long firstSeed, int tasks)
+void expectExchangeNamed(const char *mistake, const ArmCase &arm, const UserProgram &user, long firstSeed, int tasks)
 {
   int latest = 0;
   for (long seed = firstSeed; seed < firstSeed + tasks; ++seed) {
-    const ServoOutcome o = servoWithMistake(s, model, user, seed);
+    const ServoOutcome o = user.servo(seed);
     expectStopped(mistake, arm.label, o, 0, {"SERVO_MODEL_MISMATCH"}, "the left and right images are exchanged");
     latest = std::max(latest, o.stoppedAt());
   }
@@ -320,11 +312,9 @@ void expectExchangeNamed(const char *mistake, const ArmCase &arm, const ArmSetup
 TEST(UserMistakes, LeftAndRightSwappedInTheServoOnly)
 {
   for (const ArmCase &arm : kMistakeArms) {
-    const ArmSetup s = arm.make();
-    const vpProjectiveRobot model = calibratedRobot(s, 0.3, 2);
-    LoopSettings user = userLoop();
-    user.swapImages = true;
-    expectExchangeNamed("left and right images swapped (servo only)", arm, s, model, user, 40, 10);
+    UserProgram user(arm);
+    user.loop.swapImages = true;
+    expectExchangeNamed("left and right images swapped (servo only)", arm, user, 40, 10);
   }
 }
 
@@ -442,11 +432,9 @@ TEST(UserMistakes, ModelOfAnotherCellInTheServo)
 TEST(UserMistakes, RobotNotInVelocityModeWithoutPeriod)
 {
   for (const ArmCase &arm : kMistakeArms) {
-    const ArmSetup s = arm.make();
-    const vpProjectiveRobot model = calibratedRobot(s, 0.3, 2);
-    LoopSettings user = userLoop();
-    user.givePeriod = false;
-    const ServoOutcome o = servoWithMistake(s, model, user, 22, NOT_IN_VELOCITY, 0);
+    UserProgram user(arm);
+    user.loop.givePeriod = false;
+    const ServoOutcome o = user.servo(22, NOT_IN_VELOCITY, 0);
     testLog() << "[ measured ] " << arm.label << ": stopped at call " << o.stoppedAt() << ", final " << o.r.finalRms
               << " px, stderr: " << o.err << std::endl;
     expectStopped("robot not in velocity mode, no period", arm.label, o, 0, {"SERVO_ARM_NOT_FOLLOWING"},

@@ -33,6 +33,7 @@
 #define _vpServoProjectiveTestTools_h_
 
 #include <cmath>
+#include <cstdint>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -131,6 +132,14 @@ inline void randomPair(const ArmSetup &s, vpUniRand &rng, double targetRange, do
     }
   }
   ADD_FAILURE() << s.name << ": no start/target pair in view";
+}
+
+//! The same drawn from a generator of its own seeded with \e seed: a test's one pair, reproducible by its seed.
+inline void randomPair(const ArmSetup &s, uint64_t seed, double targetRange, double startRange, vpColVector &qStart,
+                       vpColVector &qTarget)
+{
+  vpUniRand rng(seed);
+  randomPair(s, rng, targetRange, startRange, qStart, qTarget);
 }
 
 //! Runs the loop; returns the iterations to reach rmsGoal (or maxIterations + 1) and leaves q at the end.

@@ -222,6 +222,24 @@ inline LoopSettings userLoop()
   user.period = kPeriod;
   return user;
 }
+
+/*!
+  The user's program on one arm of kMistakeArms: the arm's setup, the model its acquisition gave (0.3 px of image
+  noise, seed 2), and its servo loop, userLoop() until a test puts its mistake in (loop.read, loop.send, ...).
+*/
+struct UserProgram {
+  explicit UserProgram(const ArmCase &arm) : s(arm.make()), model(calibratedRobot(s, 0.3, 2)), loop(userLoop()) {}
+  //! A task drawn from \e seed, run by this program (servoWithMistake()).
+  ServoOutcome servo(long seed, ArmFault fault = NO_FAULT, unsigned int faultAt = 0,
+                     const ArmSetup *moved = nullptr) const
+  {
+    return servoWithMistake(s, model, loop, seed, fault, faultAt, moved);
+  }
+
+  const ArmSetup s;
+  const vpProjectiveRobot model;
+  LoopSettings loop;
+};
 } // namespace vpProjectiveTest
 
 #endif

@@ -136,7 +136,7 @@ int main(int argc, char **argv)
     // Maximum-likelihood estimate: the H and points that best explain the four images (Ceres, from the linear one).
     const vpProjectiveDisplacement Hrefined = vpProjectiveDisplacement::estimate(rig, left0, right0, left1, right1);
     std::cout << "3. Refined H, normalised by eq. (12):\n";
-    Hrefined.getMatrix().print(std::cout, 10, "");
+    std::cout << Hrefined.matrix() << std::endl;
 
     // 4. Angle (21) and generator (25). The signed amount (as an encoder would read it) fixes the sign:
     // H = exp(amount Hhat).
@@ -147,7 +147,7 @@ int main(int argc, char **argv)
       const vpProjectiveRotation R = vpProjectiveRotation::log(*H[k], angle);
       const double angleDeg = vpMath::deg(H[k]->getRotationAngle());
       std::cout << "4. " << names[k] << " H: angle " << angleDeg << " deg (true 30), generator Hhat:\n";
-      R.getGenerator().print(std::cout, 10, "");
+      std::cout << R.generator() << std::endl;
       ok = ok && (k == 0 || std::fabs(angleDeg - 30.0) <= 5.0);
     }
     //! [Estimation]

@@ -26,7 +26,10 @@
 #include <iostream>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include <visp3/core/vpColVector.h>
+#include <visp3/core/vpEigenConversion.h>
 #include <visp3/core/vpHomogeneousMatrix.h>
 #include <visp3/core/vpImagePoint.h>
 #include <visp3/core/vpMath.h>
@@ -42,6 +45,21 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace app
 {
+/*!
+  A 4x4 matrix of the projective groups (vpProjectiveDisplacement::matrix(), vpProjectiveRotation::generator(): Eigen)
+  as a vpMatrix, by ViSP's own conversion, which ViSP 3.5 and 3.6 declare in namespace vp and ViSP 3.7 in visp.
+*/
+inline vpMatrix toVpMatrix(const Eigen::Matrix4d &E)
+{
+  vpMatrix M;
+#ifdef VISP_NAMESPACE_NAME
+  VISP_NAMESPACE_NAME::eigen2visp(Eigen::MatrixXd(E), M);
+#else
+  vp::eigen2visp(Eigen::MatrixXd(E), M);
+#endif
+  return M;
+}
+
 //! [Scene]
 //! The metric world, known only to the simulator: markers, motion and the scene used for the weak calibration.
 struct Scene {
@@ -117,7 +135,7 @@ inline vpMatrix projectiveToEuclidean(const vpSimulatorStereoRig &sim, const vpP
     M.push_back(rig.triangulate(ipLeft, ipRight));
     N.push_back(vpColVector(lMw * vpColVector({wX[k][0], wX[k][1], wX[k][2], 1.0})));
   }
-  return vpProjectiveDisplacement::estimate(M, N).getMatrix();
+  return toVpMatrix(vpProjectiveDisplacement::estimate(M, N).matrix());
 }
 //! [Link]
 

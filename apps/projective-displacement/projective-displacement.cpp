@@ -86,14 +86,15 @@ void estimateMotion(const vpProjectiveStereoRig &rig, const std::vector<vpImageP
     const vpProjectiveRotation R = vpProjectiveRotation::log(*H[k], scene.angle);
     out[k]->angle = vpMath::deg(H[k]->getRotationAngle());
     out[k]->angleError = std::fabs(out[k]->angle - vpMath::deg(scene.angle));
-    compare(R.getGenerator(), HhatTrue, Hpe, scene, sim, *out[k]);
+    const vpMatrix Hhat = toVpMatrix(R.generator());
+    compare(Hhat, HhatTrue, Hpe, scene, sim, *out[k]);
     if (verbose && k == 1) {
       std::cout << "    refined H, normalised by eq. (12):" << std::endl;
-      H[k]->getMatrix().print(std::cout, 10, "");
+      toVpMatrix(H[k]->matrix()).print(std::cout, 10, "");
     }
     if (verbose) {
       std::cout << "    generator Hhat (25) of the " << (k == 0 ? "linear" : "refined") << " H:" << std::endl;
-      R.getGenerator().print(std::cout, 10, "");
+      Hhat.print(std::cout, 10, "");
     }
   }
 }

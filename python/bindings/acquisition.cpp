@@ -34,8 +34,6 @@ namespace vpPython
 {
 namespace
 {
-typedef std::vector<vpImagePoint> Pixels;
-
 /*!
   A vpRobot whose joint-space calls go to a Python object, for vpProjectiveAcquisitionProcedure::run(): the calls
   the procedure makes, with vpRobot's names and arguments,
@@ -162,16 +160,13 @@ void bindProcedure(py::module_ &m)
                                   "Drives a robot through the acquisition of Ruf & Horaud (trial motions of each joint "
                                   "alone), calibrates the model and tells the rig's mounting "
                                   "(vpProjectiveAcquisitionProcedure).");
-  py::enum_<P::vpMotionControl>(procedure, "MotionControl")
-      .value("VELOCITY_CONTROL", P::VELOCITY_CONTROL)
-      .value("POSITION_CONTROL", P::POSITION_CONTROL)
-      .export_values();
-  py::enum_<P::vpStopReason>(procedure, "StopReason")
-      .value("AMOUNT_REACHED", P::AMOUNT_REACHED)
-      .value("IMAGE_BORDER", P::IMAGE_BORDER)
-      .value("MARKER_LOST", P::MARKER_LOST)
-      .value("JOINT_LIMIT", P::JOINT_LIMIT)
-      .export_values();
+  bindEnum<P::vpMotionControl>(procedure, "MotionControl",
+                               {{"VELOCITY_CONTROL", P::VELOCITY_CONTROL}, {"POSITION_CONTROL", P::POSITION_CONTROL}});
+  bindEnum<P::vpStopReason>(procedure, "StopReason",
+                            {{"AMOUNT_REACHED", P::AMOUNT_REACHED},
+                             {"IMAGE_BORDER", P::IMAGE_BORDER},
+                             {"MARKER_LOST", P::MARKER_LOST},
+                             {"JOINT_LIMIT", P::JOINT_LIMIT}});
   py::class_<P::vpJointReport>(procedure, "JointReport")
       .def_readonly("amountNegative", &P::vpJointReport::amountNegative)
       .def_readonly("amountPositive", &P::vpJointReport::amountPositive)
@@ -250,16 +245,15 @@ void bindDetector(py::module_ &m)
   py::class_<vpStereoAprilTagDetector> detector(m, "StereoAprilTagDetector",
                                                 "AprilTag corners found in both images of a stereo pair "
                                                 "(vpStereoAprilTagDetector).");
-  py::enum_<vpDetectorAprilTag::vpAprilTagFamily>(detector, "AprilTagFamily")
-      .value("TAG_36h11", vpDetectorAprilTag::TAG_36h11)
-      .value("TAG_25h9", vpDetectorAprilTag::TAG_25h9)
-      .value("TAG_16h5", vpDetectorAprilTag::TAG_16h5)
-      .value("TAG_CIRCLE21h7", vpDetectorAprilTag::TAG_CIRCLE21h7)
-      .value("TAG_CIRCLE49h12", vpDetectorAprilTag::TAG_CIRCLE49h12)
-      .value("TAG_CUSTOM48h12", vpDetectorAprilTag::TAG_CUSTOM48h12)
-      .value("TAG_STANDARD41h12", vpDetectorAprilTag::TAG_STANDARD41h12)
-      .value("TAG_STANDARD52h13", vpDetectorAprilTag::TAG_STANDARD52h13)
-      .export_values();
+  bindEnum<vpDetectorAprilTag::vpAprilTagFamily>(detector, "AprilTagFamily",
+                                                 {{"TAG_36h11", vpDetectorAprilTag::TAG_36h11},
+                                                  {"TAG_25h9", vpDetectorAprilTag::TAG_25h9},
+                                                  {"TAG_16h5", vpDetectorAprilTag::TAG_16h5},
+                                                  {"TAG_CIRCLE21h7", vpDetectorAprilTag::TAG_CIRCLE21h7},
+                                                  {"TAG_CIRCLE49h12", vpDetectorAprilTag::TAG_CIRCLE49h12},
+                                                  {"TAG_CUSTOM48h12", vpDetectorAprilTag::TAG_CUSTOM48h12},
+                                                  {"TAG_STANDARD41h12", vpDetectorAprilTag::TAG_STANDARD41h12},
+                                                  {"TAG_STANDARD52h13", vpDetectorAprilTag::TAG_STANDARD52h13}});
   detector.def(py::init<vpDetectorAprilTag::vpAprilTagFamily>(), py::arg("family") = vpDetectorAprilTag::TAG_36h11)
       .def("setStereoRig", &vpStereoAprilTagDetector::setStereoRig, py::arg("rig"))
       .def("clearStereoRig", &vpStereoAprilTagDetector::clearStereoRig)

@@ -79,12 +79,11 @@ void bindDisplacement(py::module_ &m)
       m, "ProjectiveDisplacement",
       "A p-displacement H = H_PE^-1 T H_PE (4x4, normalised by eq. (12)): how the points of a rigid body move "
       "(vpProjectiveDisplacement).");
-  py::enum_<vpProjectiveDisplacement::vpMotionType>(displacement, "MotionType")
-      .value("IDENTITY", vpProjectiveDisplacement::IDENTITY)
-      .value("TRANSLATION", vpProjectiveDisplacement::TRANSLATION)
-      .value("ROTATION", vpProjectiveDisplacement::ROTATION)
-      .value("GENERAL", vpProjectiveDisplacement::GENERAL)
-      .export_values();
+  bindEnum<vpProjectiveDisplacement::vpMotionType>(displacement, "MotionType",
+                                                   {{"IDENTITY", vpProjectiveDisplacement::IDENTITY},
+                                                    {"TRANSLATION", vpProjectiveDisplacement::TRANSLATION},
+                                                    {"ROTATION", vpProjectiveDisplacement::ROTATION},
+                                                    {"GENERAL", vpProjectiveDisplacement::GENERAL}});
   displacement.def(py::init<>())
       .def(py::init<const vpMatrix &>(), py::arg("H"))
       .def_static("estimate",
@@ -116,7 +115,8 @@ void bindDisplacement(py::module_ &m)
       .def_static(
           "exp", [](const vpMatrix &Hhat) { return vpProjectiveDisplacement::exp(Hhat); }, py::arg("Hhat"),
           "exp(Hhat) of an element Hhat (4x4) of pse(3).")
-      .def("getMatrix", &vpProjectiveDisplacement::getMatrix)
+      .def(
+          "matrix", [](const vpProjectiveDisplacement &H) { return toArray(H.matrix()); }, "The normalised H (4x4).")
       .def("getRotationAngle", &vpProjectiveDisplacement::getRotationAngle)
       .def("classify", &vpProjectiveDisplacement::classify, py::arg("tolerance") = 1e-6)
       .def("log", py::overload_cast<>(&vpProjectiveDisplacement::log, py::const_),
@@ -139,7 +139,8 @@ template <typename Subgroup> void bindSubgroup(py::module_ &m, const char *name,
           "exp", [](const Subgroup &g, double q) { return g.exp(q); }, py::arg(amount))
       .def(
           "dexp", [](const Subgroup &g, double q) { return toArray(g.dexp(q)); }, py::arg(amount))
-      .def("getGenerator", &Subgroup::getGenerator)
+      .def(
+          "generator", [](const Subgroup &g) { return toArray(g.generator()); }, "The generator Hhat (4x4).")
       .def_static(
           "project", [](const vpMatrix &Hhat) { return toArray(Subgroup::project(Subgroup(Hhat, 1e300).generator())); },
           py::arg("Hhat"), "The closest exact generator to Hhat (4x4).")

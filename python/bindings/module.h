@@ -26,9 +26,11 @@
 
 #include "conversions.h"
 
+#include <initializer_list>
 #include <memory>
 #include <ostream>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 #include <pybind11/iostream.h>
@@ -39,6 +41,9 @@ using namespace VISP_NAMESPACE_NAME;
 
 namespace vpPython
 {
+//! The pixels (u, v) of a list of image points: an (N, 2) array in Python (conversions.h).
+typedef std::vector<vpImagePoint> Pixels;
+
 //! The call guard of the long calls: the GIL is released while the C++ function runs.
 typedef py::call_guard<py::gil_scoped_release> ReleaseGil;
 
@@ -50,6 +55,21 @@ void bindServo(py::module_ &m);
 void bindSimulation(py::module_ &m);
 void bindAcquisition(py::module_ &m);
 void bindSessions(py::module_ &m);
+
+/*!
+  Binds the C++ enumeration \e E as the Python enum \e name of \e scope (a class or the module) from the table of its
+  \e values, each a (Python name, C++ value) pair, and exports the values into \e scope as C++ has them in the class
+  (ProjectiveRobot.REVOLUTE beside ProjectiveRobot.JointType.REVOLUTE): one way of binding every enumeration.
+*/
+template <typename E, typename Scope>
+void bindEnum(Scope &scope, const char *name, std::initializer_list<std::pair<const char *, E>> values)
+{
+  py::enum_<E> binding(scope, name);
+  for (const std::pair<const char *, E> &value : values) {
+    binding.value(value.first, value.second);
+  }
+  binding.export_values();
+}
 
 //! A 4x4 Eigen matrix as a (4, 4) numpy array.
 inline py::array_t<double> toArray(const Eigen::Matrix4d &M)

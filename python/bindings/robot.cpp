@@ -37,7 +37,6 @@ namespace vpPython
 namespace
 {
 typedef py::class_<vpProjectiveRobot> RobotClass;
-typedef std::vector<vpImagePoint> Pixels;
 
 //! An Eigen matrix as a vpMatrix (a numpy array in Python).
 template <typename Derived> vpMatrix toVispMatrix(const Eigen::MatrixBase<Derived> &E)
@@ -208,19 +207,16 @@ void bindRobot(py::module_ &m)
   RobotClass robot(m, "ProjectiveRobot",
                    "A serial arm modelled in the projective frame of an uncalibrated stereo rig: acquisition, "
                    "kinematics, inverse kinematics, rig re-registration and model file (vpProjectiveRobot).");
-  py::enum_<vpProjectiveRobot::vpJointType>(robot, "JointType")
-      .value("REVOLUTE", vpProjectiveRobot::REVOLUTE)
-      .value("PRISMATIC", vpProjectiveRobot::PRISMATIC)
-      .export_values();
-  py::enum_<vpProjectiveRobot::vpRigMounting>(robot, "RigMounting")
-      .value("EYE_TO_HAND", vpProjectiveRobot::EYE_TO_HAND)
-      .value("EYE_IN_HAND", vpProjectiveRobot::EYE_IN_HAND)
-      .export_values();
+  bindEnum<vpProjectiveRobot::vpJointType>(
+      robot, "JointType", {{"REVOLUTE", vpProjectiveRobot::REVOLUTE}, {"PRISMATIC", vpProjectiveRobot::PRISMATIC}});
+  bindEnum<vpProjectiveRobot::vpRigMounting>(
+      robot, "RigMounting",
+      {{"EYE_TO_HAND", vpProjectiveRobot::EYE_TO_HAND}, {"EYE_IN_HAND", vpProjectiveRobot::EYE_IN_HAND}});
   py::class_<vpProjectiveRigRegistration> registration(m, "ProjectiveRigRegistration");
-  py::enum_<vpProjectiveRigRegistration::vpRegistrationMode>(registration, "RegistrationMode")
-      .value("FIXED_INTRINSICS", vpProjectiveRigRegistration::FIXED_INTRINSICS)
-      .value("GENERAL", vpProjectiveRigRegistration::GENERAL)
-      .export_values();
+  bindEnum<vpProjectiveRigRegistration::vpRegistrationMode>(
+      registration, "RegistrationMode",
+      {{"FIXED_INTRINSICS", vpProjectiveRigRegistration::FIXED_INTRINSICS},
+       {"GENERAL", vpProjectiveRigRegistration::GENERAL}});
   bindRobotContract(robot);
   bindRobotMore(robot);
   bindRobotParts(m);

@@ -42,7 +42,6 @@ typedef py::class_<vpServoProjective> TaskClass;
 
 void bindFeature(py::module_ &m)
 {
-  typedef std::vector<vpImagePoint> Pixels;
   py::class_<vpFeatureStereoPoint>(
       m, "FeatureStereoPoint", "The stereo point s = (u, v, u', v') as a ViSP visual feature (vpFeatureStereoPoint).")
       .def(py::init<>())
@@ -74,22 +73,21 @@ void bindReport(py::module_ &m)
 {
   py::class_<vpServoProjectiveReport> report(m, "ServoProjectiveReport",
                                              "What the last computeControlLaw() did (vpServoProjectiveReport).");
-  py::enum_<vpServoProjectiveReport::vpServoStatus>(report, "ServoStatus")
-      .value("SERVO_RUNNING", vpServoProjectiveReport::SERVO_RUNNING)
-      .value("SERVO_REDUCED", vpServoProjectiveReport::SERVO_REDUCED)
-      .value("SERVO_STOPPED", vpServoProjectiveReport::SERVO_STOPPED)
-      .value("SERVO_NO_PLAN", vpServoProjectiveReport::SERVO_NO_PLAN)
-      .value("SERVO_MODEL_MISMATCH", vpServoProjectiveReport::SERVO_MODEL_MISMATCH)
-      .value("SERVO_OPEN_LOOP", vpServoProjectiveReport::SERVO_OPEN_LOOP)
-      .value("SERVO_ARM_NOT_FOLLOWING", vpServoProjectiveReport::SERVO_ARM_NOT_FOLLOWING)
-      .export_values();
-  py::enum_<vpServoFeatureHealth::vpFeatureState>(report, "FeatureState")
-      .value("FEATURE_ACTIVE", vpServoFeatureHealth::FEATURE_ACTIVE)
-      .value("FEATURE_NOT_TRACKED", vpServoFeatureHealth::FEATURE_NOT_TRACKED)
-      .value("FEATURE_OUT_OF_IMAGE", vpServoFeatureHealth::FEATURE_OUT_OF_IMAGE)
-      .value("FEATURE_NOT_FINITE", vpServoFeatureHealth::FEATURE_NOT_FINITE)
-      .value("FEATURE_OUTLIER", vpServoFeatureHealth::FEATURE_OUTLIER)
-      .export_values();
+  bindEnum<vpServoProjectiveReport::vpServoStatus>(
+      report, "ServoStatus",
+      {{"SERVO_RUNNING", vpServoProjectiveReport::SERVO_RUNNING},
+       {"SERVO_REDUCED", vpServoProjectiveReport::SERVO_REDUCED},
+       {"SERVO_STOPPED", vpServoProjectiveReport::SERVO_STOPPED},
+       {"SERVO_NO_PLAN", vpServoProjectiveReport::SERVO_NO_PLAN},
+       {"SERVO_MODEL_MISMATCH", vpServoProjectiveReport::SERVO_MODEL_MISMATCH},
+       {"SERVO_OPEN_LOOP", vpServoProjectiveReport::SERVO_OPEN_LOOP},
+       {"SERVO_ARM_NOT_FOLLOWING", vpServoProjectiveReport::SERVO_ARM_NOT_FOLLOWING}});
+  bindEnum<vpServoFeatureHealth::vpFeatureState>(report, "FeatureState",
+                                                 {{"FEATURE_ACTIVE", vpServoFeatureHealth::FEATURE_ACTIVE},
+                                                  {"FEATURE_NOT_TRACKED", vpServoFeatureHealth::FEATURE_NOT_TRACKED},
+                                                  {"FEATURE_OUT_OF_IMAGE", vpServoFeatureHealth::FEATURE_OUT_OF_IMAGE},
+                                                  {"FEATURE_NOT_FINITE", vpServoFeatureHealth::FEATURE_NOT_FINITE},
+                                                  {"FEATURE_OUTLIER", vpServoFeatureHealth::FEATURE_OUTLIER}});
   report.def("getStatus", &vpServoProjectiveReport::getStatus)
       .def("getNumberOfFeatures", &vpServoProjectiveReport::getNumberOfFeatures)
       .def("getFeatureState", &vpServoProjectiveReport::getFeatureState, py::arg("i"))
@@ -222,14 +220,13 @@ void bindServo(py::module_ &m)
                  "The non-metric joint-space visual servo of Ruf & Horaud: qdot = -lambda J^+ (s - s*) through the "
                  "projective model of the arm (vpServoProjective).");
   // The task's enumerations: its own, and the report's, reachable from the task as in C++.
-  py::enum_<vpServoProjective::vpErrorUnit>(task, "ErrorUnit")
-      .value("ERROR_PIXELS", vpServoProjective::ERROR_PIXELS)
-      .value("ERROR_NORMALIZED", vpServoProjective::ERROR_NORMALIZED)
-      .export_values();
-  py::enum_<vpServoControlLaw::vpGainInput>(task, "GainInput")
-      .value("GAIN_INPUT_ERROR", vpServoControlLaw::GAIN_INPUT_ERROR)
-      .value("GAIN_INPUT_JOINT_VELOCITY", vpServoControlLaw::GAIN_INPUT_JOINT_VELOCITY)
-      .export_values();
+  bindEnum<vpServoProjective::vpErrorUnit>(
+      task, "ErrorUnit",
+      {{"ERROR_PIXELS", vpServoProjective::ERROR_PIXELS}, {"ERROR_NORMALIZED", vpServoProjective::ERROR_NORMALIZED}});
+  bindEnum<vpServoControlLaw::vpGainInput>(
+      task, "GainInput",
+      {{"GAIN_INPUT_ERROR", vpServoControlLaw::GAIN_INPUT_ERROR},
+       {"GAIN_INPUT_JOINT_VELOCITY", vpServoControlLaw::GAIN_INPUT_JOINT_VELOCITY}});
   py::object report = m.attr("ServoProjectiveReport");
   for (const char *name : {"ServoStatus", "FeatureState"}) {
     py::object type = report.attr(name);

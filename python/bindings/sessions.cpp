@@ -32,7 +32,6 @@ namespace vpPython
 {
 namespace
 {
-typedef std::vector<vpImagePoint> Pixels;
 typedef vpProjectiveSession::vpFrameRole Role;
 
 void bindSession(py::module_ &m)
@@ -41,13 +40,12 @@ void bindSession(py::module_ &m)
                                           "A recorded session: session.json and the images it names "
                                           "(vpProjectiveSession).");
   session.attr("JointType") = m.attr("ProjectiveRobot").attr("JointType");
-  py::enum_<Role>(session, "FrameRole")
-      .value("ZERO", vpProjectiveSession::ZERO)
-      .value("TRIAL", vpProjectiveSession::TRIAL)
-      .value("OBSERVATION", vpProjectiveSession::OBSERVATION)
-      .value("TARGET", vpProjectiveSession::TARGET)
-      .value("SERVO", vpProjectiveSession::SERVO)
-      .export_values();
+  bindEnum<Role>(session, "FrameRole",
+                 {{"ZERO", vpProjectiveSession::ZERO},
+                  {"TRIAL", vpProjectiveSession::TRIAL},
+                  {"OBSERVATION", vpProjectiveSession::OBSERVATION},
+                  {"TARGET", vpProjectiveSession::TARGET},
+                  {"SERVO", vpProjectiveSession::SERVO}});
   typedef vpProjectiveSession::vpFrame Frame;
   py::class_<Frame>(session, "Frame", "One stereo frame as recorded.")
       .def_readonly("role", &Frame::role)
@@ -146,21 +144,19 @@ void bindCalibration(py::module_ &m)
   py::class_<C> calibration(m, "ProjectiveSessionCalibration",
                             "Calibrates an arm from a recorded session, and checks a model on one "
                             "(vpProjectiveSessionCalibration); markers: AprilTag corners of `family`.");
-  py::enum_<B::vpMountingChoice>(calibration, "MountingChoice")
-      .value("MOUNTING_AUTO", B::MOUNTING_AUTO)
-      .value("MOUNTING_EYE_TO_HAND", B::MOUNTING_EYE_TO_HAND)
-      .value("MOUNTING_EYE_IN_HAND", B::MOUNTING_EYE_IN_HAND)
-      .export_values();
-  py::enum_<B::vpRigState>(calibration, "RigState")
-      .value("RIG_UNCHANGED", B::RIG_UNCHANGED)
-      .value("LEFT_CAMERA_MOVED", B::LEFT_CAMERA_MOVED)
-      .value("RIGHT_CAMERA_MOVED", B::RIGHT_CAMERA_MOVED)
-      .value("BOTH_CAMERAS_MOVED", B::BOTH_CAMERAS_MOVED)
-      .value("CAMERAS_SWAPPED", B::CAMERAS_SWAPPED)
-      .value("MARKERS_MOVED", B::MARKERS_MOVED)
-      .value("OTHER_READINGS", B::OTHER_READINGS)
-      .value("OTHER_CELL", B::OTHER_CELL)
-      .export_values();
+  bindEnum<B::vpMountingChoice>(calibration, "MountingChoice",
+                                {{"MOUNTING_AUTO", B::MOUNTING_AUTO},
+                                 {"MOUNTING_EYE_TO_HAND", B::MOUNTING_EYE_TO_HAND},
+                                 {"MOUNTING_EYE_IN_HAND", B::MOUNTING_EYE_IN_HAND}});
+  bindEnum<B::vpRigState>(calibration, "RigState",
+                          {{"RIG_UNCHANGED", B::RIG_UNCHANGED},
+                           {"LEFT_CAMERA_MOVED", B::LEFT_CAMERA_MOVED},
+                           {"RIGHT_CAMERA_MOVED", B::RIGHT_CAMERA_MOVED},
+                           {"BOTH_CAMERAS_MOVED", B::BOTH_CAMERAS_MOVED},
+                           {"CAMERAS_SWAPPED", B::CAMERAS_SWAPPED},
+                           {"MARKERS_MOVED", B::MARKERS_MOVED},
+                           {"OTHER_READINGS", B::OTHER_READINGS},
+                           {"OTHER_CELL", B::OTHER_CELL}});
   py::class_<B::vpJointSummary>(calibration, "JointSummary")
       .def_readonly("type", &B::vpJointSummary::type)
       .def_readonly("trials", &B::vpJointSummary::trials)

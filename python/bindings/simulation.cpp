@@ -41,21 +41,19 @@ void bindRobotInterface(py::module_ &m)
   py::class_<vpRobot> robot(m, "Robot",
                             "ViSP's robot interface (vpRobot), its joint-space calls: what the acquisition procedure "
                             "drives. SimulatorRobotArm is one; a Python class with the same methods is another.");
-  py::enum_<vpRobot::vpRobotStateType>(robot, "RobotStateType")
-      .value("STATE_STOP", vpRobot::STATE_STOP)
-      .value("STATE_VELOCITY_CONTROL", vpRobot::STATE_VELOCITY_CONTROL)
-      .value("STATE_POSITION_CONTROL", vpRobot::STATE_POSITION_CONTROL)
-      .value("STATE_ACCELERATION_CONTROL", vpRobot::STATE_ACCELERATION_CONTROL)
-      .export_values();
-  py::enum_<vpRobot::vpControlFrameType>(robot, "ControlFrameType")
-      .value("REFERENCE_FRAME", vpRobot::REFERENCE_FRAME)
-      .value("ARTICULAR_FRAME", vpRobot::ARTICULAR_FRAME)
-      .value("JOINT_STATE", vpRobot::JOINT_STATE)
-      .value("END_EFFECTOR_FRAME", vpRobot::END_EFFECTOR_FRAME)
-      .value("CAMERA_FRAME", vpRobot::CAMERA_FRAME)
-      .value("TOOL_FRAME", vpRobot::TOOL_FRAME)
-      .value("MIXT_FRAME", vpRobot::MIXT_FRAME)
-      .export_values();
+  bindEnum<vpRobot::vpRobotStateType>(robot, "RobotStateType",
+                                      {{"STATE_STOP", vpRobot::STATE_STOP},
+                                       {"STATE_VELOCITY_CONTROL", vpRobot::STATE_VELOCITY_CONTROL},
+                                       {"STATE_POSITION_CONTROL", vpRobot::STATE_POSITION_CONTROL},
+                                       {"STATE_ACCELERATION_CONTROL", vpRobot::STATE_ACCELERATION_CONTROL}});
+  bindEnum<vpRobot::vpControlFrameType>(robot, "ControlFrameType",
+                                        {{"REFERENCE_FRAME", vpRobot::REFERENCE_FRAME},
+                                         {"ARTICULAR_FRAME", vpRobot::ARTICULAR_FRAME},
+                                         {"JOINT_STATE", vpRobot::JOINT_STATE},
+                                         {"END_EFFECTOR_FRAME", vpRobot::END_EFFECTOR_FRAME},
+                                         {"CAMERA_FRAME", vpRobot::CAMERA_FRAME},
+                                         {"TOOL_FRAME", vpRobot::TOOL_FRAME},
+                                         {"MIXT_FRAME", vpRobot::MIXT_FRAME}});
   robot
       .def(
           "getPosition",

@@ -113,14 +113,14 @@ def test_displacements_and_joint_groups():
     M0 = rng.normal(size=(8, 4))
     M1 = np.array([H.act(M) for M in M0])
     estimated = vpp.ProjectiveDisplacement.estimate(M0, -2.0 * M1)  # any scale per point set
-    assert np.abs(estimated.getMatrix() - H.getMatrix()).max() < 1e-9
+    assert np.abs(estimated.matrix() - H.matrix()).max() < 1e-9
     assert np.abs(H.log() - theta * Hhat).max() < 1e-9
-    assert np.abs(vpp.ProjectiveDisplacement.exp(H.log()).getMatrix() - H.getMatrix()).max() < 1e-12
-    assert np.abs((H * H.inverse()).getMatrix() - np.eye(4)).max() < 1e-12
-    assert np.abs(vpp.ProjectiveRotation.log(H, theta).getGenerator() - Hhat).max() < 1e-9
+    assert np.abs(vpp.ProjectiveDisplacement.exp(H.log()).matrix() - H.matrix()).max() < 1e-12
+    assert np.abs((H * H.inverse()).matrix() - np.eye(4)).max() < 1e-12
+    assert np.abs(vpp.ProjectiveRotation.log(H, theta).generator() - Hhat).max() < 1e-9
     assert vpp.ProjectiveRotation.generatorResidual(Hhat) < 1e-12
     h = 1e-6  # dexp against central differences
-    numeric = (rotation.exp(theta + h).getMatrix() - rotation.exp(theta - h).getMatrix()) / (2 * h)
+    numeric = (rotation.exp(theta + h).matrix() - rotation.exp(theta - h).matrix()) / (2 * h)
     assert np.abs(rotation.dexp(theta) - numeric).max() < 1e-7 * np.abs(numeric).max()
     slide = np.zeros((4, 4))
     slide[:3, 3] = axis

@@ -80,6 +80,17 @@ inline double nonNegative(double x, const std::string &where, const std::string 
   return x;
 }
 
+//! A positive setting or argument (a threshold, a tolerance), checked: \e x if finite and > 0, else the error saying
+//! that \e what (e.g. "the inlier threshold") must be positive, with \e use (its unit, what a value means).
+inline double positive(double x, const std::string &where, const std::string &what, const std::string &use)
+{
+  requireFinite(x, where, what);
+  if (!(x > 0.0)) {
+    fail(vpProjectiveException::invalidValueError, where, what + " must be positive (" + use + ")");
+  }
+  return x;
+}
+
 //! True if every entry of a ViSP matrix, vector or transform is finite.
 inline bool allFinite(const vpArray2D<double> &A)
 {

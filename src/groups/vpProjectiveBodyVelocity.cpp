@@ -67,11 +67,6 @@ vpProjectiveBodyVelocity vpProjectiveBodyVelocity::fromSequence(const std::vecto
   return vpProjectiveBodyVelocity(slope);
 }
 
-vpMatrix vpProjectiveBodyVelocity::getMatrix() const
-{
-  return toVisp(m_Hhat);
-}
-
 vpProjectiveDisplacement vpProjectiveBodyVelocity::integrate(double dt) const
 {
   requireFinite(dt, at("integrate()"), "the duration");

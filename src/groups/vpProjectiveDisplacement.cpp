@@ -59,11 +59,6 @@ Eigen::Matrix4d vpProjectiveDisplacement::normalize(const Eigen::Matrix4d &H)
   return Hs / gamma;
 }
 
-vpMatrix vpProjectiveDisplacement::getMatrix() const
-{
-  return toVisp(m_H);
-}
-
 double vpProjectiveDisplacement::getRotationAngle() const
 {
   const double c = 0.5 * (m_H.trace() - 2.0);

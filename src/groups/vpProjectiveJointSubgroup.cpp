@@ -67,11 +67,6 @@ template <typename Derived> vpProjectiveDisplacement vpProjectiveJointSubgroup<D
   return vpProjectiveDisplacement(Derived::exp(m_Hhat, q), vpProjectiveDisplacement::vpNormalized());
 }
 
-template <typename Derived> vpMatrix vpProjectiveJointSubgroup<Derived>::getGenerator() const
-{
-  return vpProjectiveInternal::toVisp(m_Hhat);
-}
-
 // The subgroups: the words of their errors, and the instantiations that the shared library exports.
 template <>
 const vpProjectiveJointSubgroup<vpProjectiveRotation>::vpIdentity

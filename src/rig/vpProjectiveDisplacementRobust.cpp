@@ -212,11 +212,7 @@ Eigen::Matrix4d vpProjectiveDisplacement::estimateRobust(const vpProjectiveStere
       fail(vpProjectiveException::nonFiniteValueError, where, "an image point is not finite (NaN or infinity)");
     }
   }
-  requireFinite(inlierThreshold, where, "the inlier threshold");
-  if (!(inlierThreshold > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, where,
-         "the inlier threshold must be positive (pixels, e.g. 3 times the image noise)");
-  }
+  positive(inlierThreshold, where, "the inlier threshold", "pixels, e.g. 3 times the image noise");
   if (maxIterations < 1) {
     fail(vpProjectiveException::invalidValueError, where, "maxIterations (the number of 5-point sets) must be >= 1");
   }

@@ -151,10 +151,7 @@ void vpProjectiveStereoRig::estimate(const std::vector<vpImagePoint> &left, cons
     os << "needs at least 8 matches to estimate the fundamental matrix, got " << left.size();
     fail(vpProjectiveException::notEnoughPointsError, where, os.str());
   }
-  requireFinite(inlierThreshold, where, "the inlier threshold");
-  if (!(inlierThreshold > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, where, "the inlier threshold must be positive (pixels)");
-  }
+  positive(inlierThreshold, where, "the inlier threshold", "pixels");
   const size_t n = left.size();
   std::vector<Eigen::Vector2d> l(n), r(n);
   std::vector<cv::Point2d> cvl(n), cvr(n);

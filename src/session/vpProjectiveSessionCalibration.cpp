@@ -77,12 +77,7 @@ void vpProjectiveSessionCalibration::setMarkerExtractor(const vpMarkerExtractor 
 
 void vpProjectiveSessionCalibration::setEpipolarThreshold(double pixels)
 {
-  requireFinite(pixels, calibrationAt("setEpipolarThreshold()"), "the epipolar threshold");
-  if (pixels <= 0.0) {
-    fail(vpProjectiveException::invalidValueError, calibrationAt("setEpipolarThreshold()"),
-         "the epipolar threshold must be positive (pixels)");
-  }
-  m_epipolar = pixels;
+  m_epipolar = positive(pixels, calibrationAt("setEpipolarThreshold()"), "the epipolar threshold", "pixels");
 }
 
 void vpProjectiveSessionCalibration::setOutlierThreshold(double pixels)
@@ -93,22 +88,12 @@ void vpProjectiveSessionCalibration::setOutlierThreshold(double pixels)
 
 void vpProjectiveSessionCalibration::setCoplanarityThreshold(double pixels)
 {
-  requireFinite(pixels, calibrationAt("setCoplanarityThreshold()"), "the coplanarity threshold");
-  if (pixels <= 0.0) {
-    fail(vpProjectiveException::invalidValueError, calibrationAt("setCoplanarityThreshold()"),
-         "the coplanarity threshold must be positive (pixels)");
-  }
-  m_coplanarity = pixels;
+  m_coplanarity = positive(pixels, calibrationAt("setCoplanarityThreshold()"), "the coplanarity threshold", "pixels");
 }
 
 void vpProjectiveSessionCalibration::setMismatchThreshold(double pixels)
 {
-  requireFinite(pixels, calibrationAt("setMismatchThreshold()"), "the mismatch threshold");
-  if (pixels <= 0.0) {
-    fail(vpProjectiveException::invalidValueError, calibrationAt("setMismatchThreshold()"),
-         "the mismatch threshold must be positive (pixels)");
-  }
-  m_mismatch = pixels;
+  m_mismatch = positive(pixels, calibrationAt("setMismatchThreshold()"), "the mismatch threshold", "pixels");
 }
 
 void vpProjectiveSessionCalibration::progress(const std::string &line) const

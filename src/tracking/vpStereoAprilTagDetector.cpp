@@ -100,12 +100,8 @@ void vpStereoAprilTagDetector::setStereoRig(const vpProjectiveStereoRig &rig)
 
 void vpStereoAprilTagDetector::setEpipolarThreshold(double pixels)
 {
-  vpProjectiveInternal::requireFinite(pixels, at("setEpipolarThreshold()"), "the threshold");
-  if (!(pixels > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, at("setEpipolarThreshold()"),
-         "the epipolar threshold must be positive (pixels; clearStereoRig() disables the check)");
-  }
-  m_epipolarThreshold = pixels;
+  m_epipolarThreshold = vpProjectiveInternal::positive(pixels, at("setEpipolarThreshold()"), "the epipolar threshold",
+                                                       "pixels; clearStereoRig() disables the check");
 }
 
 void vpStereoAprilTagDetector::setDecimation(double decimation)

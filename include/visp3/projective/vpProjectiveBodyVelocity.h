@@ -47,6 +47,9 @@ BEGIN_VISP_NAMESPACE
   Velocities are estimated from displacements, which the rig measures: between two displacements, assuming a constant
   velocity, \f$ \hat H = \log(H_1 H_0^{-1}) / (t_1 - t_0) \f$ (vpProjectiveDisplacement::log()); over a sequence, by
   the least-squares slope of the logarithms around a sample, which smooths the noise of single displacements.
+
+  The velocity \f$ \hat H \f$ is matrix(), an Eigen matrix; a ViSP program converts it to a vpMatrix with ViSP's
+  eigen2visp(), as vpProjectiveDisplacement and the page \ref page_groups show.
 */
 class VISP_EXPORT vpProjectiveBodyVelocity
 {
@@ -79,10 +82,8 @@ public:
   static vpProjectiveBodyVelocity fromSequence(const std::vector<vpProjectiveDisplacement> &H,
                                                const std::vector<double> &t, size_t k, size_t halfWindow);
 
-  //! \f$ \hat H \f$ (4x4).
+  //! \f$ \hat H \f$ (4x4); as a vpMatrix: see the class description.
   const Eigen::Matrix4d &matrix() const { return m_Hhat; }
-  //! \f$ \hat H \f$ (4x4) as a vpMatrix.
-  vpMatrix getMatrix() const;
   //! The displacement \f$ \exp(\hat H\, dt) \f$ of the motion during \e dt at this velocity.
   vpProjectiveDisplacement integrate(double dt) const;
 

@@ -50,6 +50,11 @@ template <typename Derived> class vpProjectiveJointSubgroup;
   The eigenvalues of \f$ H \f$ are those of \f$ T \f$: \f$ e^{\pm i\theta}, 1, 1 \f$. Hence
   \f$ \cos\theta = (\mathrm{trace}\, H - 2)/2 \f$ (21), and the rank of \f$ H - I \f$ classifies the motion:
   0 identity, 1 translation, 2 rotation about a fixed axis, 3 general screw motion.
+
+  The matrix is matrix(), an Eigen matrix, as Sophus and manif give their groups' (one name per getter). A ViSP
+  program that wants a vpMatrix converts it with ViSP's \c visp3/core/vpEigenConversion.h:
+  <tt>vpMatrix M; vp::eigen2visp(Eigen::MatrixXd(H.matrix()), M);</tt> (namespace \c vp in ViSP 3.5 and 3.6,
+  \c visp from ViSP 3.7).
 */
 class VISP_EXPORT vpProjectiveDisplacement
 {
@@ -204,9 +209,7 @@ public:
   */
   static Eigen::Matrix4d normalize(const Eigen::Matrix4d &H);
 
-  //! The normalised 4x4 matrix.
-  vpMatrix getMatrix() const;
-  //! The normalised 4x4 matrix (Eigen, no allocation).
+  //! The normalised 4x4 matrix (no allocation); as a vpMatrix: see the class description.
   const Eigen::Matrix4d &matrix() const { return m_H; }
 
   //! Rotation angle \f$ \theta \in [0, \pi] \f$ of eq. (21), \f$ \cos\theta = (\mathrm{trace} H - 2)/2 \f$, clamped.

@@ -38,12 +38,13 @@ BEGIN_VISP_NAMESPACE
   vpProjectiveTranslation (a prismatic joint, \e q in the encoder's length unit), written once by the curiously
   recurring template pattern, as manif and Sophus write their groups.
 
-  The base holds the generator and gives what does not depend on the kind of joint: generator() and getGenerator();
-  the element \f$ \exp(q \hat H) \f$ of the subgroup, exp(q), a normalised vpProjectiveDisplacement computed by
-  Derived's closed form; and the checked constructors, which accept a finite \f$ \hat H \f$ whose relative defect
-  Derived::generatorResidual() to the generator identity of its kind (\f$ \hat H^3 = -\hat H \f$, eq. (26), or
-  \f$ \hat H^2 = 0 \f$, eq. (31)) is at most a tolerance \f$ \ge 0 \f$. The zero matrix (no motion) is accepted by
-  both kinds.
+  The base holds the generator and gives what does not depend on the kind of joint: generator() (Eigen, as Sophus and
+  manif give their groups' matrices; a ViSP program converts it to a vpMatrix with ViSP's eigen2visp(), as
+  vpProjectiveDisplacement and the page \ref page_groups show); the element \f$ \exp(q \hat H) \f$ of the
+  subgroup, exp(q), a normalised vpProjectiveDisplacement computed by Derived's closed form; and the checked
+  constructors, which accept a finite \f$ \hat H \f$ whose relative defect Derived::generatorResidual() to the
+  generator identity of its kind (\f$ \hat H^3 = -\hat H \f$, eq. (26), or \f$ \hat H^2 = 0 \f$, eq. (31)) is at most
+  a tolerance \f$ \ge 0 \f$. The zero matrix (no motion) is accepted by both kinds.
 
   \tparam Derived The subgroup: vpProjectiveRotation or vpProjectiveTranslation, the two for which the library
   instantiates this template (src/groups/vpProjectiveJointSubgroup.cpp). It derives publicly from
@@ -65,10 +66,8 @@ public:
   //! The p-displacement \f$ \exp(q \hat H) \f$ by Derived's closed form, the kernel Derived::exp(generator(), q).
   vpProjectiveDisplacement exp(double q) const;
 
-  //! The generator \f$ \hat H \f$ (4x4).
+  //! The generator \f$ \hat H \f$ (4x4); as a vpMatrix: see the class description.
   const Eigen::Matrix4d &generator() const { return m_Hhat; }
-  //! The generator \f$ \hat H \f$ (4x4) as a vpMatrix.
-  vpMatrix getGenerator() const;
 
 protected:
   //! Zero generator (no motion).

@@ -53,7 +53,7 @@ BEGIN_VISP_NAMESPACE
   Group operations, and the page \ref page_groups): the kernels exp(Hhat, q) and act(Hhat, q, M), log(H, amount),
   and for the elements exp(q) returns, their inverse(), operator*() and act(M); with dexp(), generator(), project()
   and generatorResidual() shared by the two joint subgroups, so that generic code and tests treat the groups alike.
-  What the two share is written once in their base vpProjectiveJointSubgroup: generator(), getGenerator(), exp(theta)
+  What the two share is written once in their base vpProjectiveJointSubgroup: generator(), exp(theta)
   and the checks of the constructors. vpProjectiveJoint dispatches on a joint's type.
 */
 class VISP_EXPORT vpProjectiveRotation : public vpProjectiveJointSubgroup<vpProjectiveRotation>

@@ -46,8 +46,8 @@ BEGIN_VISP_NAMESPACE
     inverse is \f$ I - \tau \hat H_T \f$.
 
   The group API is the one of vpProjectiveDisplacement and vpProjectiveRotation (see there and the page
-  \ref page_groups); generator(), getGenerator(), exp(tau) and the checks of the constructors are written once in the
-  base vpProjectiveJointSubgroup.
+  \ref page_groups); generator(), exp(tau) and the checks of the constructors are written once in the base
+  vpProjectiveJointSubgroup.
 */
 class VISP_EXPORT vpProjectiveTranslation : public vpProjectiveJointSubgroup<vpProjectiveTranslation>
 {
