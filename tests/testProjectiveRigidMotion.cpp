@@ -159,6 +159,10 @@ TEST(vpProjectiveBodyVelocity, AgainstTheMetricMotion)
     const Eigen::Vector4d numeric = (H(t + h).matrix() * M0 - H(t - h).matrix() * M0) / (2.0 * h);
     const Eigen::Vector4d Mt = H(t).matrix() * M0;
     EXPECT_LT((V.pointVelocity(Mt) - numeric).norm(), 1e-6 * std::max(1.0, numeric.norm()));
+    // The ViSP overload of the same name: the same values, and a wrong size refused.
+    EXPECT_EQ(toEigen4(V.pointVelocity(toVispVector(Mt))), V.pointVelocity(Mt));
+    EXPECT_TRUE(throwsProjective([&] { V.pointVelocity(vpColVector(3, 1.0)); }, vpProjectiveException::dimensionError,
+                                 "pointVelocity()"));
     // And the integration of the velocity moves H(0.3) to H(0.3 + dt).
     EXPECT_LT(relativeError((V.integrate(dt) * H(0.3)).matrix(), H(0.3 + dt).matrix()), 1e-8);
     (void)Hhat;

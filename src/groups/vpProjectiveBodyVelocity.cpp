@@ -73,9 +73,9 @@ vpProjectiveDisplacement vpProjectiveBodyVelocity::integrate(double dt) const
   return vpProjectiveDisplacement::exp(Eigen::Matrix4d(dt * m_Hhat));
 }
 
-vpColVector vpProjectiveBodyVelocity::getPointVelocity(const vpColVector &M) const
+vpColVector vpProjectiveBodyVelocity::pointVelocity(const vpColVector &M) const
 {
-  return toVispVector(pointVelocity(toEigen<4>(M, at("getPointVelocity()"), "the point M")));
+  return toVispVector(pointVelocity(toEigen<4>(M, at("pointVelocity()"), "the point M")));
 }
 
 vpColVector vpProjectiveBodyVelocity::getTwist(const vpMatrix &G) const

@@ -90,10 +90,10 @@ public:
   //! Point velocity (16) \f$ \dot M = \hat H M \f$ (4x1) of the projective point \e M (4x1) moving with the body.
   Eigen::Vector4d pointVelocity(const Eigen::Vector4d &M) const { return m_Hhat * M; }
   /*!
-    Point velocity (16) with ViSP types.
-    \exception vpProjectiveException if \e M is not 4x1 or not finite.
+    \overload
+    \exception vpProjectiveException (dimensionError, nonFiniteValueError) if \e M is not a finite 4-vector.
   */
-  vpColVector getPointVelocity(const vpColVector &M) const;
+  vpColVector pointVelocity(const vpColVector &M) const;
 
   /*!
     The metric twist \f$ (v, \omega) \f$ (6x1: linear velocity, then angular velocity in rad per time unit) of
