@@ -98,11 +98,14 @@ double costOf(const vpProjectiveStereoRig &rig, const std::vector<Eigen::Vector4
 {
   // The points for this H: a few Ceres iterations on the points alone (H fixed).
   Eigen::Matrix<double, 4, 4, Eigen::RowMajor> Hr = H / H.norm();
+  vpProjectiveStereoRig::Projection P, Pp;
+  rig.getLeftProjection(P);
+  rig.getRightProjection(Pp);
   ceres::Problem problem;
   for (size_t j = 0; j < s0.size(); ++j) {
-    problem.AddResidualBlock(new ceres::AutoDiffCostFunction<FourImageError, 8, 16, 4>(
-                                 new FourImageError(rig.leftProjection(), rig.rightProjection(), s0[j], s1[j])),
-                             nullptr, Hr.data(), M0[j].data());
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<FourImageError, 8, 16, 4>(new FourImageError(P, Pp, s0[j], s1[j])), nullptr,
+        Hr.data(), M0[j].data());
     problem.SetManifold(M0[j].data(), new ceres::SphereManifold<4>());
   }
   problem.SetParameterBlockConstant(Hr.data());
@@ -113,6 +116,9 @@ double costOf(const vpProjectiveStereoRig &rig, const std::vector<Eigen::Vector4
 TEST(vpProjectiveDisplacement, MaximumLikelihoodEqualsCeres)
 {
   const Scene scene;
+  vpProjectiveStereoRig::Projection P, Pp;
+  scene.rig.getLeftProjection(P);
+  scene.rig.getRightProjection(Pp);
   vpUniRand rng(7);
   vpGaussRand noise(0.5, 0.0, 11);
   double worstCost = 0.0, worstH = 0.0;
@@ -149,9 +155,9 @@ TEST(vpProjectiveDisplacement, MaximumLikelihoodEqualsCeres)
     std::vector<Eigen::Vector4d> points = M0;
     ceres::Problem problem;
     for (size_t j = 0; j < body.size(); ++j) {
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<FourImageError, 8, 16, 4>(new FourImageError(
-                                   scene.rig.leftProjection(), scene.rig.rightProjection(), s0[j], s1[j])),
-                               nullptr, H.data(), points[j].data());
+      problem.AddResidualBlock(
+          new ceres::AutoDiffCostFunction<FourImageError, 8, 16, 4>(new FourImageError(P, Pp, s0[j], s1[j])), nullptr,
+          H.data(), points[j].data());
       problem.SetManifold(points[j].data(), new ceres::SphereManifold<4>());
     }
     problem.SetManifold(H.data(), new ceres::SphereManifold<16>());

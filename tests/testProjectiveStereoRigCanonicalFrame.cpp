@@ -68,10 +68,15 @@ TEST(vpProjectiveStereoRig, CanonicalCameraPair)
   // ... and the left 3x3 block of P' is invertible (the frame is not degenerate).
   EXPECT_GT(Eigen::JacobiSVD<Eigen::Matrix3d>(Pp.leftCols<3>()).singularValues()(2), 1e-3);
 
-  // Eigen accessors agree with the ViSP getters.
-  EXPECT_EQ(rig.fundamentalMatrix(), F);
-  EXPECT_EQ(rig.leftProjection(), P);
-  EXPECT_EQ(rig.rightProjection(), Pp);
+  // The Eigen overloads give exactly the values of the ViSP getters of the same name.
+  Eigen::Matrix3d Fe;
+  vpProjectiveStereoRig::Projection Pe, Ppe;
+  rig.getFundamentalMatrix(Fe);
+  rig.getLeftProjection(Pe);
+  rig.getRightProjection(Ppe);
+  EXPECT_EQ(Fe, F);
+  EXPECT_EQ(Pe, P);
+  EXPECT_EQ(Ppe, Pp);
 }
 
 TEST(vpProjectiveStereoRig, RankThreeInputIsProjectedOnRankTwo)
@@ -87,7 +92,8 @@ TEST(vpProjectiveStereoRig, RankThreeInputIsProjectedOnRankTwo)
   ASSERT_GT(std::abs(toEigen<3, 3>(F).determinant()), 1e-12);
   vpProjectiveStereoRig rig;
   rig.setFundamentalMatrix(F);
-  const Eigen::Matrix3d F2 = rig.fundamentalMatrix();
+  Eigen::Matrix3d F2;
+  rig.getFundamentalMatrix(F2);
   EXPECT_LT(Eigen::JacobiSVD<Eigen::Matrix3d>(F2).singularValues()(2), 1e-14);
   EXPECT_LT((F2 * toEigen<3, 1>(rig.getLeftEpipole())).norm(), 1e-12);
   EXPECT_LT((F2.transpose() * toEigen<3, 1>(rig.getRightEpipole())).norm(), 1e-12);

@@ -130,9 +130,13 @@ TEST(vpProjectiveStereoRig, EstimateWrongPairingsMatchOutlierFreeAccuracy)
         ADD_FAILURE() << "estimate() threw: " << e.getStringMessage();
         continue;
       }
-      oracle += rmsEpipolarDistance(oracleRig.fundamentalMatrix(), freshLeft, freshRight) / seeds;
-      robust += rmsEpipolarDistance(robustRig.fundamentalMatrix(), freshLeft, freshRight) / seeds;
-      clean += rmsEpipolarDistance(cleanRig.fundamentalMatrix(), freshLeft, freshRight) / seeds;
+      Eigen::Matrix3d oracleF, robustF, cleanF;
+      oracleRig.getFundamentalMatrix(oracleF);
+      robustRig.getFundamentalMatrix(robustF);
+      cleanRig.getFundamentalMatrix(cleanF);
+      oracle += rmsEpipolarDistance(oracleF, freshLeft, freshRight) / seeds;
+      robust += rmsEpipolarDistance(robustF, freshLeft, freshRight) / seeds;
+      clean += rmsEpipolarDistance(cleanF, freshLeft, freshRight) / seeds;
       naive += rmsEpipolarDistance(eightPoint(left, wrongRight), freshLeft, freshRight) / seeds;
       const std::vector<bool> &inliers = robustRig.getInliers();
       ASSERT_EQ(inliers.size(), n);

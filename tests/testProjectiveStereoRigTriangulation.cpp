@@ -61,14 +61,18 @@ TEST(vpProjectiveStereoRig, TriangulateNoisyIsOptimal)
 {
   const Scene scene;
   const vpProjectiveStereoRig &rig = scene.rig;
-  const Eigen::Matrix3d F = rig.fundamentalMatrix();
+  Eigen::Matrix3d F;
+  rig.getFundamentalMatrix(F);
+  vpProjectiveStereoRig::Projection P, Pp;
+  rig.getLeftProjection(P);
+  rig.getRightProjection(Pp);
   const SeededMatches data(scene, 31, 100, kSigma);
   const std::vector<vpImagePoint> &left = data.left, &right = data.right;
   double sumSquares = 0.0, sumLinear = 0.0, sumRefined = 0.0;
   for (size_t i = 0; i < left.size(); ++i) {
     SCOPED_TRACE(::testing::Message() << "match " << i);
     const Eigen::Vector4d M = toEigen4(rig.triangulate(left[i], right[i]));
-    const Eigen::Vector4d Mlin = triangulateDLT(rig.leftProjection(), rig.rightProjection(), left[i], right[i]);
+    const Eigen::Vector4d Mlin = triangulateDLT(P, Pp, left[i], right[i]);
     const double refined = reprojectionError(rig, M, left[i], right[i]);
     const double linear = reprojectionError(rig, Mlin, left[i], right[i]);
     const double sampson = sampsonError(F, left[i], right[i]);
@@ -125,7 +129,9 @@ TEST(vpProjectiveStereoRig, ProjectPointOnFocalPlaneThrows)
   EXPECT_FALSE(rig.project(Ml, s));
   // Right focal plane: (P' M)_3 = 0, M chosen orthogonal to the third row of P'.
   // The two focal planes are nearly parallel (11 deg vergence): take the point of the right one closest to (0,0,1,0).
-  const Eigen::Vector4d p3 = rig.rightProjection().row(2).transpose();
+  vpProjectiveStereoRig::Projection Pp;
+  rig.getRightProjection(Pp);
+  const Eigen::Vector4d p3 = Pp.row(2).transpose();
   Eigen::Vector4d Mr = Eigen::Vector4d::UnitZ() - p3(2) / p3.squaredNorm() * p3;
   Mr.normalize();
   ASSERT_GT(std::abs(Mr(2)), 1e-6); // far from the left focal plane at the library's 1e-12 tolerance

@@ -36,15 +36,19 @@ TEST(RigUpdate, GeneralCameraPairIsConsistent)
       W(r, c) = (r == c ? 1.0 : 0.0) + rng.uniform(-0.3, 0.3);
     }
   }
-  const Eigen::Matrix<double, 3, 4> P = canonical.leftProjection() * W.inverse();
-  const Eigen::Matrix<double, 3, 4> Pp = canonical.rightProjection() * W.inverse();
+  vpProjectiveStereoRig::Projection Pc, Ppc;
+  canonical.getLeftProjection(Pc);
+  canonical.getRightProjection(Ppc);
+  const Eigen::Matrix<double, 3, 4> P = Pc * W.inverse();
+  const Eigen::Matrix<double, 3, 4> Pp = Ppc * W.inverse();
   vpProjectiveStereoRig rig;
   rig.setProjections(toVisp(P), toVisp(Pp));
   EXPECT_FALSE(rig.isCanonical());
   EXPECT_TRUE(canonical.isCanonical());
   const Eigen::Matrix3d F = toEigen<3, 3>(rig.getFundamentalMatrix());
   // The same epipolar geometry as the canonical pair: F equal up to sign.
-  const Eigen::Matrix3d F0 = canonical.fundamentalMatrix();
+  Eigen::Matrix3d F0;
+  canonical.getFundamentalMatrix(F0);
   EXPECT_LT(std::min((F - F0).norm(), (F + F0).norm()), 1e-9);
   EXPECT_LT((F * toEigen<3, 1>(rig.getLeftEpipole())).norm(), 1e-9);
   EXPECT_LT((F.transpose() * toEigen<3, 1>(rig.getRightEpipole())).norm(), 1e-9);
@@ -74,7 +78,9 @@ TEST(RigUpdate, GeneralCameraPairIsConsistent)
   nan[0][0] = std::numeric_limits<double>::quiet_NaN();
   EXPECT_TRUE(throwsWith([&] { rig.setProjections(nan, toVisp(Pp)); }, vpProjectiveException::nonFiniteValueError,
                          "not finite"));
-  EXPECT_EQ(rig.leftProjection(), P / P.norm());
+  vpProjectiveStereoRig::Projection Pkept;
+  rig.getLeftProjection(Pkept);
+  EXPECT_EQ(Pkept, P / P.norm());
   EXPECT_FALSE(rig.isCanonical());
 }
 
@@ -125,15 +131,21 @@ TEST(RigUpdate, SaveLoadGeneralRig)
   vpProjectiveRobot robot = acquiredRobot(s, noise);
   const std::string canonicalFile = "testRigUpdate_canonical.json", generalFile = "testRigUpdate_general.json";
   robot.saveModel(canonicalFile);
-  const Eigen::Matrix3d F0 = robot.getStereoRig().fundamentalMatrix();
+  Eigen::Matrix3d F0;
+  robot.getStereoRig().getFundamentalMatrix(F0);
   const ArmSetup b = bumped(s, BUMP_LEFT, rng);
   reRegister(robot, b, 4, rng, noise);
   robot.saveModel(generalFile);
   vpProjectiveRobot loaded;
   loaded.loadModel(generalFile);
   EXPECT_FALSE(loaded.getStereoRig().isCanonical());
-  EXPECT_EQ(loaded.getStereoRig().leftProjection(), robot.getStereoRig().leftProjection());
-  EXPECT_EQ(loaded.getStereoRig().rightProjection(), robot.getStereoRig().rightProjection());
+  vpProjectiveStereoRig::Projection P, Pp, Ploaded, Pploaded;
+  robot.getStereoRig().getLeftProjection(P);
+  robot.getStereoRig().getRightProjection(Pp);
+  loaded.getStereoRig().getLeftProjection(Ploaded);
+  loaded.getStereoRig().getRightProjection(Pploaded);
+  EXPECT_EQ(Ploaded, P);
+  EXPECT_EQ(Pploaded, Pp);
   const vpColVector q = visibleJoints({&b}, rng);
   std::vector<vpImagePoint> left, right;
   b.images(b.armJoints(q), left, right, kSigma, noise, -1e9);
@@ -153,7 +165,9 @@ TEST(RigUpdate, SaveLoadGeneralRig)
   vpProjectiveRobot old;
   old.loadModel(canonicalFile);
   EXPECT_TRUE(old.getStereoRig().isCanonical());
-  EXPECT_LT((old.getStereoRig().fundamentalMatrix() - F0).norm(), 1e-12);
+  Eigen::Matrix3d Fold;
+  old.getStereoRig().getFundamentalMatrix(Fold);
+  EXPECT_LT((Fold - F0).norm(), 1e-12);
   std::remove(canonicalFile.c_str());
   std::remove(generalFile.c_str());
 }
@@ -166,8 +180,9 @@ TEST(RigUpdate, BadInputsThrowAndChangeNothing)
   vpGaussRand noise(1.0, 0.0, 9);
   vpProjectiveRobot robot = acquiredRobot(s, noise);
   const ArmSetup b = bumped(s, BUMP_RIGHT, rng);
-  const vpProjectiveStereoRig::Projection P0 = robot.getStereoRig().leftProjection();
-  const vpProjectiveStereoRig::Projection Pp0 = robot.getStereoRig().rightProjection();
+  vpProjectiveStereoRig::Projection P0, Pp0;
+  robot.getStereoRig().getLeftProjection(P0);
+  robot.getStereoRig().getRightProjection(Pp0);
   const vpColVector q = visibleJoints({&b}, rng);
   std::vector<vpImagePoint> left, right;
   b.images(b.armJoints(q), left, right, kSigma, noise, -1e9);
@@ -218,8 +233,11 @@ TEST(RigUpdate, BadInputsThrowAndChangeNothing)
   EXPECT_TRUE(throwsWith([&] { robot.updateRig(); }, vpProjectiveException::estimationFailedError, "marker order"));
   EXPECT_EQ(robot.getRigUpdate().getNumberOfObservations(), 4u);
   EXPECT_EQ(robot.getRigUpdate().getGeneration(), 0u);
-  EXPECT_EQ(robot.getStereoRig().leftProjection(), P0);
-  EXPECT_EQ(robot.getStereoRig().rightProjection(), Pp0);
+  vpProjectiveStereoRig::Projection P1, Pp1;
+  robot.getStereoRig().getLeftProjection(P1);
+  robot.getStereoRig().getRightProjection(Pp1);
+  EXPECT_EQ(P1, P0);
+  EXPECT_EQ(Pp1, Pp0);
   robot.getRigUpdate().clearObservations();
   EXPECT_EQ(robot.getRigUpdate().getNumberOfObservations(), 0u);
 

@@ -30,8 +30,11 @@ namespace
 //! Both cameras of a rig as one 3x8 matrix, to compare rigs exactly.
 Eigen::Matrix<double, 3, 8> cameras(const vpProjectiveRobot &robot)
 {
+  vpProjectiveStereoRig::Projection P, Pp;
+  robot.getModel().getStereoRig().getLeftProjection(P);
+  robot.getModel().getStereoRig().getRightProjection(Pp);
   Eigen::Matrix<double, 3, 8> C;
-  C << robot.getModel().getStereoRig().leftProjection(), robot.getModel().getStereoRig().rightProjection();
+  C << P, Pp;
   return C;
 }
 

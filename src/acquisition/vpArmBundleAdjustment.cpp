@@ -44,8 +44,10 @@ vpProjectiveArmModel bundleAdjust(const ArmCalibrationData &data, const std::vec
   }
   // The right camera is adjusted too (the left one, [I | 0], fixes the frame): the acquisition's images determine the
   // epipolar geometry better than the matches it was first estimated from.
-  Eigen::Matrix<double, 3, 4, Eigen::RowMajor> Pp = data.rig.rightProjection() / data.rig.rightProjection().norm();
-  const vpProjectiveStereoRig::Projection &P = data.rig.leftProjection();
+  vpProjectiveStereoRig::Projection P, Pp0;
+  data.rig.getLeftProjection(P);
+  data.rig.getRightProjection(Pp0);
+  Eigen::Matrix<double, 3, 4, Eigen::RowMajor> Pp = Pp0 / Pp0.norm();
   ceres::Problem problem;
   for (size_t j = 0; j < K; ++j) {
     problem.AddResidualBlock(new ceres::AutoDiffCostFunction<MarkerObservationError, 4, 16, 12, 4>(
@@ -109,7 +111,8 @@ vpProjectiveArmModel bundleAdjust(const ArmCalibrationData &data, const std::vec
   Eigen::Matrix4d H = Eigen::Matrix4d::Identity();
   try {
     rig.setFundamentalMatrix(toVisp(Eigen::Matrix3d(vpMetricTwist::skew(ep) * PpFinal.leftCols<3>())));
-    const vpProjectiveStereoRig::Projection &Pc = rig.rightProjection();
+    vpProjectiveStereoRig::Projection Pc;
+    rig.getRightProjection(Pc);
     const Eigen::Vector3d ec = Pc.col(3);
     const Eigen::Matrix3d away = Eigen::Matrix3d::Identity() - ec * ec.transpose() / ec.squaredNorm();
     const Eigen::Matrix3d A = away * PpFinal.leftCols<3>(), Ac = away * Pc.leftCols<3>();

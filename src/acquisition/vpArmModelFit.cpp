@@ -160,7 +160,9 @@ vpProjectiveArmModel refitArmModel(const ArmCalibrationData &data, const vpProje
     centroid += N.head<3>() / (N(3) * static_cast<double>(from.markers().size()));
   }
   // The left camera's centre: the null vector of its projection ((0, 0, 0, 1) for the canonical [I | 0]).
-  const Eigen::JacobiSVD<Eigen::Matrix<double, 3, 4>> svd(from.getStereoRig().leftProjection(), Eigen::ComputeFullV);
+  vpProjectiveStereoRig::Projection P;
+  from.getStereoRig().getLeftProjection(P);
+  const Eigen::JacobiSVD<Eigen::Matrix<double, 3, 4>> svd(P, Eigen::ComputeFullV);
   const Eigen::Vector4d C = start.G * svd.matrixV().col(3);
   const Eigen::Vector3d sight = (centroid - C.head<3>() / C(3)).normalized();
   for (unsigned int i = 0; i < from.getNumberOfJoints(); ++i) {

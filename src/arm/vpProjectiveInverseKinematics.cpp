@@ -195,7 +195,9 @@ vpProjectiveArmModel::JointVector vpProjectiveInverseKinematics::solveWithPoints
     }
   }
   const Eigen::Matrix4d H0 = model.displacement(q0);
-  const auto &P = model.getStereoRig().leftProjection(), &Pp = model.getStereoRig().rightProjection();
+  vpProjectiveStereoRig::Projection P, Pp;
+  model.getStereoRig().getLeftProjection(P);
+  model.getStereoRig().getRightProjection(Pp);
   vpProjectiveArmData data;
   auto evaluate = [&](const State &x, Matrix *A, Vector *g, double &cost) {
     vpProjectiveKinematics::forwardKinematics(model, data, x.q);

@@ -393,10 +393,13 @@ vpProjectiveStereoRig vpProjectiveRigRegistration::registerRig(const vpProjectiv
     right.push_back(images[k].tail<2>());
   }
   double rmsLeft = 0.0, rmsRight = 0.0;
-  Projection P = resect(old.leftProjection(), G, X, left, mode, &rmsLeft);
-  Projection Pp = resect(old.rightProjection(), G, X, right, mode, &rmsRight);
+  Projection oldP, oldPp;
+  old.getLeftProjection(oldP);
+  old.getRightProjection(oldPp);
+  Projection P = resect(oldP, G, X, left, mode, &rmsLeft);
+  Projection Pp = resect(oldPp, G, X, right, mode, &rmsRight);
   if (mode == FIXED_INTRINSICS) {
-    selectRigMotion(old.leftProjection(), old.rightProjection(), G, X, left, right, P, Pp);
+    selectRigMotion(oldP, oldPp, G, X, left, right, P, Pp);
     rmsLeft = rmsError(P, X, left);
     rmsRight = rmsError(Pp, X, right);
   }

@@ -110,7 +110,9 @@ namespace vpProjectiveAcquisitionInternal
 double generalPositionParallax(const vpProjectiveStereoRig &rig, const std::vector<Eigen::Vector4d> &X,
                                std::vector<unsigned int> &best)
 {
-  const Projection &P = rig.leftProjection(), &Pp = rig.rightProjection();
+  Projection P, Pp;
+  rig.getLeftProjection(P);
+  rig.getRightProjection(Pp);
   const Eigen::Vector4d c = centreOf(P), cp = centreOf(Pp);
   const unsigned int K = static_cast<unsigned int>(std::min<size_t>(X.size(), 24));
   std::vector<double> c4(static_cast<size_t>(K) * K * K * K, 0.0);

@@ -97,10 +97,15 @@ DisplacementData::DisplacementData(const vpProjectiveStereoRig &rig, const std::
   }
 }
 
-DisplacementAdjustment::DisplacementAdjustment(const DisplacementData &data)
-    : m_data(data), m_P0(data.rig->leftProjection() * data.T0inv), m_Pp0(data.rig->rightProjection() * data.T0inv),
-      m_P1(data.rig->leftProjection() * data.T1inv), m_Pp1(data.rig->rightProjection() * data.T1inv)
+DisplacementAdjustment::DisplacementAdjustment(const DisplacementData &data) : m_data(data)
 {
+  vpProjectiveStereoRig::Projection P, Pp;
+  data.rig->getLeftProjection(P);
+  data.rig->getRightProjection(Pp);
+  m_P0 = P * data.T0inv;
+  m_Pp0 = Pp * data.T0inv;
+  m_P1 = P * data.T1inv;
+  m_Pp1 = Pp * data.T1inv;
 }
 
 bool DisplacementAdjustment::refine(const std::vector<bool> &flags, Eigen::Matrix4d &H,

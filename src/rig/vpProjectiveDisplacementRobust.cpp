@@ -48,8 +48,11 @@ const vpErrorSite at("vpProjectiveDisplacement");
 void pointErrors(const DisplacementData &data, const Eigen::Matrix4d &H, std::vector<double> &d2,
                  std::vector<Eigen::Vector4d> *points = nullptr)
 {
+  vpProjectiveStereoRig::Projection P, Pp;
+  data.rig->getLeftProjection(P);
+  data.rig->getRightProjection(Pp);
   GoldStandardPoint gold;
-  gold.setDisplacement(data.rig->leftProjection(), data.rig->rightProjection(), H);
+  gold.setDisplacement(P, Pp, H);
   d2.resize(data.size());
   std::vector<int> side(data.size());
   int votes = 0;

@@ -253,13 +253,18 @@ std::string vpProjectiveModelFile::toString(const vpProjectiveArmModel &model, d
   m["joints"] = joints;
   m["zero_reference_joints"] = vectorToJson(model.zeroReferenceJoints());
   const vpProjectiveStereoRig &rig = model.getStereoRig();
+  Eigen::Matrix3d F;
+  rig.getFundamentalMatrix(F);
   if (rig.isCanonical()) {
-    m["rig"] = json{{"camera_pair", "canonical"}, {"fundamental_matrix", matrixToJson(rig.fundamentalMatrix())}};
+    m["rig"] = json{{"camera_pair", "canonical"}, {"fundamental_matrix", matrixToJson(F)}};
   } else {
+    vpProjectiveStereoRig::Projection P, Pp;
+    rig.getLeftProjection(P);
+    rig.getRightProjection(Pp);
     m["rig"] = json{{"camera_pair", "general"},
-                    {"fundamental_matrix", matrixToJson(rig.fundamentalMatrix())},
-                    {"left_projection", matrixToJson(rig.leftProjection())},
-                    {"right_projection", matrixToJson(rig.rightProjection())}};
+                    {"fundamental_matrix", matrixToJson(F)},
+                    {"left_projection", matrixToJson(P)},
+                    {"right_projection", matrixToJson(Pp)}};
   }
   m["G"] = matrixToJson(model.projectiveToMetric());
   m["twists"] = twists;

@@ -88,7 +88,9 @@ MetricRig metricRig(const vpProjectiveArmModel &model, vpProjectiveSelfCalibrati
     fail(vpProjectiveException::notInitializedError, where, "the model is empty; acquire or load one first");
   }
   Eigen::Matrix4d G = model.projectiveToMetric();
-  const vpProjectiveStereoRig &rig = model.getStereoRig();
+  vpProjectiveStereoRig::Projection P, Pp;
+  model.getStereoRig().getLeftProjection(P);
+  model.getStereoRig().getRightProjection(Pp);
   MetricRig m;
   double mirror = 1.0;
   for (int pass = 0; pass < 2; ++pass) {
@@ -97,7 +99,7 @@ MetricRig metricRig(const vpProjectiveArmModel &model, vpProjectiveSelfCalibrati
     for (const Eigen::Vector4d &M : model.markers()) {
       X.push_back(G * M);
     }
-    if (!decompose(rig.leftProjection() * Ginv, X, m.left) || !decompose(rig.rightProjection() * Ginv, X, m.right)) {
+    if (!decompose(P * Ginv, X, m.left) || !decompose(Pp * Ginv, X, m.right)) {
       fail(vpProjectiveException::degenerateConfigurationError, where,
            "a camera matrix is singular in the model's metric frame: the acquisition gave no metric upgrade");
     }

@@ -336,10 +336,12 @@ vpProjectivePathPlanner::vpPlanStatus vpProjectivePathPlanner::planOnce(const vp
   std::ostringstream os;
   // The depth signs where the points are seen, at q: the reference of "in front of the cameras".
   m_front.resize(X.size());
+  vpProjectiveStereoRig::Projection P, Pp;
+  model.getStereoRig().getLeftProjection(P);
+  model.getStereoRig().getRightProjection(Pp);
   for (size_t k = 0; k < X.size(); ++k) {
     const Eigen::Vector4d M = Hq * X[k];
-    m_front[k] << model.getStereoRig().leftProjection().row(2).dot(M),
-        model.getStereoRig().rightProjection().row(2).dot(M);
+    m_front[k] << P.row(2).dot(M), Pp.row(2).dot(M);
   }
   bool explained = !m_branches.empty() && m_residuals.front() <= m_maxResidual;
   if (!explained) {

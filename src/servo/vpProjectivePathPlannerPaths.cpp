@@ -52,14 +52,17 @@ bool vpProjectivePathPlanner::visible(const vpProjectiveArmModel &model, const J
 {
   const Eigen::Matrix4d H = model.displacement(q);
   const vpProjectiveStereoRig &rig = model.getStereoRig();
+  vpProjectiveStereoRig::Projection P, Pp;
+  rig.getLeftProjection(P);
+  rig.getRightProjection(Pp);
   s.resize(points.size());
   const vpImageWindow window(m_width, m_height, m_border);
   for (size_t k = 0; k < points.size(); ++k) {
     const Eigen::Vector4d M = H * points[k];
     // In front of both cameras: the depths keep the signs they have where the points are seen (a projective camera
     // also images the points behind it; H(q) is continuous in q, so a sign change means the point went behind).
-    if (!rig.project(M, s[k]) || !(rig.leftProjection().row(2).dot(M) * m_front[k](0) > 0.0) ||
-        !(rig.rightProjection().row(2).dot(M) * m_front[k](1) > 0.0)) {
+    if (!rig.project(M, s[k]) || !(P.row(2).dot(M) * m_front[k](0) > 0.0) ||
+        !(Pp.row(2).dot(M) * m_front[k](1) > 0.0)) {
       return false;
     }
     if (!window.containsStereo(s[k])) {

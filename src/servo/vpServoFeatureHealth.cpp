@@ -68,7 +68,7 @@ double largerLineDistance(double residual, const Eigen::Vector3d &l, const Eigen
 vpServoFeatureHealth::vpServoFeatureHealth()
     : m_tracked(), m_records(), m_work(), m_nbActive(0), m_width(0), m_height(0), m_border(0.0),
       m_outlierThreshold(0.0), m_rankTolerance(1e-6), m_iteration(0), m_classified(0), m_workActive(0),
-      m_inIteration(false), m_predict(false), m_model(nullptr), m_data(nullptr)
+      m_inIteration(false), m_predict(false), m_F(Eigen::Matrix3d::Zero()), m_data(nullptr)
 {
 }
 
@@ -162,7 +162,7 @@ void vpServoFeatureHealth::startIteration(const vpProjectiveArmModel &model, con
   ++m_iteration;
   m_classified = 0;
   m_workActive = 0;
-  m_model = &model;
+  model.getStereoRig().getFundamentalMatrix(m_F); // once per iteration: outlierTest() reads it for every feature
   m_data = &data; // H(q), its LU and the features' points: computed once for the whole servo
   m_predict = m_outlierThreshold > 0.0;
   m_inIteration = true;
@@ -172,7 +172,7 @@ void vpServoFeatureHealth::startIteration(const vpProjectiveArmModel &model, con
 inline vpServoFeatureHealth::vpFeatureState vpServoFeatureHealth::outlierTest(const Eigen::Vector4d &s,
                                                                               vpRecord &record) const
 {
-  const Eigen::Matrix3d &F = m_model->getStereoRig().fundamentalMatrix();
+  const Eigen::Matrix3d &F = m_F;
   const Eigen::Vector3d m(s(0), s(1), 1.0);
   const Eigen::Vector3d mp(s(2), s(3), 1.0);
   const Eigen::Vector3d lp = F * m;             // epipolar line of m in the right image
@@ -251,7 +251,6 @@ void vpServoFeatureHealth::endIteration()
   m_records.swap(m_work); // no allocation
   m_nbActive = m_workActive;
   m_inIteration = false;
-  m_model = nullptr;
   m_data = nullptr;
 }
 

@@ -93,7 +93,8 @@ double exchangedResidual(const vpProjectiveArmModel &model, const std::vector<co
 void epipolarResiduals(const vpProjectiveArmModel &model, const std::vector<CheckedFrame> &frames, double &asIs,
                        double &exchangedImages)
 {
-  const Eigen::Matrix3d &F = model.getStereoRig().fundamentalMatrix();
+  Eigen::Matrix3d F;
+  model.getStereoRig().getFundamentalMatrix(F);
   double a = 0.0, e = 0.0;
   unsigned int count = 0;
   for (const CheckedFrame &f : frames) {
@@ -153,14 +154,17 @@ double refittedMarkersResidual(const vpProjectiveArmModel &model, const std::vec
     return kNaN;
   }
   const vpProjectiveStereoRig &rig = model.getStereoRig();
+  vpProjectiveStereoRig::Projection P, Pp;
+  rig.getLeftProjection(P);
+  rig.getRightProjection(Pp);
   const size_t m = model.markers().size();
   std::vector<Eigen::Matrix4d> normal(m, Eigen::Matrix4d::Zero());
   std::vector<Eigen::Matrix4d> H;
   for (const CheckedFrame *f : frames) {
     H.push_back(model.displacement(f->joints));
     for (const auto &pair : f->pairs) {
-      addView(rig.leftProjection() * H.back(), pair.second.head<2>(), normal[pair.first]);
-      addView(rig.rightProjection() * H.back(), pair.second.tail<2>(), normal[pair.first]);
+      addView(P * H.back(), pair.second.head<2>(), normal[pair.first]);
+      addView(Pp * H.back(), pair.second.tail<2>(), normal[pair.first]);
     }
   }
   std::vector<Eigen::Vector4d> refitted(m, Eigen::Vector4d::Zero());

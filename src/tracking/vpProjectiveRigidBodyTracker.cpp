@@ -157,8 +157,10 @@ bool vpProjectiveRigidBodyTracker::refine(const std::vector<Eigen::Vector4d> &s,
 {
   // In the frame whitened by the reference points: Hw = T H T^-1, X_j = T M_j, cameras P T^-1, P' T^-1.
   typedef Eigen::Matrix<double, 4, 4, Eigen::RowMajor> RowMajor4;
-  const vpProjectiveStereoRig::Projection cameras[2] = {m_rig.leftProjection() * m_Tinv,
-                                                        m_rig.rightProjection() * m_Tinv};
+  vpProjectiveStereoRig::Projection P, Pp;
+  m_rig.getLeftProjection(P);
+  m_rig.getRightProjection(Pp);
+  const vpProjectiveStereoRig::Projection cameras[2] = {P * m_Tinv, Pp * m_Tinv};
   auto evaluate = [&](const RowMajor4 &Hw, Eigen::Matrix<double, 16, 16> *N, Eigen::Matrix<double, 16, 1> *g,
                       double &c) {
     auto point = [&](size_t j, Eigen::Vector4d &Z, Eigen::Matrix<double, 4, 16> *dZ) {
@@ -197,8 +199,10 @@ bool vpProjectiveRigidBodyTracker::refineRigid(const std::vector<Eigen::Vector4d
                                                unsigned int &used) const
 {
   // H = G^-1 T G, T updated by left increments exp(xi^) T, xi = (v, w) (6): d(H M)/d xi_k = G^-1 E_k T G M.
-  const vpProjectiveStereoRig::Projection cameras[2] = {m_rig.leftProjection() * m_Ginv,
-                                                        m_rig.rightProjection() * m_Ginv};
+  vpProjectiveStereoRig::Projection P, Pp;
+  m_rig.getLeftProjection(P);
+  m_rig.getRightProjection(Pp);
+  const vpProjectiveStereoRig::Projection cameras[2] = {P * m_Ginv, Pp * m_Ginv};
   auto evaluate = [&](const Eigen::Matrix4d &Tc, Eigen::Matrix<double, 6, 6> *N, Eigen::Matrix<double, 6, 1> *g,
                       double &c) {
     auto point = [&](size_t j, Eigen::Vector4d &Z, Eigen::Matrix<double, 4, 6> *dZ) {

@@ -57,7 +57,7 @@ void vpStereoDotTracker::setStereoRig(const vpProjectiveStereoRig &rig)
                                 "vpStereoDotTracker::setStereoRig(): the rig has no fundamental matrix yet; call its "
                                 "estimate() or setFundamentalMatrix() first.");
   }
-  m_F = rig.fundamentalMatrix();
+  rig.getFundamentalMatrix(m_F);
   m_hasF = true;
 }
 
@@ -90,7 +90,7 @@ void vpStereoDotTracker::setRobot(const vpProjectiveRobot &robot, const std::vec
   }
   m_robot = &robot;
   m_robotMarkers = indices;
-  m_F = robot.getStereoRig().fundamentalMatrix();
+  robot.getStereoRig().getFundamentalMatrix(m_F);
   m_hasF = true;
   for (size_t k = 0; k < m_markers.size(); ++k) {
     m_markers[k].index = indices[k];

@@ -49,6 +49,10 @@ BEGIN_VISP_NAMESPACE
   A projective point \f$ M \f$ is a homogeneous 4-vector of unit norm with \f$ m \simeq P M \f$, \f$ m' \simeq P' M
   \f$. Its last coordinate may be zero inside the workspace: it is never divided by.
 
+  Each value has one name with two forms, ViSP's idiom: getFundamentalMatrix(), getLeftProjection() and
+  getRightProjection() return a vpMatrix, and their overloads with an output argument write the fixed-size Eigen
+  matrix (no allocation) for hot paths, e.g. \c Eigen::Matrix3d \c F; \c rig.getFundamentalMatrix(F);.
+
   \code
   vpProjectiveStereoRig rig;
   rig.estimate(left, right);                      // >= 8 matches: RANSAC, then Ceres on the geometric error
@@ -117,12 +121,48 @@ public:
   */
   bool isCanonical() const { return m_canonical; }
 
-  //! \f$ F \f$ of unit Frobenius norm (3x3).
+  /*! \name Fundamental matrix and cameras
+    One name per value, in two forms as in ViSP (vpHomogeneousMatrix getPose() beside void getPose(cMo)): the ViSP
+    type returned, and an overload writing the Eigen type into its argument (fixed size: no allocation, for hot
+    paths). Both are copies of the same stored values.
+  */
+  //@{
+  /*!
+    \f$ F \f$ of unit Frobenius norm (3x3, pixel coordinates, \f$ m'^T F m = 0 \f$).
+    \exception vpProjectiveException if the rig has no \f$ F \f$ yet.
+  */
   vpMatrix getFundamentalMatrix() const;
-  //! \f$ P \f$ (3x4): \f$ [I | 0] \f$ for the canonical pair, else the one of setProjections().
+  /*!
+    \overload
+    Writes \f$ F \f$ (3x3, unit Frobenius norm) into \e F. Unchecked (hot path): zero before the rig is
+    initialized.
+  */
+  void getFundamentalMatrix(Eigen::Matrix3d &F) const { F = m_F; }
+  /*!
+    \f$ P \f$ (3x4, from the rig's projective frame to homogeneous left pixels): \f$ [I | 0] \f$ for the canonical
+    pair, else the one of setProjections() (unit Frobenius norm).
+    \exception vpProjectiveException if the rig has no \f$ F \f$ yet.
+  */
   vpMatrix getLeftProjection() const;
-  //! \f$ P' \f$ (3x4): \f$ [[e']_\times F + e' e'^T | e'] \f$ for the canonical pair, else that of setProjections().
+  /*!
+    \overload
+    Writes \f$ P \f$ (3x4, projective frame to left pixels) into \e P. Unchecked (hot path): zero before the rig is
+    initialized.
+  */
+  void getLeftProjection(Projection &P) const { P = m_P; }
+  /*!
+    \f$ P' \f$ (3x4, from the rig's projective frame to homogeneous right pixels):
+    \f$ [[e']_\times F + e' e'^T | e'] \f$ for the canonical pair, else that of setProjections() (unit Frobenius norm).
+    \exception vpProjectiveException if the rig has no \f$ F \f$ yet.
+  */
   vpMatrix getRightProjection() const;
+  /*!
+    \overload
+    Writes \f$ P' \f$ (3x4, projective frame to right pixels) into \e Pp. Unchecked (hot path): zero before the rig
+    is initialized.
+  */
+  void getRightProjection(Projection &Pp) const { Pp = m_Pp; }
+  //@}
   //! Left epipole \f$ e \f$, \f$ F e = 0 \f$, unit norm (3x1, homogeneous pixels).
   vpColVector getLeftEpipole() const;
   //! Right epipole \f$ e' \f$, \f$ e'^T F = 0 \f$, unit norm (3x1, homogeneous pixels).
@@ -160,12 +200,6 @@ public:
 
   /*! \name Eigen access for hot paths (no allocation) */
   //@{
-  //! \f$ P \f$ (\f$ [I | 0] \f$ for the canonical pair).
-  const Projection &leftProjection() const { return m_P; }
-  //! \f$ P' \f$.
-  const Projection &rightProjection() const { return m_Pp; }
-  //! \f$ F \f$, unit Frobenius norm.
-  const Eigen::Matrix3d &fundamentalMatrix() const { return m_F; }
   /*!
     Triangulates \f$ (u, v) \f$, \f$ (u', v') \f$ into the unit-norm 4-vector \f$ M \f$ (linear, then Gauss-Newton).
   */

@@ -147,8 +147,8 @@ public:
   //@{
   /*!
     Starts an iteration on \e data (vpServoProjectiveData: \f$ H(q) \f$, its inverse, the features' values and points,
-    computed once by the caller) of \e model, an acquired model whose rig gives \f$ F \f$ and the projections. No
-    allocation. The model and the data must outlive the iteration. Sizes are not checked.
+    computed once by the caller) of \e model, an acquired model whose rig's \f$ F \f$ is read here, once for the
+    iteration. No allocation. The data must outlive the iteration. Sizes are not checked.
   */
   void startIteration(const vpProjectiveArmModel &model, const vpServoProjectiveData &data);
   /*!
@@ -249,7 +249,7 @@ private:
   unsigned int m_workActive; // of which active
   bool m_inIteration;
   bool m_predict;
-  const vpProjectiveArmModel *m_model;
+  Eigen::Matrix3d m_F; // the rig's fundamental matrix, for the epipolar test
   const vpServoProjectiveData *m_data;
 };
 
