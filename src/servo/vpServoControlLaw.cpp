@@ -32,12 +32,7 @@ vpServoControlLaw::vpServoControlLaw()
 
 void vpServoControlLaw::setLambda(double lambda)
 {
-  const std::string where = at("setLambda()");
-  requireFinite(lambda, where, "the gain");
-  if (!(lambda > 0.0)) {
-    fail(vpProjectiveException::invalidValueError, where, "the gain must be positive");
-  }
-  m_lambda.initFromConstant(lambda);
+  m_lambda.initFromConstant(positive(lambda, at("setLambda()"), "the gain", "per second, law (47)'s lambda"));
 }
 
 void vpServoControlLaw::setLambda(double gainAtZero, double gainAtInfinity, double slopeAtZero)
