@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include <Eigen/Dense>
 
@@ -56,34 +57,116 @@ void vpServoNormalEquations::set(const JointMatrix &JtJ, const JointVector &Jte)
   m_factorisations = 0;
 }
 
+namespace
+{
+/*
+  The kernels of the Cholesky factorisation and what reads its factor, on column-major storage of leading dimension n
+  (a JointMatrix's). Each is written once, with the joint count a template parameter N where it is that of a common
+  arm (N > 0) and the run-time n otherwise (N = 0): a constant N gives the loops constant bounds and the columns a
+  constant stride, which the compiler unrolls into straight-line code. Plain loops either way: for the few joints of
+  an arm they are several times faster than Eigen's dynamic-size LLT and LDLT, which dispatch every column to
+  matrix-vector kernels. The operations and their order do not depend on N: the same bits.
+*/
+template <int N> Eigen::Index jointCount(Eigen::Index n)
+{
+  return N > 0 ? N : n;
+}
+
+//! L (lower triangle written) with L L^T = A, A n x n symmetric; false at the first pivot that is not positive and
+//! finite (L then partly written).
+template <int N> bool choleskyFactor(const double *A, double *L, Eigen::Index runtimeN)
+{
+  const Eigen::Index n = jointCount<N>(runtimeN);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    double d = A[j + j * n];
+    for (Eigen::Index k = 0; k < j; ++k) {
+      d -= L[j + k * n] * L[j + k * n];
+    }
+    if (!(d > 0.0) || !std::isfinite(d)) {
+      return false;
+    }
+    const double ljj = std::sqrt(d);
+    L[j + j * n] = ljj;
+    for (Eigen::Index i = j + 1; i < n; ++i) {
+      double x = A[i + j * n];
+      for (Eigen::Index k = 0; k < j; ++k) {
+        x -= L[i + k * n] * L[j + k * n];
+      }
+      L[i + j * n] = x / ljj;
+    }
+  }
+  return true;
+}
+
+//! g := (L L^T)^-1 g: forward then backward substitution.
+template <int N> void choleskySolve(const double *L, double *g, Eigen::Index runtimeN)
+{
+  const Eigen::Index n = jointCount<N>(runtimeN);
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double y = g[i];
+    for (Eigen::Index k = 0; k < i; ++k) {
+      y -= L[i + k * n] * g[k];
+    }
+    g[i] = y / L[i + i * n];
+  }
+  for (Eigen::Index i = n - 1; i >= 0; --i) {
+    double y = g[i];
+    for (Eigen::Index k = i + 1; k < n; ++k) {
+      y -= L[k + i * n] * g[k];
+    }
+    g[i] = y / L[i + i * n];
+  }
+}
+
+//! ||L^-1||_F^2, column by column of L^-1 (lower triangular: x_j = 1 / L_jj, then forward substitution), with the
+//! reciprocals of the diagonal computed once: divisions are the cost at these sizes.
+template <int N> double inverseFrobeniusSquared(const double *L, Eigen::Index runtimeN)
+{
+  const Eigen::Index n = jointCount<N>(runtimeN);
+  double x[vpProjectiveArmModel::maxJoints], reciprocal[vpProjectiveArmModel::maxJoints];
+  for (Eigen::Index j = 0; j < n; ++j) {
+    reciprocal[j] = 1.0 / L[j + j * n];
+  }
+  double sum = 0.0;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    x[j] = reciprocal[j];
+    sum += x[j] * x[j];
+    for (Eigen::Index i = j + 1; i < n; ++i) {
+      double y = 0.0;
+      for (Eigen::Index k = j; k < i; ++k) {
+        y -= L[i + k * n] * x[k];
+      }
+      x[i] = y * reciprocal[i];
+      sum += x[i] * x[i];
+    }
+  }
+  return sum;
+}
+
+//! f(std::integral_constant<int, N>()) with N = n for the joint counts of common arms (6, 7), N = 0 otherwise.
+template <typename F> void withJointCount(Eigen::Index n, F &&f)
+{
+  switch (n) {
+  case 6:
+    f(std::integral_constant<int, 6>());
+    break;
+  case 7:
+    f(std::integral_constant<int, 7>());
+    break;
+  default:
+    f(std::integral_constant<int, 0>());
+    break;
+  }
+}
+} // namespace
+
 void vpServoNormalEquations::factoriseCholesky() const
 {
-  // Plain loops: for the few joints of an arm they are several times faster than Eigen's dynamic-size LLT and LDLT,
-  // which dispatch every column to matrix-vector kernels.
   m_hasCholesky = true;
   ++m_factorisations;
   const Eigen::Index n = m_JtJ.rows();
   m_L.resize(n, n);
-  m_positiveDefinite = true;
-  for (Eigen::Index j = 0; j < n; ++j) {
-    double d = m_JtJ(j, j);
-    for (Eigen::Index k = 0; k < j; ++k) {
-      d -= m_L(j, k) * m_L(j, k);
-    }
-    if (!(d > 0.0) || !std::isfinite(d)) {
-      m_positiveDefinite = false;
-      return;
-    }
-    const double ljj = std::sqrt(d);
-    m_L(j, j) = ljj;
-    for (Eigen::Index i = j + 1; i < n; ++i) {
-      double x = m_JtJ(i, j);
-      for (Eigen::Index k = 0; k < j; ++k) {
-        x -= m_L(i, k) * m_L(j, k);
-      }
-      m_L(i, j) = x / ljj;
-    }
-  }
+  withJointCount(n, [&](auto N) { m_positiveDefinite = choleskyFactor<N()>(m_JtJ.data(), m_L.data(), n); });
 }
 
 void vpServoNormalEquations::solveGaussNewton() const
@@ -95,23 +178,8 @@ void vpServoNormalEquations::solveGaussNewton() const
     m_g = m_JtJ.ldlt().solve(m_Jte);
     return;
   }
-  // L L^T g = J^T e: forward then backward substitution.
-  const Eigen::Index n = m_JtJ.rows();
-  m_g = m_Jte;
-  for (Eigen::Index i = 0; i < n; ++i) {
-    double y = m_g(i);
-    for (Eigen::Index k = 0; k < i; ++k) {
-      y -= m_L(i, k) * m_g(k);
-    }
-    m_g(i) = y / m_L(i, i);
-  }
-  for (Eigen::Index i = n - 1; i >= 0; --i) {
-    double y = m_g(i);
-    for (Eigen::Index k = i + 1; k < n; ++k) {
-      y -= m_L(k, i) * m_g(k);
-    }
-    m_g(i) = y / m_L(i, i);
-  }
+  m_g = m_Jte; // L L^T g = J^T e
+  withJointCount(m_JtJ.rows(), [&](auto N) { choleskySolve<N()>(m_L.data(), m_g.data(), m_g.size()); });
 }
 
 bool vpServoNormalEquations::isPositiveDefinite() const
@@ -140,26 +208,9 @@ double vpServoNormalEquations::getInverseTrace() const
     m_inverseTrace = std::numeric_limits<double>::infinity();
     return m_inverseTrace;
   }
-  // ||L^-1||_F^2, column by column of L^-1 (lower triangular: x_j = 1 / L_jj, then forward substitution), with the
-  // reciprocals of the diagonal computed once: divisions are the cost at these sizes.
   const Eigen::Index n = m_JtJ.rows();
-  JointVector x(n), reciprocal(n);
-  for (Eigen::Index j = 0; j < n; ++j) {
-    reciprocal(j) = 1.0 / m_L(j, j);
-  }
   double sum = 0.0;
-  for (Eigen::Index j = 0; j < n; ++j) {
-    x(j) = reciprocal(j);
-    sum += x(j) * x(j);
-    for (Eigen::Index i = j + 1; i < n; ++i) {
-      double y = 0.0;
-      for (Eigen::Index k = j; k < i; ++k) {
-        y -= m_L(i, k) * x(k);
-      }
-      x(i) = y * reciprocal(i);
-      sum += x(i) * x(i);
-    }
-  }
+  withJointCount(n, [&](auto N) { sum = inverseFrobeniusSquared<N()>(m_L.data(), n); });
   m_inverseTrace = std::isfinite(sum) ? sum : std::numeric_limits<double>::infinity();
   return m_inverseTrace;
 }
