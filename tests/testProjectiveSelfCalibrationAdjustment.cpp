@@ -36,6 +36,7 @@
 
 #include "calibration-world.h"
 #include "information-bound.h"
+#include "vpProjectiveRobotTestTools.h"
 #include "vpProjectiveTestTools.h"
 
 using namespace vpProjectiveTest;
@@ -310,7 +311,7 @@ TEST(vpProjectiveSelfCalibration, RobotFramesModelFileAndReRegistration)
   const Frames all = w.robot.getAcquisition().getFrames();
   vpProjectiveSelfCalibration(w.robot.getModel(), Frames(all.begin(), all.begin() + 13)).getMetricStereoRig(Ke, Kre, M);
   EXPECT_GT((toEigen<3, 3>(Kl) - Ke).norm(), 1e-3);
-  const std::string file = std::string(std::tmpnam(nullptr)) + "-selfcal.json";
+  const std::string file = tempFile("selfcal");
   w.robot.saveModel(file);
   vpProjectiveRobot loaded;
   loaded.loadModel(file);

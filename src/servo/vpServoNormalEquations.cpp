@@ -72,8 +72,9 @@ template <int N> Eigen::Index jointCount(Eigen::Index n)
   return N > 0 ? N : n;
 }
 
-//! L (lower triangle written) with L L^T = A, A n x n symmetric; false at the first pivot that is not positive and
-//! finite (L then partly written).
+//! L with L L^T = A, A n x n symmetric, stored as its strictly lower triangle and the reciprocals of its diagonal on
+//! the diagonal (every use of L_jj is a division: one per row instead, and products); false at the first pivot that
+//! is not positive and finite (L then partly written).
 template <int N> bool choleskyFactor(const double *A, double *L, Eigen::Index runtimeN)
 {
   const Eigen::Index n = jointCount<N>(runtimeN);
@@ -85,20 +86,20 @@ template <int N> bool choleskyFactor(const double *A, double *L, Eigen::Index ru
     if (!(d > 0.0) || !std::isfinite(d)) {
       return false;
     }
-    const double ljj = std::sqrt(d);
-    L[j + j * n] = ljj;
+    const double rjj = 1.0 / std::sqrt(d);
+    L[j + j * n] = rjj;
     for (Eigen::Index i = j + 1; i < n; ++i) {
       double x = A[i + j * n];
       for (Eigen::Index k = 0; k < j; ++k) {
         x -= L[i + k * n] * L[j + k * n];
       }
-      L[i + j * n] = x / ljj;
+      L[i + j * n] = x * rjj;
     }
   }
   return true;
 }
 
-//! g := (L L^T)^-1 g: forward then backward substitution.
+//! g := (L L^T)^-1 g: forward then backward substitution (L as choleskyFactor() stores it).
 template <int N> void choleskySolve(const double *L, double *g, Eigen::Index runtimeN)
 {
   const Eigen::Index n = jointCount<N>(runtimeN);
@@ -107,38 +108,40 @@ template <int N> void choleskySolve(const double *L, double *g, Eigen::Index run
     for (Eigen::Index k = 0; k < i; ++k) {
       y -= L[i + k * n] * g[k];
     }
-    g[i] = y / L[i + i * n];
+    g[i] = y * L[i + i * n];
   }
   for (Eigen::Index i = n - 1; i >= 0; --i) {
     double y = g[i];
     for (Eigen::Index k = i + 1; k < n; ++k) {
       y -= L[k + i * n] * g[k];
     }
-    g[i] = y / L[i + i * n];
+    g[i] = y * L[i + i * n];
   }
 }
 
-//! ||L^-1||_F^2, column by column of L^-1 (lower triangular: x_j = 1 / L_jj, then forward substitution), with the
-//! reciprocals of the diagonal computed once: divisions are the cost at these sizes.
+//! ||L^-1||_F^2, row by row of X = L^-1: X_ij = y_ij / L_ii with y_ij = -sum_{k=j}^{i-1} L_ik X_kj (j < i) and
+//! X_ii = 1 / L_ii (L as choleskyFactor() stores it), so that row i's squared norm is (1 + sum_j y_ij^2) / L_ii^2.
+//! Row i needs 1 / L_ii only at its end, and the rows before it only theirs: the trace's work overlaps the
+//! factorisation's chain of square roots instead of waiting for its last pivot, three operations away from the
+//! result.
 template <int N> double inverseFrobeniusSquared(const double *L, Eigen::Index runtimeN)
 {
   const Eigen::Index n = jointCount<N>(runtimeN);
-  double x[vpProjectiveArmModel::maxJoints], reciprocal[vpProjectiveArmModel::maxJoints];
-  for (Eigen::Index j = 0; j < n; ++j) {
-    reciprocal[j] = 1.0 / L[j + j * n];
-  }
+  double X[vpProjectiveArmModel::maxJoints * vpProjectiveArmModel::maxJoints]; // row-major, lower triangle
   double sum = 0.0;
-  for (Eigen::Index j = 0; j < n; ++j) {
-    x[j] = reciprocal[j];
-    sum += x[j] * x[j];
-    for (Eigen::Index i = j + 1; i < n; ++i) {
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double r = L[i + i * n];
+    double rowSum = 1.0;
+    for (Eigen::Index j = 0; j < i; ++j) {
       double y = 0.0;
       for (Eigen::Index k = j; k < i; ++k) {
-        y -= L[i + k * n] * x[k];
+        y -= L[i + k * n] * X[k * n + j];
       }
-      x[i] = y * reciprocal[i];
-      sum += x[i] * x[i];
+      X[i * n + j] = y * r;
+      rowSum += y * y;
     }
+    X[i * n + i] = r;
+    sum += rowSum * (r * r);
   }
   return sum;
 }

@@ -117,7 +117,7 @@ private:
   JointMatrix m_JtJ;
   JointVector m_Jte;
   // The factorisations, computed inside the const getters at their first use.
-  mutable JointMatrix m_L;
+  mutable JointMatrix m_L; // the Cholesky factor: its strictly lower triangle, the reciprocals of its diagonal
   mutable JointVector m_g;
   mutable double m_inverseTrace;
   mutable JointVector m_eigenvalues;
