@@ -169,7 +169,8 @@ void vpServoNormalEquations::factoriseCholesky() const
   ++m_factorisations;
   const Eigen::Index n = m_JtJ.rows();
   m_L.resize(n, n);
-  withJointCount(n, [&](auto N) { m_positiveDefinite = choleskyFactor<N()>(m_JtJ.data(), m_L.data(), n); });
+  withJointCount(n,
+                 [&](auto N) { m_positiveDefinite = choleskyFactor<decltype(N)::value>(m_JtJ.data(), m_L.data(), n); });
 }
 
 void vpServoNormalEquations::solveGaussNewton() const
@@ -182,7 +183,7 @@ void vpServoNormalEquations::solveGaussNewton() const
     return;
   }
   m_g = m_Jte; // L L^T g = J^T e
-  withJointCount(m_JtJ.rows(), [&](auto N) { choleskySolve<N()>(m_L.data(), m_g.data(), m_g.size()); });
+  withJointCount(m_JtJ.rows(), [&](auto N) { choleskySolve<decltype(N)::value>(m_L.data(), m_g.data(), m_g.size()); });
 }
 
 bool vpServoNormalEquations::isPositiveDefinite() const
@@ -213,7 +214,7 @@ double vpServoNormalEquations::getInverseTrace() const
   }
   const Eigen::Index n = m_JtJ.rows();
   double sum = 0.0;
-  withJointCount(n, [&](auto N) { sum = inverseFrobeniusSquared<N()>(m_L.data(), n); });
+  withJointCount(n, [&](auto N) { sum = inverseFrobeniusSquared<decltype(N)::value>(m_L.data(), n); });
   m_inverseTrace = std::isfinite(sum) ? sum : std::numeric_limits<double>::infinity();
   return m_inverseTrace;
 }
