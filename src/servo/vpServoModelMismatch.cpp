@@ -248,53 +248,45 @@ bool vpServoModelMismatch::disagreesWithNoise()
     return false;
   }
   const double sigma2 = std::max(m_noise2, kNoiseFloor * kNoiseFloor);
-  size_t n = 0;
-  for (const vpRecord &r : m_records) {
-    if (r.hasResidual) {
-      m_work[n++] = r.motion;
-    }
-  }
-  if (n < 3) {
-    return false;
-  }
+  double both = 0.0; // the common motion's statistic over both images (a moved rig shifts the features in both)
   for (int image = 0; image < 2; ++image) {
-    // The squared residuals in this image over their variance, summed over the features within the threshold but the
-    // largest (one tracking fault).
-    double sum = 0.0, largest = 0.0;
+    // Over the features within the threshold, less the one of largest normalised residual in this image (a tracking
+    // fault): the sum of their squared residuals over their variances, and their mean residual.
+    double sum = 0.0, largest = -1.0, motion = 0.0, largestMotion = 0.0;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero(), largestResidual = Eigen::Vector2d::Zero();
     size_t within = 0;
     for (const vpRecord &r : m_records) {
       if (r.hasResidual && r.distance <= m_threshold) {
-        const double motion = kMotionNoise * r.motion;
-        const double z = r.residual.segment<2>(2 * image).squaredNorm() / (sigma2 + motion * motion);
+        const double m = kMotionNoise * r.motion;
+        const Eigen::Vector2d ri = r.residual.segment<2>(2 * image);
+        const double z = ri.squaredNorm() / (sigma2 + m * m);
         sum += z;
-        largest = std::max(largest, z);
+        mean += ri;
+        motion += r.motion;
+        if (z > largest) {
+          largest = z;
+          largestResidual = ri;
+          largestMotion = r.motion;
+        }
         ++within;
       }
     }
-    if (within >= 3 && sum - largest > chiSquareBound(2 * (within - 1))) {
+    if (within < 3) {
+      return false;
+    }
+    const double kept = static_cast<double>(within - 1);
+    if (sum - largest > chiSquareBound(2 * (within - 1))) {
       return true;
     }
-  }
-  // The features' common motion in each image: the componentwise median of their residuals, against its variance.
-  const double motion = kMotionNoise * medianOf(m_work, n);
-  const double variance = M_PI * sigma2 / (2.0 * static_cast<double>(n)) + motion * motion;
-  for (int image = 0; image < 2; ++image) {
-    double common2 = 0.0;
-    for (int c = 2 * image; c < 2 * image + 2; ++c) {
-      size_t k = 0;
-      for (const vpRecord &r : m_records) {
-        if (r.hasResidual) {
-          m_work[k++] = r.residual(c);
-        }
-      }
-      const double mu = medianOf(m_work, n);
-      common2 += mu * mu;
-    }
-    if (common2 > kCommonBound * variance) {
+    mean = (mean - largestResidual) / kept;
+    const double common = kMotionNoise * (motion - largestMotion) / kept; // the model's error is common: no 1/n
+    const double q = mean.squaredNorm() / (sigma2 / kept + common * common);
+    if (q > kCommonBound) {
       return true;
     }
+    both += q;
   }
-  return false;
+  return both > chiSquareBound(4);
 }
 
 void vpServoModelMismatch::learnNoise()
