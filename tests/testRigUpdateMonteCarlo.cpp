@@ -115,7 +115,7 @@ TEST(RigUpdate, MonteCarloOfBumps)
             << median(unbumpedDeg) << " deg, " << median(unbumpedMm) << " mm, 90 %: " << quantile(unbumpedDeg, 0.9)
             << " deg, " << quantile(unbumpedMm, 0.9) << " mm; the unbumped task itself ends within 2 deg / 2 mm in "
             << unbumpedReached << " cases, of which the bumped one from 3 poses in " << reached3OfThose << std::endl;
-  EXPECT_GE(detected, static_cast<int>(0.95 * n));
+  EXPECT_EQ(detected, cases); // every bump, within 2 calls (1000, 2000 and 5000 + 0-119; and the study on every arm)
   EXPECT_EQ(falseAlarms, 0);
   EXPECT_LE(median(ratio3), 2.0);
   EXPECT_LE(median(ratio10), 1.2);
