@@ -219,3 +219,35 @@ TEST(RigUpdate, MismatchSeesASmallShiftAgainstTheNoise)
   EXPECT_GT(noiseMin, 0.8); // the detector knows the noise it works in, within 20 %
   EXPECT_LT(noiseMax, 1.25);
 }
+
+// The learned noise's floor (0.5 px per coordinate of a residual): features rounded to whole pixels, whose residuals
+// are most often 0 and otherwise 1 px, at 0, 0.1 and 0.2 px of noise before the rounding, never make a mismatch
+// (measured: none in 15000 calls). The model acquired at 0.5 px; targets and starts as above.
+TEST(RigUpdate, MismatchDoesNotAlarmOnFeaturesRoundedToWholePixels)
+{
+  const ArmSetup s = pumaEyeToHand();
+  vpUniRand rng(77);
+  vpGaussRand noise(1.0, 0.0, 77);
+  const vpProjectiveRobot robot = acquiredRobot(s, noise);
+  int alarms = 0, calls = 0;
+  for (int k = 0; k < 100; ++k) {
+    const vpColVector qTarget = jointsNear({&s}, rng, vpColVector(s.n(), 0.0), 20.0);
+    const vpColVector qStart = jointsNear({&s}, rng, qTarget, 15.0);
+    const double sigma = 0.1 * (k % 3);
+    ServoRun run(s, robot, qTarget, sigma, noise);
+    vpColVector q = qStart;
+    for (int it = 0; it < 150; ++it, ++calls) {
+      ServoRun::measure(s, q, sigma, noise, run.s);
+      for (vpFeatureStereoPoint &f : run.s) {
+        const Eigen::Vector4d v = f.getFeature();
+        f.buildFrom(std::round(v(0)), std::round(v(1)), std::round(v(2)), std::round(v(3)));
+      }
+      const vpColVector qdot = run.task.computeControlLaw(q);
+      q = s.arm.integrate(s.armJoints(q), qdot, 1.0) - s.qRef;
+      alarms += run.task.getStatus() == vpServoProjective::SERVO_MODEL_MISMATCH ? 1 : 0;
+    }
+  }
+  testLog() << "[ measured ] features rounded to whole pixels: " << alarms << " mismatches in " << calls << " calls"
+            << std::endl;
+  EXPECT_EQ(alarms, 0);
+}
