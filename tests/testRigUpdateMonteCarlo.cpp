@@ -115,7 +115,7 @@ TEST(RigUpdate, MonteCarloOfBumps)
             << median(unbumpedDeg) << " deg, " << median(unbumpedMm) << " mm, 90 %: " << quantile(unbumpedDeg, 0.9)
             << " deg, " << quantile(unbumpedMm, 0.9) << " mm; the unbumped task itself ends within 2 deg / 2 mm in "
             << unbumpedReached << " cases, of which the bumped one from 3 poses in " << reached3OfThose << std::endl;
-  EXPECT_GE(detected, static_cast<int>(0.95 * n));
+  EXPECT_EQ(detected, cases); // every bump, within 2 calls (1000, 2000 and 5000 + 0-119; and the study on every arm)
   EXPECT_EQ(falseAlarms, 0);
   EXPECT_LE(median(ratio3), 2.0);
   EXPECT_LE(median(ratio10), 1.2);
@@ -160,14 +160,14 @@ class RigUpdateOnEveryArm : public ::testing::TestWithParam<BumpArm>
   Issue 30, point 5: the bump study of MonteCarloOfBumps on each arm (the PUMA-like arm, ViSP's Viper850, the
   R-R-P-R-R-R arm), 120 seeded cases per arm (left camera, right camera, whole rig in turn), each task run unbumped and
   bumped, re-registered from 3 observation poses, the task refining the rig. Asserted: no false alarm, detection within
-  2 calls of the bump in all cases but at most 4, and the bumped task at its original target in at least 90 % of the
-  cases where the unbumped one is. Issue 30 asks every bump detected and 95 %: over seeds 30000, 40000, 90000,
-  70000, 50000 and 110000 (+0-119; the last four kept aside; docs/servo.dox, servo_meas_mismatch) the worst set of an
-  arm detected 117 of 120 (bumps that moved the features by less than the 5 px threshold at the call after them) and
-  reached 94.1 % (Viper850, 90000-90119; the noise of the triangulations before the bump, which the refined rig
-  inherits): the bounds are below the worst set, not at this one. The median tool error printed is over the cases the
-  unbumped task reaches, bumped and unbumped.
-  VISP_PROJECTIVE_BUMP_CASES and VISP_PROJECTIVE_BUMP_SEED (first seed, default 30000) run other cases.
+  2 calls of the bump in every case, and the bumped task at its original target in at least 90 % of the cases where
+  the unbumped one is. Over seeds 30000, 40000, 90000, 70000, 50000 and 110000 (+0-119; docs/servo.dox,
+  servo_meas_mismatch) every bump of every arm is detected within 2 calls since the detector tests the features
+  together against the noise it learned (18 of the 2160 were missed when only the 5 px threshold decided: they moved
+  the features by 1-5 px), and the worst set of an arm reached 94.96 % (113 of 119; the noise of the triangulations
+  before the bump, which the refined rig inherits): the bound is below the worst set, not at this one. The median tool
+  error printed is over the cases the unbumped task reaches, bumped and unbumped. VISP_PROJECTIVE_BUMP_CASES and
+  VISP_PROJECTIVE_BUMP_SEED (first seed, default 30000) run other cases.
 */
 TEST_P(RigUpdateOnEveryArm, BumpStudy)
 {
@@ -212,7 +212,7 @@ TEST_P(RigUpdateOnEveryArm, BumpStudy)
             << median(bumpedMm) << " mm from the target (median; 90 %: " << quantile(bumpedMm, 0.9)
             << "), the unbumped " << median(unbumpedMm) << " mm (90 %: " << quantile(unbumpedMm, 0.9) << ")"
             << std::endl;
-  EXPECT_GE(detected, cases - 4);
+  EXPECT_EQ(detected, cases);
   EXPECT_EQ(falseAlarms, 0);
   EXPECT_GE(reachedOfThose, static_cast<int>(std::ceil(0.90 * unbumpedReached)));
   EXPECT_GE(unbumpedReached, static_cast<int>(std::ceil(0.9 * cases))); // the tasks are ones the arm reaches

@@ -24,6 +24,31 @@ namespace
 {
 //! The relative error of the model's local motion that the recent prediction tolerates (a tenth of the motion).
 const double kMotionTolerance = 0.1;
+//! The standard deviation of the model's local motion error in the noise tests, relative to the motion: 4 times the
+//! 0.5 % measured on the acquired models of the tests (the threshold's slack, a tenth, bounds it instead).
+const double kMotionNoise = 0.02;
+//! The floor of the learned noise (pixels per coordinate of a residual): whole-pixel rounding gives 0.41.
+const double kNoiseFloor = 0.5;
+//! The iterations that must have given the noise before it is used; then its exponential mean's length.
+const unsigned int kNoiseIterations = 3, kNoiseMemory = 20;
+//! The bound of the common motion's statistic (chi-square, 2 degrees of freedom: exceeded with probability e^-10).
+const double kCommonBound = 20.0;
+//! The chi-square value with \e k degrees of freedom exceeded with probability 1e-5 (Wilson-Hilferty: the cube root
+//! of chi^2_k / k is nearly normal, of mean 1 - 2 / (9k) and variance 2 / (9k); 4.265 the normal's 1e-5 quantile).
+double chiSquareBound(size_t k)
+{
+  const double a = 2.0 / (9.0 * static_cast<double>(k));
+  const double c = 1.0 - a + 4.265 * std::sqrt(a);
+  return static_cast<double>(k) * c * c * c;
+}
+
+//! The median of the first \e n values of \e x (reordered; \e n > 0), without allocation.
+double medianOf(std::vector<double> &x, size_t n)
+{
+  const auto mid = x.begin() + static_cast<std::ptrdiff_t>(n / 2);
+  std::nth_element(x.begin(), mid, x.begin() + static_cast<std::ptrdiff_t>(n));
+  return n % 2 == 1 ? *mid : 0.5 * (*mid + *std::max_element(x.begin(), mid));
+}
 
 //! \e M or \f$ -M \f$, whichever agrees in sign with \e reference: a projective point's sign is arbitrary, so the
 //! points summed into one memory are aligned first.
@@ -48,7 +73,7 @@ double stereoDistance(const Eigen::Vector4d &a, const Eigen::Vector4d &b)
 
 vpServoModelMismatch::vpServoModelMismatch()
     : m_records(), m_threshold(5.0), m_iterations(2), m_disagreeing(0), m_exchangedIterations(0), m_mismatch(false),
-      m_model(nullptr), m_data(nullptr)
+      m_work(), m_noise2(0.0), m_noiseIterations(0), m_model(nullptr), m_data(nullptr)
 {
 }
 
@@ -67,6 +92,7 @@ void vpServoModelMismatch::setConsecutiveIterations(unsigned int iterations)
 void vpServoModelMismatch::resize(unsigned int features)
 {
   m_records.resize(features);
+  m_work.assign(2 * static_cast<size_t>(features), 0.0);
   reset();
 }
 
@@ -79,6 +105,9 @@ void vpServoModelMismatch::reset()
     r.last.setZero();
     r.triangulated.setZero();
     r.s.setZero();
+    r.residual.setZero();
+    r.motion = 0.0;
+    r.hasResidual = false;
     r.distance = -1.0;
     r.exchangedDistance = -1.0;
     r.marker = -1;
@@ -89,12 +118,17 @@ void vpServoModelMismatch::reset()
   m_disagreeing = 0;
   m_exchangedIterations = 0;
   m_mismatch = false;
+  m_noise2 = 0.0;
+  m_noiseIterations = 0;
 }
 
 void vpServoModelMismatch::startIteration(const vpProjectiveArmModel &model, const vpServoProjectiveData &data)
 {
   m_model = &model;
   m_data = &data; // H(q) and the features' points at the zero reference: computed once for the whole servo
+  for (vpRecord &r : m_records) {
+    r.hasResidual = false; // a feature not observed this iteration has no residual in it
+  }
 }
 
 void vpServoModelMismatch::observe(unsigned int i, bool usable)
@@ -105,6 +139,7 @@ void vpServoModelMismatch::observe(unsigned int i, bool usable)
   r.usable = usable && s.allFinite();
   r.distance = -1.0;
   r.exchangedDistance = -1.0;
+  r.hasResidual = false;
   if (!r.usable || !r.hasMemory || m_model == nullptr) {
     return;
   }
@@ -118,7 +153,10 @@ void vpServoModelMismatch::observe(unsigned int i, bool usable)
       double slack = 0.0;
       if (k == 0) {
         sHat += r.offset; // the model's motion from where the feature last agreed
-        slack = kMotionTolerance * stereoDistance(sHat, r.last);
+        r.motion = stereoDistance(sHat, r.last);
+        r.residual = s - sHat;
+        r.hasResidual = true;
+        slack = kMotionTolerance * r.motion;
       }
       const double d = std::max(0.0, stereoDistance(sHat, s) - slack);
       r.distance = r.distance < 0.0 ? d : std::min(r.distance, d);
@@ -162,13 +200,15 @@ bool vpServoModelMismatch::endIteration()
   }
   // Most features, not all: a camera turned about the line of sight of one feature leaves that feature where it was
   // (a 2.9 deg turn about the optical axis moves a marker near the image centre by 4 px, the others by 7-13 px). A
-  // single feature off its prediction is vpServoFeatureHealth's, not a moved camera.
-  const bool disagrees = m_threshold > 0.0 && evaluated >= 2 && 2 * disagreeing > evaluated;
+  // single feature off its prediction is vpServoFeatureHealth's, not a moved camera. Or, below the threshold, the
+  // features together against the noise learned (a bump of 1-5 px at 0.5 px of noise).
+  const bool disagrees = m_threshold > 0.0 && ((evaluated >= 2 && 2 * disagreeing > evaluated) || disagreesWithNoise());
   const bool exchangedImages = m_threshold > 0.0 && exchangedOnly >= 1 && givenOnly == 0;
   m_disagreeing = disagrees ? m_disagreeing + 1 : 0;
   m_exchangedIterations = exchangedImages ? m_exchangedIterations + 1 : 0;
   m_mismatch = m_disagreeing >= m_iterations || m_exchangedIterations >= m_iterations;
   if (!disagrees && !exchangedImages && m_model != nullptr) {
+    learnNoise();
     for (size_t i = 0; i < m_records.size(); ++i) {
       vpRecord &r = m_records[i];
       if (!r.usable || (r.hasMemory && (r.distance < 0.0 || r.distance > m_threshold))) {
@@ -200,4 +240,75 @@ bool vpServoModelMismatch::endIteration()
   m_model = nullptr;
   m_data = nullptr;
   return m_mismatch;
+}
+
+bool vpServoModelMismatch::disagreesWithNoise()
+{
+  if (m_noiseIterations < kNoiseIterations) {
+    return false;
+  }
+  const double sigma2 = std::max(m_noise2, kNoiseFloor * kNoiseFloor);
+  double both = 0.0; // the common motion's statistic over both images (a moved rig shifts the features in both)
+  for (int image = 0; image < 2; ++image) {
+    // Over the features within the threshold, less the one of largest normalised residual in this image (a tracking
+    // fault): the sum of their squared residuals over their variances, and their mean residual.
+    double sum = 0.0, largest = -1.0, motion = 0.0, largestMotion = 0.0;
+    Eigen::Vector2d mean = Eigen::Vector2d::Zero(), largestResidual = Eigen::Vector2d::Zero();
+    size_t within = 0;
+    for (const vpRecord &r : m_records) {
+      if (r.hasResidual && r.distance <= m_threshold) {
+        const double m = kMotionNoise * r.motion;
+        const Eigen::Vector2d ri = r.residual.segment<2>(2 * image);
+        const double z = ri.squaredNorm() / (sigma2 + m * m);
+        sum += z;
+        mean += ri;
+        motion += r.motion;
+        if (z > largest) {
+          largest = z;
+          largestResidual = ri;
+          largestMotion = r.motion;
+        }
+        ++within;
+      }
+    }
+    if (within < 3) {
+      return false;
+    }
+    const double kept = static_cast<double>(within - 1);
+    if (sum - largest > chiSquareBound(2 * (within - 1))) {
+      return true;
+    }
+    mean = (mean - largestResidual) / kept;
+    const double common = kMotionNoise * (motion - largestMotion) / kept; // the model's error is common: no 1/n
+    const double q = mean.squaredNorm() / (sigma2 / kept + common * common);
+    if (q > kCommonBound) {
+      return true;
+    }
+    both += q;
+  }
+  return both > chiSquareBound(4);
+}
+
+void vpServoModelMismatch::learnNoise()
+{
+  // The squared residuals per image of the features that agree; their median over 2 ln 2 estimates the variance of a
+  // coordinate (the median of sigma^2 chi^2_2).
+  size_t n = 0;
+  for (const vpRecord &r : m_records) {
+    if (r.hasResidual && r.distance >= 0.0 && r.distance <= m_threshold) {
+      m_work[n++] = r.residual.head<2>().squaredNorm();
+      m_work[n++] = r.residual.tail<2>().squaredNorm();
+    }
+  }
+  if (n == 0) {
+    return;
+  }
+  // Winsorised at 4 times the noise learned so far: a change of the cameras that the tests missed (during a large
+  // motion) moves the median too, and must not teach the next iterations that its residuals are noise.
+  double estimate = medianOf(m_work, n) / (2.0 * std::log(2.0));
+  if (m_noiseIterations >= kNoiseIterations) {
+    estimate = std::min(estimate, 4.0 * std::max(m_noise2, kNoiseFloor * kNoiseFloor));
+  }
+  m_noiseIterations = std::min(m_noiseIterations + 1, kNoiseMemory);
+  m_noise2 += (estimate - m_noise2) / static_cast<double>(m_noiseIterations);
 }
