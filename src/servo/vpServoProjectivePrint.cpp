@@ -205,7 +205,13 @@ void vpServoProjective::print(std::ostream &os) const
   }
   os << "; model-mismatch threshold ";
   if (m_mismatch.getThreshold() > 0.0) {
-    os << m_mismatch.getThreshold() << " px over " << m_mismatch.getConsecutiveIterations() << " calls";
+    os << m_mismatch.getThreshold() << " px over " << m_mismatch.getConsecutiveIterations()
+       << " calls, or the features together beyond their noise (";
+    if (m_mismatch.getNoise() > 0.0) {
+      os << "learned: " << m_mismatch.getNoise() << " px)";
+    } else {
+      os << "not learned yet)";
+    }
   } else {
     os << "off";
   }
