@@ -73,7 +73,7 @@ double stereoDistance(const Eigen::Vector4d &a, const Eigen::Vector4d &b)
 
 vpServoModelMismatch::vpServoModelMismatch()
     : m_records(), m_threshold(5.0), m_iterations(2), m_disagreeing(0), m_exchangedIterations(0), m_mismatch(false),
-      m_work(), m_noise2(0.0), m_noiseIterations(0), m_model(nullptr), m_data(nullptr)
+      m_work(), m_sumBounds(), m_noise2(0.0), m_noiseIterations(0), m_model(nullptr), m_data(nullptr)
 {
 }
 
@@ -93,6 +93,10 @@ void vpServoModelMismatch::resize(unsigned int features)
 {
   m_records.resize(features);
   m_work.assign(2 * static_cast<size_t>(features), 0.0);
+  m_sumBounds.resize(features);
+  for (size_t k = 1; k < m_sumBounds.size(); ++k) {
+    m_sumBounds[k] = chiSquareBound(2 * k); // the sum's bound over k features of an image: once, not per call
+  }
   reset();
 }
 
@@ -275,7 +279,7 @@ bool vpServoModelMismatch::disagreesWithNoise()
       return false;
     }
     const double kept = static_cast<double>(within - 1);
-    if (sum - largest > chiSquareBound(2 * (within - 1))) {
+    if (sum - largest > m_sumBounds[within - 1]) {
       return true;
     }
     mean = (mean - largestResidual) / kept;
@@ -286,7 +290,8 @@ bool vpServoModelMismatch::disagreesWithNoise()
     }
     both += q;
   }
-  return both > chiSquareBound(4);
+  static const double bothBound = chiSquareBound(4);
+  return both > bothBound;
 }
 
 void vpServoModelMismatch::learnNoise()

@@ -243,9 +243,10 @@ private:
   unsigned int m_disagreeing;
   unsigned int m_exchangedIterations; // consecutive iterations seeing the left and right images exchanged
   bool m_mismatch;
-  std::vector<double> m_work;     // 2 values per feature, sized by resize(): the medians without allocation
-  double m_noise2;                // the learned noise's square, 0: none yet
-  unsigned int m_noiseIterations; // the iterations that gave it
+  std::vector<double> m_work;      // 2 values per feature, sized by resize(): the medians without allocation
+  std::vector<double> m_sumBounds; // [k]: the chi-square bound of the sum over k features of an image, by resize()
+  double m_noise2;                 // the learned noise's square, 0: none yet
+  unsigned int m_noiseIterations;  // the iterations that gave it
   const vpProjectiveArmModel *m_model;
   const vpServoProjectiveData *m_data;
 };
