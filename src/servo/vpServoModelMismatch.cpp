@@ -29,6 +29,11 @@ const double kMotionTolerance = 0.1;
 const double kMotionNoise = 0.02;
 //! The floor of the learned noise (pixels per coordinate of a residual): whole-pixel rounding gives 0.41.
 const double kNoiseFloor = 0.5;
+//! The variance the noise tests use: the learned one \e noise2, at least the floor's.
+double flooredVariance(double noise2)
+{
+  return std::max(noise2, kNoiseFloor * kNoiseFloor);
+}
 //! The iterations that must have given the noise before it is used; then its exponential mean's length.
 const unsigned int kNoiseIterations = 3, kNoiseMemory = 20;
 //! The bound of the common motion's statistic (chi-square, 2 degrees of freedom: exceeded with probability e^-10).
@@ -251,7 +256,7 @@ bool vpServoModelMismatch::disagreesWithNoise()
   if (m_noiseIterations < kNoiseIterations) {
     return false;
   }
-  const double sigma2 = std::max(m_noise2, kNoiseFloor * kNoiseFloor);
+  const double sigma2 = flooredVariance(m_noise2);
   double both = 0.0; // the common motion's statistic over both images (a moved rig shifts the features in both)
   for (int image = 0; image < 2; ++image) {
     // Over the features within the threshold, less the one of largest normalised residual in this image (a tracking
@@ -296,11 +301,11 @@ bool vpServoModelMismatch::disagreesWithNoise()
 
 void vpServoModelMismatch::learnNoise()
 {
-  // The squared residuals per image of the features that agree; their median over 2 ln 2 estimates the variance of a
-  // coordinate (the median of sigma^2 chi^2_2).
+  // The squared residuals per image of the features that agree (those the tests read); their median over 2 ln 2
+  // estimates the variance of a coordinate (the median of sigma^2 chi^2_2).
   size_t n = 0;
   for (const vpRecord &r : m_records) {
-    if (r.hasResidual && r.distance >= 0.0 && r.distance <= m_threshold) {
+    if (r.hasResidual && r.distance <= m_threshold) { // a residual comes with its distance (observe())
       m_work[n++] = r.residual.head<2>().squaredNorm();
       m_work[n++] = r.residual.tail<2>().squaredNorm();
     }
@@ -312,7 +317,7 @@ void vpServoModelMismatch::learnNoise()
   // motion) moves the median too, and must not teach the next iterations that its residuals are noise.
   double estimate = medianOf(m_work, n) / (2.0 * std::log(2.0));
   if (m_noiseIterations >= kNoiseIterations) {
-    estimate = std::min(estimate, 4.0 * std::max(m_noise2, kNoiseFloor * kNoiseFloor));
+    estimate = std::min(estimate, 4.0 * flooredVariance(m_noise2));
   }
   m_noiseIterations = std::min(m_noiseIterations + 1, kNoiseMemory);
   m_noise2 += (estimate - m_noise2) / static_cast<double>(m_noiseIterations);
